@@ -1,0 +1,21 @@
+# Turns every file under templates/ into a string in the facet binary, so the
+# command line needs nothing beside itself at run time.
+#   cmake -DSOURCE_DIR=<templates> -DOUTPUT=<file.cpp> -P EmbedTemplates.cmake
+file(GLOB_RECURSE files RELATIVE ${SOURCE_DIR} ${SOURCE_DIR}/*)
+list(SORT files)
+set(body "// Generated from templates/ by cmake/EmbedTemplates.cmake. Do not edit.\n")
+string(APPEND body "#include \"templates.h\"\n\nnamespace facet {\n\nconst std::map<std::string, std::string>& embedded_templates() {\n")
+string(APPEND body "  static const std::map<std::string, std::string> all = {\n")
+foreach(f ${files})
+  file(READ ${SOURCE_DIR}/${f} content)
+  string(APPEND body "    {\"${f}\", R\"facet_template(${content})facet_template\"},\n")
+endforeach()
+string(APPEND body "  };\n  return all;\n}\n\n}  // namespace facet\n")
+if(EXISTS ${OUTPUT})
+  file(READ ${OUTPUT} old)
+else()
+  set(old "")
+endif()
+if(NOT old STREQUAL body)
+  file(WRITE ${OUTPUT} "${body}")
+endif()

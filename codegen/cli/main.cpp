@@ -1,0 +1,350 @@
+// facet — the command line.
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "facet/catalog.h"
+#include "facet/compare.h"
+#include "facet/image.h"
+#include "facet/render.h"
+#include "facet/renderers.h"
+#include "facet/io.h"
+#include "facet/material.h"
+#include "facet/reference.h"
+#include "facet/scene.h"
+#include "facet/targets.h"
+
+using nlohmann::json;
+
+namespace facet {
+namespace {
+
+// ---------------------------------------------------------------- generate
+
+struct GenerateArgs {
+  std::string material;
+  std::string target = "glsl";
+  std::string scene;
+  std::string output;
+  bool library = false;
+};
+
+int run_generate(const GenerateArgs& a) {
+  auto target = parse_target(a.target);  // CLI11 already checked the name
+  Material m = load_material(a.material);
+  GenerateOptions o;
+  o.target = *target;
+  o.library = a.library;
+  o.source = a.material;
+  if (!a.scene.empty()) o.scene = load_scene(a.scene);
+  std::string code = generate(m, o);
+  if (a.output.empty() || a.output == "-") {
+    std::cout << code;
+    return 0;
+  }
+  write_file_atomic(a.output, code);
+  return 0;
+}
+
+// ---------------------------------------------------------------- eval
+
+Vec3 unit_vector(const json& j, const std::string& path, DiagnosticSink& sink, bool& ok) {
+  if (!j.is_array() || j.size() != 3 || !j[0].is_number() || !j[1].is_number() || !j[2].is_number()) {
+    sink.error(path, "expected an array of three numbers, found " + json_type_name(j));
+    ok = false;
+    return {};
+  }
+  Vec3 v(j[0].get<double>(), j[1].get<double>(), j[2].get<double>());
+  double len = length(v);
+  if (!(len > 0) || !std::isfinite(len)) {
+    sink.error(path, "has no direction (zero or not finite); allowed: a non-zero vector");
+    ok = false;
+    return {};
+  }
+  return v / len;
+}
+
+int run_eval(const std::string& material_path) {
+  Material m = load_material(material_path);
+  Reference ref(m);
+  std::stringstream in;
+  in << std::cin.rdbuf();
+  const std::string file = "(stdin)";
+  json sets = parse_json(in.str(), file);
+  DiagnosticSink sink(file);
+  if (!sets.is_array()) {
+    sink.error("", "expected an array of direction sets {\"n\", \"l\", \"v\", \"t\"?}, found " + json_type_name(sets));
+    sink.throw_if_any();
+  }
+  json out = json::array();
+  for (size_t i = 0; i < sets.size(); ++i) {
+    const json& s = sets[i];
+    std::string path = index_path("", i);
+    if (!s.is_object()) {
+      sink.error(path, "expected an object {\"n\", \"l\", \"v\", \"t\"?}, found " + json_type_name(s));
+      continue;
+    }
+    for (const auto& [key, val] : s.items())
+      if (key != "n" && key != "l" && key != "v" && key != "t")
+        sink.error(join_path(path, key), "unknown key; allowed keys: \"n\", \"l\", \"v\", \"t\"");
+    bool ok = true;
+    auto get = [&](const char* key) -> Vec3 {
+      if (!s.contains(key)) {
+        sink.error(join_path(path, key), "missing; allowed: an array of three numbers");
+        ok = false;
+        return {};
+      }
+      return unit_vector(s[key], join_path(path, key), sink, ok);
+    };
+    Vec3 n = get("n"), l = get("l"), v = get("v");
+    Vec3 t;
+    if (ok && s.contains("t")) {
+      t = unit_vector(s["t"], join_path(path, "t"), sink, ok);
+      // MODELS.md needs t ⟂ n: keep the part of t across n.
+      Vec3 across = t - n * dot(n, t);
+      if (ok && length(across) < kEpsilon) {
+        sink.error(join_path(path, "t"), "is parallel to n; allowed: a tangent across the normal");
+        ok = false;
+      }
+      if (ok) t = normalize(across);
+    } else if (ok) {
+      t = tangent_rule(n, Vec3(m.tangent_axis));
+    }
+    if (!ok) continue;
+    RGB c = ref.reflectance(n, l, v, t);
+    out.push_back({c[0], c[1], c[2]});
+  }
+  sink.throw_if_any();
+  std::cout << out.dump() << "\n";
+  return 0;
+}
+
+// ---------------------------------------------------------------- render
+
+struct RenderArgs {
+  std::string material;
+  std::string renderer = "reference";
+  std::string scene = "single";
+  std::string size = "256x256";
+  std::string output;
+  std::string preview;
+  std::string workdir;
+  bool compare = false;
+};
+
+bool parse_size(const std::string& s, int& w, int& h) {
+  auto x = s.find('x');
+  if (x == std::string::npos) return false;
+  try {
+    w = std::stoi(s.substr(0, x));
+    h = std::stoi(s.substr(x + 1));
+  } catch (...) {
+    return false;
+  }
+  return w > 0 && h > 0 && w <= 16384 && h <= 16384;
+}
+
+int run_render(const RenderArgs& a) {
+  int w, h;
+  if (!parse_size(a.size, w, h)) throw InputError({{"--size", "", "expected WIDTHxHEIGHT, e.g. 256x256", 0, 0}});
+  Material m = load_material(a.material);
+  Scene scene = load_scene(a.scene);
+  Render ref = render_reference(m, scene, w, h);
+  Image image = ref.image;
+  if (a.renderer == "pov") {
+    RenderJob job;
+    job.material = m;
+    job.scene = scene;
+    job.width = w;
+    job.height = h;
+    job.workdir = a.workdir.empty() ? (std::filesystem::temp_directory_path() / "facet-render").string() : a.workdir;
+    job.max_value = 0;
+    for (float v : ref.image.rgb) job.max_value = std::max<double>(job.max_value, v);
+    RenderOutcome r = render_pov(job);
+    if (!r.ok) {
+      std::cerr << "error: POV-Ray: " << r.error << "\n";
+      return 1;
+    }
+    image = r.image;
+    fmt::print(stderr, "pov: {:.2f} s\n", r.seconds);
+  }
+  if (a.compare && a.renderer != "reference") {
+    Metrics mt = compare_images(ref, image, interior_mask(ref), 2e-3);
+    fmt::print("{} vs reference: max_abs {:.3g} rmse {:.3g} over {} of {} interior pixels, nan {}; worst at ({}, {}): "
+               "ref [{:.6g} {:.6g} {:.6g}] got [{:.6g} {:.6g} {:.6g}]\n",
+               a.renderer, mt.max_abs, mt.rmse, mt.over, mt.pixels, mt.nan, mt.worst_x, mt.worst_y, mt.worst_ref[0],
+               mt.worst_ref[1], mt.worst_ref[2], mt.worst_got[0], mt.worst_got[1], mt.worst_got[2]);
+  }
+  if (!a.output.empty()) write_pfm(a.output, image);
+  if (!a.preview.empty()) write_png_preview(a.preview, image);
+  return 0;
+}
+
+// ---------------------------------------------------------------- models
+
+json value_json(const Value& v, ParamKind kind) {
+  switch (kind) {
+    case ParamKind::Number: return v.number;
+    case ParamKind::Bool: return v.flag;
+    case ParamKind::Enum:
+    case ParamKind::String: return v.choice;
+    case ParamKind::Color:
+    case ParamKind::Vector: return v.rgb;
+    case ParamKind::Model: return v.model ? spec_json(*v.model) : json(nullptr);
+    case ParamKind::Object: return nullptr;
+  }
+  return nullptr;
+}
+
+json catalog_json() {
+  json sections = json::object();
+  for (const auto& m : catalog()) {
+    json params = json::array();
+    for (const auto& p : m.params) {
+      json pj = {{"name", p.name}, {"type", param_kind_name(p.kind)}, {"doc", p.doc}, {"required", p.required},
+                 {"allowed", p.allowed()}};
+      if (p.kind == ParamKind::Number || p.kind == ParamKind::Color) {
+        pj["range"] = {{"min", std::isfinite(p.range.min) ? json(p.range.min) : json(nullptr)},
+                       {"max", std::isfinite(p.range.max) ? json(p.range.max) : json(nullptr)},
+                       {"min_exclusive", p.range.min_open},
+                       {"max_exclusive", p.range.max_open}};
+      }
+      if (p.kind == ParamKind::Enum) pj["choices"] = p.choices;
+      if (p.kind == ParamKind::Model || p.kind == ParamKind::Object) pj["section"] = p.section;
+      if (p.kind != ParamKind::Object) pj["default"] = value_json(p.fallback, p.kind);
+      params.push_back(pj);
+    }
+    json mj = {{"name", m.name},       {"title", m.title}, {"citation", m.citation},
+               {"formula", m.formula}, {"doc", m.doc},     {"parameters", params}};
+    if (m.section == "diffuse" || m.section == "specular") {
+      mj["cycles"] = {{"level", level_name(m.cycles.level)}, {"note", m.cycles.note}};
+      mj["pov"] = {{"level", level_name(m.pov.level)}, {"note", m.pov.note}};
+    }
+    sections[m.section].push_back(mj);
+  }
+  return {{"facet", FACET_VERSION}, {"epsilon", kEpsilon}, {"sections", sections}};
+}
+
+int run_models(bool as_json) {
+  if (as_json) {
+    std::cout << catalog_json().dump(2) << "\n";
+    return 0;
+  }
+  std::string current;
+  for (const auto& m : catalog()) {
+    if (m.section != current) {
+      current = m.section;
+      fmt::print("\n{}\n{}\n", current, std::string(current.size(), '-'));
+    }
+    fmt::print("  {:<18} {}\n", m.name, m.formula);
+    if (!m.citation.empty()) fmt::print("  {:<18} {}\n", "", m.citation);
+    for (const auto& p : m.params) {
+      if (p.name == "color" || p.name == "toon") continue;
+      std::string dflt;
+      if (p.kind == ParamKind::Number) dflt = fmt::format(", default {}", p.fallback.number);
+      if (p.kind == ParamKind::Enum) dflt = fmt::format(", default \"{}\"", p.fallback.choice);
+      if (p.kind == ParamKind::Model && p.fallback.model) dflt = fmt::format(", default {}", p.fallback.choice);
+      fmt::print("  {:<18}   {}{}: {}{}\n", "", p.name, p.required ? " (required)" : "", p.allowed(), dflt);
+    }
+  }
+  fmt::print("\nEvery diffuse and specular lobe also takes \"color\" (k_d or k_s, default 1) and \"toon\".\n");
+  return 0;
+}
+
+}  // namespace
+}  // namespace facet
+
+int main(int argc, char** argv) {
+  using namespace facet;
+  CLI::App app{"facet " FACET_VERSION
+               " — one material description, equivalent GLSL, OSL and POV-Ray code, and a C++ reference.\n"};
+  app.require_subcommand(1);
+  app.footer(
+      "Examples:\n"
+      "  facet generate examples/materials/ggx.json --target glsl -o ggx.frag\n"
+      "  facet generate examples/materials/oren_nayar.json --target pov -o oren.pov && \\\n"
+      "    povray +Ioren.pov +Ooren.png +W256 +H256 -A +FN16 File_Gamma=1.0\n"
+      "  echo '[{\"n\":[0,0,1],\"l\":[0,1,1],\"v\":[0,0,1]}]' | facet eval examples/materials/lambert.json\n"
+      "  facet models\n"
+      "Run 'facet <command> --help' for a command's options. Formulas: MODELS.md.");
+
+  GenerateArgs gen;
+  auto* g = app.add_subcommand("generate", "Generate GLSL, OSL or POV-Ray code from a material file");
+  g->add_option("material", gen.material, "The material (JSON; see 'facet schema')")->required();
+  g->add_option("-t,--target", gen.target,
+                "glsl (GLSL 3.30 core), glsl450 (Vulkan, compiles to SPIR-V), essl (OpenGL ES 3.00), "
+                "osl (Cycles shader), pov (POV-Ray 3.7 scene)")
+      ->check(CLI::IsMember({"glsl", "glsl450", "essl", "osl", "pov"}))
+      ->capture_default_str();
+  g->add_option("--scene", gen.scene,
+                "Scene for OSL's lights and POV-Ray's frame: a scene file or a built-in name (single, shadows). "
+                "Default: single");
+  g->add_flag("--library", gen.library,
+              "Only the functions, for an engine (GLSL, OSL), or an include file declaring the texture (POV-Ray)");
+  g->add_option("-o,--output", gen.output, "Output file; standard output without it. Written whole or not at all");
+  g->footer(
+      "Examples:\n"
+      "  facet generate mat.json --target glsl450 -o mat.frag && glslangValidator -V mat.frag\n"
+      "  facet generate mat.json --target osl --scene shadows -o mat.osl\n"
+      "  facet generate mat.json --target pov -o mat.pov      # a complete scene: sphere, camera, light\n"
+      "  facet generate mat.json --target glsl --library       # just the functions: facet_reflect(n, l, v, t)\n"
+      "Nothing is written when the material has an error; the exit status is then 1.");
+
+  std::string eval_material;
+  auto* e = app.add_subcommand("eval", "Evaluate the C++ reference for direction sets read from standard input");
+  e->add_option("material", eval_material, "The material (JSON)")->required();
+  e->footer(
+      "Reads a JSON array of {\"n\": [x,y,z], \"l\": [...], \"v\": [...], \"t\": [...]} (t optional: without it,\n"
+      "t = normalize(tangent_axis × n)). Vectors are normalized; t is made perpendicular to n. Writes a JSON array\n"
+      "of [r, g, b] = k_d ⊗ ρ_d + k_s ⊗ ρ_s for one white light: no attenuation, ambient or emission.\n"
+      "Example:\n"
+      "  echo '[{\"n\":[0,0,1],\"l\":[0,1,1],\"v\":[0,-1,1]}]' | facet eval examples/materials/phong.json");
+
+  bool models_json = false;
+  auto* mo = app.add_subcommand("models", "List the model catalog: parameters, ranges, defaults, citations");
+  mo->add_flag("--json", models_json, "Machine-readable (the Blender add-on reads this)");
+
+  RenderArgs ra;
+  auto* rn = app.add_subcommand("render", "Render a material on a scene with one renderer (float image)");
+  rn->add_option("material", ra.material, "The material (JSON)")->required();
+  rn->add_option("-r,--renderer", ra.renderer, "reference (C++ ray caster) or pov (POV-Ray 3.7)")
+      ->check(CLI::IsMember({"reference", "pov"}))
+      ->capture_default_str();
+  rn->add_option("--scene", ra.scene, "A scene file or a built-in name (single, shadows)")->capture_default_str();
+  rn->add_option("--size", ra.size, "Image size WIDTHxHEIGHT")->capture_default_str();
+  rn->add_option("-o,--output", ra.output, "Linear float image (PFM)");
+  rn->add_option("--preview", ra.preview, "An 8-bit sRGB PNG to look at");
+  rn->add_option("--workdir", ra.workdir, "Where the renderer's files go (default: a temporary folder)");
+  rn->add_flag("--compare", ra.compare, "Print the comparison with the reference");
+
+  bool schema_scene = false;
+  auto* sc = app.add_subcommand("schema", "Print the JSON Schema of material files (or of scene files)");
+  sc->add_flag("--scene", schema_scene, "The scene schema instead");
+
+  CLI11_PARSE(app, argc, argv);
+
+  try {
+    if (g->parsed()) return run_generate(gen);
+    if (e->parsed()) return run_eval(eval_material);
+    if (mo->parsed()) return run_models(models_json);
+    if (rn->parsed()) return run_render(ra);
+    if (sc->parsed()) {
+      std::cout << (schema_scene ? scene_schema() : material_schema()).dump(2) << "\n";
+      return 0;
+    }
+  } catch (const InputError& err) {
+    for (const auto& d : err.diagnostics()) std::cerr << "error: " << d.format() << "\n";
+    return 1;
+  } catch (const IoError& err) {
+    std::cerr << "error: " << err.what() << "\n";
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,27 @@
+// facet — linear RGB float images and the files they travel in.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace facet {
+
+struct Image {
+  int width = 0, height = 0;
+  std::vector<float> rgb;  // row-major from the top row, 3 floats a pixel, linear
+
+  Image() = default;
+  Image(int w, int h) : width(w), height(h), rgb(size_t(w) * size_t(h) * 3, 0.0f) {}
+  float* at(int x, int y) { return &rgb[(size_t(y) * size_t(width) + size_t(x)) * 3]; }
+  const float* at(int x, int y) const { return &rgb[(size_t(y) * size_t(width) + size_t(x)) * 3]; }
+};
+
+// Portable float map: exact floats (the renderers' interchange format).
+void write_pfm(const std::string& path, const Image& img);
+Image read_pfm(const std::string& path);
+// A 16-bit (or 8-bit) PNG as linear values in [0, 1], as POV-Ray writes with File_Gamma=1.0.
+Image read_png(const std::string& path);
+// An 8-bit sRGB-encoded preview, values × scale, clamped to [0, 1].
+void write_png_preview(const std::string& path, const Image& img, float scale = 1.0f);
+
+}  // namespace facet

@@ -1,0 +1,29 @@
+// facet — a material compiled to IR functions, ready for the printers and the
+// C++ reference.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "facet/ir.h"
+#include "facet/material.h"
+
+namespace facet {
+
+struct MaterialProgram {
+  Material material;
+  ir::FunctionPtr diffuse;      // rho_diffuse(inputs…), or null
+  ir::FunctionPtr specular;     // rho_specular(inputs…), or null
+  ir::FunctionPtr reflectance;  // k_d ⊗ ρ_d + k_s ⊗ ρ_s, 0 below the horizon
+  std::vector<std::string> inputs;  // reflectance's parameters, in input_order()
+
+  bool uses(const std::string& input) const;
+  bool uses_tangent() const { return uses("LoT") || uses("VoT") || uses("LoB") || uses("VoB"); }
+  // Every function to print, callees first (the light functions included).
+  std::vector<ir::FunctionPtr> functions() const;
+  std::vector<ir::NodePtr> constants() const;
+};
+
+MaterialProgram compile(const Material& m);
+
+}  // namespace facet

@@ -1,0 +1,318 @@
+#include "facet/scene.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <limits>
+
+#include "checker.h"
+
+namespace facet {
+
+// ---------------------------------------------------------------- geometry
+
+Camera::Basis Camera::basis() const {
+  Basis b;
+  b.forward = normalize(look_at - position);
+  b.right = normalize(cross(b.forward, up));
+  b.up = cross(b.right, b.forward);
+  b.tan_half = std::tan(fov * M_PI / 360.0);
+  return b;
+}
+
+Vec3 Camera::ray(int i, int j, int w, int h) const {
+  // Pixel centres, as POV-Ray, Cycles (sample 0) and gl_FragCoord place them.
+  Basis b = basis();
+  double aspect = double(w) / double(h);
+  double x = (2.0 * (i + 0.5) / w - 1.0) * b.tan_half * aspect;
+  double y = (1.0 - 2.0 * (j + 0.5) / h) * b.tan_half;
+  return normalize(b.forward + b.right * x + b.up * y);
+}
+
+void Light::toward(const Vec3& p, Vec3& l, double& distance) const {
+  if (type == Type::Directional) {
+    l = -direction;
+    distance = std::numeric_limits<double>::infinity();
+    return;
+  }
+  Vec3 d = position - p;
+  distance = length(d);
+  l = d / distance;
+}
+
+void Object::plane_axes(Vec3& u, Vec3& v) const {
+  Vec3 c = cross(normal, Vec3(1, 0, 0));
+  if (length(c) < 1e-6) c = cross(normal, Vec3(0, 0, 1));
+  u = normalize(c);
+  v = cross(normal, u);
+}
+
+double Object::intersect(const Vec3& o, const Vec3& d, double t_min) const {
+  if (type == Type::Sphere) {
+    Vec3 oc = o - center;
+    double b = dot(oc, d);
+    double c = dot(oc, oc) - radius * radius;
+    double disc = b * b - c;
+    if (disc < 0) return -1;
+    double s = std::sqrt(disc);
+    // The nearer root, computed without cancellation.
+    double q = b > 0 ? -(b + s) : -(b - s);
+    double t0 = q, t1 = c / q;
+    if (t0 > t1) std::swap(t0, t1);
+    if (t0 > t_min) return t0;
+    if (t1 > t_min) return t1;
+    return -1;
+  }
+  double den = dot(d, normal);
+  if (den == 0) return -1;
+  double t = dot(point - o, normal) / den;
+  if (!(t > t_min)) return -1;
+  Vec3 p = o + d * t - point, u, v;
+  plane_axes(u, v);
+  if (std::fabs(dot(p, u)) > size || std::fabs(dot(p, v)) > size) return -1;
+  return t;
+}
+
+Vec3 Object::normal_at(const Vec3& p) const {
+  return type == Type::Sphere ? normalize(p - center) : normal;
+}
+
+// ---------------------------------------------------------------- parsing
+
+namespace {
+
+const std::vector<std::string> kSceneKeys = {"$schema", "name", "camera", "ambient", "objects", "lights"};
+
+Vec3 vec(const ModelSpec& s, const char* key) { return Vec3(s.at(key).rgb); }
+
+Attenuation attenuation_of(const ModelSpec& light) {
+  Attenuation a;
+  const ModelSpec& m = *light.at("attenuation").model;
+  if (m.def->name == "inverse_square") a.law = Attenuation::Law::InverseSquare;
+  if (m.def->name == "polynomial") {
+    a.law = Attenuation::Law::Polynomial;
+    a.constant = m.at("constant").number;
+    a.linear = m.at("linear").number;
+    a.quadratic = m.at("quadratic").number;
+  }
+  return a;
+}
+
+template <class F>
+void each(const json& doc, const char* key, DiagnosticSink& sink, F fn) {
+  auto it = doc.find(key);
+  if (it == doc.end()) return;
+  if (!it->is_array()) {
+    sink.error(key, "expected an array, found " + json_type_name(*it));
+    return;
+  }
+  for (size_t i = 0; i < it->size(); ++i) fn((*it)[i], index_path(key, i));
+}
+
+}  // namespace
+
+Scene parse_scene(const json& doc, const std::string& file) {
+  DiagnosticSink sink(file);
+  Checker check(sink);
+  Scene s;
+  s.source = file;
+  s.name = std::filesystem::path(file).stem().string();
+  if (!doc.is_object()) {
+    sink.error("", "expected a scene object, found " + json_type_name(doc) + "; allowed: an object with keys " +
+                       quoted_list(kSceneKeys));
+    sink.throw_if_any();
+  }
+  for (const auto& [key, val] : doc.items()) {
+    if (std::find(kSceneKeys.begin(), kSceneKeys.end(), key) == kSceneKeys.end()) {
+      std::string hint = suggest(key, kSceneKeys);
+      sink.error(key, fmt::format("unknown key{}; allowed keys: {}",
+                                  hint.empty() ? "" : " (did you mean \"" + hint + "\"?)", quoted_list(kSceneKeys)));
+    }
+  }
+  if (auto it = doc.find("name"); it != doc.end()) {
+    if (it->is_string() && !it->get<std::string>().empty()) s.name = it->get<std::string>();
+    else sink.error("name", "expected a non-empty string, found " + json_type_name(*it));
+  }
+  if (auto it = doc.find("camera"); it != doc.end()) {
+    if (auto c = check.model(*it, "camera", "camera", find_model("camera", "perspective"))) {
+      s.camera.position = vec(*c, "position");
+      s.camera.look_at = vec(*c, "look_at");
+      s.camera.up = vec(*c, "up");
+      s.camera.fov = c->at("fov").number;
+      Vec3 f = s.camera.look_at - s.camera.position;
+      if (length(f) == 0) sink.error("camera.look_at", "equals camera.position; the camera needs a direction");
+      else if (length(cross(normalize(f), normalize(s.camera.up))) < 1e-6)
+        sink.error("camera.up", "is parallel to the viewing direction; allowed: any other direction");
+    }
+  } else {
+    sink.error("camera", "missing; allowed: an object with keys \"position\", \"look_at\", \"up\", \"fov\"");
+  }
+  if (auto it = doc.find("ambient"); it != doc.end()) {
+    ParamDef p;
+    p.kind = ParamKind::Color;
+    p.range = Range::non_negative();
+    if (auto c = check.color(*it, "ambient", p)) s.ambient = *c;
+  }
+  each(doc, "objects", sink, [&](const json& j, const std::string& path) {
+    auto o = check.model(j, path, "object", nullptr, "type");
+    if (!o) return;
+    Object obj;
+    obj.name = o->at("name").choice;
+    if (obj.name.empty()) obj.name = fmt::format("{}{}", o->def->name, s.objects.size());
+    if (o->def->name == "sphere") {
+      obj.type = Object::Type::Sphere;
+      obj.center = vec(*o, "center");
+      obj.radius = o->at("radius").number;
+    } else {
+      obj.type = Object::Type::Plane;
+      obj.point = vec(*o, "point");
+      obj.normal = normalize(vec(*o, "normal"));
+      obj.size = o->at("size").number;
+    }
+    s.objects.push_back(obj);
+  });
+  if (!doc.contains("objects")) sink.error("objects", "missing; allowed: an array of spheres and planes");
+  else if (doc["objects"].is_array() && doc["objects"].empty()) sink.error("objects", "empty; a scene needs an object");
+  each(doc, "lights", sink, [&](const json& j, const std::string& path) {
+    auto l = check.model(j, path, "light", nullptr, "type");
+    if (!l) return;
+    Light light;
+    light.color = l->at("color").rgb;
+    const std::string& t = l->def->name;
+    if (t == "point" || t == "spot") light.position = vec(*l, "position");
+    if (t == "directional" || t == "spot") light.direction = normalize(vec(*l, "direction"));
+    if (t == "point" || t == "spot") light.attenuation = attenuation_of(*l);
+    light.type = t == "point" ? Light::Type::Point : t == "spot" ? Light::Type::Spot : Light::Type::Directional;
+    if (t == "spot") {
+      light.cutoff = l->at("cutoff").number;
+      light.exponent = l->at("exponent").number;
+    }
+    const Attenuation& a = light.attenuation;
+    if (a.law == Attenuation::Law::Polynomial && a.constant + a.linear + a.quadratic <= 0)
+      sink.error(join_path(path, "attenuation"), "constant, linear and quadratic are all 0; one must be positive");
+    s.lights.push_back(light);
+  });
+  sink.throw_if_any();
+  return s;
+}
+
+// ---------------------------------------------------------------- built-in scenes
+
+namespace {
+
+// `single`: the validation scene of the issue — one unit sphere, one point light.
+// `shadows`: the sphere on a square, a point light with OpenGL attenuation and a
+// directional light; a small sphere outside the view casts a shadow on the sphere.
+const char* kSingle = R"({
+  "name": "single",
+  "camera": {"position": [0, 0, 4], "look_at": [0, 0, 0], "up": [0, 1, 0], "fov": 40},
+  "ambient": [0.05, 0.05, 0.05],
+  "objects": [{"type": "sphere", "name": "sphere", "center": [0, 0, 0], "radius": 1}],
+  "lights": [{"type": "point", "position": [-3, 4, 5], "color": [1, 1, 1]}]
+})";
+
+const char* kShadows = R"({
+  "name": "shadows",
+  "camera": {"position": [0, 1.2, 4.5], "look_at": [0, -0.2, 0], "up": [0, 1, 0], "fov": 45},
+  "ambient": [0.04, 0.04, 0.05],
+  "objects": [
+    {"type": "sphere", "name": "sphere", "center": [0, 0, 0], "radius": 1},
+    {"type": "plane", "name": "floor", "point": [0, -1, 0], "normal": [0, 1, 0], "size": 2.5},
+    {"type": "sphere", "name": "occluder", "center": [-1.41, 1.87, 2.49], "radius": 0.25}
+  ],
+  "lights": [
+    {"type": "point", "position": [-3, 4, 5], "color": [1.1, 1.0, 0.9],
+     "attenuation": {"constant": 1, "quadratic": 0.02}},
+    {"type": "directional", "direction": [0.6, -1, -0.4], "color": [0.3, 0.32, 0.4]}
+  ]
+})";
+
+}  // namespace
+
+const std::vector<std::string>& builtin_scene_names() {
+  static const std::vector<std::string> names = {"single", "shadows"};
+  return names;
+}
+
+json builtin_scene_json(const std::string& name) {
+  if (name == "single") return json::parse(kSingle);
+  if (name == "shadows") return json::parse(kShadows);
+  throw std::invalid_argument("no built-in scene " + name);
+}
+
+Scene load_scene(const std::string& name_or_path) {
+  const auto& names = builtin_scene_names();
+  if (std::find(names.begin(), names.end(), name_or_path) != names.end()) {
+    Scene s = parse_scene(builtin_scene_json(name_or_path), name_or_path);
+    s.source = "built-in";
+    return s;
+  }
+  return parse_scene(read_json_file(name_or_path), name_or_path);
+}
+
+Scene default_scene() { return load_scene("single"); }
+
+json to_json(const Scene& s) {
+  json j;
+  j["name"] = s.name;
+  j["camera"] = {{"position", s.camera.position.array()},
+                 {"look_at", s.camera.look_at.array()},
+                 {"up", s.camera.up.array()},
+                 {"fov", s.camera.fov}};
+  j["ambient"] = s.ambient;
+  j["objects"] = json::array();
+  for (const auto& o : s.objects) {
+    if (o.type == Object::Type::Sphere)
+      j["objects"].push_back({{"type", "sphere"}, {"name", o.name}, {"center", o.center.array()}, {"radius", o.radius}});
+    else
+      j["objects"].push_back({{"type", "plane"}, {"name", o.name}, {"point", o.point.array()},
+                              {"normal", o.normal.array()}, {"size", o.size}});
+  }
+  j["lights"] = json::array();
+  for (const auto& l : s.lights) {
+    json lj;
+    if (l.type == Light::Type::Point) lj = {{"type", "point"}, {"position", l.position.array()}};
+    if (l.type == Light::Type::Directional) lj = {{"type", "directional"}, {"direction", l.direction.array()}};
+    if (l.type == Light::Type::Spot)
+      lj = {{"type", "spot"}, {"position", l.position.array()}, {"direction", l.direction.array()},
+            {"cutoff", l.cutoff}, {"exponent", l.exponent}};
+    lj["color"] = l.color;
+    if (l.type != Light::Type::Directional) {
+      const Attenuation& a = l.attenuation;
+      if (a.law == Attenuation::Law::None) lj["attenuation"] = "none";
+      if (a.law == Attenuation::Law::InverseSquare) lj["attenuation"] = "inverse_square";
+      if (a.law == Attenuation::Law::Polynomial)
+        lj["attenuation"] = {{"constant", a.constant}, {"linear", a.linear}, {"quadratic", a.quadratic}};
+    }
+    j["lights"].push_back(lj);
+  }
+  return j;
+}
+
+json scene_schema() {
+  auto alternatives = [](const char* sec) {
+    json alts = json::array();
+    for (const auto* m : section(sec)) alts.push_back(model_schema(*m, "type"));
+    return alts;
+  };
+  ParamDef ambient;
+  ambient.kind = ParamKind::Color;
+  ambient.range = Range::non_negative();
+  ambient.doc = "the scene's ambient colour A";
+  json props = {{"$schema", {{"type", "string"}}},
+                {"name", {{"type", "string"}, {"minLength", 1}}},
+                {"camera", model_schema(*find_model("camera", "perspective"), "")},
+                {"ambient", param_schema(ambient)},
+                {"objects", {{"type", "array"}, {"minItems", 1}, {"items", {{"oneOf", alternatives("object")}}}}},
+                {"lights", {{"type", "array"}, {"items", {{"oneOf", alternatives("light")}}}}}};
+  return {{"$schema", "https://json-schema.org/draft/2020-12/schema"},
+          {"$id", "https://facet.invalid/schemas/scene.schema.json"},
+          {"title", "facet scene"},
+          {"description", "A scene for facet's renderers: right-handed, +y up. Generated by `facet schema --scene`."},
+          {"type", "object"},
+          {"properties", props},
+          {"required", {"camera", "objects"}},
+          {"additionalProperties", false}};
+}
+
+}  // namespace facet

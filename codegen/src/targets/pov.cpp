@@ -1,0 +1,685 @@
+// POV-Ray 3.7 SDL.
+//
+// POV's own finish is used where it is exactly the catalog's model (Lambert,
+// Phong and Blinn–Phong with a grey k_s; POV-compatible attenuation). Every
+// other model is evaluated exactly in function pigments
+// (shared/notes/povray.md, recipe A): the function receives the hit point, the
+// generator knows each object's analytic normal, and the pigment holds the
+// whole per-light radiance. `finish { diffuse 1 brilliance 0 }` then multiplies
+// it by the light's colour and its shadow test, and nothing else.
+//
+// A pigment can encode one light. With several lights the scene either renders
+// one light per pass (Declare=Facet_Light=i; the passes summed are exact) or,
+// by default, puts one shrunken copy of each object in a light_group per light
+// (error about 1e-4, from the shrink).
+#include <cmath>
+#include <functional>
+#include <set>
+
+#include <fmt/format.h>
+
+#include "facet/targets.h"
+#include "targets_internal.h"
+#include "templates.h"
+
+namespace facet {
+
+using ir::Node;
+using ir::NodePtr;
+using ir::Op;
+using ir::Type;
+
+namespace {
+
+const double kPi = 3.14159265358979323846;
+const char* kChannel[3] = {"R", "G", "B"};
+
+std::string num(double v) {
+  if (v == kPi) return "pi";
+  std::string s = fmt::format("{}", v);
+  return v < 0 ? "(" + s + ")" : s;
+}
+
+std::string vec(const Vec3& v) { return fmt::format("<{}, {}, {}>", num(v.x), num(v.y), num(v.z)); }
+std::string rgb(const RGB& c) { return fmt::format("<{}, {}, {}>", num(c[0]), num(c[1]), num(c[2])); }
+bool grey(const RGB& c) { return c[0] == c[1] && c[1] == c[2]; }
+bool black(const RGB& c) { return c[0] == 0 && c[1] == 0 && c[2] == 0; }
+
+// POV-Ray's keywords are lower case: identifiers that start upper case never clash.
+std::string capital(const std::string& s) {
+  std::string r = s;
+  if (!r.empty()) r[0] = char(std::toupper(static_cast<unsigned char>(r[0])));
+  return r;
+}
+
+// Prints IR as POV-Ray functions. Colors are scalar per channel: a function that
+// reads a non-grey colour constant (itself or through a callee) is printed three
+// times, suffixed _R, _G, _B.
+class PovPrinter {
+ public:
+  bool channel_dependent(const ir::FunctionPtr& f) {
+    if (auto it = dependent_.find(f.get()); it != dependent_.end()) return it->second;
+    bool dep = false;
+    std::function<void(const NodePtr&)> walk = [&](const NodePtr& n) {
+      if (n->op == Op::Constant && n->type == Type::Color && !grey(n->value)) dep = true;
+      if (n->op == Op::Call && channel_dependent(n->callee)) dep = true;
+      for (const auto& a : n->args) walk(a);
+    };
+    for (const auto& l : f->lets) walk(l.value.node());
+    walk(f->result.node());
+    dependent_[f.get()] = dep;
+    return dep;
+  }
+
+  std::string name(const ir::FunctionPtr& f, int channel) {
+    std::string n = capital(f->name);
+    return channel_dependent(f) ? n + "_" + kChannel[channel] : n;
+  }
+
+  static std::string constant_name(const NodePtr& c, int channel) {
+    std::string n = capital(c->name);
+    return c->type == Type::Color && !grey(c->value) ? n + "_" + kChannel[channel] : n;
+  }
+
+  // Declarations of every constant `roots` read.
+  static std::string constants(const std::vector<NodePtr>& cs) {
+    std::string s;
+    for (const auto& c : cs) {
+      if (c->type == Type::Color && !grey(c->value)) {
+        for (int ch = 0; ch < 3; ++ch) s += fmt::format("#declare {} = {};\n", constant_name(c, ch), num(c->value[ch]));
+      } else {
+        s += fmt::format("#declare {} = {};\n", constant_name(c, 0), num(c->value[0]));
+      }
+    }
+    return s;
+  }
+
+  std::string condition(const NodePtr& n, int ch) {
+    switch (n->op) {
+      case Op::Lt: return "(" + expr(n->args[0], ch) + " < " + expr(n->args[1], ch) + ")";
+      case Op::Le: return "(" + expr(n->args[0], ch) + " <= " + expr(n->args[1], ch) + ")";
+      case Op::Gt: return "(" + expr(n->args[0], ch) + " > " + expr(n->args[1], ch) + ")";
+      case Op::Ge: return "(" + expr(n->args[0], ch) + " >= " + expr(n->args[1], ch) + ")";
+      case Op::And: return "(" + condition(n->args[0], ch) + " & " + condition(n->args[1], ch) + ")";
+      case Op::Or: return "(" + condition(n->args[0], ch) + " | " + condition(n->args[1], ch) + ")";
+      default: throw std::logic_error("facet: not a condition");
+    }
+  }
+
+  std::string expr(const NodePtr& n, int ch) {
+    auto a = [&](int k) { return expr(n->args[k], ch); };
+    switch (n->op) {
+      case Op::Literal: return num(n->value[ch]);
+      case Op::Constant: return constant_name(n, ch);
+      case Op::Arg:
+      case Op::Local: return local(n->name);
+      case Op::Neg: return "(-" + a(0) + ")";
+      case Op::Add: return "(" + a(0) + " + " + a(1) + ")";
+      case Op::Sub: return "(" + a(0) + " - " + a(1) + ")";
+      case Op::Mul: return a(0) + " * " + a(1);
+      case Op::Div: return a(0) + " / " + paren(n->args[1], ch);
+      case Op::Min: return "min(" + a(0) + ", " + a(1) + ")";
+      case Op::Max: return "max(" + a(0) + ", " + a(1) + ")";
+      case Op::Clamp: return "min(max(" + a(0) + ", " + a(1) + "), " + a(2) + ")";
+      case Op::Sqrt: return "sqrt(" + a(0) + ")";
+      case Op::Exp: return "exp(" + a(0) + ")";
+      case Op::Pow: return "pow(" + a(0) + ", " + a(1) + ")";
+      case Op::Acos: return "acos(" + a(0) + ")";
+      case Op::Atan2: return "atan2(" + a(0) + ", " + a(1) + ")";
+      case Op::Abs: return "abs(" + a(0) + ")";
+      case Op::Step: return "(" + a(1) + " >= " + a(0) + ")";
+      case Op::Select: {
+        // select(A, B, C[, D]): A < 0 → B; A = 0 → C; A > 0 → D (or C).
+        const NodePtr& c = n->args[0];
+        std::string t = a(1), f = a(2);
+        std::string x = c->args.size() == 2 && !(c->op == Op::And || c->op == Op::Or)
+                            ? "(" + expr(c->args[0], ch) + " - " + expr(c->args[1], ch) + ")"
+                            : "";
+        switch (c->op) {
+          case Op::Lt: return fmt::format("select({}, {}, {})", x, t, f);
+          case Op::Le: return fmt::format("select({}, {}, {}, {})", x, t, t, f);
+          case Op::Gt: return fmt::format("select({}, {}, {}, {})", x, f, f, t);
+          case Op::Ge: return fmt::format("select({}, {}, {})", x, f, t);
+          default: return fmt::format("select({} - 0.5, {}, {})", condition(c, ch), f, t);
+        }
+      }
+      case Op::Call: {
+        std::string s = name(n->callee, ch) + "(";
+        for (size_t k = 0; k < n->args.size(); ++k) s += (k ? ", " : "") + a(int(k));
+        return s + ")";
+      }
+      default: throw std::logic_error("facet: the POV-Ray printer cannot print this operation");
+    }
+  }
+
+  // One function per let: F(params) calls F__1(params, let1), which calls
+  // F__2(params, let1, let2)…, since POV-Ray functions have no local variables.
+  std::string function(const ir::FunctionPtr& f) {
+    std::string out;
+    int channels = channel_dependent(f) ? 3 : 1;
+    for (int ch = 0; ch < channels; ++ch) {
+      std::string base = name(f, ch);
+      std::vector<std::string> params;
+      for (const auto& p : f->params) params.push_back(local(p.name));
+      auto sig = [&](size_t k) {
+        std::string s;
+        for (size_t i = 0; i < params.size() + k; ++i)
+          s += (i ? ", " : "") + (i < params.size() ? params[i] : local(f->lets[i - params.size()].name));
+        return s;
+      };
+      auto step_name = [&](size_t k) { return k == 0 ? base : fmt::format("{}__{}", base, k); };
+      std::vector<std::string> steps;
+      for (size_t k = 0; k <= f->lets.size(); ++k) {
+        std::string body;
+        if (k == f->lets.size()) {
+          body = expr(f->result.node(), ch);
+        } else {
+          body = step_name(k + 1) + "(" + sig(k) + (sig(k).empty() ? "" : ", ") + expr(f->lets[k].value.node(), ch) + ")";
+        }
+        steps.push_back(fmt::format("#declare {} = function({}) {{ {} }}\n", step_name(k), sig(k), body));
+      }
+      out += comment(f->citation);
+      if (!f->doc.empty()) out += comment(f->doc);
+      for (size_t k = steps.size(); k-- > 0;) out += steps[k];
+    }
+    return out;
+  }
+
+  static std::string comment(const std::string& text) {
+    std::string s, line;
+    std::istringstream in(text);
+    while (std::getline(in, line)) s += "// " + line + "\n";
+    return s;
+  }
+
+ private:
+  std::string paren(const NodePtr& n, int ch) {
+    std::string s = expr(n, ch);
+    bool atom = n->op == Op::Arg || n->op == Op::Local || n->op == Op::Constant ||
+                (n->op == Op::Literal && n->value[ch] >= 0) || n->op == Op::Call;
+    return atom ? s : "(" + s + ")";
+  }
+  static std::string local(const std::string& n) { return capital(n); }
+  std::map<const ir::Function*, bool> dependent_;
+};
+
+// ---------------------------------------------------------------- the plan
+
+// POV-Ray's attenuation matches the catalog's law exactly (povray.md §2).
+bool native_attenuation(const Light& l) {
+  if (l.type == Light::Type::Directional) return true;
+  const Attenuation& a = l.attenuation;
+  switch (a.law) {
+    case Attenuation::Law::None:
+    case Attenuation::Law::InverseSquare: return true;
+    case Attenuation::Law::Polynomial:
+      // min(1, ·) never bites when c1 ≥ 1; fade has one power term.
+      return a.constant >= 1 && (a.linear == 0 || a.quadratic == 0);
+  }
+  return false;
+}
+
+std::string lobe_native(const std::optional<ModelSpec>& lobe, bool specular) {
+  if (!lobe) return "";
+  const ModelSpec& s = *lobe;
+  auto toon = s.values.find("toon");
+  if (toon != s.values.end() && toon->second.model) return "the toon modifier is not a POV-Ray finish";
+  if (!specular) return s.def->name == "lambert" ? "" : s.def->name + " is not a POV-Ray finish";
+  if (s.def->name != "phong" && s.def->name != "blinn_phong") return s.def->name + " is not a POV-Ray finish";
+  if (s.at("approximation").choice != "none") return "Schlick's approximation is not a POV-Ray finish";
+  if (!grey(s.at("color").rgb)) return "POV-Ray highlights take a grey k_s only";
+  return "";
+}
+
+}  // namespace
+
+PovPlan pov_plan(const Material& m, const Scene& s) {
+  PovPlan plan;
+  plan.reason = lobe_native(m.diffuse, false);
+  if (plan.reason.empty()) plan.reason = lobe_native(m.specular, true);
+  if (plan.reason.empty()) {
+    for (const auto& l : s.lights)
+      if (!native_attenuation(l)) plan.reason = "this attenuation law is not a POV-Ray fade";
+  }
+  plan.native = plan.reason.empty();
+  plan.passes = plan.native || s.lights.size() <= 1 ? 1 : int(s.lights.size());
+  return plan;
+}
+
+namespace {
+
+// ---------------------------------------------------------------- scene frame
+
+class PovScene {
+ public:
+  PovScene(const Material& m, const Scene& s, const std::string& source)
+      : m_(m), s_(s), source_(source), program_(compile(m)), plan_(pov_plan(m, s)) {}
+
+  std::string render() {
+    std::string out = header();
+    out += "#version 3.7;\n";
+    out += "global_settings { assumed_gamma 1.0 ambient_light 0 }  // linear: render with File_Gamma=1.0\n\n";
+    out += "#ifndef (Facet_Light) #declare Facet_Light = -1; #end        // -1: every light; i: light i alone\n";
+    out += "#ifndef (Facet_Exposure) #declare Facet_Exposure = 1; #end  // scales every radiance (keeps PNGs below 1)\n\n";
+    out += camera();
+    if (plan_.native) out += native();
+    else out += functions() + frame() + lit_objects();
+    return out;
+  }
+
+  std::string library() {
+    std::string out = header();
+    if (plan_.native) {
+      out += "// POV-Ray's own finish is this model exactly. Use the texture with plain light sources;\n";
+      out += "// attenuation: fade_distance 0 fade_power 2 is 1/d² (facet's inverse_square).\n";
+      out += fmt::format("#declare Facet_{}_Texture = texture {{ {} }}\n", capital(identifier(m_.name)), native_texture(1));
+      if (!black(emission())) {
+        out += "// The emissive part (m_a ⊗ A + m_e) as a layer over it:\n";
+        out += fmt::format("#declare Facet_{}_Emission = texture {{ pigment {{ rgbt <{}, {}, {}, 0.5> }} finish {{ "
+                           "ambient 0 emission 1 diffuse 0 }} }}\n",
+                           capital(identifier(m_.name)), num(2 * emission()[0]), num(2 * emission()[1]),
+                           num(2 * emission()[2]));
+      }
+      return out;
+    }
+    out += "// This model is not a POV-Ray finish: it is evaluated exactly in function pigments, which\n";
+    out += "// see only the hit point. Your scene must provide, per object and light:\n";
+    out += "//   * the object's unit normal as three functions of (x, y, z), world space (texture after transforms);\n";
+    out += "//   * the light: a point light's position (attenuation and spot go into the pigment);\n";
+    out += "//   * the eye position.\n";
+    out += "// Facet_Pigment_Point(NX, NY, NZ, LightPosition, Eye, Scale) builds the pigment for one point light;\n";
+    out += "// light the object with that light alone (light_group) and finish { Facet_Finish }. Scale: the pigment\n";
+    out += "// is exact up to 1/Scale (use the light's brightest channel).\n\n";
+    out += functions() + frame();
+    out += R"(#declare Facet_Finish = finish { ambient 0 emission 0 diffuse 1 brilliance 0 specular 0 phong 0 }
+#macro Facet_Pigment_Point(NX, NY, NZ, LightPosition, Eye, Scale)
+  #local Lp = LightPosition; #local E = Eye;
+  #local F = function(x, y, z) { Facet_Point_Shade(x, y, z, NX(x, y, z), NY(x, y, z), NZ(x, y, z),
+                                                   Lp.x, Lp.y, Lp.z, E.x, E.y, E.z) }
+)";
+    if (channel_dependent()) {
+      out += "  pigment { average pigment_map {\n";
+      for (int ch = 0; ch < 3; ++ch) {
+        out += fmt::format("    [1 function {{ max(0, min(1, Facet_Point_Shade_{}(x, y, z, NX(x, y, z), NY(x, y, z), "
+                           "NZ(x, y, z), Lp.x, Lp.y, Lp.z, E.x, E.y, E.z) * Scale)) }} color_map {{ [0 rgb 0] [1 rgb "
+                           "{}] }}]\n",
+                           kChannel[ch], ch == 0 ? "<3/Scale, 0, 0>" : ch == 1 ? "<0, 3/Scale, 0>" : "<0, 0, 3/Scale>");
+      }
+      out += "  } }\n";
+    } else {
+      out += "  pigment { function { max(0, min(1, F(x, y, z) * Scale)) } color_map { [0 rgb 0] [1 rgb 1/Scale] } }\n";
+    }
+    out += "#end\n";
+    out += point_shade_functions();
+    return out;
+  }
+
+ private:
+  RGB emission() const {
+    RGB e;
+    for (int i = 0; i < 3; ++i) e[i] = m_.ambient[i] * s_.ambient[i] + m_.emission[i];
+    return e;
+  }
+
+  bool channel_dependent() { return printer_.channel_dependent(program_.reflectance); }
+  int channels() { return channel_dependent() ? 3 : 1; }
+
+  std::string header() {
+    std::string out = fmt::format("// facet material \"{}\" — POV-Ray 3.7 {}\n", m_.name,
+                                  plan_.native ? "(native finish)" : "(function pigments)");
+    out += fmt::format("// Generated by facet {} from {}. Edit the material, not this file.\n//\n", FACET_VERSION,
+                       source_);
+    out += describe_material(m_, "//");
+    out += fmt::format("// Scene \"{}\". Render linear and unantialiased:\n", s_.name);
+    out += "//   povray +I<this file> +O<image>.png +W256 +H256 -A +FN16 File_Gamma=1.0\n";
+    if (plan_.native) {
+      out += "// POV-Ray's own finish is this model: every light in one render is exact.\n";
+    } else if (s_.lights.size() > 1) {
+      out += fmt::format("// Function pigments hold one light each. Exact: render with Declare=Facet_Light=i for i = 0..{}\n"
+                         "// and sum the images. Facet_Light=-1 (default) renders all lights at once through\n"
+                         "// light_group copies shrunk by 1e-4, which costs about 1e-4 of accuracy.\n",
+                         s_.lights.size() - 1);
+    } else {
+      out += "// Function pigments evaluate the model exactly (to 16-bit output precision).\n";
+    }
+    return out + "\n";
+  }
+
+  std::string camera() {
+    const Camera& c = s_.camera;
+    return fmt::format(
+        "// facet's world is right-handed: the negative right vector makes POV-Ray's camera right-handed too.\n"
+        "camera {{\n"
+        "  perspective\n"
+        "  location {}\n"
+        "  right -x*image_width/image_height\n"
+        "  up y\n"
+        "  sky {}\n"
+        "  angle 2*degrees(atan(image_width/image_height*tan(radians({}/2))))  // vertical field of view {}°\n"
+        "  look_at {}\n"
+        "}}\n\n",
+        vec(c.position), vec(c.up), num(c.fov), num(c.fov), vec(c.look_at));
+  }
+
+  // ---- native route
+
+  std::string native_texture(double weight) {
+    std::string finish = fmt::format("ambient 0 emission 0 diffuse {} brilliance 1", num(weight));
+    if (m_.specular) {
+      double ks = m_.specular->at("color").rgb[0] * weight;
+      double n = m_.specular->at("n").number;
+      if (m_.specular->def->name == "phong") finish += fmt::format(" phong {} phong_size {}", num(ks), num(n));
+      else finish += fmt::format(" specular {} roughness {}", num(ks), num(1.0 / n));
+    } else {
+      finish += " specular 0 phong 0";
+    }
+    RGB kd = m_.diffuse ? m_.diffuse->at("color").rgb : RGB{0, 0, 0};
+    if (!m_.diffuse) finish = "ambient 0 emission 0 diffuse 0" + finish.substr(finish.find(" brilliance"));
+    return fmt::format("pigment {{ rgb {} }} finish {{ {} }}", rgb(kd), finish);
+  }
+
+  std::string native_light(size_t i) {
+    const Light& l = s_.lights[i];
+    std::string body;
+    RGB c = l.color;
+    std::string extra;
+    if (l.type == Light::Type::Directional) {
+      // A parallel light placed far back along its direction.
+      Vec3 from = Vec3(0, 0, 0) - l.direction * 1e5;
+      body = fmt::format("{} color rgb {}*Facet_Exposure parallel point_at <0, 0, 0>", vec(from), rgb(c));
+      return fmt::format("light_source {{ {} }}  // light {}: directional\n", body, i);
+    }
+    const Attenuation& a = l.attenuation;
+    double scale = 1;
+    if (a.law == Attenuation::Law::InverseSquare) extra += " fade_distance 0 fade_power 2";
+    if (a.law == Attenuation::Law::Polynomial) {
+      if (a.linear == 0 && a.quadratic == 0) {
+        scale = 1 / a.constant;
+      } else if (a.quadratic == 0) {  // 2/(1 + d/fd) · C/(2 c1) = C/(c1 + c2 d)
+        scale = 1 / (2 * a.constant);
+        extra += fmt::format(" fade_distance {} fade_power 1", num(a.constant / a.linear));
+      } else {  // 2/(1 + (d/fd)²) · C/(2 c1) = C/(c1 + c3 d²)
+        scale = 1 / (2 * a.constant);
+        extra += fmt::format(" fade_distance {} fade_power 2", num(std::sqrt(a.constant / a.quadratic)));
+      }
+    }
+    if (l.type == Light::Type::Spot) {
+      extra += fmt::format(" spotlight point_at {} radius {} falloff {} tightness {}", vec(l.position + l.direction),
+                           num(l.cutoff), num(l.cutoff), num(l.exponent));
+    }
+    body = fmt::format("{} color rgb {}*{}*Facet_Exposure{}", vec(l.position), rgb(c), num(scale), extra);
+    return fmt::format("light_source {{ {} }}  // light {}\n", body, i);
+  }
+
+  std::string native() {
+    std::string out = "// ---- Lights (POV-Ray's attenuation is the catalog's law here)\n";
+    for (size_t i = 0; i < s_.lights.size(); ++i) out += native_light(i);
+    out += "\n// ---- Objects\n";
+    RGB e = emission();
+    std::string tex = black(e) ? fmt::format("texture {{ {} }}", native_texture(1))
+                               : fmt::format("texture {{ {} }}\n  texture {{ pigment {{ rgbt <{}, {}, {}, 0.5> }} finish "
+                                             "{{ ambient 0 emission 1 diffuse 0 specular 0 phong 0 }} }}",
+                                             native_texture(2), num(2 * e[0]), num(2 * e[1]), num(2 * e[2]));
+    for (const auto& o : s_.objects) out += object(o, 0, "\n  " + tex + "\n", "") + "\n";
+    return out;
+  }
+
+  // ---- function route
+
+  std::string functions() {
+    std::string out = "// ---- Material constants\n" + PovPrinter::constants(program_.constants());
+    out += "\n// ---- Terms (one function per term of the model catalog)\n";
+    for (const auto& f : program_.functions()) out += printer_.function(f) + "\n";
+    return out;
+  }
+
+  // Facet_Reflect(N, L, V): the catalog's inputs from unit vectors, with the tangent rule.
+  std::string frame() {
+    std::string out = "// ---- Shading frame: unit n, l, v → Reflectance's inputs\n";
+    const char* nlv = "Nx, Ny, Nz, Lx, Ly, Lz, Vx, Vy, Vz";
+    for (int ch = 0; ch < channels(); ++ch) {
+      std::string suffix = channel_dependent() ? std::string("_") + kChannel[ch] : "";
+      std::string refl = printer_.name(program_.reflectance, ch);
+      std::map<std::string, std::string> dots = {
+          {"NoL", "Nx*Lx + Ny*Ly + Nz*Lz"}, {"NoV", "Nx*Vx + Ny*Vy + Nz*Vz"}, {"LoV", "Lx*Vx + Ly*Vy + Lz*Vz"},
+          {"LoT", "Lx*Tx + Ly*Ty + Lz*Tz"}, {"VoT", "Vx*Tx + Vy*Ty + Vz*Tz"},
+          // b = n × t
+          {"LoB", "Lx*(Ny*Tz - Nz*Ty) + Ly*(Nz*Tx - Nx*Tz) + Lz*(Nx*Ty - Ny*Tx)"},
+          {"VoB", "Vx*(Ny*Tz - Nz*Ty) + Vy*(Nz*Tx - Nx*Tz) + Vz*(Nx*Ty - Ny*Tx)"}};
+      std::string args;
+      for (const auto& in : program_.inputs) args += (args.empty() ? "" : ", ") + dots[in];
+      if (!program_.uses_tangent()) {
+        out += fmt::format("#declare Facet_Reflect{} = function({}) {{ {}({}) }}\n", suffix, nlv, refl, args);
+        continue;
+      }
+      Vec3 a = normalize(Vec3(m_.tangent_axis));
+      // t = normalize(axis × n), or x̂ × n = (0, −nz, ny) where |axis × n| < ε.
+      out += fmt::format("#declare Facet_Reflect{}__3 = function({}, Tx, Ty, Tz) {{ {}({}) }}\n", suffix, nlv, refl, args);
+      out += fmt::format(
+          "#declare Facet_Reflect{0}__2 = function({1}, Cx, Cy, Cz, Len) {{ Facet_Reflect{0}__3({1}, Cx/Len, Cy/Len, "
+          "Cz/Len) }}\n",
+          suffix, nlv);
+      out += fmt::format(
+          "#declare Facet_Reflect{0}__1 = function({1}, Cx, Cy, Cz, Len) {{ select(Len - 1e-4, "
+          "Facet_Reflect{0}__2({1}, 0, -Nz, Ny, sqrt(Nz*Nz + Ny*Ny)), Facet_Reflect{0}__2({1}, Cx, Cy, Cz, Len)) }}\n",
+          suffix, nlv);
+      out += fmt::format(
+          "#declare Facet_Reflect{0} = function({1}) {{ Facet_Reflect{0}__1({1}, {2}*Nz - {3}*Ny, {3}*Nx - {4}*Nz, "
+          "{4}*Ny - {2}*Nx, sqrt(({2}*Nz - {3}*Ny)*({2}*Nz - {3}*Ny) + ({3}*Nx - {4}*Nz)*({3}*Nx - {4}*Nz) + "
+          "({4}*Ny - {2}*Nx)*({4}*Ny - {2}*Nx))) }}\n",
+          suffix, nlv, num(a.y), num(a.z), num(a.x));
+    }
+    return out + "\n";
+  }
+
+  // The radiance of one light of unit colour at a point with normal N, seen from
+  // the camera: att(d) · spot · reflectance. Facet_Light{i}(x, y, z, Nx, Ny, Nz).
+  std::string light_function(size_t i, int ch) {
+    const Light& l = s_.lights[i];
+    std::string suffix = channel_dependent() ? std::string("_") + kChannel[ch] : "";
+    std::string reflect = "Facet_Reflect" + suffix;
+    std::string name = fmt::format("Facet_Light{}{}", i, suffix);
+    Vec3 e = s_.camera.position;
+    std::string view = fmt::format("sqrt(({0}-x)*({0}-x) + ({1}-y)*({1}-y) + ({2}-z)*({2}-z))", num(e.x), num(e.y),
+                                   num(e.z));
+    std::string v = fmt::format("({}-x)/Dv, ({}-y)/Dv, ({}-z)/Dv", num(e.x), num(e.y), num(e.z));
+    std::string out;
+    if (l.type == Light::Type::Directional) {
+      Vec3 d = -l.direction;
+      out += fmt::format("#declare {0}__1 = function(x, y, z, Nx, Ny, Nz, Dv) {{ {1}(Nx, Ny, Nz, {2}, {3}, {4}, {5}) }}\n",
+                         name, reflect, num(d.x), num(d.y), num(d.z), v);
+      out += fmt::format("#declare {0} = function(x, y, z, Nx, Ny, Nz) {{ {0}__1(x, y, z, Nx, Ny, Nz, {1}) }}\n", name,
+                         view);
+      return out;
+    }
+    const Vec3& p = l.position;
+    std::string factor;
+    const Attenuation& a = l.attenuation;
+    if (a.law == Attenuation::Law::InverseSquare) factor = "Attenuation_inverse_square(D) * ";
+    if (a.law == Attenuation::Law::Polynomial)
+      factor = fmt::format("Attenuation_polynomial(D, {}, {}, {}) * ", num(a.constant), num(a.linear), num(a.quadratic));
+    if (l.type == Light::Type::Spot) {
+      factor += fmt::format("Spot_cone(-(Lx*{} + Ly*{} + Lz*{}), {}, {}) * ", num(l.direction.x), num(l.direction.y),
+                            num(l.direction.z), num(std::cos(l.cutoff * kPi / 180)), num(l.exponent));
+    }
+    out += fmt::format(
+        "#declare {0}__2 = function(Nx, Ny, Nz, Lx, Ly, Lz, Vx, Vy, Vz, D) {{ {1}{2}(Nx, Ny, Nz, Lx, Ly, Lz, Vx, Vy, Vz) }}\n",
+        name, factor, reflect);
+    out += fmt::format(
+        "#declare {0}__1 = function(x, y, z, Nx, Ny, Nz, D, Dv) {{ {0}__2(Nx, Ny, Nz, ({1}-x)/D, ({2}-y)/D, ({3}-z)/D, "
+        "{4}, D) }}\n",
+        name, num(p.x), num(p.y), num(p.z), v);
+    out += fmt::format(
+        "#declare {0} = function(x, y, z, Nx, Ny, Nz) {{ {0}__1(x, y, z, Nx, Ny, Nz, sqrt(({1}-x)*({1}-x) + "
+        "({2}-y)*({2}-y) + ({3}-z)*({3}-z)), {4}) }}\n",
+        name, num(p.x), num(p.y), num(p.z), view);
+    return out;
+  }
+
+  // For the library: a point light given by position, and the eye, as parameters.
+  std::string point_shade_functions() {
+    std::string out;
+    for (int ch = 0; ch < channels(); ++ch) {
+      std::string suffix = channel_dependent() ? std::string("_") + kChannel[ch] : "";
+      out += fmt::format(
+          "#declare Facet_Point_Shade{0}__1 = function(Nx, Ny, Nz, Lx, Ly, Lz, Vx, Vy, Vz, D, Dv) {{ "
+          "Facet_Reflect{0}(Nx, Ny, Nz, Lx/D, Ly/D, Lz/D, Vx/Dv, Vy/Dv, Vz/Dv) }}\n"
+          "#declare Facet_Point_Shade{0} = function(x, y, z, Nx, Ny, Nz, Px, Py, Pz, Ex, Ey, Ez) {{ "
+          "Facet_Point_Shade{0}__1(Nx, Ny, Nz, Px-x, Py-y, Pz-z, Ex-x, Ey-y, Ez-z, "
+          "sqrt((Px-x)*(Px-x) + (Py-y)*(Py-y) + (Pz-z)*(Pz-z)), sqrt((Ex-x)*(Ex-x) + (Ey-y)*(Ey-y) + (Ez-z)*(Ez-z))) }}\n",
+          suffix);
+    }
+    return out;
+  }
+
+  // The per-object radiance of light i: the object's normal fed to Facet_Light{i}.
+  std::string object_function(size_t o, size_t i, int ch) {
+    const Object& obj = s_.objects[o];
+    std::string suffix = channel_dependent() ? std::string("_") + kChannel[ch] : "";
+    std::string name = fmt::format("Facet_Object{}_Light{}{}", o, i, suffix);
+    std::string light = fmt::format("Facet_Light{}{}", i, suffix);
+    if (obj.type == Object::Type::Plane) {
+      return fmt::format("#declare {} = function(x, y, z) {{ {}(x, y, z, {}, {}, {}) }}\n", name, light,
+                         num(obj.normal.x), num(obj.normal.y), num(obj.normal.z));
+    }
+    // Sphere: N = (P − C)/|P − C|, which holds for the shrunken copies too.
+    const Vec3& c = obj.center;
+    return fmt::format(
+        "#declare {0}__1 = function(x, y, z, R) {{ {1}(x, y, z, (x-{2})/R, (y-{3})/R, (z-{4})/R) }}\n"
+        "#declare {0} = function(x, y, z) {{ {0}__1(x, y, z, sqrt((x-{2})*(x-{2}) + (y-{3})*(y-{3}) + (z-{4})*(z-{4}))) }}\n",
+        name, light, num(c.x), num(c.y), num(c.z));
+  }
+
+  // The pigment of object o for light i, times `weight`, with transmit `t`.
+  // The function holds min(radiance·S, 1), S = the light's colour × exposure:
+  // exact up to the radiance at which the 16-bit output saturates anyway.
+  std::string pigment(size_t o, size_t i, double weight, double t) {
+    const RGB& c = s_.lights[i].color;
+    std::string tr = t > 0 ? fmt::format(", {}", num(t)) : "";
+    const char* kind = t > 0 ? "rgbt" : "rgb";
+    if (!channel_dependent()) {
+      double smin = 0;
+      for (double x : c)
+        if (x > 0 && (smin == 0 || x < smin)) smin = x;
+      if (smin == 0) return fmt::format("pigment {{ {} <0, 0, 0{}> }}", kind, tr);
+      return fmt::format(
+          "pigment {{ function {{ max(0, min(1, Facet_Object{0}_Light{1}(x, y, z) * {2}*Facet_Exposure)) }}\n"
+          "      color_map {{ [0 {3} <0, 0, 0{4}>] [1 {3} <1, 1, 1{4}>*{5}/({2}*Facet_Exposure)] }} }}",
+          o, i, num(smin), kind, tr, num(weight));
+    }
+    std::string out = "pigment { average pigment_map {\n";
+    for (int ch = 0; ch < 3; ++ch) {
+      RGB end{0, 0, 0};
+      end[ch] = 1;
+      if (c[ch] == 0) {
+        out += fmt::format("      [1 {} <0, 0, 0{}>]\n", kind, tr);
+        continue;
+      }
+      out += fmt::format(
+          "      [1 function {{ max(0, min(1, Facet_Object{0}_Light{1}_{2}(x, y, z) * {3}*Facet_Exposure)) }}\n"
+          "         color_map {{ [0 {4} <0, 0, 0{5}>] [1 {4} <{6}, {7}, {8}{5}>*{9}/({3}*Facet_Exposure)] }}]\n",
+          o, i, kChannel[ch], num(c[ch]), kind, tr, num(end[0]), num(end[1]), num(end[2]), num(3 * weight));
+    }
+    return out + "    } }";
+  }
+
+  static std::string lit_finish() {
+    return "finish { ambient 0 emission 0 diffuse 1 brilliance 0 specular 0 phong 0 }";
+  }
+
+  std::string emission_texture(double weight, double t) {
+    RGB e = emission();
+    return fmt::format("texture {{ pigment {{ rgbt <{}, {}, {}, {}> }} finish {{ ambient 0 emission 1 diffuse 0 "
+                       "specular 0 phong 0 }} }}",
+                       num(weight * e[0]), num(weight * e[1]), num(weight * e[2]), num(t));
+  }
+
+  // The object's geometry with `body` inside; `shrink` > 0 insets a copy.
+  std::string object(const Object& o, double shrink, const std::string& body, const std::string& modifiers) {
+    if (o.type == Object::Type::Sphere)
+      return fmt::format("sphere {{ {}, {}{}{}}}", vec(o.center), num(o.radius * (1 - shrink)), body, modifiers);
+    Vec3 u, v;
+    o.plane_axes(u, v);
+    Vec3 c = o.point - o.normal * shrink;
+    Vec3 p0 = c + (u + v) * o.size, p1 = c + (v - u) * o.size, p2 = c - (u + v) * o.size, p3 = c + (u - v) * o.size;
+    return fmt::format("polygon {{ 5, {}, {}, {}, {}, {}{}{}}}", vec(p0), vec(p1), vec(p2), vec(p3), vec(p0), body,
+                       modifiers);
+  }
+
+  std::string lit_objects() {
+    std::string out = "// ---- Lights: the radiance of each light of unit colour, per object\n";
+    for (size_t i = 0; i < s_.lights.size(); ++i)
+      for (int ch = 0; ch < channels(); ++ch) out += light_function(i, ch);
+    for (size_t o = 0; o < s_.objects.size(); ++o)
+      for (size_t i = 0; i < s_.lights.size(); ++i)
+        for (int ch = 0; ch < channels(); ++ch) out += object_function(o, i, ch);
+    out += "\n";
+    bool emits = !black(emission());
+    size_t n = s_.lights.size();
+
+    // One light at a time (Facet_Light = i) is exact. The emission goes with
+    // light 0 as a layer of transmit 0.5 over the lit texture of weight 2.
+    auto light_source = [&](const Light& l) {
+      bool parallel = l.type == Light::Type::Directional;
+      return fmt::format("light_source {{ {} color rgb {}*Facet_Exposure{} }}\n",
+                         parallel ? vec(Vec3(0, 0, 0) - l.direction * 1e5) : vec(l.position), rgb(l.color),
+                         parallel ? " parallel point_at <0, 0, 0>" : "");
+    };
+    auto pass = [&](size_t i) {
+      std::string p = n > 0 ? light_source(s_.lights[i]) : "";
+      for (size_t o = 0; o < s_.objects.size(); ++o) {
+        bool layer = emits && i == 0;
+        std::string tex;
+        if (n > 0) tex = fmt::format("\n  texture {{ {} {} }}", pigment(o, i, layer ? 2 : 1, 0), lit_finish());
+        if (layer) tex += "\n  " + emission_texture(n == 0 ? 1 : 2, n == 0 ? 0 : 0.5);
+        p += object(s_.objects[o], 0, tex + "\n", "") + "\n";
+      }
+      return p;
+    };
+    if (n <= 1) return out + pass(0);
+
+    out += "#if (Facet_Light >= 0)\n#switch (Facet_Light)\n";
+    for (size_t i = 0; i < n; ++i) out += fmt::format("#case ({})\n", i) + pass(i) + "#break\n";
+    out += "#end\n#else\n";
+    // Every light at once: nested copies, one light_group each. Copy k lets
+    // (items − k − 1)/(items − k) through to the copies inside it, so each
+    // contributes 1/items of its weighted pigment; only the innermost casts shadows.
+    size_t items = n + (emits ? 1 : 0);
+    for (size_t k = 0; k < items; ++k) {
+      double t = double(items - 1 - k) / double(items - k);
+      double weight = double(items - k);  // compensates (1 − t) = 1/(items − k)
+      double shrink = 1e-4 * double(k);
+      std::string mods = k + 1 == items ? "" : " no_shadow";
+      if (k < n) {
+        out += "light_group {\n  " + light_source(s_.lights[k]);
+        for (size_t o = 0; o < s_.objects.size(); ++o) {
+          std::string tex = fmt::format("\n  texture {{ {} {} }}\n", pigment(o, k, weight, t), lit_finish());
+          out += "  " + object(s_.objects[o], shrink, tex, mods) + "\n";
+        }
+        out += "  global_lights off\n}\n";
+      } else {
+        for (size_t o = 0; o < s_.objects.size(); ++o)
+          out += object(s_.objects[o], shrink, "\n  " + emission_texture(weight, t) + "\n", mods) + "\n";
+      }
+    }
+    out += "#end\n";
+    return out;
+  }
+
+  const Material& m_;
+  const Scene& s_;
+  std::string source_;
+  MaterialProgram program_;
+  PovPlan plan_;
+  PovPrinter printer_;
+};
+
+}  // namespace
+
+std::string generate_pov(const Material& m, const GenerateOptions& o) {
+  Scene s = o.scene ? *o.scene : default_scene();
+  PovScene scene(m, s, o.source);
+  return o.library ? scene.library() : scene.render();
+}
+
+}  // namespace facet

@@ -1,0 +1,34 @@
+#include "templates.h"
+
+#include <set>
+#include <stdexcept>
+
+namespace facet {
+
+std::string render_template(const std::string& path, const std::map<std::string, std::string>& values) {
+  auto it = embedded_templates().find(path);
+  if (it == embedded_templates().end()) throw std::logic_error("facet: no template " + path);
+  const std::string& t = it->second;
+  std::string out;
+  std::set<std::string> used;
+  size_t pos = 0;
+  while (true) {
+    size_t open = t.find("{{", pos);
+    if (open == std::string::npos) break;
+    size_t close = t.find("}}", open);
+    if (close == std::string::npos) throw std::logic_error("facet: unclosed {{ in template " + path);
+    std::string key = t.substr(open + 2, close - open - 2);
+    auto v = values.find(key);
+    if (v == values.end()) throw std::logic_error("facet: template " + path + " needs a value for " + key);
+    out += t.substr(pos, open - pos);
+    out += v->second;
+    used.insert(key);
+    pos = close + 2;
+  }
+  out += t.substr(pos);
+  for (const auto& [k, v] : values)
+    if (!used.count(k)) throw std::logic_error("facet: template " + path + " has no placeholder " + k);
+  return out;
+}
+
+}  // namespace facet
