@@ -137,6 +137,8 @@ struct RenderArgs {
   std::string preview;
   std::string workdir;
   bool compare = false;
+  bool exact = false;
+  double check = -1;
 };
 
 bool parse_size(const std::string& s, int& w, int& h) {
@@ -165,6 +167,7 @@ int run_render(const RenderArgs& a) {
     job.width = w;
     job.height = h;
     job.workdir = a.workdir.empty() ? (std::filesystem::temp_directory_path() / "facet-render").string() : a.workdir;
+    job.bracket = a.exact;
     job.max_value = 0;
     for (float v : ref.image.rgb) job.max_value = std::max<double>(job.max_value, v);
     RenderOutcome r = render_pov(job);
@@ -175,16 +178,20 @@ int run_render(const RenderArgs& a) {
     image = r.image;
     fmt::print(stderr, "pov: {:.2f} s\n", r.seconds);
   }
-  if (a.compare && a.renderer != "reference") {
-    Metrics mt = compare_images(ref, image, interior_mask(ref), 2e-3);
-    fmt::print("{} vs reference: max_abs {:.3g} rmse {:.3g} over {} of {} interior pixels, nan {}; worst at ({}, {}): "
-               "ref [{:.6g} {:.6g} {:.6g}] got [{:.6g} {:.6g} {:.6g}]\n",
-               a.renderer, mt.max_abs, mt.rmse, mt.over, mt.pixels, mt.nan, mt.worst_x, mt.worst_y, mt.worst_ref[0],
-               mt.worst_ref[1], mt.worst_ref[2], mt.worst_got[0], mt.worst_got[1], mt.worst_got[2]);
+  int status = 0;
+  if ((a.compare || a.check >= 0) && a.renderer != "reference") {
+    double tol = a.check >= 0 ? a.check : 2e-3;
+    Metrics mt = compare_images(ref, image, interior_mask(ref), tol);
+    fmt::print("{} vs reference, {}: max |Δ| {:.3g}, max |Δ|/max(1,|ref|) {:.3g}, rmse {:.3g}; {} of {} interior pixels "
+               "over {:g}; NaN/Inf {}; worst at ({}, {}): ref [{:.6g} {:.6g} {:.6g}] got [{:.6g} {:.6g} {:.6g}]\n",
+               a.renderer, m.name, mt.max_abs, mt.max_excess, mt.rmse, mt.over, mt.pixels, tol, mt.nan, mt.worst_x,
+               mt.worst_y, mt.worst_ref[0], mt.worst_ref[1], mt.worst_ref[2], mt.worst_got[0], mt.worst_got[1],
+               mt.worst_got[2]);
+    if (a.check >= 0 && (mt.over > 0 || mt.nan > 0 || mt.pixels == 0)) status = 3;
   }
   if (!a.output.empty()) write_pfm(a.output, image);
   if (!a.preview.empty()) write_png_preview(a.preview, image);
-  return 0;
+  return status;
 }
 
 // ---------------------------------------------------------------- models
@@ -323,6 +330,11 @@ int main(int argc, char** argv) {
   rn->add_option("--preview", ra.preview, "An 8-bit sRGB PNG to look at");
   rn->add_option("--workdir", ra.workdir, "Where the renderer's files go (default: a temporary folder)");
   rn->add_flag("--compare", ra.compare, "Print the comparison with the reference");
+  rn->add_option("--check", ra.check,
+                 "Exit with status 3 unless |renderer − reference| ≤ TOL · max(1, |reference|) on every interior pixel")
+      ->check(CLI::NonNegativeNumber);
+  rn->add_flag("--exact", ra.exact,
+               "POV-Ray: bracket exposures so every pixel keeps 16-bit relative precision (slower)");
 
   bool schema_scene = false;
   auto* sc = app.add_subcommand("schema", "Print the JSON Schema of material files (or of scene files)");

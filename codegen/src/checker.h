@@ -114,7 +114,8 @@ class Checker {
       }
       case ParamKind::String:
         if (!j.is_string() || j.get<std::string>().empty()) {
-          sink_.error(path, fmt::format("expected a non-empty string, found {}", json_type_name(j)));
+          sink_.error(path, fmt::format("expected a non-empty string, found {}",
+                                        j.is_string() ? "an empty string" : json_type_name(j)));
           return std::nullopt;
         }
         out.choice = j.get<std::string>();
@@ -252,7 +253,7 @@ class Checker {
       else ok = false;
     }
     for (const auto& p : def->params) {
-      if (spec.values.count(p.name)) continue;
+      if (spec.values.count(p.name) || j.contains(p.name)) continue;  // present: valid, or already reported
       if (p.required) {
         sink_.error(join_path(path, p.name),
                     fmt::format("missing; {} \"{}\" requires it: {}", fixed ? "object" : "model", def->name, p.allowed()));

@@ -89,13 +89,13 @@ class TrackingSax {
  public:
   explicit TrackingSax(json& root) : dom_(root, /*allow_exceptions=*/false) {}
 
-  bool null() { return value() && dom_.null(); }
-  bool boolean(bool v) { return value() && dom_.boolean(v); }
-  bool number_integer(json::number_integer_t v) { return value() && dom_.number_integer(v); }
-  bool number_unsigned(json::number_unsigned_t v) { return value() && dom_.number_unsigned(v); }
-  bool number_float(json::number_float_t v, const std::string& s) { return value() && dom_.number_float(v, s); }
-  bool string(std::string& v) { return value() && dom_.string(v); }
-  bool binary(json::binary_t& v) { return value() && dom_.binary(v); }
+  bool null() { return value() && dom_.null() && done(); }
+  bool boolean(bool v) { return value() && dom_.boolean(v) && done(); }
+  bool number_integer(json::number_integer_t v) { return value() && dom_.number_integer(v) && done(); }
+  bool number_unsigned(json::number_unsigned_t v) { return value() && dom_.number_unsigned(v) && done(); }
+  bool number_float(json::number_float_t v, const std::string& s) { return value() && dom_.number_float(v, s) && done(); }
+  bool string(std::string& v) { return value() && dom_.string(v) && done(); }
+  bool binary(json::binary_t& v) { return value() && dom_.binary(v) && done(); }
   bool start_object(size_t n) {
     if (!value()) return false;
     frames_.push_back({false, "", 0, {}});
@@ -113,7 +113,7 @@ class TrackingSax {
   }
   bool end_object() {
     frames_.pop_back();
-    return dom_.end_object();
+    return dom_.end_object() && done();
   }
   bool start_array(size_t n) {
     if (!value()) return false;
@@ -122,7 +122,7 @@ class TrackingSax {
   }
   bool end_array() {
     frames_.pop_back();
-    return dom_.end_array();
+    return dom_.end_array() && done();
   }
   template <class Exception>
   bool parse_error(size_t position, const std::string& token, const Exception& ex) {
@@ -167,6 +167,11 @@ class TrackingSax {
     std::set<std::string> keys;
     bool has_key = false;
   };
+  // A value is complete: within an object, the next error is no longer at its key.
+  bool done() {
+    if (!frames_.empty() && !frames_.back().array) frames_.back().has_key = false;
+    return true;
+  }
   // Counts array elements as they start, so paths name the element being read.
   bool value() {
     if (!frames_.empty() && frames_.back().array) frames_.back().count++;

@@ -55,7 +55,8 @@ Material parse_material(const json& doc, const std::string& file) {
       if (!val.is_string()) sink.error(key, "expected a string (the schema's URL or path)");
     } else if (key == "name") {
       if (!val.is_string() || val.get<std::string>().empty())
-        sink.error(key, fmt::format("expected a non-empty string, found {}", json_type_name(val)));
+        sink.error(key, fmt::format("expected a non-empty string, found {}",
+                                    val.is_string() ? "an empty string" : json_type_name(val)));
       else m.name = val.get<std::string>();
     } else if (key == "ambient" || key == "emission") {
       auto c = check.color(val, key, material_color(key.c_str(), ""));

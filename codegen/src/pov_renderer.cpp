@@ -1,5 +1,7 @@
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <map>
 
 #include <fmt/format.h>
 
@@ -12,6 +14,11 @@ namespace facet {
 
 namespace fs = std::filesystem;
 
+namespace {
+// A 16-bit PNG value at or above this may have clipped.
+const double kClip = 0.98;
+}  // namespace
+
 RenderOutcome render_pov(const RenderJob& job) {
   RenderOutcome out;
   fs::create_directories(job.workdir);
@@ -23,30 +30,77 @@ RenderOutcome render_pov(const RenderJob& job) {
   write_file_atomic((fs::path(job.workdir) / (base + ".pov")).string(), generate(job.material, o));
   PovPlan plan = pov_plan(job.material, job.scene);
 
-  // 16-bit PNGs clip at 1: scale by a power of two (exact to undo) that keeps the brightest pixel below 1.
-  double exposure = 1;
-  while (job.max_value * exposure >= 0.98) exposure /= 2;
+  // Exposures are powers of two, exact to undo. The last keeps the brightest pixel below clipping.
+  std::vector<double> exposures;
+  double e = 1;
+  if (job.bracket) exposures.push_back(e);
+  while (job.max_value * e >= kClip) {
+    e /= 2;
+    if (job.bracket) exposures.push_back(e);
+  }
+  if (!job.bracket) exposures.push_back(e);
+
+  // Frame f renders light pass f % passes at exposure f / passes.
+  const int passes = plan.passes, frames = passes * int(exposures.size());
+  std::string exposure_table;
+  for (size_t k = 0; k < exposures.size(); ++k) exposure_table += fmt::format("{}{}", k ? ", " : "", exposures[k]);
+  std::string wrapper = fmt::format(
+      "// facet's POV-Ray harness: frame f renders light pass f mod {0} at the (f div {0})-th exposure.\n"
+      "#declare Facet_Exposures = array[{1}] {{ {2} }};\n"
+      "#declare Facet_Light = {3};\n"
+      "#declare Facet_Exposure = Facet_Exposures[div(frame_number, {0})];\n"
+      "#include \"{4}.pov\"\n",
+      passes, exposures.size(), exposure_table, passes > 1 ? fmt::format("mod(frame_number, {})", passes) : "-1",
+      base);
+  write_file_atomic((fs::path(job.workdir) / (base + "_harness.pov")).string(), wrapper);
+  for (const auto& entry : fs::directory_iterator(job.workdir)) {
+    std::string name = entry.path().filename().string();
+    if (name.rfind(base + "_frame", 0) == 0) fs::remove(entry.path());
+  }
+
+  std::vector<std::string> argv = {"povray", "+I" + base + "_harness.pov", "+O" + base + "_frame.png",
+                                   fmt::format("+W{}", job.width), fmt::format("+H{}", job.height), "-A", "+FN16",
+                                   "File_Gamma=1.0", "-D", "+KFI0", fmt::format("+KFF{}", frames - 1)};
+  ProcessResult r = run_process(argv, job.workdir);
+  out.seconds = r.seconds;
+  out.log = r.output;
+  if (r.exit_code != 0) {
+    out.error = r.exit_code < 0 ? r.output : fmt::format("povray exited with {}:\n{}", r.exit_code, r.output);
+    return out;
+  }
+  // POV-Ray numbers frames with as many digits as the last one needs.
+  std::map<int, std::string> files;
+  for (const auto& entry : fs::directory_iterator(job.workdir)) {
+    std::string name = entry.path().filename().string();
+    std::string prefix = base + "_frame";
+    if (name.rfind(prefix, 0) != 0 || entry.path().extension() != ".png") continue;
+    std::string digits = name.substr(prefix.size(), name.size() - prefix.size() - 4);
+    if (!digits.empty() && std::all_of(digits.begin(), digits.end(), ::isdigit))
+      files[std::stoi(digits)] = entry.path().string();
+  }
+  if (frames == 1 && files.empty() && fs::exists(fs::path(job.workdir) / (base + "_frame.png")))
+    files[0] = (fs::path(job.workdir) / (base + "_frame.png")).string();
+  if (int(files.size()) != frames) {
+    out.error = fmt::format("povray wrote {} of {} frames:\n{}", files.size(), frames, r.output);
+    return out;
+  }
 
   out.image = Image(job.width, job.height);
-  for (int pass = 0; pass < plan.passes; ++pass) {
-    std::string png = plan.passes == 1 ? base + ".png" : fmt::format("{}_light{}.png", base, pass);
-    std::vector<std::string> argv = {"povray", "+I" + base + ".pov", "+O" + png, fmt::format("+W{}", job.width),
-                                     fmt::format("+H{}", job.height), "-A", "+FN16", "File_Gamma=1.0", "-D",
-                                     fmt::format("Declare=Facet_Exposure={}", exposure)};
-    if (plan.passes > 1) argv.push_back(fmt::format("Declare=Facet_Light={}", pass));
-    ProcessResult r = run_process(argv, job.workdir);
-    out.seconds += r.seconds;
-    out.log += r.output;
-    if (r.exit_code != 0) {
-      out.error = r.exit_code < 0 ? r.output : fmt::format("povray exited with {}: {}", r.exit_code, r.output);
-      return out;
+  for (int pass = 0; pass < passes; ++pass) {
+    std::vector<Image> frames_of_pass;
+    for (size_t k = 0; k < exposures.size(); ++k) {
+      frames_of_pass.push_back(read_png(files[int(k) * passes + pass]));
+      if (frames_of_pass.back().width != job.width || frames_of_pass.back().height != job.height) {
+        out.error = "povray wrote an image of the wrong size";
+        return out;
+      }
     }
-    Image img = read_png((fs::path(job.workdir) / png).string());
-    if (img.width != job.width || img.height != job.height) {
-      out.error = "povray wrote an image of the wrong size";
-      return out;
+    for (size_t i = 0; i < out.image.rgb.size(); ++i) {
+      // The brightest exposure that did not clip.
+      size_t k = 0;
+      while (k + 1 < exposures.size() && frames_of_pass[k].rgb[i] >= kClip) ++k;
+      out.image.rgb[i] += float(frames_of_pass[k].rgb[i] / exposures[k]);
     }
-    for (size_t i = 0; i < img.rgb.size(); ++i) out.image.rgb[i] += float(img.rgb[i] / exposure);
   }
   out.ok = true;
   return out;

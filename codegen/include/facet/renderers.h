@@ -16,6 +16,10 @@ struct RenderJob {
   int width = 256, height = 256;
   std::string workdir;   // where generated code and raw outputs go (kept for inspection)
   double max_value = 1;  // the largest radiance expected (POV-Ray: sets the exposure that keeps PNGs below 1)
+  // POV-Ray: bracket exposures in factors of 2 so every pixel keeps 16-bit
+  // relative precision (≤ 1.5e-5 · max(1, value)); otherwise one exposure for
+  // the whole image (error ≤ 7.7e-6 / exposure).
+  bool bracket = false;
 };
 
 struct RenderOutcome {
@@ -26,8 +30,9 @@ struct RenderOutcome {
   std::string log;    // what the tool printed
 };
 
-// POV-Ray 3.7: the generated scene, one render per pass (see pov_plan), each a
-// linear 16-bit PNG with antialiasing off, summed and divided by the exposure.
+// POV-Ray 3.7: the generated scene, one frame per pass (see pov_plan) and
+// exposure, each a linear 16-bit PNG with antialiasing off, rendered as one
+// animation; the passes are summed and divided by their exposure.
 RenderOutcome render_pov(const RenderJob& job);
 
 }  // namespace facet

@@ -36,8 +36,8 @@ const char* kChannel[3] = {"R", "G", "B"};
 
 std::string num(double v) {
   if (v == kPi) return "pi";
-  std::string s = fmt::format("{}", v);
-  return v < 0 ? "(" + s + ")" : s;
+  if (v == 0) return "0";  // not "-0"
+  return fmt::format("{}", v);
 }
 
 std::string vec(const Vec3& v) { return fmt::format("<{}, {}, {}>", num(v.x), num(v.y), num(v.z)); }
@@ -106,50 +106,64 @@ class PovPrinter {
     }
   }
 
-  std::string expr(const NodePtr& n, int ch) {
-    auto a = [&](int k) { return expr(n->args[k], ch); };
+  // Precedence-aware: parentheses only where POV-Ray needs them, and on the
+  // right operand at equal precedence so the evaluation order is the IR's.
+  std::string expr(const NodePtr& n, int ch, int context = 0) {
+    auto a = [&](int k, int c = 0) { return expr(n->args[k], ch, c); };
+    int p = 9;
+    std::string s;
     switch (n->op) {
-      case Op::Literal: return num(n->value[ch]);
-      case Op::Constant: return constant_name(n, ch);
+      case Op::Literal:
+        s = num(n->value[ch]);
+        break;
+      case Op::Constant: s = constant_name(n, ch); break;
       case Op::Arg:
-      case Op::Local: return local(n->name);
-      case Op::Neg: return "(-" + a(0) + ")";
-      case Op::Add: return "(" + a(0) + " + " + a(1) + ")";
-      case Op::Sub: return "(" + a(0) + " - " + a(1) + ")";
-      case Op::Mul: return a(0) + " * " + a(1);
-      case Op::Div: return a(0) + " / " + paren(n->args[1], ch);
-      case Op::Min: return "min(" + a(0) + ", " + a(1) + ")";
-      case Op::Max: return "max(" + a(0) + ", " + a(1) + ")";
-      case Op::Clamp: return "min(max(" + a(0) + ", " + a(1) + "), " + a(2) + ")";
-      case Op::Sqrt: return "sqrt(" + a(0) + ")";
-      case Op::Exp: return "exp(" + a(0) + ")";
-      case Op::Pow: return "pow(" + a(0) + ", " + a(1) + ")";
-      case Op::Acos: return "acos(" + a(0) + ")";
-      case Op::Atan2: return "atan2(" + a(0) + ", " + a(1) + ")";
-      case Op::Abs: return "abs(" + a(0) + ")";
-      case Op::Step: return "(" + a(1) + " >= " + a(0) + ")";
+      case Op::Local: s = local(n->name); break;
+      case Op::Neg: p = 7; s = "-" + a(0, 8); break;
+      case Op::Add: p = 5; s = a(0, 5) + " + " + a(1, 6); break;
+      case Op::Sub: p = 5; s = a(0, 5) + " - " + a(1, 6); break;
+      case Op::Mul: p = 6; s = a(0, 6) + " * " + a(1, 7); break;
+      case Op::Div: p = 6; s = a(0, 6) + " / " + a(1, 7); break;
+      case Op::Min: s = "min(" + a(0) + ", " + a(1) + ")"; break;
+      case Op::Max: s = "max(" + a(0) + ", " + a(1) + ")"; break;
+      case Op::Clamp: s = "min(max(" + a(0) + ", " + a(1) + "), " + a(2) + ")"; break;
+      case Op::Sqrt: s = "sqrt(" + a(0) + ")"; break;
+      case Op::Exp: s = "exp(" + a(0) + ")"; break;
+      case Op::Pow: s = "pow(" + a(0) + ", " + a(1) + ")"; break;
+      case Op::Acos: s = "acos(" + a(0) + ")"; break;
+      case Op::Atan2: s = "atan2(" + a(0) + ", " + a(1) + ")"; break;
+      case Op::Abs: s = "abs(" + a(0) + ")"; break;
+      case Op::Step: s = "(" + a(1) + " >= " + a(0) + ")"; break;
       case Op::Select: {
         // select(A, B, C[, D]): A < 0 → B; A = 0 → C; A > 0 → D (or C).
         const NodePtr& c = n->args[0];
         std::string t = a(1), f = a(2);
-        std::string x = c->args.size() == 2 && !(c->op == Op::And || c->op == Op::Or)
-                            ? "(" + expr(c->args[0], ch) + " - " + expr(c->args[1], ch) + ")"
-                            : "";
-        switch (c->op) {
-          case Op::Lt: return fmt::format("select({}, {}, {})", x, t, f);
-          case Op::Le: return fmt::format("select({}, {}, {}, {})", x, t, t, f);
-          case Op::Gt: return fmt::format("select({}, {}, {}, {})", x, f, f, t);
-          case Op::Ge: return fmt::format("select({}, {}, {})", x, f, t);
-          default: return fmt::format("select({} - 0.5, {}, {})", condition(c, ch), f, t);
+        bool simple = c->op != Op::And && c->op != Op::Or;
+        std::string x;
+        if (simple) {
+          const NodePtr& rhs = c->args[1];
+          bool zero = rhs->op == Op::Literal && rhs->value[ch] == 0;
+          x = zero ? expr(c->args[0], ch) : expr(c->args[0], ch, 5) + " - " + expr(rhs, ch, 6);
         }
+        switch (c->op) {
+          case Op::Lt: s = fmt::format("select({}, {}, {})", x, t, f); break;
+          case Op::Le: s = fmt::format("select({}, {}, {}, {})", x, t, t, f); break;
+          case Op::Gt: s = fmt::format("select({}, {}, {}, {})", x, f, f, t); break;
+          case Op::Ge: s = fmt::format("select({}, {}, {})", x, f, t); break;
+          default: s = fmt::format("select({} - 0.5, {}, {})", condition(c, ch), f, t);
+        }
+        break;
       }
       case Op::Call: {
-        std::string s = name(n->callee, ch) + "(";
+        s = name(n->callee, ch) + "(";
         for (size_t k = 0; k < n->args.size(); ++k) s += (k ? ", " : "") + a(int(k));
-        return s + ")";
+        s += ")";
+        break;
       }
       default: throw std::logic_error("facet: the POV-Ray printer cannot print this operation");
     }
+    if (n->op == Op::Literal && n->value[ch] < 0) p = 7;
+    return p < context ? "(" + s + ")" : s;
   }
 
   // One function per let: F(params) calls F__1(params, let1), which calls
@@ -193,12 +207,6 @@ class PovPrinter {
   }
 
  private:
-  std::string paren(const NodePtr& n, int ch) {
-    std::string s = expr(n, ch);
-    bool atom = n->op == Op::Arg || n->op == Op::Local || n->op == Op::Constant ||
-                (n->op == Op::Literal && n->value[ch] >= 0) || n->op == Op::Call;
-    return atom ? s : "(" + s + ")";
-  }
   static std::string local(const std::string& n) { return capital(n); }
   std::map<const ir::Function*, bool> dependent_;
 };
@@ -417,9 +425,7 @@ class PovScene {
     out += "\n// ---- Objects\n";
     RGB e = emission();
     std::string tex = black(e) ? fmt::format("texture {{ {} }}", native_texture(1))
-                               : fmt::format("texture {{ {} }}\n  texture {{ pigment {{ rgbt <{}, {}, {}, 0.5> }} finish "
-                                             "{{ ambient 0 emission 1 diffuse 0 specular 0 phong 0 }} }}",
-                                             native_texture(2), num(2 * e[0]), num(2 * e[1]), num(2 * e[2]));
+                               : fmt::format("texture {{ {} }}\n  {}", native_texture(2), emission_texture(2, 0.5));
     for (const auto& o : s_.objects) out += object(o, 0, "\n  " + tex + "\n", "") + "\n";
     return out;
   }
@@ -589,8 +595,8 @@ class PovScene {
 
   std::string emission_texture(double weight, double t) {
     RGB e = emission();
-    return fmt::format("texture {{ pigment {{ rgbt <{}, {}, {}, {}> }} finish {{ ambient 0 emission 1 diffuse 0 "
-                       "specular 0 phong 0 }} }}",
+    return fmt::format("texture {{ pigment {{ rgbt <{}, {}, {}, {}> }} finish {{ ambient 0 emission Facet_Exposure "
+                       "diffuse 0 specular 0 phong 0 }} }}",
                        num(weight * e[0]), num(weight * e[1]), num(weight * e[2]), num(t));
   }
 

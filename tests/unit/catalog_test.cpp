@@ -1,0 +1,101 @@
+// The catalog's structure, and the model × target coverage matrix: every
+// example material generates for every target.
+#include <filesystem>
+#include <set>
+
+#include <gtest/gtest.h>
+
+#include "facet/catalog.h"
+#include "facet/material.h"
+#include "facet/targets.h"
+
+namespace facet {
+namespace {
+
+namespace fs = std::filesystem;
+const fs::path kSource = FACET_SOURCE_DIR;
+
+TEST(Catalog, HasEveryModelOfModelsMd) {
+  std::set<std::string> want = {"diffuse/lambert", "diffuse/minnaert", "diffuse/minnaert_velvet",
+                                "diffuse/oren_nayar", "specular/phong", "specular/blinn_phong",
+                                "specular/gaussian", "specular/heidrich_seidel", "specular/beckmann",
+                                "specular/cook_torrance", "specular/ggx", "specular/blinn",
+                                "specular/ward", "specular/ward_nvidia", "fresnel/none",
+                                "fresnel/schlick", "fresnel/exact", "geometry/none",
+                                "geometry/v_cavity", "geometry/smith_ggx", "modifier/toon",
+                                "modifier/schlick_approximation", "light/point", "light/directional",
+                                "light/spot", "attenuation/none", "attenuation/inverse_square",
+                                "attenuation/polynomial", "term/ambient", "term/emission"};
+  std::set<std::string> have;
+  for (const auto& m : catalog()) have.insert(m.section + "/" + m.name);
+  for (const auto& w : want) EXPECT_TRUE(have.count(w)) << w;
+}
+
+TEST(Catalog, EveryLobeIsDocumentedCitedAndBuildable) {
+  for (const auto& m : catalog()) {
+    if (m.section != "diffuse" && m.section != "specular") continue;
+    EXPECT_FALSE(m.title.empty()) << m.name;
+    EXPECT_FALSE(m.citation.empty()) << m.name;
+    EXPECT_FALSE(m.formula.empty()) << m.name;
+    EXPECT_FALSE(m.doc.empty()) << m.name;
+    EXPECT_FALSE(m.cycles.note.empty()) << m.name;
+    EXPECT_FALSE(m.pov.note.empty()) << m.name;
+    ASSERT_TRUE(m.build) << m.name;
+    // The model with its documented start values is a valid material.
+    nlohmann::json lobe = {{"model", m.name}};
+    for (const auto& p : m.params)
+      if (p.required && p.kind == ParamKind::Number) lobe[p.name] = p.fallback.number;
+    Material mat = parse_material({{m.section, lobe}}, "catalog");
+    for (Target t : all_targets()) {
+      GenerateOptions o;
+      o.target = t;
+      EXPECT_NO_THROW(generate(mat, o)) << m.name << " → " << target_name(t);
+    }
+  }
+}
+
+TEST(Catalog, ParameterDefaultsAreInRange) {
+  for (const auto& m : catalog()) {
+    for (const auto& p : m.params) {
+      if (p.kind == ParamKind::Number) {
+        EXPECT_TRUE(p.range.contains(p.fallback.number)) << m.name << "." << p.name;
+      }
+    }
+  }
+}
+
+TEST(Examples, OnePerModelAtLeast) {
+  std::set<std::string> seen;
+  for (const auto& e : fs::directory_iterator(kSource / "examples/materials")) {
+    Material m = load_material(e.path().string());
+    if (m.diffuse) seen.insert("diffuse/" + m.diffuse->def->name);
+    if (m.specular) seen.insert("specular/" + m.specular->def->name);
+  }
+  for (const auto& m : catalog()) {
+    if (m.section == "diffuse" || m.section == "specular") {
+      EXPECT_TRUE(seen.count(m.section + "/" + m.name)) << "no example uses " << m.name;
+    }
+  }
+}
+
+TEST(Examples, GenerateForEveryTargetAndScene) {
+  for (const auto& e : fs::directory_iterator(kSource / "examples/materials")) {
+    Material m = load_material(e.path().string());
+    for (Target t : all_targets()) {
+      for (const char* scene : {"single", "shadows"}) {
+        for (bool library : {false, true}) {
+          GenerateOptions o;
+          o.target = t;
+          o.library = library;
+          o.scene = load_scene(scene);
+          std::string code;
+          EXPECT_NO_THROW(code = generate(m, o)) << e.path() << " " << target_name(t);
+          EXPECT_GT(code.size(), 200u);
+        }
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace facet

@@ -1,0 +1,161 @@
+// The facet command line, run as a user runs it.
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "facet/io.h"
+#include "facet/process.h"
+
+namespace facet {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+const std::string kFacet = FACET_BIN;
+const fs::path kSource = FACET_SOURCE_DIR;
+
+fs::path scratch(const std::string& name) {
+  fs::path dir = fs::temp_directory_path() / ("facet-cli-test-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  return dir / name;
+}
+
+ProcessResult facet(const std::vector<std::string>& args, const std::string& stdin_file = "") {
+  std::vector<std::string> argv = {"sh", "-c", ""};
+  std::string cmd = "'" + kFacet + "'";
+  for (const auto& a : args) cmd += " '" + a + "'";
+  if (!stdin_file.empty()) cmd += " < '" + stdin_file + "'";
+  argv[2] = cmd;
+  return run_process(argv);
+}
+
+std::vector<std::string> malformed_files() {
+  json expected = json::parse(read_file((kSource / "tests/malformed/EXPECTED").string()));
+  std::vector<std::string> names;
+  for (const auto& [name, path] : expected.items()) names.push_back(name);
+  return names;
+}
+
+class Malformed : public ::testing::TestWithParam<std::string> {};
+
+// Each malformed file: non-zero exit, a message naming the file and the key
+// path, and no output file — for every target.
+TEST_P(Malformed, FailsNamingTheKeyPathAndWritesNothing) {
+  json expected = json::parse(read_file((kSource / "tests/malformed/EXPECTED").string()));
+  const std::string file = (kSource / "tests/malformed" / GetParam()).string();
+  const std::string path = expected[GetParam()];
+  for (const char* target : {"glsl", "osl", "pov"}) {
+    fs::path out = scratch(GetParam() + "." + target);
+    fs::remove(out);
+    ProcessResult r = facet({"generate", file, "--target", target, "-o", out.string()});
+    EXPECT_EQ(r.exit_code, 1) << r.output;
+    EXPECT_NE(r.output.find(file), std::string::npos) << "the message names the file: " << r.output;
+    EXPECT_NE(r.output.find(": " + path + ": "), std::string::npos) << "the message names " << path << ": " << r.output;
+    EXPECT_FALSE(fs::exists(out)) << "nothing is written";
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Corpus, Malformed, ::testing::ValuesIn(malformed_files()),
+                         [](const auto& info) { return fs::path(info.param).stem().string(); });
+
+TEST(Cli, MalformedCorpusHasAtLeastTwentyFiles) { EXPECT_GE(malformed_files().size(), 20u); }
+
+TEST(Cli, AFailedGenerateLeavesThePreviousOutputIntact) {
+  fs::path out = scratch("previous.frag");
+  write_file_atomic(out.string(), "previous contents\n");
+  ProcessResult r = facet({"generate", (kSource / "tests/malformed/unknown_model.json").string(), "-o", out.string()});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(read_file(out.string()), "previous contents\n");
+}
+
+TEST(Cli, GenerateWritesTheFile) {
+  fs::path out = scratch("lambert.frag");
+  fs::remove(out);
+  ProcessResult r = facet({"generate", (kSource / "examples/materials/lambert.json").string(), "-o", out.string()});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::string code = read_file(out.string());
+  EXPECT_EQ(code.rfind("#version 330 core", 0), 0u);
+  EXPECT_NE(code.find("rho_lambert"), std::string::npos);
+}
+
+TEST(Cli, EvalLambertIsKdCosine) {
+  fs::path in = scratch("eval_in.json");
+  // n·l = cos 60°, so Lambert gives k_d / 2; the second set is below the horizon.
+  write_file_atomic(in.string(), R"([{"n": [0, 0, 2], "l": [0, 0.8660254037844386, 0.5], "v": [0, 0, 1]},
+                                     {"n": [0, 0, 1], "l": [0, 0, -1], "v": [0, 0, 1]}])");
+  ProcessResult r = facet({"eval", (kSource / "examples/materials/lambert.json").string()}, in.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  json out = json::parse(r.output);
+  ASSERT_EQ(out.size(), 2u);
+  EXPECT_NEAR(out[0][0].get<double>(), 0.8 * 0.5, 1e-15);
+  EXPECT_NEAR(out[0][1].get<double>(), 0.5 * 0.5, 1e-15);
+  EXPECT_NEAR(out[0][2].get<double>(), 0.3 * 0.5, 1e-15);
+  EXPECT_EQ(out[1][0].get<double>(), 0.0);
+}
+
+TEST(Cli, EvalUsesTheGivenTangent) {
+  fs::path in = scratch("eval_tangent.json");
+  // Heidrich–Seidel reads l·t and v·t: two tangents, two answers.
+  write_file_atomic(in.string(), R"([{"n": [0, 0, 1], "l": [1, 0, 1], "v": [-1, 0.2, 1], "t": [1, 0, 0]},
+                                     {"n": [0, 0, 1], "l": [1, 0, 1], "v": [-1, 0.2, 1], "t": [0, 1, 0]}])");
+  ProcessResult r = facet({"eval", (kSource / "examples/materials/heidrich_seidel.json").string()}, in.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  json out = json::parse(r.output);
+  EXPECT_NE(out[0][0].get<double>(), out[1][0].get<double>());
+}
+
+TEST(Cli, EvalRejectsBadDirectionSets) {
+  fs::path in = scratch("eval_bad.json");
+  write_file_atomic(in.string(), R"([{"n": [0, 0, 0], "l": [0, 0, 1], "v": [0, 0, 1]}, {"n": [0, 0, 1], "l": [0, 1]}])");
+  ProcessResult r = facet({"eval", (kSource / "examples/materials/lambert.json").string()}, in.string());
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.output.find("[0].n"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("[1].l"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("[1].v"), std::string::npos) << r.output;
+}
+
+TEST(Cli, ModelsJsonListsEveryLobe) {
+  ProcessResult r = facet({"models", "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  json cat = json::parse(r.output);
+  std::vector<std::string> names;
+  for (const auto& m : cat["sections"]["diffuse"]) names.push_back(m["name"]);
+  for (const auto& m : cat["sections"]["specular"]) names.push_back(m["name"]);
+  for (const char* want : {"lambert", "minnaert", "minnaert_velvet", "oren_nayar", "phong", "blinn_phong", "gaussian",
+                           "heidrich_seidel", "beckmann", "cook_torrance", "ggx", "blinn", "ward", "ward_nvidia"})
+    EXPECT_NE(std::find(names.begin(), names.end(), want), names.end()) << want;
+}
+
+TEST(Cli, HelpTeachesWithExamples) {
+  for (const char* cmd : {"generate", "eval", "models", "render"}) {
+    ProcessResult r = facet({cmd, "--help"});
+    EXPECT_EQ(r.exit_code, 0) << cmd;
+    if (std::string(cmd) != "models") {
+      EXPECT_NE(r.output.find("xample"), std::string::npos) << cmd << r.output;
+    }
+  }
+}
+
+TEST(Cli, UnknownTargetIsAUsageError) {
+  ProcessResult r = facet({"generate", (kSource / "examples/materials/lambert.json").string(), "--target", "hlsl"});
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.output.find("hlsl"), std::string::npos) << r.output;
+}
+
+TEST(Cli, PublishedSchemaIsTheGeneratedOne) {
+  ProcessResult r = facet({"schema"});
+  ASSERT_EQ(r.exit_code, 0);
+  EXPECT_EQ(json::parse(r.output), json::parse(read_file((kSource / "schemas/material.schema.json").string())))
+      << "run: build/bin/facet schema > schemas/material.schema.json";
+  r = facet({"schema", "--scene"});
+  ASSERT_EQ(r.exit_code, 0);
+  EXPECT_EQ(json::parse(r.output), json::parse(read_file((kSource / "schemas/scene.schema.json").string())))
+      << "run: build/bin/facet schema --scene > schemas/scene.schema.json";
+}
+
+}  // namespace
+}  // namespace facet
