@@ -6,6 +6,8 @@
 #include <iostream>
 #include <sstream>
 
+#include <unistd.h>
+
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -20,6 +22,7 @@
 #include "facet/reference.h"
 #include "facet/scene.h"
 #include "facet/targets.h"
+#include "facet/validate.h"
 
 using nlohmann::json;
 
@@ -177,6 +180,21 @@ int run_render(const RenderArgs& a) {
     }
     image = r.image;
     fmt::print(stderr, "pov: {:.2f} s\n", r.seconds);
+  } else if (a.renderer == "glsl") {
+    RenderJob job;
+    job.material = m;
+    job.scene = scene;
+    job.width = w;
+    job.height = h;
+    job.workdir = a.workdir;
+    GlRenderer gl;
+    RenderOutcome r = gl.render(job);
+    if (!r.ok) {
+      std::cerr << "error: OpenGL: " << r.error << "\n";
+      return 1;
+    }
+    image = r.image;
+    fmt::print(stderr, "glsl ({}): {:.2f} s\n", gl.description(), r.seconds);
   }
   int status = 0;
   if ((a.compare || a.check >= 0) && a.renderer != "reference") {
@@ -321,8 +339,9 @@ int main(int argc, char** argv) {
   RenderArgs ra;
   auto* rn = app.add_subcommand("render", "Render a material on a scene with one renderer (float image)");
   rn->add_option("material", ra.material, "The material (JSON)")->required();
-  rn->add_option("-r,--renderer", ra.renderer, "reference (C++ ray caster) or pov (POV-Ray 3.7)")
-      ->check(CLI::IsMember({"reference", "pov"}))
+  rn->add_option("-r,--renderer", ra.renderer,
+                 "reference (C++ ray caster), glsl (OpenGL through EGL) or pov (POV-Ray 3.7)")
+      ->check(CLI::IsMember({"reference", "glsl", "pov"}))
       ->capture_default_str();
   rn->add_option("--scene", ra.scene, "A scene file or a built-in name (single, shadows)")->capture_default_str();
   rn->add_option("--size", ra.size, "Image size WIDTHxHEIGHT")->capture_default_str();
@@ -336,6 +355,34 @@ int main(int argc, char** argv) {
   rn->add_flag("--exact", ra.exact,
                "POV-Ray: bracket exposures so every pixel keeps 16-bit relative precision (slower)");
 
+  ValidateOptions va;
+  std::string va_size = "256x256", va_renderers = "reference,glsl,osl,pov";
+  auto* v = app.add_subcommand("validate",
+                               "Render materials through OpenGL, Cycles (OSL) and POV-Ray and compare each with the "
+                               "C++ reference, pixel by pixel");
+  v->add_option("materials", va.materials, "Material files (default: every examples/materials/*.json)");
+  v->add_option("--scene", va.scenes, "A built-in scene (single, shadows) or a scene file; repeat for several "
+                                      "(default: single and shadows)");
+  v->add_option("--size", va_size, "Image size WIDTHxHEIGHT")->capture_default_str();
+  v->add_option("--renderers", va_renderers, "Comma-separated: reference, glsl, osl, pov")->capture_default_str();
+  v->add_option("--out", va.out, "Where metrics.json, report.html and the images go")->capture_default_str();
+  v->add_option("--python", va.python, "The Python with bpy 4.5 for Cycles (default: FACET_PYTHON, then the "
+                                       "build's .venv)");
+  v->add_option("--tolerance", va.tolerance, "Pass when |Δ| ≤ TOL · max(1, |reference|) on every interior pixel")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  v->footer(
+      "Each renderer draws the same scene, one sample at each pixel centre, linear and unclamped:\n"
+      "  reference  facet's C++ ray caster shading with the C++ reference (double)\n"
+      "  glsl       the generated GLSL in headless OpenGL (EGL; Mesa llvmpipe without a GPU), RGBA32F\n"
+      "  osl        the generated OSL in Blender 4.5's Cycles (CPU, OSL), one Blender process per scene\n"
+      "  pov        the generated POV-Ray scene, 16-bit linear PNG, antialiasing off\n"
+      "Writes OUT/metrics.json (one row per material × scene × renderer), OUT/report.html (images side by side,\n"
+      "|Δ| × 16, failures first) and exits 1 when any comparison fails; a renderer that cannot run fails.\n"
+      "Examples:\n"
+      "  facet validate                                   # the whole example catalog, both scenes\n"
+      "  facet validate my.json --scene shadows --renderers reference,glsl --size 128x128");
+
   bool schema_scene = false;
   auto* sc = app.add_subcommand("schema", "Print the JSON Schema of material files (or of scene files)");
   sc->add_flag("--scene", schema_scene, "The scene schema instead");
@@ -347,6 +394,23 @@ int main(int argc, char** argv) {
     if (e->parsed()) return run_eval(eval_material);
     if (mo->parsed()) return run_models(models_json);
     if (rn->parsed()) return run_render(ra);
+    if (v->parsed()) {
+      int w, h;
+      if (!parse_size(va_size, w, h)) throw InputError({{"--size", "", "expected WIDTHxHEIGHT, e.g. 256x256", 0, 0}});
+      va.width = w;
+      va.height = h;
+      va.renderers.clear();
+      std::stringstream names(va_renderers);
+      for (std::string r; std::getline(names, r, ',');) {
+        if (r != "reference" && r != "glsl" && r != "osl" && r != "pov")
+          throw InputError({{"--renderers", "", "unknown renderer \"" + r + "\"; allowed: reference, glsl, osl, pov", 0, 0}});
+        va.renderers.push_back(r);
+      }
+      va.interactive = isatty(2);
+      ValidateResult result = validate(va, std::cerr);
+      std::cout << "facet validate: " << result.summary << "\n";
+      return result.pass ? 0 : 1;
+    }
     if (sc->parsed()) {
       std::cout << (schema_scene ? scene_schema() : material_schema()).dump(2) << "\n";
       return 0;

@@ -41,6 +41,33 @@ Image read_pfm(const std::string& path) {
   return img;
 }
 
+std::vector<float> read_pfm_grey(const std::string& path, int& width, int& height) {
+  std::string data = read_file(path);
+  std::istringstream in(data);
+  std::string magic;
+  double scale = 0;
+  in >> magic >> width >> height >> scale;
+  if (magic != "Pf" || width <= 0 || height <= 0 || scale >= 0)
+    throw IoError(path + ": not a little-endian greyscale PFM image");
+  in.get();
+  size_t header = size_t(in.tellg());
+  size_t row = size_t(width) * sizeof(float);
+  if (data.size() < header + row * size_t(height)) throw IoError(path + ": truncated PFM image");
+  std::vector<float> px(size_t(width) * size_t(height));
+  for (int y = 0; y < height; ++y) std::memcpy(&px[size_t(y) * size_t(width)], &data[header + row * size_t(height - 1 - y)], row);
+  return px;
+}
+
+std::vector<float> read_png_alpha(const std::string& path) {
+  int w = 0, h = 0, n = 0;
+  stbi_us* px = stbi_load_16(path.c_str(), &w, &h, &n, 4);
+  if (!px) throw IoError(path + ": cannot read the PNG: " + (stbi_failure_reason() ? stbi_failure_reason() : "?"));
+  std::vector<float> alpha(size_t(w) * size_t(h));
+  for (size_t i = 0; i < alpha.size(); ++i) alpha[i] = float(px[i * 4 + 3] / 65535.0);
+  stbi_image_free(px);
+  return alpha;
+}
+
 Image read_png(const std::string& path) {
   int w = 0, h = 0, n = 0;
   stbi_us* px = stbi_load_16(path.c_str(), &w, &h, &n, 3);
@@ -51,13 +78,13 @@ Image read_png(const std::string& path) {
   return img;
 }
 
-void write_png_preview(const std::string& path, const Image& img, float scale) {
+void write_png_preview(const std::string& path, const Image& img, float scale, bool srgb) {
   std::vector<uint8_t> px(img.rgb.size());
   for (size_t i = 0; i < px.size(); ++i) {
     float v = img.rgb[i] * scale;
     if (!(v > 0)) v = 0;  // NaN shows black
     if (v > 1) v = 1;
-    float s = v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1 / 2.4f) - 0.055f;
+    float s = !srgb ? v : v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1 / 2.4f) - 0.055f;
     px[i] = uint8_t(std::lround(s * 255));
   }
   std::string data;

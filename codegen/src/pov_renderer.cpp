@@ -27,7 +27,8 @@ RenderOutcome render_pov(const RenderJob& job) {
   o.scene = job.scene;
   o.source = job.material.source;
   const std::string base = identifier(job.material.name) + "_" + identifier(job.scene.name);
-  write_file_atomic((fs::path(job.workdir) / (base + ".pov")).string(), generate(job.material, o));
+  write_file_atomic((fs::path(job.workdir) / (base + ".pov")).string(),
+                    job.code_override.empty() ? generate(job.material, o) : job.code_override);
   PovPlan plan = pov_plan(job.material, job.scene);
 
   // Exposures are powers of two, exact to undo. The last keeps the brightest pixel below clipping.
@@ -59,7 +60,7 @@ RenderOutcome render_pov(const RenderJob& job) {
   }
 
   std::vector<std::string> argv = {"povray", "+I" + base + "_harness.pov", "+O" + base + "_frame.png",
-                                   fmt::format("+W{}", job.width), fmt::format("+H{}", job.height), "-A", "+FN16",
+                                   fmt::format("+W{}", job.width), fmt::format("+H{}", job.height), "-A", "+FN16", "+UA",
                                    "File_Gamma=1.0", "-D", "+KFI0", fmt::format("+KFF{}", frames - 1)};
   ProcessResult r = run_process(argv, job.workdir);
   out.seconds = r.seconds;
@@ -86,6 +87,7 @@ RenderOutcome render_pov(const RenderJob& job) {
   }
 
   out.image = Image(job.width, job.height);
+  out.alpha = read_png_alpha(files[0]);  // coverage (+UA); the same in every frame
   for (int pass = 0; pass < passes; ++pass) {
     std::vector<Image> frames_of_pass;
     for (size_t k = 0; k < exposures.size(); ++k) {

@@ -24,11 +24,14 @@ Hit nearest(const Scene& s, const Vec3& o, const Vec3& d, double t_min) {
   return h;
 }
 
-// Is the segment p + s·l, s ∈ (offset, dist), blocked? Also reports whether it
-// passes within kGrazing of an occluder's edge.
-bool blocked(const Scene& s, const Vec3& p, const Vec3& l, double dist, double offset, bool& grazing) {
+// Is the segment p + s·l, s ∈ (offset, dist), blocked by an object other than
+// `self`? (Objects are convex: none shadows itself where n·l > 0.) Also reports
+// whether the segment passes within kGrazing of an occluder's edge.
+bool blocked(const Scene& s, size_t self, const Vec3& p, const Vec3& l, double dist, double offset, bool& grazing) {
   bool hit = false;
-  for (const auto& o : s.objects) {
+  for (size_t i = 0; i < s.objects.size(); ++i) {
+    if (i == self) continue;
+    const Object& o = s.objects[i];
     double t = o.intersect(p, l, offset);
     if (t > 0 && t < dist) hit = true;
     if (o.type == Object::Type::Sphere) {
@@ -94,7 +97,7 @@ Render render_reference(const Material& m, const Scene& s, int width, int height
           light.toward(p, l, d);
           double factor = ref.light_factor(light, l, d);
           if (!(factor > 0) || dot(n, l) <= 0) continue;
-          if (blocked(s, p, l, d, offset, grazing)) continue;
+          if (blocked(s, size_t(h.object), p, l, d, offset, grazing)) continue;
           RGB f = ref.reflectance(n, l, v, t);
           for (int c = 0; c < 3; ++c) L[c] += factor * light.color[c] * f[c];
         }

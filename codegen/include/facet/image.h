@@ -19,9 +19,14 @@ struct Image {
 // Portable float map: exact floats (the renderers' interchange format).
 void write_pfm(const std::string& path, const Image& img);
 Image read_pfm(const std::string& path);
+// A one-channel PFM ("Pf"), e.g. a coverage mask; rows from the top.
+std::vector<float> read_pfm_grey(const std::string& path, int& width, int& height);
+// A PNG's alpha channel in [0, 1] (all 1 when it has none); rows from the top.
+std::vector<float> read_png_alpha(const std::string& path);
 // A 16-bit (or 8-bit) PNG as linear values in [0, 1], as POV-Ray writes with File_Gamma=1.0.
 Image read_png(const std::string& path);
-// An 8-bit sRGB-encoded preview, values × scale, clamped to [0, 1].
-void write_png_preview(const std::string& path, const Image& img, float scale = 1.0f);
+// An 8-bit preview, values × scale clamped to [0, 1], sRGB-encoded for viewing
+// (or linear, e.g. for difference images, when srgb is false).
+void write_png_preview(const std::string& path, const Image& img, float scale = 1.0f, bool srgb = true);
 
 }  // namespace facet

@@ -20,12 +20,15 @@ struct RenderJob {
   // relative precision (≤ 1.5e-5 · max(1, value)); otherwise one exposure for
   // the whole image (error ≤ 7.7e-6 / exposure).
   bool bracket = false;
+  // Render this code instead of generating it (tests feed deliberately wrong targets).
+  std::string code_override;
 };
 
 struct RenderOutcome {
   bool ok = false;
   std::string error;  // why not, when not ok: the tool's own words where it had some
   Image image;
+  std::vector<float> alpha;  // coverage per pixel (1 object, 0 background); empty when the renderer has none
   double seconds = 0;
   std::string log;    // what the tool printed
 };
@@ -34,5 +37,35 @@ struct RenderOutcome {
 // exposure, each a linear 16-bit PNG with antialiasing off, rendered as one
 // animation; the passes are summed and divided by their exposure.
 RenderOutcome render_pov(const RenderJob& job);
+
+// Cycles with OSL inside Blender (pip bpy), many materials in one Blender
+// process: codegen/renderers/cycles_render.py, run by `python`. One outcome per
+// material, in order; a failed item carries Blender's or the OSL compiler's words.
+std::vector<RenderOutcome> render_osl(const std::vector<RenderJob>& jobs, const std::string& python,
+                                      std::string& log);
+// The Python with bpy: FACET_PYTHON, else the build's .venv, else "python3".
+std::string default_python();
+
+// OpenGL through EGL (Mesa llvmpipe headless): the generated GLSL 3.30 library
+// and light loop under a ray-casting main, drawn into an RGBA32F framebuffer.
+// One context serves many renders.
+class GlRenderer {
+ public:
+  GlRenderer();
+  ~GlRenderer();
+  GlRenderer(const GlRenderer&) = delete;
+  GlRenderer& operator=(const GlRenderer&) = delete;
+  bool ok() const { return error_.empty(); }
+  const std::string& error() const { return error_; }  // why there is no context
+  const std::string& description() const { return description_; }  // GL_RENDERER and GL_VERSION
+  RenderOutcome render(const RenderJob& job);
+  // The fragment shader render() compiles: the generated GLSL under the ray caster.
+  static std::string fragment_source(const Material& m);
+
+ private:
+  struct State;
+  State* state_ = nullptr;
+  std::string error_, description_;
+};
 
 }  // namespace facet

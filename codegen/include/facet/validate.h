@@ -1,0 +1,55 @@
+// facet — cross-renderer validation: the same materials and scenes through the
+// C++ reference, OpenGL, Cycles (OSL) and POV-Ray, compared pixel by pixel.
+#pragma once
+
+#include <map>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "facet/compare.h"
+#include "facet/material.h"
+#include "facet/scene.h"
+
+namespace facet {
+
+struct ValidateOptions {
+  std::vector<std::string> materials;  // files; empty: every examples/materials/*.json
+  std::vector<std::string> scenes;     // built-in names or files; empty: single and shadows
+  int width = 256, height = 256;
+  std::vector<std::string> renderers = {"reference", "glsl", "osl", "pov"};
+  std::string out = "out/validate";
+  std::string python;                  // bpy's Python; empty: default_python()
+  double tolerance = 2e-3;             // |Δ| ≤ tolerance · max(1, |reference|)
+  double coverage_tolerance = 1e-3;    // share of pixels whose coverage may differ
+  double flip_tolerance = 1e-3;        // share of interior pixels a hard toon step may flip
+  bool interactive = false;            // progress as one updating line (a terminal) or a line per step
+};
+
+struct ComparisonRow {
+  std::string material;  // the material's name
+  std::string key;       // its file's stem: names the images
+  std::string renderer, scene;
+  Metrics metrics;
+  double coverage_mismatch = 0;  // share of all pixels
+  size_t allowed_flips = 0;      // interior pixels a hard toon step may flip
+  bool pass = false;
+  std::string error;             // why it could not run, when it could not
+  double seconds = 0;
+};
+
+struct ValidateResult {
+  std::vector<ComparisonRow> rows;       // one per material × scene × renderer (not the reference)
+  std::map<std::string, double> wall;    // seconds per renderer
+  std::string summary;                   // the one-line verdict
+  bool pass = false;
+};
+
+// Renders, compares, writes OUT/metrics.json, OUT/report.html and OUT/images/.
+ValidateResult validate(const ValidateOptions& options, std::ostream& progress);
+
+// The comparison the report and the tests share.
+ComparisonRow judge(const Render& reference, const Image& image, const std::vector<float>& alpha,
+                    const Material& m, const ValidateOptions& options);
+
+}  // namespace facet

@@ -1,0 +1,252 @@
+// OpenGL renderer: EGL surfaceless on Mesa (llvmpipe without a GPU), as
+// shared/notes/opengl.md recommends. The fragment shader is facet's generated
+// GLSL 3.30 (library + light loop) under templates/glsl/raycast.glsl.
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+
+#include <epoxy/egl.h>
+#include <epoxy/gl.h>
+#include <fmt/format.h>
+
+#include "facet/io.h"
+#include "facet/program.h"
+#include "facet/renderers.h"
+#include "facet/targets.h"
+#include "templates.h"
+
+namespace facet {
+
+namespace {
+
+const char* kVertexShader = R"(#version 330 core
+// One triangle covering the viewport; the fragment shader casts the rays.
+void main()
+{
+    vec2 p = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2));
+    gl_Position = vec4(p * 2.0 - 1.0, 0.0, 1.0);
+}
+)";
+
+// The shadow-ray offset on the GPU: float32 needs more room than the reference's
+// 1e-6 (render.h); both are far below any gap between objects in a scene.
+const double kGlShadowOffset = 1e-4;
+const int kMaxLights = 8, kMaxObjects = 8;
+
+std::string shader_log(GLuint id, bool program) {
+  GLint len = 0;
+  program ? glGetProgramiv(id, GL_INFO_LOG_LENGTH, &len) : glGetShaderiv(id, GL_INFO_LOG_LENGTH, &len);
+  std::string log(size_t(std::max(len, 1)), '\0');
+  program ? glGetProgramInfoLog(id, len, nullptr, log.data()) : glGetShaderInfoLog(id, len, nullptr, log.data());
+  return log.c_str();
+}
+
+}  // namespace
+
+struct GlRenderer::State {
+  EGLDisplay display = EGL_NO_DISPLAY;
+  EGLContext context = EGL_NO_CONTEXT;
+  GLuint vao = 0, vertex = 0;
+};
+
+GlRenderer::GlRenderer() : state_(new State) {
+  const char* ext = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
+  if (!ext) {
+    error_ = "EGL: no client extensions (is libegl1 with Mesa's vendor library installed?)";
+    return;
+  }
+  if (std::strstr(ext, "EGL_MESA_platform_surfaceless")) {
+    state_->display = eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+  } else if (std::strstr(ext, "EGL_EXT_platform_device")) {
+    EGLDeviceEXT devices[8];
+    EGLint count = 0;
+    if (eglQueryDevicesEXT(8, devices, &count) && count > 0)
+      state_->display = eglGetPlatformDisplayEXT(EGL_PLATFORM_DEVICE_EXT, devices[0], nullptr);
+  }
+  if (state_->display == EGL_NO_DISPLAY) {
+    error_ = "EGL: no surfaceless or device display";
+    return;
+  }
+  EGLint major = 0, minor = 0;
+  if (!eglInitialize(state_->display, &major, &minor)) {
+    error_ = fmt::format("EGL: eglInitialize failed (0x{:x})", eglGetError());
+    return;
+  }
+  if (!eglBindAPI(EGL_OPENGL_API)) {
+    error_ = "EGL: no desktop OpenGL";
+    return;
+  }
+  const EGLint attributes[] = {EGL_CONTEXT_MAJOR_VERSION, 3, EGL_CONTEXT_MINOR_VERSION, 3,
+                               EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
+  state_->context = eglCreateContext(state_->display, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, attributes);
+  if (state_->context == EGL_NO_CONTEXT) {
+    error_ = fmt::format("EGL: cannot create an OpenGL 3.3 core context (0x{:x})", eglGetError());
+    return;
+  }
+  if (!eglMakeCurrent(state_->display, EGL_NO_SURFACE, EGL_NO_SURFACE, state_->context)) {
+    error_ = "EGL: eglMakeCurrent failed";
+    return;
+  }
+  description_ = fmt::format("{}, {}", reinterpret_cast<const char*>(glGetString(GL_RENDERER)),
+                             reinterpret_cast<const char*>(glGetString(GL_VERSION)));
+  glGenVertexArrays(1, &state_->vao);
+  state_->vertex = glCreateShader(GL_VERTEX_SHADER);
+  glShaderSource(state_->vertex, 1, &kVertexShader, nullptr);
+  glCompileShader(state_->vertex);
+}
+
+GlRenderer::~GlRenderer() {
+  if (state_->display != EGL_NO_DISPLAY) {
+    if (state_->context != EGL_NO_CONTEXT) {
+      if (state_->vao) glDeleteVertexArrays(1, &state_->vao);
+      if (state_->vertex) glDeleteShader(state_->vertex);
+      eglMakeCurrent(state_->display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+      eglDestroyContext(state_->display, state_->context);
+    }
+    eglTerminate(state_->display);
+  }
+  delete state_;
+}
+
+std::string GlRenderer::fragment_source(const Material& m) {
+  GlslParts parts = glsl_parts(compile(m), Target::Glsl, m.source);
+  return "#version 330 core\n" + parts.header + parts.library + parts.lights + render_template("glsl/raycast.glsl", {});
+}
+
+RenderOutcome GlRenderer::render(const RenderJob& job) {
+  RenderOutcome out;
+  if (!ok()) {
+    out.error = error_;
+    return out;
+  }
+  const Scene& s = job.scene;
+  if (s.lights.size() > size_t(kMaxLights) || s.objects.size() > size_t(kMaxObjects)) {
+    out.error = fmt::format("the GLSL renderer takes at most {} lights and {} objects", kMaxLights, kMaxObjects);
+    return out;
+  }
+  auto start = std::chrono::steady_clock::now();
+  std::string source = !job.code_override.empty() ? job.code_override : fragment_source(job.material);
+  if (!job.workdir.empty()) {
+    std::filesystem::create_directories(job.workdir);
+    write_file_atomic((std::filesystem::path(job.workdir) /
+                       (identifier(job.material.name) + "_" + identifier(s.name) + ".frag"))
+                          .string(),
+                      source);
+  }
+
+  GLuint fragment = glCreateShader(GL_FRAGMENT_SHADER);
+  const char* src = source.c_str();
+  glShaderSource(fragment, 1, &src, nullptr);
+  glCompileShader(fragment);
+  GLint status = 0;
+  glGetShaderiv(fragment, GL_COMPILE_STATUS, &status);
+  if (!status) {
+    out.error = "the GLSL did not compile: " + shader_log(fragment, false);
+    glDeleteShader(fragment);
+    return out;
+  }
+  GLuint prog = glCreateProgram();
+  glAttachShader(prog, state_->vertex);
+  glAttachShader(prog, fragment);
+  glLinkProgram(prog);
+  glDeleteShader(fragment);
+  glGetProgramiv(prog, GL_LINK_STATUS, &status);
+  if (!status) {
+    out.error = "the GLSL did not link: " + shader_log(prog, true);
+    glDeleteProgram(prog);
+    return out;
+  }
+  glUseProgram(prog);
+  auto loc = [&](const std::string& name) { return glGetUniformLocation(prog, name.c_str()); };
+  auto vec3 = [&](const std::string& name, const Vec3& v) { glUniform3f(loc(name), float(v.x), float(v.y), float(v.z)); };
+  auto vec4 = [&](const std::string& name, double x, double y, double z, double w) {
+    glUniform4f(loc(name), float(x), float(y), float(z), float(w));
+  };
+
+  Camera::Basis b = s.camera.basis();
+  glUniform2f(loc("facet_resolution"), float(job.width), float(job.height));
+  vec3("facet_camera_position", s.camera.position);
+  vec3("facet_camera_forward", b.forward);
+  vec3("facet_camera_right", b.right);
+  vec3("facet_camera_up", b.up);
+  glUniform2f(loc("facet_camera_tan"), float(b.tan_half * job.width / job.height), float(b.tan_half));
+  glUniform3f(loc("facet_ambient"), float(s.ambient[0]), float(s.ambient[1]), float(s.ambient[2]));
+
+  glUniform1i(loc("facet_light_count"), int(s.lights.size()));
+  for (size_t i = 0; i < s.lights.size(); ++i) {
+    const Light& l = s.lights[i];
+    std::string at = fmt::format("facet_lights[{}].", i);
+    if (l.type == Light::Type::Directional) vec4(at + "position", l.direction.x, l.direction.y, l.direction.z, 1);
+    else vec4(at + "position", l.position.x, l.position.y, l.position.z, l.type == Light::Type::Spot ? 2 : 0);
+    vec4(at + "color", l.color[0], l.color[1], l.color[2], l.exponent);
+    vec4(at + "spot", l.direction.x, l.direction.y, l.direction.z, std::cos(l.cutoff * M_PI / 180.0));
+    const Attenuation& a = l.attenuation;
+    double law = a.law == Attenuation::Law::None ? 0 : a.law == Attenuation::Law::InverseSquare ? 1 : 2;
+    vec4(at + "attenuation", a.constant, a.linear, a.quadratic, law);
+  }
+  double scale = length(s.camera.position);
+  glUniform1i(loc("facet_object_count"), int(s.objects.size()));
+  for (size_t i = 0; i < s.objects.size(); ++i) {
+    const Object& o = s.objects[i];
+    std::string k = fmt::format("[{}]", i);
+    if (o.type == Object::Type::Sphere) {
+      vec4("facet_object_shape" + k, o.center.x, o.center.y, o.center.z, o.radius);
+      vec4("facet_object_normal" + k, 0, 0, 0, 0);
+      scale = std::max(scale, length(o.center) + o.radius);
+    } else {
+      Vec3 u, v;
+      o.plane_axes(u, v);
+      vec4("facet_object_shape" + k, o.point.x, o.point.y, o.point.z, o.size);
+      vec4("facet_object_normal" + k, o.normal.x, o.normal.y, o.normal.z, 1);
+      vec4("facet_object_axis" + k, u.x, u.y, u.z, 0);
+      scale = std::max(scale, length(o.point) + o.size);
+    }
+  }
+  glUniform1f(loc("facet_shadow_offset"), float(kGlShadowOffset * std::max(scale, 1.0)));
+
+  GLuint fbo = 0, rbo = 0;
+  glGenFramebuffers(1, &fbo);
+  glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+  glGenRenderbuffers(1, &rbo);
+  glBindRenderbuffer(GL_RENDERBUFFER, rbo);
+  glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA32F, job.width, job.height);
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, rbo);
+  if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+    out.error = "no RGBA32F framebuffer";
+  } else {
+    glViewport(0, 0, job.width, job.height);
+    glClearColor(0, 0, 0, 0);
+    glClear(GL_COLOR_BUFFER_BIT);
+    glBindVertexArray(state_->vao);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    std::vector<float> px(size_t(job.width) * size_t(job.height) * 4);
+    glReadPixels(0, 0, job.width, job.height, GL_RGBA, GL_FLOAT, px.data());
+    if (GLenum e = glGetError(); e != GL_NO_ERROR) {
+      out.error = fmt::format("OpenGL error 0x{:x}", e);
+    } else {
+      // GL rows run bottom-up; facet images top-down.
+      out.image = Image(job.width, job.height);
+      out.alpha.assign(size_t(job.width) * size_t(job.height), 0);
+      for (int y = 0; y < job.height; ++y) {
+        const float* row = &px[size_t(job.height - 1 - y) * size_t(job.width) * 4];
+        for (int x = 0; x < job.width; ++x) {
+          float* dst = out.image.at(x, y);
+          dst[0] = row[x * 4];
+          dst[1] = row[x * 4 + 1];
+          dst[2] = row[x * 4 + 2];
+          out.alpha[size_t(y) * size_t(job.width) + size_t(x)] = row[x * 4 + 3];
+        }
+      }
+      out.ok = true;
+    }
+  }
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  glDeleteRenderbuffers(1, &rbo);
+  glDeleteFramebuffers(1, &fbo);
+  glDeleteProgram(prog);
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+}  // namespace facet
