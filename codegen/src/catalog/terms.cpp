@@ -335,7 +335,8 @@ FunctionPtr attenuation_inverse_square() {
 FunctionPtr attenuation_polynomial() {
   static const FunctionPtr f = [] {
     FunctionBuilder fb("attenuation_polynomial",
-                       "OpenGL 1.0 / Direct3D fixed-function attenuation: att(d) = min(1, 1/(c1 + c2 d + c3 d²))");
+                       "Foley, van Dam, Feiner & Hughes 1990, eq. 16.8: att(d) = min(1, 1/(c1 + c2 d + c3 d²))",
+                       "OpenGL's and Direct3D's fixed-function law is the same polynomial without the min(1, ·).");
     Expr d = fb.param("d"), c1 = fb.param("c1"), c2 = fb.param("c2"), c3 = fb.param("c3");
     return fb.returns(min(1.0, 1.0 / (c1 + c2 * d + c3 * d * d)));
   }();

@@ -120,9 +120,11 @@ void add_lights(std::vector<ModelDef>& all) {
     all.push_back(m);
   }
   {
-    auto m = entry("attenuation", "polynomial", "OpenGL attenuation", "OpenGL 1.0 / Direct3D fixed function",
+    auto m = entry("attenuation", "polynomial", "Polynomial attenuation",
+                   "Foley, van Dam, Feiner & Hughes 1990, \"Computer Graphics: Principles and Practice\", eq. 16.8",
                    "att(d) = min(1, 1/(c1 + c2 d + c3 d²))",
-                   "Written {\"constant\": c1, \"linear\": c2, \"quadratic\": c3}.");
+                   "Written {\"constant\": c1, \"linear\": c2, \"quadratic\": c3}. OpenGL's and Direct3D's "
+                   "fixed-function law is the same polynomial without the min(1, ·); the two agree when c1 ≥ 1.");
     m.params = {number("constant", "c1", Range::non_negative(), 1, false),
                 number("linear", "c2", Range::non_negative(), 0, false),
                 number("quadratic", "c3", Range::non_negative(), 0, false)};
