@@ -223,7 +223,9 @@ json value_json(const Value& v, ParamKind kind) {
     case ParamKind::Color:
     case ParamKind::Vector: return v.rgb;
     case ParamKind::Model: return v.model ? spec_json(*v.model) : json(nullptr);
-    case ParamKind::Object: return nullptr;
+    case ParamKind::Object:
+    case ParamKind::Points:
+    case ParamKind::Triangles: return nullptr;
   }
   return nullptr;
 }

@@ -20,8 +20,14 @@ Job file
         ],
         ...                             # other keys ("lights", "ambient", "name") are ignored:
       },                                # the generated OSL has the lights baked in
-      "items": [{"name": "lambert", "osl": "/abs/lambert.osl", "output": "/abs/lambert"}, ...]
+      "items": [{"name": "lambert", "osl": "/abs/lambert.osl", "output": "/abs/lambert",
+                 "materials": {"clay": "/abs/clay.osl"}}, ...]
     }
+
+Objects may name a material of the scene ("material": key); an item then
+gives that material's shader in "materials"[key]. Objects without one use the
+item's "osl". Meshes ({"type": "mesh", "positions", "normals", "triangles"},
+facet world space) are smooth shaded with their normals as custom normals.
 
 Outputs
 -------
@@ -378,29 +384,60 @@ def add_plane(bpy, scene, obj_desc, material, index):
     scene.collection.objects.link(obj)
 
 
+def add_mesh(bpy, scene, obj_desc, material, index):
+    """A triangle mesh, smooth shaded with the scene's per-vertex normals as
+    custom normals (Cycles interpolates them barycentrically, as facet does)."""
+    mesh = bpy.data.meshes.new(f"facet_mesh_{index}")
+    mesh.from_pydata([to_blender(p) for p in obj_desc["positions"]], [],
+                     [tuple(int(k) for k in t) for t in obj_desc["triangles"]])
+    mesh.update()
+    if len(mesh.vertices) != len(obj_desc["positions"]) or len(mesh.polygons) != len(obj_desc["triangles"]):
+        raise ValueError(f"mesh {obj_desc.get('name', index)!r}: Blender changed its vertices or triangles")
+    mesh.polygons.foreach_set("use_smooth", [True] * len(mesh.polygons))
+    if hasattr(mesh, "use_auto_smooth"):  # Blender < 4.1: custom normals need auto smooth
+        mesh.use_auto_smooth = True
+    mesh.normals_split_custom_set_from_vertices([to_blender(normalize(n)) for n in obj_desc["normals"]])
+    mesh.materials.append(material)
+    obj = bpy.data.objects.new(obj_desc.get("name") or f"mesh_{index}", mesh)
+    scene.collection.objects.link(obj)
+
+
+def new_material(bpy, name):
+    material = bpy.data.materials.new(name)
+    material.use_nodes = True
+    if hasattr(material, "cycles") and hasattr(material.cycles, "emission_sampling"):
+        material.cycles.emission_sampling = "NONE"   # not a light source for Cycles
+    return material
+
+
 def build_scene(bpy, job, exr_path):
     """Empties Blender, then builds camera, objects, world and settings.
 
-    Returns (scene, the material every object uses, the Frame)."""
+    Returns (scene, materials, Frame): `materials` maps "" (objects without a
+    material of their own: the item's "osl") and each scene material key the
+    objects name (the item's "materials"[key]) to its Blender material."""
     bpy.ops.wm.read_factory_settings(use_empty=True)
     scene = bpy.context.scene
     frame = Frame(int(job["width"]), int(job["height"]))
     configure_render(bpy, scene, frame.render_width, frame.render_height, exr_path)
     add_camera(bpy, scene, job["scene"]["camera"], frame)
 
-    material = bpy.data.materials.new("facet_material")
-    material.use_nodes = True
-    if hasattr(material, "cycles") and hasattr(material.cycles, "emission_sampling"):
-        material.cycles.emission_sampling = "NONE"   # not a light source for Cycles
+    materials = {}
     for index, obj_desc in enumerate(job["scene"].get("objects", [])):
+        key = obj_desc.get("material", "")
+        if key not in materials:
+            materials[key] = new_material(bpy, f"facet_{key or 'material'}")
+        material = materials[key]
         kind = obj_desc.get("type")
         if kind == "sphere":
             add_sphere(bpy, scene, obj_desc, material, index)
         elif kind == "plane":
             add_plane(bpy, scene, obj_desc, material, index)
+        elif kind == "mesh":
+            add_mesh(bpy, scene, obj_desc, material, index)
         else:
             raise ValueError(f"scene object {index} has unsupported type {kind!r}")
-    return scene, material, frame
+    return scene, materials, frame
 
 
 # ----------------------------------------------------------------------------- per-item material
@@ -526,14 +563,17 @@ def render_pixels(bpy, scene, width, height):
     return buf.reshape(height, width, 4)
 
 
-def render_item(bpy, scene, material, item, frame):
+def render_item(bpy, scene, materials, item, frame):
     """Compile, render and write one item. Returns the error ('' on success)."""
-    osl_path = item["osl"]
-    if not os.path.isfile(osl_path):
-        return f"no such OSL file: {osl_path}"
-    error = compile_material(bpy, material, osl_path)
-    if error:
-        return error
+    for key, material in materials.items():
+        osl_path = item.get("materials", {}).get(key) if key else item["osl"]
+        if not osl_path:
+            return f"the scene's material {key!r} has no shader in this item's \"materials\""
+        if not os.path.isfile(osl_path):
+            return f"no such OSL file: {osl_path}"
+        error = compile_material(bpy, material, osl_path)
+        if error:
+            return f"{key}: {error}" if key else error
     rgba = frame.crop(render_pixels(bpy, scene, frame.render_width, frame.render_height))
     rgb_path, alpha_path = output_paths(item)
     write_atomic(rgb_path, pfm_bytes(rgba[:, :, :3]))
@@ -554,9 +594,11 @@ def load_job(job_path):
             items = []
             raise ValueError('"items" must be a list of objects')
         for item in items:
-            for key in ("name", "osl", "output"):
+            for key in ("name", "output"):
                 if not isinstance(item.get(key), str):
                     raise ValueError(f"item {item.get('name', '?')!r} has no string {key!r}")
+            if not isinstance(item.get("osl", ""), str) or not isinstance(item.get("materials", {}), dict):
+                raise ValueError(f"item {item.get('name', '?')!r}: \"osl\" must be a path, \"materials\" an object")
         width, height = int(job["width"]), int(job["height"])
         if width <= 0 or height <= 0:
             raise ValueError(f"bad image size {width}x{height}")
@@ -609,7 +651,7 @@ def main(argv):
         cap = CaptureOutput()
         try:
             with cap:
-                scene, material, frame = build_scene(bpy, job, exr_path)
+                scene, materials, frame = build_scene(bpy, job, exr_path)
         except Exception as e:  # noqa: BLE001 - any scene problem fails every item
             words = [f"cannot build the scene: {type(e).__name__}: {e}"] + error_lines(getattr(cap, "text", ""))
             return fail_all(job_path, items, "\n".join(words), blender, osl_version)
@@ -622,7 +664,7 @@ def main(argv):
             t0 = time.perf_counter()
             name = item.get("name", "?")
             try:
-                error = render_item(bpy, scene, material, item, frame)
+                error = render_item(bpy, scene, materials, item, frame)
             except RuntimeError as e:      # Blender's / OSL's words
                 error = str(e) or "RuntimeError"
             except Exception as e:  # noqa: BLE001 - one bad item must not stop the others

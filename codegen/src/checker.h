@@ -102,6 +102,53 @@ class Checker {
     return ok ? std::optional<RGB>(v) : std::nullopt;
   }
 
+  // An array of triples: points (finite; not zero if p.nonzero) or triangles
+  // (non-negative integer indices of distinct vertices). At most 8 problems are
+  // reported per list.
+  std::optional<Value> list(const json& j, const std::string& path, const ParamDef& p) {
+    Value out;
+    out.kind = p.kind;
+    if (!j.is_array()) {
+      sink_.error(path, fmt::format("expected an array, found {}; allowed: {}", json_type_name(j), p.allowed()));
+      return std::nullopt;
+    }
+    int problems = 0;
+    auto bad = [&](size_t i, const std::string& what) {
+      if (++problems <= 8) sink_.error(index_path(path, i), what + "; allowed: " + p.allowed());
+    };
+    out.points.reserve(j.size());
+    for (size_t i = 0; i < j.size(); ++i) {
+      const json& e = j[i];
+      if (!e.is_array() || e.size() != 3) {
+        bad(i, "expected three numbers, found " + (e.is_array() ? fmt::format("{} values", e.size()) : json_type_name(e)));
+        continue;
+      }
+      std::array<double, 3> v{};
+      bool ok = true;
+      for (size_t k = 0; k < 3; ++k) {
+        if (!e[k].is_number() || !std::isfinite(e[k].get<double>())) ok = false;
+        else v[k] = e[k].get<double>();
+        if (ok && p.kind == ParamKind::Triangles && (!e[k].is_number_integer() || v[k] < 0)) ok = false;
+      }
+      if (!ok) {
+        bad(i, p.kind == ParamKind::Triangles ? "expected three non-negative integers" : "expected three finite numbers");
+        continue;
+      }
+      if (p.kind == ParamKind::Points && p.nonzero && v[0] == 0 && v[1] == 0 && v[2] == 0) {
+        bad(i, "the zero vector has no direction");
+        continue;
+      }
+      if (p.kind == ParamKind::Triangles && (v[0] == v[1] || v[1] == v[2] || v[0] == v[2])) {
+        bad(i, "a triangle needs three distinct vertices");
+        continue;
+      }
+      out.points.push_back(v);
+    }
+    if (problems > 8) sink_.error(path, fmt::format("{} more problems in this list", problems - 8));
+    if (problems) return std::nullopt;
+    return out;
+  }
+
   std::optional<Value> value(const json& j, const std::string& path, const ParamDef& p) {
     Value out;
     out.kind = p.kind;
@@ -120,6 +167,9 @@ class Checker {
         }
         out.choice = j.get<std::string>();
         return out;
+      case ParamKind::Points:
+      case ParamKind::Triangles:
+        return list(j, path, p);
       case ParamKind::Bool:
         if (!j.is_boolean()) {
           sink_.error(path, fmt::format("expected a boolean, found {}; allowed: true or false", json_type_name(j)));

@@ -1,6 +1,7 @@
 // OpenGL renderer: EGL surfaceless on Mesa (llvmpipe without a GPU), as
 // shared/notes/opengl.md recommends. The fragment shader is facet's generated
 // GLSL 3.30 (library + light loop) under templates/glsl/raycast.glsl.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstring>
@@ -12,6 +13,7 @@
 
 #include "facet/io.h"
 #include "facet/program.h"
+#include "facet/render.h"
 #include "facet/renderers.h"
 #include "facet/targets.h"
 #include "templates.h"
@@ -29,10 +31,10 @@ void main()
 }
 )";
 
-// The shadow-ray offset on the GPU: float32 needs more room than the reference's
-// 1e-6 (render.h); both are far below any gap between objects in a scene.
-const double kGlShadowOffset = 1e-4;
-const int kMaxLights = 8, kMaxObjects = 8;
+// The shadow-ray offset: the reference's (render.h). Self-shadowing is excluded
+// by object (convex) and by triangle, so float hit points need no more room.
+const double kGlShadowOffset = kShadowRayOffset;
+const int kMaxLights = 8, kMaxObjects = 16;
 
 std::string shader_log(GLuint id, bool program) {
   GLint len = 0;
@@ -114,6 +116,54 @@ std::string GlRenderer::fragment_source(const Material& m) {
   return "#version 330 core\n" + parts.header + parts.library + parts.lights + render_template("glsl/raycast.glsl", {});
 }
 
+namespace {
+
+// Every mesh's BVH and triangles, concatenated: 2 RGBA32F texels a node, 6 a
+// triangle (in BVH order), as templates/glsl/raycast.glsl reads them.
+struct MeshBuffers {
+  std::vector<float> nodes, triangles;
+  std::vector<int> first_node;  // per object (meshes only)
+};
+
+MeshBuffers mesh_buffers(const Scene& s) {
+  MeshBuffers b;
+  auto push = [](std::vector<float>& v, const Vec3& x, double w) {
+    v.insert(v.end(), {float(x.x), float(x.y), float(x.z), float(w)});
+  };
+  for (const auto& o : s.objects) {
+    b.first_node.push_back(int(b.nodes.size() / 8));
+    if (o.type != Object::Type::Mesh) continue;
+    const Mesh& m = *o.mesh;
+    int node0 = int(b.nodes.size() / 8), tri0 = int(b.triangles.size() / 24);
+    for (const auto& n : m.nodes) {
+      push(b.nodes, n.lo, n.count > 0 ? double(tri0 + int(n.start)) : double(node0 + n.right));
+      push(b.nodes, n.hi, double(n.count));
+    }
+    for (uint32_t t : m.order) {
+      const auto& k = m.triangles[t];
+      for (int c = 0; c < 3; ++c) push(b.triangles, m.positions[k[size_t(c)]], 0);
+      for (int c = 0; c < 3; ++c) push(b.triangles, m.normals[k[size_t(c)]], 0);
+    }
+  }
+  // Texture buffers may not be empty.
+  if (b.nodes.empty()) b.nodes.assign(8, 0);
+  if (b.triangles.empty()) b.triangles.assign(24, 0);
+  return b;
+}
+
+GLuint texture_buffer(const std::vector<float>& data, GLuint& buffer) {
+  glGenBuffers(1, &buffer);
+  glBindBuffer(GL_TEXTURE_BUFFER, buffer);
+  glBufferData(GL_TEXTURE_BUFFER, GLsizeiptr(data.size() * sizeof(float)), data.data(), GL_STATIC_DRAW);
+  GLuint tex = 0;
+  glGenTextures(1, &tex);
+  glBindTexture(GL_TEXTURE_BUFFER, tex);
+  glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32F, buffer);
+  return tex;
+}
+
+}  // namespace
+
 RenderOutcome GlRenderer::render(const RenderJob& job) {
   RenderOutcome out;
   if (!ok()) {
@@ -126,85 +176,29 @@ RenderOutcome GlRenderer::render(const RenderJob& job) {
     return out;
   }
   auto start = std::chrono::steady_clock::now();
-  std::string source = !job.code_override.empty() ? job.code_override : fragment_source(job.material);
-  if (!job.workdir.empty()) {
-    std::filesystem::create_directories(job.workdir);
-    write_file_atomic((std::filesystem::path(job.workdir) /
-                       (identifier(job.material.name) + "_" + identifier(s.name) + ".frag"))
-                          .string(),
-                      source);
-  }
-
-  GLuint fragment = glCreateShader(GL_FRAGMENT_SHADER);
-  const char* src = source.c_str();
-  glShaderSource(fragment, 1, &src, nullptr);
-  glCompileShader(fragment);
-  GLint status = 0;
-  glGetShaderiv(fragment, GL_COMPILE_STATUS, &status);
-  if (!status) {
-    out.error = "the GLSL did not compile: " + shader_log(fragment, false);
-    glDeleteShader(fragment);
-    return out;
-  }
-  GLuint prog = glCreateProgram();
-  glAttachShader(prog, state_->vertex);
-  glAttachShader(prog, fragment);
-  glLinkProgram(prog);
-  glDeleteShader(fragment);
-  glGetProgramiv(prog, GL_LINK_STATUS, &status);
-  if (!status) {
-    out.error = "the GLSL did not link: " + shader_log(prog, true);
-    glDeleteProgram(prog);
-    return out;
-  }
-  glUseProgram(prog);
-  auto loc = [&](const std::string& name) { return glGetUniformLocation(prog, name.c_str()); };
-  auto vec3 = [&](const std::string& name, const Vec3& v) { glUniform3f(loc(name), float(v.x), float(v.y), float(v.z)); };
-  auto vec4 = [&](const std::string& name, double x, double y, double z, double w) {
-    glUniform4f(loc(name), float(x), float(y), float(z), float(w));
-  };
-
-  Camera::Basis b = s.camera.basis();
-  glUniform2f(loc("facet_resolution"), float(job.width), float(job.height));
-  vec3("facet_camera_position", s.camera.position);
-  vec3("facet_camera_forward", b.forward);
-  vec3("facet_camera_right", b.right);
-  vec3("facet_camera_up", b.up);
-  glUniform2f(loc("facet_camera_tan"), float(b.tan_half * job.width / job.height), float(b.tan_half));
-  glUniform3f(loc("facet_ambient"), float(s.ambient[0]), float(s.ambient[1]), float(s.ambient[2]));
-
-  glUniform1i(loc("facet_light_count"), int(s.lights.size()));
-  for (size_t i = 0; i < s.lights.size(); ++i) {
-    const Light& l = s.lights[i];
-    std::string at = fmt::format("facet_lights[{}].", i);
-    if (l.type == Light::Type::Directional) vec4(at + "position", l.direction.x, l.direction.y, l.direction.z, 1);
-    else vec4(at + "position", l.position.x, l.position.y, l.position.z, l.type == Light::Type::Spot ? 2 : 0);
-    vec4(at + "color", l.color[0], l.color[1], l.color[2], l.exponent);
-    vec4(at + "spot", l.direction.x, l.direction.y, l.direction.z, std::cos(l.cutoff * M_PI / 180.0));
-    const Attenuation& a = l.attenuation;
-    double law = a.law == Attenuation::Law::None ? 0 : a.law == Attenuation::Law::InverseSquare ? 1 : 2;
-    vec4(at + "attenuation", a.constant, a.linear, a.quadratic, law);
-  }
-  double scale = length(s.camera.position);
-  glUniform1i(loc("facet_object_count"), int(s.objects.size()));
-  for (size_t i = 0; i < s.objects.size(); ++i) {
-    const Object& o = s.objects[i];
-    std::string k = fmt::format("[{}]", i);
-    if (o.type == Object::Type::Sphere) {
-      vec4("facet_object_shape" + k, o.center.x, o.center.y, o.center.z, o.radius);
-      vec4("facet_object_normal" + k, 0, 0, 0, 0);
-      scale = std::max(scale, length(o.center) + o.radius);
-    } else {
-      Vec3 u, v;
-      o.plane_axes(u, v);
-      vec4("facet_object_shape" + k, o.point.x, o.point.y, o.point.z, o.size);
-      vec4("facet_object_normal" + k, o.normal.x, o.normal.y, o.normal.z, 1);
-      vec4("facet_object_axis" + k, u.x, u.y, u.z, 0);
-      scale = std::max(scale, length(o.point) + o.size);
+  const Material* fallback = job.material ? &*job.material : nullptr;
+  // The distinct materials, in object order: one pass each.
+  std::vector<const Material*> passes;
+  std::vector<size_t> pass_of(s.objects.size());
+  try {
+    for (size_t i = 0; i < s.objects.size(); ++i) {
+      const Material* m = &s.material_of(i, fallback);
+      auto it = std::find(passes.begin(), passes.end(), m);
+      pass_of[i] = size_t(it - passes.begin());
+      if (it == passes.end()) passes.push_back(m);
     }
+  } catch (const std::exception& e) {
+    out.error = e.what();
+    return out;
   }
-  glUniform1f(loc("facet_shadow_offset"), float(kGlShadowOffset * std::max(scale, 1.0)));
+  if (!job.code_override.empty() && passes.size() != 1) {
+    out.error = "code_override needs a scene with one material";
+    return out;
+  }
 
+  MeshBuffers meshes = mesh_buffers(s);
+  GLuint buffers[2] = {0, 0};
+  GLuint textures[2] = {texture_buffer(meshes.nodes, buffers[0]), texture_buffer(meshes.triangles, buffers[1])};
   GLuint fbo = 0, rbo = 0;
   glGenFramebuffers(1, &fbo);
   glBindFramebuffer(GL_FRAMEBUFFER, fbo);
@@ -212,39 +206,140 @@ RenderOutcome GlRenderer::render(const RenderJob& job) {
   glBindRenderbuffer(GL_RENDERBUFFER, rbo);
   glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA32F, job.width, job.height);
   glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, rbo);
+  auto cleanup = [&] {
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glDeleteRenderbuffers(1, &rbo);
+    glDeleteFramebuffers(1, &fbo);
+    glDeleteTextures(2, textures);
+    glDeleteBuffers(2, buffers);
+  };
   if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
     out.error = "no RGBA32F framebuffer";
-  } else {
+    cleanup();
+    return out;
+  }
+
+  out.image = Image(job.width, job.height);
+  out.alpha.assign(size_t(job.width) * size_t(job.height), 0);
+  std::vector<float> px(size_t(job.width) * size_t(job.height) * 4);
+  for (size_t k = 0; k < passes.size(); ++k) {
+    std::string source = !job.code_override.empty() ? job.code_override : fragment_source(*passes[k]);
+    if (!job.workdir.empty()) {
+      std::filesystem::create_directories(job.workdir);
+      std::string base = (fallback ? identifier(fallback->name) + "_" : std::string()) + identifier(s.name);
+      if (passes.size() > 1) base += "_" + identifier(passes[k]->name);
+      write_file_atomic((std::filesystem::path(job.workdir) / (base + ".frag")).string(), source);
+    }
+    GLuint fragment = glCreateShader(GL_FRAGMENT_SHADER);
+    const char* src = source.c_str();
+    glShaderSource(fragment, 1, &src, nullptr);
+    glCompileShader(fragment);
+    GLint status = 0;
+    glGetShaderiv(fragment, GL_COMPILE_STATUS, &status);
+    if (!status) {
+      out.error = "the GLSL of \"" + passes[k]->name + "\" did not compile: " + shader_log(fragment, false);
+      glDeleteShader(fragment);
+      cleanup();
+      return out;
+    }
+    GLuint prog = glCreateProgram();
+    glAttachShader(prog, state_->vertex);
+    glAttachShader(prog, fragment);
+    glLinkProgram(prog);
+    glDeleteShader(fragment);
+    glGetProgramiv(prog, GL_LINK_STATUS, &status);
+    if (!status) {
+      out.error = "the GLSL did not link: " + shader_log(prog, true);
+      glDeleteProgram(prog);
+      cleanup();
+      return out;
+    }
+    glUseProgram(prog);
+    auto loc = [&](const std::string& name) { return glGetUniformLocation(prog, name.c_str()); };
+    auto vec3 = [&](const std::string& name, const Vec3& v) {
+      glUniform3f(loc(name), float(v.x), float(v.y), float(v.z));
+    };
+    auto vec4 = [&](const std::string& name, double x, double y, double z, double w) {
+      glUniform4f(loc(name), float(x), float(y), float(z), float(w));
+    };
+
+    Camera::Basis b = s.camera.basis();
+    glUniform2f(loc("facet_resolution"), float(job.width), float(job.height));
+    vec3("facet_camera_position", s.camera.position);
+    vec3("facet_camera_forward", b.forward);
+    vec3("facet_camera_right", b.right);
+    vec3("facet_camera_up", b.up);
+    glUniform2f(loc("facet_camera_tan"), float(b.tan_half * job.width / job.height), float(b.tan_half));
+    glUniform3f(loc("facet_ambient"), float(s.ambient[0]), float(s.ambient[1]), float(s.ambient[2]));
+    glUniform1i(loc("facet_light_count"), int(s.lights.size()));
+    for (size_t i = 0; i < s.lights.size(); ++i) {
+      const Light& l = s.lights[i];
+      std::string at = fmt::format("facet_lights[{}].", i);
+      if (l.type == Light::Type::Directional) vec4(at + "position", l.direction.x, l.direction.y, l.direction.z, 1);
+      else vec4(at + "position", l.position.x, l.position.y, l.position.z, l.type == Light::Type::Spot ? 2 : 0);
+      vec4(at + "color", l.color[0], l.color[1], l.color[2], l.exponent);
+      vec4(at + "spot", l.direction.x, l.direction.y, l.direction.z, std::cos(l.cutoff * M_PI / 180.0));
+      const Attenuation& a = l.attenuation;
+      double law = a.law == Attenuation::Law::None ? 0 : a.law == Attenuation::Law::InverseSquare ? 1 : 2;
+      vec4(at + "attenuation", a.constant, a.linear, a.quadratic, law);
+    }
+    double scale = length(s.camera.position);
+    glUniform1i(loc("facet_object_count"), int(s.objects.size()));
+    for (size_t i = 0; i < s.objects.size(); ++i) {
+      const Object& o = s.objects[i];
+      std::string at = fmt::format("[{}]", i);
+      Vec3 c;
+      double r;
+      o.bounds(c, r);
+      scale = std::max(scale, length(c) + r);
+      glUniform1i(loc("facet_object_shaded" + at), pass_of[i] == k ? 1 : 0);
+      if (o.type == Object::Type::Sphere) {
+        vec4("facet_object_shape" + at, o.center.x, o.center.y, o.center.z, o.radius);
+        vec4("facet_object_normal" + at, 0, 0, 0, 0);
+      } else if (o.type == Object::Type::Plane) {
+        Vec3 u, v;
+        o.plane_axes(u, v);
+        vec4("facet_object_shape" + at, o.point.x, o.point.y, o.point.z, o.size);
+        vec4("facet_object_normal" + at, o.normal.x, o.normal.y, o.normal.z, 1);
+        vec4("facet_object_axis" + at, u.x, u.y, u.z, 0);
+      } else {
+        vec4("facet_object_shape" + at, meshes.first_node[i], 0, 0, 0);
+        vec4("facet_object_normal" + at, 0, 0, 0, 2);
+      }
+    }
+    glUniform1f(loc("facet_shadow_offset"), float(kGlShadowOffset * std::max(scale, 1.0)));
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_BUFFER, textures[0]);
+    glUniform1i(loc("facet_bvh"), 0);
+    glActiveTexture(GL_TEXTURE1);
+    glBindTexture(GL_TEXTURE_BUFFER, textures[1]);
+    glUniform1i(loc("facet_triangles"), 1);
+
     glViewport(0, 0, job.width, job.height);
     glClearColor(0, 0, 0, 0);
     glClear(GL_COLOR_BUFFER_BIT);
     glBindVertexArray(state_->vao);
     glDrawArrays(GL_TRIANGLES, 0, 3);
-    std::vector<float> px(size_t(job.width) * size_t(job.height) * 4);
     glReadPixels(0, 0, job.width, job.height, GL_RGBA, GL_FLOAT, px.data());
+    glDeleteProgram(prog);
     if (GLenum e = glGetError(); e != GL_NO_ERROR) {
       out.error = fmt::format("OpenGL error 0x{:x}", e);
-    } else {
-      // GL rows run bottom-up; facet images top-down.
-      out.image = Image(job.width, job.height);
-      out.alpha.assign(size_t(job.width) * size_t(job.height), 0);
-      for (int y = 0; y < job.height; ++y) {
-        const float* row = &px[size_t(job.height - 1 - y) * size_t(job.width) * 4];
-        for (int x = 0; x < job.width; ++x) {
-          float* dst = out.image.at(x, y);
-          dst[0] = row[x * 4];
-          dst[1] = row[x * 4 + 1];
-          dst[2] = row[x * 4 + 2];
-          out.alpha[size_t(y) * size_t(job.width) + size_t(x)] = row[x * 4 + 3];
-        }
+      cleanup();
+      return out;
+    }
+    // GL rows run bottom-up; facet images top-down. Passes add up.
+    for (int y = 0; y < job.height; ++y) {
+      const float* row = &px[size_t(job.height - 1 - y) * size_t(job.width) * 4];
+      for (int x = 0; x < job.width; ++x) {
+        float* dst = out.image.at(x, y);
+        for (int c = 0; c < 3; ++c) dst[c] += row[x * 4 + c];
+        float& a = out.alpha[size_t(y) * size_t(job.width) + size_t(x)];
+        a = std::max(a, row[x * 4 + 3]);
       }
-      out.ok = true;
     }
   }
-  glBindFramebuffer(GL_FRAMEBUFFER, 0);
-  glDeleteRenderbuffers(1, &rbo);
-  glDeleteFramebuffers(1, &fbo);
-  glDeleteProgram(prog);
+  cleanup();
+  out.ok = true;
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
 }

@@ -111,6 +111,8 @@ json value_json(const Value& v) {
     case ParamKind::Model: return spec_json(*v.model, true);
     case ParamKind::Object: return spec_json(*v.model, false);
     case ParamKind::String: return v.choice;
+    case ParamKind::Points:
+    case ParamKind::Triangles: return v.points;
   }
   return nullptr;
 }
@@ -157,6 +159,13 @@ json param_schema(const ParamDef& p) {
     case ParamKind::String:
       s = {{"type", "string"}, {"minLength", 1}};
       break;
+    case ParamKind::Points:
+    case ParamKind::Triangles: {
+      json item = {{"type", p.kind == ParamKind::Points ? "number" : "integer"}};
+      if (p.kind == ParamKind::Triangles) item["minimum"] = 0;
+      s = {{"type", "array"}, {"items", {{"type", "array"}, {"items", item}, {"minItems", 3}, {"maxItems", 3}}}};
+      break;
+    }
     case ParamKind::Color: {
       json comp = number_schema(p.range);
       s = {{"oneOf", json::array({comp, {{"type", "array"}, {"items", comp}, {"minItems", 3}, {"maxItems", 3}}})}};

@@ -46,21 +46,35 @@ std::vector<RenderOutcome> render_osl(const std::vector<RenderJob>& jobs, const 
 
   json items = json::array();
   for (const auto& j : jobs) {
-    std::string base = identifier(j.material.name) + "_" + identifier(j.scene.name);
-    std::string osl = (dir / (base + ".osl")).string();
-    if (!j.code_override.empty()) {
-      write_file_atomic(osl, j.code_override);
-    } else {
-      GenerateOptions o;
-      o.target = Target::Osl;
-      o.scene = j.scene;
-      o.source = j.material.source;
-      write_file_atomic(osl, generate(j.material, o));
+    std::string base = job_name(j);
+    // One shader per material: the material under test for objects without
+    // their own, and each scene material the objects name.
+    auto write_osl = [&](const Material& m, const std::string& file) {
+      std::string path = (dir / file).string();
+      if (!j.code_override.empty()) {
+        write_file_atomic(path, j.code_override);
+      } else {
+        GenerateOptions o;
+        o.target = Target::Osl;
+        o.scene = j.scene;
+        o.source = m.source;
+        write_file_atomic(path, generate(m, o));
+      }
+      return path;
+    };
+    json item = {{"name", j.material ? j.material->name : j.scene.name}};
+    if (j.material) item["osl"] = write_osl(*j.material, base + ".osl");
+    json materials = json::object();
+    for (const auto& o : j.scene.objects) {
+      if (o.material.empty() || materials.contains(o.material)) continue;
+      materials[o.material] = write_osl(j.scene.materials.at(o.material), base + "_" + identifier(o.material) + ".osl");
     }
+    if (!materials.empty()) item["materials"] = materials;
     std::string output = (dir / (base + "_cycles")).string();
     fs::remove(output + ".pfm");
     fs::remove(output + ".alpha.pfm");
-    items.push_back({{"name", j.material.name}, {"osl", osl}, {"output", output}});
+    item["output"] = output;
+    items.push_back(item);
   }
   json job = {{"width", first.width}, {"height", first.height}, {"scene", to_json(first.scene)}, {"items", items}};
   fs::path job_file = dir / (identifier(first.scene.name) + "_cycles_job.json");

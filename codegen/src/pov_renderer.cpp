@@ -2,6 +2,7 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
+#include <sstream>
 
 #include <fmt/format.h>
 
@@ -19,21 +20,31 @@ namespace {
 const double kClip = 0.98;
 }  // namespace
 
+std::string job_name(const RenderJob& job) {
+  return (job.material ? identifier(job.material->name) + "_" : std::string()) + identifier(job.scene.name);
+}
+
 RenderOutcome render_pov(const RenderJob& job) {
   RenderOutcome out;
   fs::create_directories(job.workdir);
-  GenerateOptions o;
-  o.target = Target::Pov;
-  o.scene = job.scene;
-  o.source = job.material.source;
-  const std::string base = identifier(job.material.name) + "_" + identifier(job.scene.name);
-  write_file_atomic((fs::path(job.workdir) / (base + ".pov")).string(),
-                    job.code_override.empty() ? generate(job.material, o) : job.code_override);
-  PovPlan plan = pov_plan(job.material, job.scene);
+  const Material* fallback = job.material ? &*job.material : nullptr;
+  const std::string base = job_name(job);
+  try {
+    write_file_atomic((fs::path(job.workdir) / (base + ".pov")).string(),
+                      job.code_override.empty()
+                          ? generate_pov_scene(job.scene, fallback, fallback ? fallback->source : job.scene.source)
+                          : job.code_override);
+  } catch (const std::invalid_argument& e) {  // an object without a material, and none given
+    out.error = e.what();
+    return out;
+  }
+  PovPlan plan = pov_plan(job.scene, fallback);
 
   // Exposures are powers of two, exact to undo. The last keeps the brightest pixel below clipping.
+  // Bracketing starts at 16, so dim passes (an emission pass, a faint light) keep
+  // their precision too, and halves down to the exposure that keeps the brightest below 1.
   std::vector<double> exposures;
-  double e = 1;
+  double e = job.bracket ? 16 : 1;
   if (job.bracket) exposures.push_back(e);
   while (job.max_value * e >= kClip) {
     e /= 2;
@@ -66,7 +77,13 @@ RenderOutcome render_pov(const RenderJob& job) {
   out.seconds = r.seconds;
   out.log = r.output;
   if (r.exit_code != 0) {
-    out.error = r.exit_code < 0 ? r.output : fmt::format("povray exited with {}:\n{}", r.exit_code, r.output);
+    // Lead with POV-Ray's own error lines ("File 'x.pov' line 12: Parse Error: …").
+    std::string errors;
+    std::istringstream lines(r.output);
+    for (std::string line; std::getline(lines, line);)
+      if (line.find("Error") != std::string::npos || line.find("error") != std::string::npos) errors += line + " ";
+    out.error = r.exit_code < 0 ? r.output
+                                : fmt::format("povray exited with {}: {}\n{}", r.exit_code, errors, r.output);
     return out;
   }
   // POV-Ray numbers frames with as many digits as the last one needs.

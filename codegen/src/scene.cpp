@@ -47,41 +47,86 @@ void Object::plane_axes(Vec3& u, Vec3& v) const {
   v = cross(normal, u);
 }
 
-double Object::intersect(const Vec3& o, const Vec3& d, double t_min) const {
-  if (type == Type::Sphere) {
-    Vec3 oc = o - center;
-    double b = dot(oc, d);
-    double c = dot(oc, oc) - radius * radius;
-    double disc = b * b - c;
-    if (disc < 0) return -1;
-    double s = std::sqrt(disc);
-    // The nearer root, computed without cancellation.
-    double q = b > 0 ? -(b + s) : -(b - s);
-    double t0 = q, t1 = c / q;
-    if (t0 > t1) std::swap(t0, t1);
-    if (t0 > t_min) return t0;
-    if (t1 > t_min) return t1;
-    return -1;
-  }
-  double den = dot(d, normal);
-  if (den == 0) return -1;
-  double t = dot(point - o, normal) / den;
-  if (!(t > t_min)) return -1;
-  Vec3 p = o + d * t - point, u, v;
-  plane_axes(u, v);
-  if (std::fabs(dot(p, u)) > size || std::fabs(dot(p, v)) > size) return -1;
-  return t;
+bool Scene::has_own_materials() const {
+  return !objects.empty() &&
+         std::all_of(objects.begin(), objects.end(), [](const Object& o) { return !o.material.empty(); });
 }
 
-Vec3 Object::normal_at(const Vec3& p) const {
-  return type == Type::Sphere ? normalize(p - center) : normal;
+const Material& Scene::material_of(size_t i, const Material* fallback) const {
+  const std::string& name = objects.at(i).material;
+  if (!name.empty()) return materials.at(name);
+  if (!fallback) throw std::invalid_argument("object \"" + objects[i].name + "\" has no material and none was given");
+  return *fallback;
 }
 
 // ---------------------------------------------------------------- parsing
 
 namespace {
 
-const std::vector<std::string> kSceneKeys = {"$schema", "name", "camera", "ambient", "objects", "lights"};
+const std::vector<std::string> kSceneKeys = {"$schema", "name", "camera", "ambient", "materials", "objects", "lights"};
+
+// A scene's material: inline, or a file named relative to the scene file.
+// Diagnostics name the scene file and the key path materials.NAME.….
+void parse_materials(const json& doc, const std::string& file, Scene& s, DiagnosticSink& sink) {
+  auto it = doc.find("materials");
+  if (it == doc.end()) return;
+  if (!it->is_object()) {
+    sink.error("materials", "expected an object of named materials, found " + json_type_name(*it) +
+                                "; allowed: {\"name\": a material object or a material file's path}");
+    return;
+  }
+  for (const auto& [name, val] : it->items()) {
+    std::string path = join_path("materials", name);
+    try {
+      if (val.is_string()) {
+        std::filesystem::path f = val.get<std::string>();
+        if (f.is_relative()) f = std::filesystem::path(file).parent_path() / f;
+        Material m = load_material(f.string());
+        if (m.name.empty()) m.name = name;
+        s.materials[name] = m;
+      } else if (val.is_object()) {
+        Material m = parse_material(val, file);
+        m.name = val.contains("name") ? m.name : name;
+        s.materials[name] = m;
+      } else {
+        sink.error(path, "expected a material object or a material file's path, found " + json_type_name(val));
+      }
+    } catch (const InputError& e) {
+      for (const auto& d : e.diagnostics()) {
+        if (d.file == file) sink.error(d.path.empty() ? path : join_path(path, d.path), d.message);
+        else sink.error(path, d.format());  // a problem inside the referenced file
+      }
+    }
+  }
+}
+
+// The mesh of an object spec: the vertex arrays, checked against each other.
+std::shared_ptr<Mesh> mesh_of(const ModelSpec& o, const std::string& path, DiagnosticSink& sink) {
+  auto m = std::make_shared<Mesh>();
+  for (const auto& p : o.at("positions").points) m->positions.push_back(Vec3(p));
+  for (const auto& n : o.at("normals").points) m->normals.push_back(normalize(Vec3(n)));
+  if (m->normals.size() != m->positions.size())
+    sink.error(join_path(path, "normals"), fmt::format("has {} normals for {} positions; allowed: one per position",
+                                                       m->normals.size(), m->positions.size()));
+  const auto& tris = o.at("triangles").points;
+  for (size_t i = 0; i < tris.size(); ++i) {
+    std::array<uint32_t, 3> t{};
+    bool ok = true;
+    for (int k = 0; k < 3; ++k) {
+      if (tris[i][k] >= double(m->positions.size())) ok = false;
+      else t[k] = uint32_t(tris[i][k]);
+    }
+    if (!ok) {
+      sink.error(index_path(join_path(path, "triangles"), i),
+                 fmt::format("an index is out of range; allowed: 0 to {}", m->positions.size() - 1));
+      break;
+    }
+    m->triangles.push_back(t);
+  }
+  if (m->triangles.empty()) sink.error(join_path(path, "triangles"), "empty; a mesh needs a triangle");
+  m->build_bvh();
+  return m;
+}
 
 Vec3 vec(const ModelSpec& s, const char* key) { return Vec3(s.at(key).rgb); }
 
@@ -147,6 +192,7 @@ Scene parse_scene(const json& doc, const std::string& file) {
   } else {
     sink.error("camera", "missing; allowed: an object with keys \"position\", \"look_at\", \"up\", \"fov\"");
   }
+  parse_materials(doc, file, s, sink);
   if (auto it = doc.find("ambient"); it != doc.end()) {
     ParamDef p;
     p.kind = ParamKind::Color;
@@ -159,15 +205,26 @@ Scene parse_scene(const json& doc, const std::string& file) {
     Object obj;
     obj.name = o->at("name").choice;
     if (obj.name.empty()) obj.name = fmt::format("{}{}", o->def->name, s.objects.size());
+    obj.material = o->at("material").choice;
+    if (!obj.material.empty() && !s.materials.count(obj.material)) {
+      std::vector<std::string> names;
+      for (const auto& [k, v] : s.materials) names.push_back(k);
+      sink.error(join_path(path, "material"),
+                 fmt::format("unknown material \"{}\"; allowed: a key of \"materials\"{}", obj.material,
+                             names.empty() ? " (the scene has none)" : ": " + quoted_list(names)));
+    }
     if (o->def->name == "sphere") {
       obj.type = Object::Type::Sphere;
       obj.center = vec(*o, "center");
       obj.radius = o->at("radius").number;
-    } else {
+    } else if (o->def->name == "plane") {
       obj.type = Object::Type::Plane;
       obj.point = vec(*o, "point");
       obj.normal = normalize(vec(*o, "normal"));
       obj.size = o->at("size").number;
+    } else {
+      obj.type = Object::Type::Mesh;
+      obj.mesh = mesh_of(*o, path, sink);
     }
     s.objects.push_back(obj);
   });
@@ -260,13 +317,27 @@ json to_json(const Scene& s) {
                  {"up", s.camera.up.array()},
                  {"fov", s.camera.fov}};
   j["ambient"] = s.ambient;
+  if (!s.materials.empty()) {
+    j["materials"] = json::object();
+    for (const auto& [name, m] : s.materials) j["materials"][name] = to_json(m);
+  }
   j["objects"] = json::array();
   for (const auto& o : s.objects) {
-    if (o.type == Object::Type::Sphere)
-      j["objects"].push_back({{"type", "sphere"}, {"name", o.name}, {"center", o.center.array()}, {"radius", o.radius}});
-    else
-      j["objects"].push_back({{"type", "plane"}, {"name", o.name}, {"point", o.point.array()},
-                              {"normal", o.normal.array()}, {"size", o.size}});
+    json oj;
+    if (o.type == Object::Type::Sphere) {
+      oj = {{"type", "sphere"}, {"name", o.name}, {"center", o.center.array()}, {"radius", o.radius}};
+    } else if (o.type == Object::Type::Plane) {
+      oj = {{"type", "plane"}, {"name", o.name}, {"point", o.point.array()}, {"normal", o.normal.array()},
+            {"size", o.size}};
+    } else {
+      json pos = json::array(), nor = json::array(), tri = json::array();
+      for (const auto& p : o.mesh->positions) pos.push_back(p.array());
+      for (const auto& n : o.mesh->normals) nor.push_back(n.array());
+      for (const auto& t : o.mesh->triangles) tri.push_back(t);
+      oj = {{"type", "mesh"}, {"name", o.name}, {"positions", pos}, {"normals", nor}, {"triangles", tri}};
+    }
+    if (!o.material.empty()) oj["material"] = o.material;
+    j["objects"].push_back(oj);
   }
   j["lights"] = json::array();
   for (const auto& l : s.lights) {
@@ -303,6 +374,11 @@ json scene_schema() {
                 {"name", {{"type", "string"}, {"minLength", 1}}},
                 {"camera", model_schema(*find_model("camera", "perspective"), "")},
                 {"ambient", param_schema(ambient)},
+                {"materials", {{"type", "object"},
+                               {"description", "named materials the objects refer to: material objects, or paths of "
+                                               "material files relative to the scene file"},
+                               {"additionalProperties", {{"oneOf", json::array({{{"type", "string"}},
+                                                                                material_schema()})}}}}},
                 {"objects", {{"type", "array"}, {"minItems", 1}, {"items", {{"oneOf", alternatives("object")}}}}},
                 {"lights", {{"type", "array"}, {"items", {{"oneOf", alternatives("light")}}}}}};
   return {{"$schema", "https://json-schema.org/draft/2020-12/schema"},

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <mutex>
+#include <optional>
 #include <thread>
 
 #include <fmt/format.h>
@@ -60,11 +61,31 @@ std::vector<std::string> example_materials() {
   return files;
 }
 
+// One image to compare: a material on a scene, or a scene with its own materials.
 struct Case {
-  Material material;
-  std::string key;
+  std::optional<Material> material;  // absent: the scene's own materials
+  std::string key;                   // names the images: the material file's stem, or the scene's name
   Scene scene;
   Render reference;
+  std::string label() const { return material ? material->name : scene.name + " (its own materials)"; }
+  std::string models() const {
+    std::vector<const Material*> ms;
+    if (material) ms.push_back(&*material);
+    for (const auto& [k, m] : scene.materials) ms.push_back(&m);
+    std::string s;
+    for (const Material* m : ms) {
+      std::string lobes = (m->diffuse ? m->diffuse->def->name : std::string("")) +
+                          (m->diffuse && m->specular ? " + " : "") +
+                          (m->specular ? m->specular->def->name : std::string(""));
+      if (s.find(lobes) == std::string::npos) s += (s.empty() ? "" : ", ") + lobes;
+    }
+    return s;
+  }
+  bool hard_toon() const {
+    bool any = material && has_hard_toon(*material);
+    for (const auto& [k, m] : scene.materials) any |= has_hard_toon(m);
+    return any;
+  }
 };
 
 std::string image_name(const Case& c, const std::string& renderer, const char* suffix = "") {
@@ -98,6 +119,11 @@ json row_json(const ComparisonRow& r, int w, int h) {
             {"seconds", r.seconds},
             {"file", r.key}};
   if (!r.error.empty()) j["error"] = r.error;
+  if (m.worst_x >= 0)
+    j["worst"] = {{"x", m.worst_x},
+                  {"y", m.worst_y},
+                  {"reference", {m.worst_ref[0], m.worst_ref[1], m.worst_ref[2]}},
+                  {"got", {m.worst_got[0], m.worst_got[1], m.worst_got[2]}}};
   return j;
 }
 
@@ -177,11 +203,9 @@ img { width: 160px; height: auto; image-rendering: pixelated; display: block; ba
   for (size_t i : order) {
     const Case& c = cases[i];
     html += fmt::format("<tr class={}><td><div class=name>{}</div><div class=muted>{}<br>scene {}<br>{}</div></td>",
-                        failed(i) ? "fail" : "pass", html_escape(c.material.name), html_escape(c.key + ".json"),
-                        html_escape(c.scene.name),
-                        html_escape((c.material.diffuse ? c.material.diffuse->def->name : std::string("")) +
-                                    (c.material.diffuse && c.material.specular ? " + " : "") +
-                                    (c.material.specular ? c.material.specular->def->name : std::string(""))));
+                        failed(i) ? "fail" : "pass", html_escape(c.label()),
+                        html_escape(c.material ? c.key + ".json" : c.scene.source), html_escape(c.scene.name),
+                        html_escape(c.models()));
     html += fmt::format("<td><img src=\"{}\" alt=\"reference\"></td>", image_name(c, "reference"));
     for (const auto& t : targets) {
       const ComparisonRow* row = nullptr;
@@ -202,10 +226,9 @@ img { width: 160px; height: auto; image-rendering: pixelated; display: block; ba
 
 }  // namespace
 
-ComparisonRow judge(const Render& reference, const Image& image, const std::vector<float>& alpha, const Material& m,
+ComparisonRow judge(const Render& reference, const Image& image, const std::vector<float>& alpha, bool hard_toon,
                     const ValidateOptions& o) {
   ComparisonRow row;
-  row.material = m.name;
   row.metrics = compare_images(reference, image, interior_mask(reference), o.tolerance);
   size_t differ = 0;
   for (size_t i = 0; i < reference.object.size(); ++i) {
@@ -214,7 +237,7 @@ ComparisonRow judge(const Render& reference, const Image& image, const std::vect
     differ += hit != covered;
   }
   row.coverage_mismatch = reference.object.empty() ? 0 : double(differ) / double(reference.object.size());
-  row.allowed_flips = has_hard_toon(m) ? size_t(std::floor(o.flip_tolerance * double(row.metrics.pixels))) : 0;
+  row.allowed_flips = hard_toon ? size_t(std::floor(o.flip_tolerance * double(row.metrics.pixels))) : 0;
   row.pass = row.metrics.nan == 0 && row.metrics.pixels > 0 && row.metrics.over <= row.allowed_flips &&
              row.coverage_mismatch <= o.coverage_tolerance;
   return row;
@@ -222,7 +245,6 @@ ComparisonRow judge(const Render& reference, const Image& image, const std::vect
 
 ValidateResult validate(const ValidateOptions& options, std::ostream& progress) {
   ValidateOptions o = options;
-  if (o.materials.empty()) o.materials = example_materials();
   if (o.scenes.empty()) o.scenes = builtin_scene_names();
   if (o.python.empty()) o.python = default_python();
   fs::path out = o.out;
@@ -232,10 +254,14 @@ ValidateResult validate(const ValidateOptions& options, std::ostream& progress) 
   auto has = [&](const char* r) { return std::find(o.renderers.begin(), o.renderers.end(), r) != o.renderers.end(); };
 
   // Inputs first: a bad material or scene stops the run before any rendering.
-  std::vector<Material> materials;
-  for (const auto& f : o.materials) materials.push_back(load_material(f));
   std::vector<Scene> scenes;
   for (const auto& s : o.scenes) scenes.push_back(load_scene(s));
+  // Scenes with their own materials render once; the others with every material
+  // (by default the example catalog).
+  bool need_materials = std::any_of(scenes.begin(), scenes.end(), [](const Scene& s) { return !s.has_own_materials(); });
+  if (o.materials.empty() && need_materials) o.materials = example_materials();
+  std::vector<Material> materials;
+  for (const auto& f : o.materials) materials.push_back(load_material(f));
 
   // Counters update in place on a terminal; a log gets a line per step.
   auto tick = [&](const std::string& what, size_t i, size_t n) {
@@ -244,16 +270,23 @@ ValidateResult validate(const ValidateOptions& options, std::ostream& progress) 
   };
   std::vector<Case> cases;
   auto t0 = Clock::now();
-  progress << fmt::format("facet validate: {} materials × {} scenes at {}×{} through {}\n", materials.size(),
-                          scenes.size(), o.width, o.height, fmt::join(o.renderers, ", "));
+  size_t total = 0;
+  for (const auto& s : scenes) total += s.has_own_materials() ? 1 : materials.size();
+  progress << fmt::format("facet validate: {} images ({} scenes) at {}×{} through {}\n", total, scenes.size(),
+                          o.width, o.height, fmt::join(o.renderers, ", "));
+  auto add = [&](Case c) {
+    c.reference = c.material ? render_reference(*c.material, c.scene, o.width, o.height)
+                             : render_reference(c.scene, o.width, o.height);
+    write_images(out, c, "reference", c.reference.image);
+    cases.push_back(std::move(c));
+    tick("reference " + cases.back().key + " on " + cases.back().scene.name, cases.size(), total);
+  };
   for (const auto& s : scenes) {
-    for (size_t i = 0; i < materials.size(); ++i) {
-      Case c{materials[i], fs::path(o.materials[i]).stem().string(), s, {}};
-      c.reference = render_reference(c.material, s, o.width, o.height);
-      write_images(out, c, "reference", c.reference.image);
-      cases.push_back(std::move(c));
-      tick("reference " + cases.back().key + " on " + s.name, cases.size(), materials.size() * scenes.size());
+    if (s.has_own_materials()) {
+      add(Case{std::nullopt, identifier(s.name), s, {}});
+      continue;
     }
+    for (size_t i = 0; i < materials.size(); ++i) add(Case{materials[i], fs::path(o.materials[i]).stem().string(), s, {}});
   }
   result.wall["reference"] = since(t0);
   progress << fmt::format("\r  reference: {} images in {:.1f} s\n", cases.size(), result.wall["reference"]);
@@ -272,12 +305,12 @@ ValidateResult validate(const ValidateOptions& options, std::ostream& progress) 
   auto record = [&](const Case& c, const std::string& renderer, const RenderOutcome& r) {
     ComparisonRow row;
     if (r.ok) {
-      row = judge(c.reference, r.image, r.alpha, c.material, o);
+      row = judge(c.reference, r.image, r.alpha, c.hard_toon(), o);
       write_images(out, c, renderer, r.image);
     } else {
-      row.material = c.material.name;
       row.error = r.error.empty() ? "the renderer failed without a message" : r.error;
     }
+    row.material = c.label();
     row.key = c.key;
     row.renderer = renderer;
     row.scene = c.scene.name;
@@ -368,11 +401,13 @@ ValidateResult validate(const ValidateOptions& options, std::ostream& progress) 
   }
   std::string times;
   for (const auto& [r, s] : result.wall) times += fmt::format("{}{} {:.1f} s", times.empty() ? "" : ", ", r, s);
+  std::string what = need_materials ? fmt::format("{} materials × {} scenes", materials.size(), scenes.size())
+                                    : fmt::format("{} scenes with their own materials", scenes.size());
   result.summary = fmt::format(
-      "{} of {} comparisons pass ({} materials × {} scenes × {} renderers at {}×{}); worst |Δ|/max(1,|ref|): {} "
-      "(tolerance {:g}); wall time: {}",
-      ok, result.rows.size(), materials.size(), scenes.size(), o.renderers.size() - has("reference"), o.width,
-      o.height, worst, o.tolerance, times);
+      "{} of {} comparisons pass ({} × {} renderers at {}×{}); worst |Δ|/max(1,|ref|): {} (tolerance {:g}); wall "
+      "time: {}",
+      ok, result.rows.size(), what, o.renderers.size() - has("reference"), o.width, o.height, worst, o.tolerance,
+      times);
 
   json metrics = json::array();
   for (const auto& r : result.rows) metrics.push_back(row_json(r, o.width, o.height));

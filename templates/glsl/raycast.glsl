@@ -1,58 +1,137 @@
 
-// ---- facet's validation ray caster: the scene's analytic spheres and squares,
-// one ray per pixel centre (gl_FragCoord), shadows by shadow rays.
-#define FACET_MAX_OBJECTS 8
+// ---- facet's validation ray caster: the scene's analytic spheres and squares
+// and its triangle meshes (a BVH in texture buffers), one ray per pixel centre
+// (gl_FragCoord), shadows by shadow rays. Each pass shades the objects of one
+// material; the others are drawn black and the passes are summed.
+#define FACET_MAX_OBJECTS 16
 uniform vec2 facet_resolution;
 uniform vec3 facet_camera_forward;
 uniform vec3 facet_camera_right;
 uniform vec3 facet_camera_up;
 uniform vec2 facet_camera_tan;                       // tan(fov/2) · (aspect, 1)
 uniform int facet_object_count;
-uniform vec4 facet_object_shape[FACET_MAX_OBJECTS];  // sphere: centre, radius; square: centre, half-side
-uniform vec4 facet_object_normal[FACET_MAX_OBJECTS]; // square: normal, w = 1; sphere: w = 0
+uniform vec4 facet_object_shape[FACET_MAX_OBJECTS];  // sphere: centre, radius; square: centre, half-side;
+                                                     // mesh: first BVH node, first triangle
+uniform vec4 facet_object_normal[FACET_MAX_OBJECTS]; // w: 0 sphere, 1 square (xyz its normal), 2 mesh
 uniform vec4 facet_object_axis[FACET_MAX_OBJECTS];   // square: the in-plane axis u (v = normal × u)
-uniform float facet_shadow_offset;                   // shadow rays start this far out
+uniform int facet_object_shaded[FACET_MAX_OBJECTS];  // 1: shaded in this pass
+uniform samplerBuffer facet_bvh;        // 2 texels a node: (lo, right child or first triangle), (hi, count)
+uniform samplerBuffer facet_triangles;  // 6 texels a triangle: p0, p1, p2, n0, n1, n2
+uniform float facet_shadow_offset;      // shadow rays start this far out
 out vec4 facet_color;
-// The object being shaded: every object is convex, so it cannot shadow itself
-// where n·l > 0, and a float hit point just inside it must not make it try.
-int facet_shaded_object = -1;
 
-// The nearest hit of origin + t·dir with t > t_min, or -1.
-float facet_intersect(int i, vec3 origin, vec3 dir, float t_min)
+// The object and triangle being shaded: a sphere or a square is convex and
+// cannot shadow itself where n·l > 0, nor can a flat triangle; a float hit
+// point just inside them must not make them try.
+int facet_shaded_object = -1;
+int facet_shaded_triangle = -1;
+
+struct FacetHit {
+    float t;       // -1: no hit
+    int triangle;  // meshes: the triangle hit
+    vec2 uv;       // meshes: barycentrics of its second and third vertices
+};
+
+// Möller & Trumbore 1997, two-sided.
+bool facet_ray_triangle(vec3 o, vec3 d, int tri, out float t, out vec2 uv)
 {
+    vec3 p0 = texelFetch(facet_triangles, tri * 6).xyz;
+    vec3 e1 = texelFetch(facet_triangles, tri * 6 + 1).xyz - p0;
+    vec3 e2 = texelFetch(facet_triangles, tri * 6 + 2).xyz - p0;
+    vec3 pv = cross(d, e2);
+    float det = dot(e1, pv);
+    if (det == 0.0) return false;
+    float inv = 1.0 / det;
+    vec3 tv = o - p0;
+    uv.x = dot(tv, pv) * inv;
+    if (uv.x < 0.0 || uv.x > 1.0) return false;
+    vec3 qv = cross(tv, e1);
+    uv.y = dot(d, qv) * inv;
+    if (uv.y < 0.0 || uv.x + uv.y > 1.0) return false;
+    t = dot(e2, qv) * inv;
+    return true;
+}
+
+bool facet_ray_box(vec3 o, vec3 inv_d, vec3 lo, vec3 hi, float t_max)
+{
+    vec3 a = (lo - o) * inv_d, b = (hi - o) * inv_d;
+    vec3 near = min(a, b), far = max(a, b);
+    float t0 = max(max(near.x, near.y), max(near.z, 0.0));
+    float t1 = min(min(far.x, far.y), min(far.z, t_max));
+    return t0 <= t1;
+}
+
+FacetHit facet_intersect_mesh(int first_node, vec3 o, vec3 d, float t_min, int skip)
+{
+    FacetHit h = FacetHit(-1.0, -1, vec2(0.0));
+    float best = 1e30;
+    vec3 inv_d = 1.0 / d;
+    int stack[32];
+    int top = 0;
+    stack[top++] = first_node;
+    while (top > 0) {
+        int node = stack[--top];
+        vec4 a = texelFetch(facet_bvh, node * 2), b = texelFetch(facet_bvh, node * 2 + 1);
+        if (!facet_ray_box(o, inv_d, a.xyz, b.xyz, best)) continue;
+        int count = int(b.w);
+        if (count > 0) {
+            for (int k = 0; k < count; ++k) {
+                int tri = int(a.w) + k;
+                float t;
+                vec2 uv;
+                if (tri != skip && facet_ray_triangle(o, d, tri, t, uv) && t > t_min && t < best) {
+                    best = t;
+                    h = FacetHit(t, tri, uv);
+                }
+            }
+        } else if (top < 30) {
+            stack[top++] = int(a.w);
+            stack[top++] = node + 1;
+        }
+    }
+    return h;
+}
+
+// The nearest hit of origin + t·dir with t > t_min, or t = -1.
+FacetHit facet_intersect(int i, vec3 origin, vec3 dir, float t_min, int skip)
+{
+    FacetHit none = FacetHit(-1.0, -1, vec2(0.0));
     vec4 s = facet_object_shape[i];
-    if (facet_object_normal[i].w == 0.0) {
+    float kind = facet_object_normal[i].w;
+    if (kind == 0.0) {
         vec3 oc = origin - s.xyz;
         float b = dot(oc, dir);
         float c = dot(oc, oc) - s.w * s.w;
         float disc = b * b - c;
-        if (disc < 0.0) return -1.0;
+        if (disc < 0.0) return none;
         float q = b > 0.0 ? -(b + sqrt(disc)) : -(b - sqrt(disc));  // no cancellation
         float t0 = q, t1 = c / q;
         if (t0 > t1) { float x = t0; t0 = t1; t1 = x; }
-        if (t0 > t_min) return t0;
-        if (t1 > t_min) return t1;
-        return -1.0;
+        if (t0 > t_min) return FacetHit(t0, -1, vec2(0.0));
+        if (t1 > t_min) return FacetHit(t1, -1, vec2(0.0));
+        return none;
     }
+    if (kind == 2.0) return facet_intersect_mesh(int(s.x), origin, dir, t_min, skip);
     vec3 n = facet_object_normal[i].xyz;
     float den = dot(dir, n);
-    if (den == 0.0) return -1.0;
+    if (den == 0.0) return none;
     float t = dot(s.xyz - origin, n) / den;
-    if (!(t > t_min)) return -1.0;
+    if (!(t > t_min)) return none;
     vec3 q = origin + dir * t - s.xyz;
     vec3 u = facet_object_axis[i].xyz;
     vec3 v = cross(n, u);
-    if (abs(dot(q, u)) > s.w || abs(dot(q, v)) > s.w) return -1.0;
-    return t;
+    if (abs(dot(q, u)) > s.w || abs(dot(q, v)) > s.w) return none;
+    return FacetHit(t, -1, vec2(0.0));
 }
 
 float facet_visibility(vec3 p, vec3 l, float d)
 {
     for (int i = 0; i < FACET_MAX_OBJECTS; ++i) {
         if (i >= facet_object_count) break;
-        if (i == facet_shaded_object) continue;
-        float t = facet_intersect(i, p, l, facet_shadow_offset);
-        if (t > 0.0 && t < d) return 0.0;
+        bool own = i == facet_shaded_object;
+        if (own && facet_object_normal[i].w != 2.0) continue;
+        FacetHit h = facet_intersect(i, p, l, facet_shadow_offset, own ? facet_shaded_triangle : -1);
+        if (h.t > 0.0 && h.t < d) return 0.0;
     }
     return 1.0;
 }
@@ -62,20 +141,35 @@ void main()
     vec2 ndc = 2.0 * gl_FragCoord.xy / facet_resolution - 1.0;
     vec3 dir = normalize(facet_camera_forward + facet_camera_right * (ndc.x * facet_camera_tan.x)
                          + facet_camera_up * (ndc.y * facet_camera_tan.y));
-    float best = -1.0;
+    FacetHit best = FacetHit(-1.0, -1, vec2(0.0));
     int hit = -1;
     for (int i = 0; i < FACET_MAX_OBJECTS; ++i) {
         if (i >= facet_object_count) break;
-        float t = facet_intersect(i, facet_camera_position, dir, 0.0);
-        if (t > 0.0 && (best < 0.0 || t < best)) { best = t; hit = i; }
+        FacetHit h = facet_intersect(i, facet_camera_position, dir, 0.0, -1);
+        if (h.t > 0.0 && (best.t < 0.0 || h.t < best.t)) { best = h; hit = i; }
     }
     if (hit < 0) {
         facet_color = vec4(0.0);
         return;
     }
-    vec3 p = facet_camera_position + dir * best;
+    if (facet_object_shaded[hit] == 0) {
+        facet_color = vec4(0.0, 0.0, 0.0, 1.0);
+        return;
+    }
+    vec3 p = facet_camera_position + dir * best.t;
     facet_shaded_object = hit;
-    vec3 n = facet_object_normal[hit].w == 0.0 ? normalize(p - facet_object_shape[hit].xyz)
-                                               : facet_object_normal[hit].xyz;
+    facet_shaded_triangle = best.triangle;
+    vec3 n;
+    float kind = facet_object_normal[hit].w;
+    if (kind == 0.0) {
+        n = normalize(p - facet_object_shape[hit].xyz);
+    } else if (kind == 1.0) {
+        n = facet_object_normal[hit].xyz;
+    } else {
+        int t = best.triangle * 6;
+        n = normalize(texelFetch(facet_triangles, t + 3).xyz * (1.0 - best.uv.x - best.uv.y)
+                      + texelFetch(facet_triangles, t + 4).xyz * best.uv.x
+                      + texelFetch(facet_triangles, t + 5).xyz * best.uv.y);
+    }
     facet_color = vec4(facet_shade(p, n, -dir, facet_tangent(n)), 1.0);
 }

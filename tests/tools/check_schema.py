@@ -58,7 +58,7 @@ def main():
     sv = jsonschema.Draft202012Validator(scene)
     for scene_dir in ["examples/scenes"]:
         d = os.path.join(root, scene_dir)
-        for name in sorted(os.listdir(d)) if os.path.isdir(d) else []:
+        for name in sorted(n for n in os.listdir(d) if n.endswith(".json")) if os.path.isdir(d) else []:
             errors = list(sv.iter_errors(json.load(open(os.path.join(d, name)))))
             if errors:
                 failures += 1

@@ -47,7 +47,9 @@ enum class ParamKind {
   Vector,  // three numbers (not all zero if `nonzero`)
   Model,   // an object {"model": <a name of section `section`>, …its parameters}
   Object,  // an object holding the parameters of the fixed model `section`/`fixed`
-  String,  // a non-empty string
+  String,     // a non-empty string
+  Points,     // an array of [x, y, z] (mesh positions and normals)
+  Triangles,  // an array of [a, b, c] vertex indices
 };
 const char* param_kind_name(ParamKind k);
 
@@ -60,6 +62,7 @@ struct Value {
   std::string choice;
   std::array<double, 3> rgb{};
   std::shared_ptr<const ModelSpec> model;  // Model and Object kinds
+  std::vector<std::array<double, 3>> points;  // Points and Triangles kinds
 };
 
 struct ParamDef {

@@ -20,10 +20,18 @@ struct Render {
 // Shadow rays start this far along (relative to the scene's size) so a surface
 // does not shadow itself; occluders closer than that to the point are missed.
 inline constexpr double kShadowRayOffset = 1e-6;
-// A shadow ray closer than this (relative) to an occluder's silhouette is
+// A shadow ray closer than this (relative) to an occluder's silhouette, or
+// blocked only within this distance (relative to the scene) of its start, is
 // "grazing": which side it falls on is a matter of rounding in each renderer.
 inline constexpr double kGrazing = 1e-4;
+// Blocks closer than this to the shaded point (scene units) are fragile too:
+// POV-Ray ignores shadow hits within 1e-3 of the point (its shadow tolerance),
+// Cycles and OpenGL count them.
+inline constexpr double kCloseBlock = 2e-3;
 
+// Objects without a material of their own are shaded with `m`.
 Render render_reference(const Material& m, const Scene& s, int width, int height, int threads = 0);
+// Every object has its own material (Scene::has_own_materials()).
+Render render_reference(const Scene& s, int width, int height, int threads = 0);
 
 }  // namespace facet

@@ -2,7 +2,9 @@
 // a scene into a linear float image sampled at pixel centres.
 #pragma once
 
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "facet/image.h"
 #include "facet/material.h"
@@ -11,18 +13,23 @@
 namespace facet {
 
 struct RenderJob {
-  Material material;
+  // The material under test: it shades every object without a material of its
+  // own; absent when every object has one (Scene::has_own_materials()).
+  std::optional<Material> material;
   Scene scene;
   int width = 256, height = 256;
   std::string workdir;   // where generated code and raw outputs go (kept for inspection)
   double max_value = 1;  // the largest radiance expected (POV-Ray: sets the exposure that keeps PNGs below 1)
-  // POV-Ray: bracket exposures in factors of 2 so every pixel keeps 16-bit
-  // relative precision (≤ 1.5e-5 · max(1, value)); otherwise one exposure for
-  // the whole image (error ≤ 7.7e-6 / exposure).
+  // POV-Ray: bracket exposures in factors of 2 (16, 8, …) so every pixel of
+  // every pass keeps 16-bit relative precision (≤ 1.6e-5 · value); otherwise one
+  // exposure for the whole image (error ≤ 7.7e-6 / exposure per pass).
   bool bracket = false;
   // Render this code instead of generating it (tests feed deliberately wrong targets).
   std::string code_override;
 };
+
+// "<material>_<scene>" (or "<scene>" when the scene brings its own materials): names files.
+std::string job_name(const RenderJob& job);
 
 struct RenderOutcome {
   bool ok = false;
@@ -59,7 +66,7 @@ class GlRenderer {
   const std::string& error() const { return error_; }  // why there is no context
   const std::string& description() const { return description_; }  // GL_RENDERER and GL_VERSION
   RenderOutcome render(const RenderJob& job);
-  // The fragment shader render() compiles: the generated GLSL under the ray caster.
+  // The fragment shader render() compiles for one material: the generated GLSL under the ray caster.
   static std::string fragment_source(const Material& m);
 
  private:

@@ -43,5 +43,9 @@ struct PovPlan {
   int passes = 1;
 };
 PovPlan pov_plan(const Material& m, const Scene& s);
+// Objects without a material of their own use `fallback` (may be null when every object has one).
+PovPlan pov_plan(const Scene& s, const Material* fallback);
+// The POV-Ray scene of a whole scene with its objects' own materials.
+std::string generate_pov_scene(const Scene& s, const Material* fallback, const std::string& source);
 
 }  // namespace facet

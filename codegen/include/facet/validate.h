@@ -48,8 +48,9 @@ struct ValidateResult {
 // Renders, compares, writes OUT/metrics.json, OUT/report.html and OUT/images/.
 ValidateResult validate(const ValidateOptions& options, std::ostream& progress);
 
-// The comparison the report and the tests share.
-ComparisonRow judge(const Render& reference, const Image& image, const std::vector<float>& alpha,
-                    const Material& m, const ValidateOptions& options);
+// The comparison the report and the tests share. `hard_toon`: a material in the
+// image has a toon step of width 0, which may flip options.flip_tolerance of the pixels.
+ComparisonRow judge(const Render& reference, const Image& image, const std::vector<float>& alpha, bool hard_toon,
+                    const ValidateOptions& options);
 
 }  // namespace facet

@@ -34,6 +34,8 @@ const char* param_kind_name(ParamKind k) {
     case ParamKind::Model: return "model";
     case ParamKind::Object: return "object";
     case ParamKind::String: return "string";
+    case ParamKind::Points: return "points";
+    case ParamKind::Triangles: return "triangles";
   }
   return "?";
 }
@@ -75,6 +77,8 @@ std::string ParamDef::allowed() const {
       return s;
     }
     case ParamKind::String: return "a non-empty string";
+    case ParamKind::Points: return nonzero ? "an array of [x, y, z], none of them zero" : "an array of [x, y, z]";
+    case ParamKind::Triangles: return "an array of [a, b, c], indices of distinct vertices";
     case ParamKind::Object: {
       std::string s = "an object with keys";
       const ModelDef* m = find_model(section, fixed);

@@ -36,6 +36,17 @@ inline ParamDef text(std::string name, std::string doc) {
   return p;
 }
 
+inline ParamDef list(std::string name, std::string doc, ParamKind kind, bool nonzero = false) {
+  ParamDef p;
+  p.name = std::move(name);
+  p.kind = kind;
+  p.doc = std::move(doc);
+  p.required = true;
+  p.nonzero = nonzero;
+  p.fallback.kind = kind;
+  return p;
+}
+
 inline ParamDef flag(std::string name, std::string doc, bool fallback) {
   ParamDef p;
   p.name = std::move(name);

@@ -146,17 +146,30 @@ void add_scene_vocabulary(std::vector<ModelDef>& all) {
   }
   {
     auto m = entry("object", "sphere", "Sphere", "", "|p − center| = radius", "An analytic sphere.");
-    m.params = {text("name", "a name for reports"), vector("center", "centre", {0, 0, 0}, true),
-                number("radius", "radius", Range::positive(), 1)};
+    m.params = {text("name", "a name for reports"), text("material", "a key of the scene's \"materials\""),
+                vector("center", "centre", {0, 0, 0}, true), number("radius", "radius", Range::positive(), 1)};
     all.push_back(m);
   }
   {
     auto m = entry("object", "plane", "Plane (square)", "", "(p − point)·normal = 0, |in-plane offset| ≤ size",
                    "A square of half-side `size` centred at `point`, facing `normal`. Its edges run along "
                    "normalize(normal × x̂) and normal × that (× ẑ when normal is along x̂).");
-    m.params = {text("name", "a name for reports"), vector("point", "centre of the square", {0, 0, 0}, true),
+    m.params = {text("name", "a name for reports"), text("material", "a key of the scene's \"materials\""),
+                vector("point", "centre of the square", {0, 0, 0}, true),
                 vector("normal", "the side the square faces", {0, 1, 0}, true, true),
                 number("size", "half the side of the square", Range::positive(), 10, false)};
+    all.push_back(m);
+  }
+  {
+    auto m = entry("object", "mesh", "Triangle mesh", "", "n(p) = normalize(Σ w_i n_i), w the barycentrics of p",
+                   "Triangles in world space with a unit normal per vertex; shading interpolates the normals "
+                   "(smooth shading; give flat faces their own vertices). Anisotropic models take the tangent "
+                   "rule's t from the interpolated normal.");
+    m.params = {text("name", "a name for reports"), text("material", "a key of the scene's \"materials\""),
+                list("positions", "vertex positions, world space", ParamKind::Points),
+                list("normals", "a normal per vertex, world space", ParamKind::Points, true),
+                list("triangles", "vertex indices, counter-clockwise seen from the normals' side",
+                     ParamKind::Triangles)};
     all.push_back(m);
   }
 }

@@ -12,9 +12,12 @@
 // one light per pass (Declare=Facet_Light=i; the passes summed are exact) or,
 // by default, puts one shrunken copy of each object in a light_group per light
 // (error about 1e-4, from the shrink).
+#include <algorithm>
 #include <cmath>
 #include <functional>
+#include <memory>
 #include <set>
+#include <sstream>
 
 #include <fmt/format.h>
 
@@ -57,6 +60,12 @@ std::string capital(const std::string& s) {
 // times, suffixed _R, _G, _B.
 class PovPrinter {
  public:
+  // Functions in `own` (a material's lobes and reflectance) and every constant
+  // get `prefix`, so several materials can share one scene file; catalog terms
+  // are shared and printed once.
+  PovPrinter(std::string prefix = "", std::set<const ir::Function*> own = {})
+      : prefix_(std::move(prefix)), own_(std::move(own)) {}
+
   bool channel_dependent(const ir::FunctionPtr& f) {
     if (auto it = dependent_.find(f.get()); it != dependent_.end()) return it->second;
     bool dep = false;
@@ -72,17 +81,17 @@ class PovPrinter {
   }
 
   std::string name(const ir::FunctionPtr& f, int channel) {
-    std::string n = capital(f->name);
+    std::string n = own_.count(f.get()) ? prefix_ + capital(f->name) : capital(f->name);
     return channel_dependent(f) ? n + "_" + kChannel[channel] : n;
   }
 
-  static std::string constant_name(const NodePtr& c, int channel) {
-    std::string n = capital(c->name);
+  std::string constant_name(const NodePtr& c, int channel) const {
+    std::string n = prefix_ + capital(c->name);
     return c->type == Type::Color && !grey(c->value) ? n + "_" + kChannel[channel] : n;
   }
 
   // Declarations of every constant `roots` read.
-  static std::string constants(const std::vector<NodePtr>& cs) {
+  std::string constants(const std::vector<NodePtr>& cs) const {
     std::string s;
     for (const auto& c : cs) {
       if (c->type == Type::Color && !grey(c->value)) {
@@ -208,6 +217,8 @@ class PovPrinter {
 
  private:
   static std::string local(const std::string& n) { return capital(n); }
+  std::string prefix_;
+  std::set<const ir::Function*> own_;
   std::map<const ir::Function*, bool> dependent_;
 };
 
@@ -227,6 +238,7 @@ bool native_attenuation(const Light& l) {
   return false;
 }
 
+// Why a lobe is not a POV-Ray finish, or "" when it is exactly one.
 std::string lobe_native(const std::optional<ModelSpec>& lobe, bool specular) {
   if (!lobe) return "";
   const ModelSpec& s = *lobe;
@@ -239,29 +251,93 @@ std::string lobe_native(const std::optional<ModelSpec>& lobe, bool specular) {
   return "";
 }
 
+std::string material_native(const Material& m) {
+  std::string why = lobe_native(m.diffuse, false);
+  return why.empty() ? lobe_native(m.specular, true) : why;
+}
+
 }  // namespace
 
-PovPlan pov_plan(const Material& m, const Scene& s) {
+PovPlan pov_plan(const Scene& s, const Material* fallback) {
   PovPlan plan;
-  plan.reason = lobe_native(m.diffuse, false);
-  if (plan.reason.empty()) plan.reason = lobe_native(m.specular, true);
-  if (plan.reason.empty()) {
-    for (const auto& l : s.lights)
-      if (!native_attenuation(l)) plan.reason = "this attenuation law is not a POV-Ray fade";
+  for (size_t i = 0; i < s.objects.size() && plan.reason.empty(); ++i) {
+    if (s.objects[i].type == Object::Type::Mesh)
+      plan.reason = "meshes are shaded by function pigments (exact interpolated normals)";
+    else
+      plan.reason = material_native(s.material_of(i, fallback));
   }
+  for (const auto& l : s.lights)
+    if (plan.reason.empty() && !native_attenuation(l)) plan.reason = "this attenuation law is not a POV-Ray fade";
   plan.native = plan.reason.empty();
-  plan.passes = plan.native || s.lights.size() <= 1 ? 1 : int(s.lights.size());
+  // Function pigments: a pass per light, and one for the emission (m_a ⊗ A + m_e).
+  bool emits = false;
+  for (size_t i = 0; i < s.objects.size(); ++i) {
+    const Material& m = s.material_of(i, fallback);
+    for (int c = 0; c < 3; ++c) emits |= m.ambient[size_t(c)] * s.ambient[size_t(c)] + m.emission[size_t(c)] != 0;
+  }
+  plan.passes = plan.native ? 1 : std::max(1, int(s.lights.size()) + (emits ? 1 : 0));
   return plan;
 }
+
+PovPlan pov_plan(const Material& m, const Scene& s) { return pov_plan(s, &m); }
 
 namespace {
 
 // ---------------------------------------------------------------- scene frame
 
+// One material of the scene: its program and the printer with its prefix.
+struct Shading {
+  const Material* material;
+  MaterialProgram program;
+  PovPrinter printer;
+  std::string prefix;  // "" when the scene has one material
+  bool dependent;      // reflectance differs per channel: three functions
+  int channels() const { return dependent ? 3 : 1; }
+  std::string suffix(int ch) const { return dependent ? std::string("_") + kChannel[ch] : ""; }
+  RGB emission(const Scene& s) const {
+    RGB e;
+    for (int i = 0; i < 3; ++i) e[i] = material->ambient[i] * s.ambient[i] + material->emission[i];
+    return e;
+  }
+};
+
 class PovScene {
  public:
-  PovScene(const Material& m, const Scene& s, const std::string& source)
-      : m_(m), s_(s), source_(source), program_(compile(m)), plan_(pov_plan(m, s)) {}
+  PovScene(const Scene& s, const Material* fallback, const std::string& source)
+      : s_(s), source_(source), plan_(pov_plan(s, fallback)) {
+    std::vector<const Material*> distinct;
+    for (size_t i = 0; i < s.objects.size(); ++i) {
+      const Material* m = &s.material_of(i, fallback);
+      auto it = std::find(distinct.begin(), distinct.end(), m);
+      shading_of_.push_back(size_t(it - distinct.begin()));
+      if (it == distinct.end()) distinct.push_back(m);
+    }
+    if (distinct.empty() && fallback) distinct.push_back(fallback);
+    std::set<std::string> prefixes;
+    for (const Material* m : distinct) {
+      auto sh = std::make_unique<Shading>();
+      sh->material = m;
+      sh->program = compile(*m);
+      if (distinct.size() > 1) {
+        sh->prefix = capital(identifier(m->name)) + "_";
+        while (!prefixes.insert(sh->prefix).second) sh->prefix = "M" + sh->prefix;
+      }
+      std::set<const ir::Function*> own = {sh->program.reflectance.get()};
+      if (sh->program.diffuse) own.insert(sh->program.diffuse.get());
+      if (sh->program.specular) own.insert(sh->program.specular.get());
+      sh->printer = PovPrinter(sh->prefix, own);
+      sh->dependent = sh->printer.channel_dependent(sh->program.reflectance);
+      shadings_.push_back(std::move(sh));
+    }
+    double r = length(s.camera.position);
+    for (const auto& o : s.objects) {
+      Vec3 c;
+      double rad;
+      o.bounds(c, rad);
+      r = std::max(r, length(c) + rad);
+    }
+    scale_ = std::max(r, 1.0);
+  }
 
   std::string render() {
     std::string out = header();
@@ -271,22 +347,23 @@ class PovScene {
     out += "#ifndef (Facet_Exposure) #declare Facet_Exposure = 1; #end  // scales every radiance (keeps PNGs below 1)\n\n";
     out += camera();
     if (plan_.native) out += native();
-    else out += functions() + frame() + lit_objects();
+    else out += functions() + frames() + lit_objects();
     return out;
   }
 
   std::string library() {
+    const Shading& sh = *shadings_.front();
+    const Material& m = *sh.material;
     std::string out = header();
     if (plan_.native) {
       out += "// POV-Ray's own finish is this model exactly. Use the texture with plain light sources;\n";
       out += "// attenuation: fade_distance 0 fade_power 2 is 1/d² (facet's inverse_square).\n";
-      out += fmt::format("#declare Facet_{}_Texture = texture {{ {} }}\n", capital(identifier(m_.name)), native_texture(1));
-      if (!black(emission())) {
+      out += fmt::format("#declare Facet_{}_Texture = texture {{ {} }}\n", capital(identifier(m.name)),
+                         native_texture(m, 1));
+      RGB e = sh.emission(s_);
+      if (!black(e)) {
         out += "// The emissive part (m_a ⊗ A + m_e) as a layer over it:\n";
-        out += fmt::format("#declare Facet_{}_Emission = texture {{ pigment {{ rgbt <{}, {}, {}, 0.5> }} finish {{ "
-                           "ambient 0 emission 1 diffuse 0 }} }}\n",
-                           capital(identifier(m_.name)), num(2 * emission()[0]), num(2 * emission()[1]),
-                           num(2 * emission()[2]));
+        out += fmt::format("#declare Facet_{}_Emission = {}\n", capital(identifier(m.name)), emission_texture(e, 2, 0.5));
       }
       return out;
     }
@@ -298,14 +375,12 @@ class PovScene {
     out += "// Facet_Pigment_Point(NX, NY, NZ, LightPosition, Eye, Scale) builds the pigment for one point light;\n";
     out += "// light the object with that light alone (light_group) and finish { Facet_Finish }. Scale: the pigment\n";
     out += "// is exact up to 1/Scale (use the light's brightest channel).\n\n";
-    out += functions() + frame();
+    out += functions() + frames();
     out += R"(#declare Facet_Finish = finish { ambient 0 emission 0 diffuse 1 brilliance 0 specular 0 phong 0 }
 #macro Facet_Pigment_Point(NX, NY, NZ, LightPosition, Eye, Scale)
   #local Lp = LightPosition; #local E = Eye;
-  #local F = function(x, y, z) { Facet_Point_Shade(x, y, z, NX(x, y, z), NY(x, y, z), NZ(x, y, z),
-                                                   Lp.x, Lp.y, Lp.z, E.x, E.y, E.z) }
 )";
-    if (channel_dependent()) {
+    if (sh.dependent) {
       out += "  pigment { average pigment_map {\n";
       for (int ch = 0; ch < 3; ++ch) {
         out += fmt::format("    [1 function {{ max(0, min(1, Facet_Point_Shade_{}(x, y, z, NX(x, y, z), NY(x, y, z), "
@@ -315,41 +390,44 @@ class PovScene {
       }
       out += "  } }\n";
     } else {
-      out += "  pigment { function { max(0, min(1, F(x, y, z) * Scale)) } color_map { [0 rgb 0] [1 rgb 1/Scale] } }\n";
+      out += "  pigment { function { max(0, min(1, Facet_Point_Shade(x, y, z, NX(x, y, z), NY(x, y, z), NZ(x, y, z), "
+             "Lp.x, Lp.y, Lp.z, E.x, E.y, E.z) * Scale)) } color_map { [0 rgb 0] [1 rgb 1/Scale] } }\n";
     }
     out += "#end\n";
-    out += point_shade_functions();
+    for (int ch = 0; ch < sh.channels(); ++ch) {
+      out += fmt::format(
+          "#declare Facet_Point_Shade{0}__1 = function(Nx, Ny, Nz, Lx, Ly, Lz, Vx, Vy, Vz, D, Dv) {{ "
+          "Facet_Reflect{0}(Nx, Ny, Nz, Lx/D, Ly/D, Lz/D, Vx/Dv, Vy/Dv, Vz/Dv) }}\n"
+          "#declare Facet_Point_Shade{0} = function(x, y, z, Nx, Ny, Nz, Px, Py, Pz, Ex, Ey, Ez) {{ "
+          "Facet_Point_Shade{0}__1(Nx, Ny, Nz, Px-x, Py-y, Pz-z, Ex-x, Ey-y, Ez-z, "
+          "sqrt((Px-x)*(Px-x) + (Py-y)*(Py-y) + (Pz-z)*(Pz-z)), sqrt((Ex-x)*(Ex-x) + (Ey-y)*(Ey-y) + (Ez-z)*(Ez-z))) }}\n",
+          sh.suffix(ch));
+    }
     return out;
   }
 
  private:
-  RGB emission() const {
-    RGB e;
-    for (int i = 0; i < 3; ++i) e[i] = m_.ambient[i] * s_.ambient[i] + m_.emission[i];
-    return e;
-  }
-
-  bool channel_dependent() { return printer_.channel_dependent(program_.reflectance); }
-  int channels() { return channel_dependent() ? 3 : 1; }
-
   std::string header() {
-    std::string out = fmt::format("// facet material \"{}\" — POV-Ray 3.7 {}\n", m_.name,
-                                  plan_.native ? "(native finish)" : "(function pigments)");
+    std::string names;
+    for (const auto& sh : shadings_) names += (names.empty() ? "" : ", ") + sh->material->name;
+    std::string out = fmt::format("// facet {} \"{}\" — POV-Ray 3.7 {}\n", shadings_.size() > 1 ? "materials" : "material",
+                                  names, plan_.native ? "(native finish)" : "(function pigments)");
     out += fmt::format("// Generated by facet {} from {}. Edit the material, not this file.\n//\n", FACET_VERSION,
                        source_);
-    out += describe_material(m_, "//");
+    for (const auto& sh : shadings_) out += describe_material(*sh->material, "//");
     out += fmt::format("// Scene \"{}\". Render linear and unantialiased:\n", s_.name);
     out += "//   povray +I<this file> +O<image>.png +W256 +H256 -A +FN16 File_Gamma=1.0\n";
     if (plan_.native) {
       out += "// POV-Ray's own finish is this model: every light in one render is exact.\n";
-    } else if (s_.lights.size() > 1) {
+    } else if (plan_.passes > 1) {
       out += fmt::format("// Function pigments hold one light each. Exact: render with Declare=Facet_Light=i for i = 0..{}\n"
-                         "// and sum the images. Facet_Light=-1 (default) renders all lights at once through\n"
-                         "// light_group copies shrunk by 1e-4, which costs about 1e-4 of accuracy.\n",
-                         s_.lights.size() - 1);
+                         "// (the lights{}) and sum the images. Facet_Light=-1 (default) renders everything at once\n"
+                         "// through light_group copies shrunk by 1e-4, which costs about 1e-4 of accuracy.\n",
+                         plan_.passes - 1, plan_.passes > int(s_.lights.size()) ? ", then the emission" : "");
     } else {
       out += "// Function pigments evaluate the model exactly (to 16-bit output precision).\n";
     }
+    if (!plan_.native) out += "// (" + plan_.reason + ")\n";
     return out + "\n";
   }
 
@@ -369,36 +447,72 @@ class PovScene {
         vec(c.position), vec(c.up), num(c.fov), num(c.fov), vec(c.look_at));
   }
 
+  std::string light_source(const Light& l, const std::string& extra = "", double scale = 1) {
+    bool parallel = l.type == Light::Type::Directional;
+    return fmt::format("light_source {{ {} color rgb {}*{}Facet_Exposure{}{} }}",
+                       parallel ? vec(Vec3(0, 0, 0) - l.direction * 1e5) : vec(l.position), rgb(l.color),
+                       scale == 1 ? "" : num(scale) + "*", parallel ? " parallel point_at <0, 0, 0>" : "", extra);
+  }
+
+  static std::string emission_texture(const RGB& e, double weight, double t) {
+    return fmt::format("texture {{ pigment {{ rgbt <{}, {}, {}, {}> }} finish {{ ambient 0 emission Facet_Exposure "
+                       "diffuse 0 specular 0 phong 0 }} }}",
+                       num(weight * e[0]), num(weight * e[1]), num(weight * e[2]), num(t));
+  }
+
+  // The geometry of object o with `body` inside; `shrink` (relative to the scene) insets a copy.
+  std::string object(size_t o, double shrink, const std::string& body, const std::string& modifiers) {
+    const Object& obj = s_.objects[o];
+    if (obj.type == Object::Type::Sphere)
+      return fmt::format("sphere {{ {}, {}{}{}}}", vec(obj.center), num(obj.radius - shrink * scale_), body, modifiers);
+    if (obj.type == Object::Type::Plane) {
+      Vec3 u, v;
+      obj.plane_axes(u, v);
+      Vec3 c = obj.point - obj.normal * (shrink * scale_);
+      Vec3 p0 = c + (u + v) * obj.size, p1 = c + (v - u) * obj.size, p2 = c - (u + v) * obj.size,
+           p3 = c + (u - v) * obj.size;
+      return fmt::format("polygon {{ 5, {}, {}, {}, {}, {}{}{}}}", vec(p0), vec(p1), vec(p2), vec(p3), vec(p0), body,
+                         modifiers);
+    }
+    // A mesh: `body` is its texture_list; each face uses its own texture.
+    const Mesh& m = *obj.mesh;
+    std::string out = fmt::format("mesh2 {{  // {}\n  vertex_vectors {{ {}", obj.name, m.positions.size());
+    for (size_t i = 0; i < m.positions.size(); ++i)
+      out += (i % 4 == 0 ? ",\n    " : ", ") + vec(m.positions[i] - m.normals[i] * (shrink * scale_));
+    out += fmt::format("\n  }}\n  normal_vectors {{ {}", m.normals.size());
+    for (size_t i = 0; i < m.normals.size(); ++i) out += (i % 4 == 0 ? ",\n    " : ", ") + vec(m.normals[i]);
+    out += "\n  }\n" + body;
+    out += fmt::format("  face_indices {{ {}", m.triangles.size());
+    for (size_t i = 0; i < m.triangles.size(); ++i) {
+      const auto& t = m.triangles[i];
+      out += fmt::format("{}<{}, {}, {}>{}", i % 6 == 0 ? ",\n    " : ", ", t[0], t[1], t[2],
+                         body.empty() ? "" : fmt::format(", {}", i));
+    }
+    return out + "\n  }\n" + modifiers + "}";
+  }
+
   // ---- native route
 
-  std::string native_texture(double weight) {
-    std::string finish = fmt::format("ambient 0 emission 0 diffuse {} brilliance 1", num(weight));
-    if (m_.specular) {
-      double ks = m_.specular->at("color").rgb[0] * weight;
-      double n = m_.specular->at("n").number;
-      if (m_.specular->def->name == "phong") finish += fmt::format(" phong {} phong_size {}", num(ks), num(n));
+  static std::string native_texture(const Material& m, double weight) {
+    std::string finish = fmt::format("ambient 0 emission 0 diffuse {} brilliance 1", num(m.diffuse ? weight : 0));
+    if (m.specular) {
+      double ks = m.specular->at("color").rgb[0] * weight;
+      double n = m.specular->at("n").number;
+      if (m.specular->def->name == "phong") finish += fmt::format(" phong {} phong_size {}", num(ks), num(n));
       else finish += fmt::format(" specular {} roughness {}", num(ks), num(1.0 / n));
     } else {
       finish += " specular 0 phong 0";
     }
-    RGB kd = m_.diffuse ? m_.diffuse->at("color").rgb : RGB{0, 0, 0};
-    if (!m_.diffuse) finish = "ambient 0 emission 0 diffuse 0" + finish.substr(finish.find(" brilliance"));
+    RGB kd = m.diffuse ? m.diffuse->at("color").rgb : RGB{0, 0, 0};
     return fmt::format("pigment {{ rgb {} }} finish {{ {} }}", rgb(kd), finish);
   }
 
   std::string native_light(size_t i) {
     const Light& l = s_.lights[i];
-    std::string body;
-    RGB c = l.color;
-    std::string extra;
-    if (l.type == Light::Type::Directional) {
-      // A parallel light placed far back along its direction.
-      Vec3 from = Vec3(0, 0, 0) - l.direction * 1e5;
-      body = fmt::format("{} color rgb {}*Facet_Exposure parallel point_at <0, 0, 0>", vec(from), rgb(c));
-      return fmt::format("light_source {{ {} }}  // light {}: directional\n", body, i);
-    }
+    if (l.type == Light::Type::Directional) return light_source(l) + fmt::format("  // light {}: directional\n", i);
     const Attenuation& a = l.attenuation;
     double scale = 1;
+    std::string extra;
     if (a.law == Attenuation::Law::InverseSquare) extra += " fade_distance 0 fade_power 2";
     if (a.law == Attenuation::Law::Polynomial) {
       if (a.linear == 0 && a.quadratic == 0) {
@@ -415,76 +529,90 @@ class PovScene {
       extra += fmt::format(" spotlight point_at {} radius {} falloff {} tightness {}", vec(l.position + l.direction),
                            num(l.cutoff), num(l.cutoff), num(l.exponent));
     }
-    body = fmt::format("{} color rgb {}*{}*Facet_Exposure{}", vec(l.position), rgb(c), num(scale), extra);
-    return fmt::format("light_source {{ {} }}  // light {}\n", body, i);
+    return light_source(l, extra, scale) + fmt::format("  // light {}\n", i);
   }
 
   std::string native() {
     std::string out = "// ---- Lights (POV-Ray's attenuation is the catalog's law here)\n";
     for (size_t i = 0; i < s_.lights.size(); ++i) out += native_light(i);
     out += "\n// ---- Objects\n";
-    RGB e = emission();
-    std::string tex = black(e) ? fmt::format("texture {{ {} }}", native_texture(1))
-                               : fmt::format("texture {{ {} }}\n  {}", native_texture(2), emission_texture(2, 0.5));
-    for (const auto& o : s_.objects) out += object(o, 0, "\n  " + tex + "\n", "") + "\n";
+    for (size_t o = 0; o < s_.objects.size(); ++o) {
+      const Shading& sh = *shadings_[shading_of_[o]];
+      RGB e = sh.emission(s_);
+      std::string tex = black(e) ? fmt::format("texture {{ {} }}", native_texture(*sh.material, 1))
+                                 : fmt::format("texture {{ {} }}\n  {}", native_texture(*sh.material, 2),
+                                               emission_texture(e, 2, 0.5));
+      out += object(o, 0, "\n  " + tex + "\n", "") + "\n";
+    }
     return out;
   }
 
   // ---- function route
 
   std::string functions() {
-    std::string out = "// ---- Material constants\n" + PovPrinter::constants(program_.constants());
+    std::string out;
+    for (const auto& sh : shadings_) {
+      out += fmt::format("// ---- Material constants{}\n",
+                         sh->prefix.empty() ? "" : " of \"" + sh->material->name + "\"");
+      out += sh->printer.constants(sh->program.constants());
+    }
     out += "\n// ---- Terms (one function per term of the model catalog)\n";
-    for (const auto& f : program_.functions()) out += printer_.function(f) + "\n";
+    std::set<const ir::Function*> printed;
+    for (const auto& sh : shadings_) {
+      for (const auto& f : sh->program.functions()) {
+        if (!printed.insert(f.get()).second) continue;
+        out += sh->printer.function(f) + "\n";
+      }
+    }
     return out;
   }
 
-  // Facet_Reflect(N, L, V): the catalog's inputs from unit vectors, with the tangent rule.
-  std::string frame() {
+  // {P}Facet_Reflect(N, L, V): the catalog's inputs from unit vectors, with the tangent rule.
+  std::string frames() {
     std::string out = "// ---- Shading frame: unit n, l, v → Reflectance's inputs\n";
     const char* nlv = "Nx, Ny, Nz, Lx, Ly, Lz, Vx, Vy, Vz";
-    for (int ch = 0; ch < channels(); ++ch) {
-      std::string suffix = channel_dependent() ? std::string("_") + kChannel[ch] : "";
-      std::string refl = printer_.name(program_.reflectance, ch);
-      std::map<std::string, std::string> dots = {
-          {"NoL", "Nx*Lx + Ny*Ly + Nz*Lz"}, {"NoV", "Nx*Vx + Ny*Vy + Nz*Vz"}, {"LoV", "Lx*Vx + Ly*Vy + Lz*Vz"},
-          {"LoT", "Lx*Tx + Ly*Ty + Lz*Tz"}, {"VoT", "Vx*Tx + Vy*Ty + Vz*Tz"},
-          // b = n × t
-          {"LoB", "Lx*(Ny*Tz - Nz*Ty) + Ly*(Nz*Tx - Nx*Tz) + Lz*(Nx*Ty - Ny*Tx)"},
-          {"VoB", "Vx*(Ny*Tz - Nz*Ty) + Vy*(Nz*Tx - Nx*Tz) + Vz*(Nx*Ty - Ny*Tx)"}};
-      std::string args;
-      for (const auto& in : program_.inputs) args += (args.empty() ? "" : ", ") + dots[in];
-      if (!program_.uses_tangent()) {
-        out += fmt::format("#declare Facet_Reflect{} = function({}) {{ {}({}) }}\n", suffix, nlv, refl, args);
-        continue;
+    for (const auto& sh : shadings_) {
+      const MaterialProgram& p = sh->program;
+      for (int ch = 0; ch < sh->channels(); ++ch) {
+        std::string name = sh->prefix + "Facet_Reflect" + sh->suffix(ch);
+        std::string refl = sh->printer.name(p.reflectance, ch);
+        std::map<std::string, std::string> dots = {
+            {"NoL", "Nx*Lx + Ny*Ly + Nz*Lz"}, {"NoV", "Nx*Vx + Ny*Vy + Nz*Vz"}, {"LoV", "Lx*Vx + Ly*Vy + Lz*Vz"},
+            {"LoT", "Lx*Tx + Ly*Ty + Lz*Tz"}, {"VoT", "Vx*Tx + Vy*Ty + Vz*Tz"},
+            // b = n × t
+            {"LoB", "Lx*(Ny*Tz - Nz*Ty) + Ly*(Nz*Tx - Nx*Tz) + Lz*(Nx*Ty - Ny*Tx)"},
+            {"VoB", "Vx*(Ny*Tz - Nz*Ty) + Vy*(Nz*Tx - Nx*Tz) + Vz*(Nx*Ty - Ny*Tx)"}};
+        std::string args;
+        for (const auto& in : p.inputs) args += (args.empty() ? "" : ", ") + dots[in];
+        if (!p.uses_tangent()) {
+          out += fmt::format("#declare {} = function({}) {{ {}({}) }}\n", name, nlv, refl, args);
+          continue;
+        }
+        Vec3 a = normalize(Vec3(sh->material->tangent_axis));
+        // t = normalize(axis × n), or x̂ × n = (0, −nz, ny) where |axis × n| < ε.
+        out += fmt::format("#declare {}__3 = function({}, Tx, Ty, Tz) {{ {}({}) }}\n", name, nlv, refl, args);
+        out += fmt::format("#declare {0}__2 = function({1}, Cx, Cy, Cz, Len) {{ {0}__3({1}, Cx/Len, Cy/Len, Cz/Len) }}\n",
+                           name, nlv);
+        out += fmt::format(
+            "#declare {0}__1 = function({1}, Cx, Cy, Cz, Len) {{ select(Len - 1e-4, {0}__2({1}, 0, -Nz, Ny, "
+            "sqrt(Nz*Nz + Ny*Ny)), {0}__2({1}, Cx, Cy, Cz, Len)) }}\n",
+            name, nlv);
+        out += fmt::format(
+            "#declare {0} = function({1}) {{ {0}__1({1}, {2}*Nz - {3}*Ny, {3}*Nx - {4}*Nz, {4}*Ny - {2}*Nx, "
+            "sqrt(({2}*Nz - {3}*Ny)*({2}*Nz - {3}*Ny) + ({3}*Nx - {4}*Nz)*({3}*Nx - {4}*Nz) + "
+            "({4}*Ny - {2}*Nx)*({4}*Ny - {2}*Nx))) }}\n",
+            name, nlv, num(a.y), num(a.z), num(a.x));
       }
-      Vec3 a = normalize(Vec3(m_.tangent_axis));
-      // t = normalize(axis × n), or x̂ × n = (0, −nz, ny) where |axis × n| < ε.
-      out += fmt::format("#declare Facet_Reflect{}__3 = function({}, Tx, Ty, Tz) {{ {}({}) }}\n", suffix, nlv, refl, args);
-      out += fmt::format(
-          "#declare Facet_Reflect{0}__2 = function({1}, Cx, Cy, Cz, Len) {{ Facet_Reflect{0}__3({1}, Cx/Len, Cy/Len, "
-          "Cz/Len) }}\n",
-          suffix, nlv);
-      out += fmt::format(
-          "#declare Facet_Reflect{0}__1 = function({1}, Cx, Cy, Cz, Len) {{ select(Len - 1e-4, "
-          "Facet_Reflect{0}__2({1}, 0, -Nz, Ny, sqrt(Nz*Nz + Ny*Ny)), Facet_Reflect{0}__2({1}, Cx, Cy, Cz, Len)) }}\n",
-          suffix, nlv);
-      out += fmt::format(
-          "#declare Facet_Reflect{0} = function({1}) {{ Facet_Reflect{0}__1({1}, {2}*Nz - {3}*Ny, {3}*Nx - {4}*Nz, "
-          "{4}*Ny - {2}*Nx, sqrt(({2}*Nz - {3}*Ny)*({2}*Nz - {3}*Ny) + ({3}*Nx - {4}*Nz)*({3}*Nx - {4}*Nz) + "
-          "({4}*Ny - {2}*Nx)*({4}*Ny - {2}*Nx))) }}\n",
-          suffix, nlv, num(a.y), num(a.z), num(a.x));
     }
     return out + "\n";
   }
 
-  // The radiance of one light of unit colour at a point with normal N, seen from
-  // the camera: att(d) · spot · reflectance. Facet_Light{i}(x, y, z, Nx, Ny, Nz).
-  std::string light_function(size_t i, int ch) {
+  // {P}Facet_Light{i}(x, y, z, Nx, Ny, Nz): the radiance of light i of unit colour
+  // at a point with unit normal N, seen from the camera: att(d) · spot · reflectance.
+  std::string light_function(const Shading& sh, size_t i, int ch) {
     const Light& l = s_.lights[i];
-    std::string suffix = channel_dependent() ? std::string("_") + kChannel[ch] : "";
-    std::string reflect = "Facet_Reflect" + suffix;
-    std::string name = fmt::format("Facet_Light{}{}", i, suffix);
+    std::string reflect = sh.prefix + "Facet_Reflect" + sh.suffix(ch);
+    std::string name = fmt::format("{}Facet_Light{}{}", sh.prefix, i, sh.suffix(ch));
     Vec3 e = s_.camera.position;
     std::string view = fmt::format("sqrt(({0}-x)*({0}-x) + ({1}-y)*({1}-y) + ({2}-z)*({2}-z))", num(e.x), num(e.y),
                                    num(e.z));
@@ -522,31 +650,22 @@ class PovScene {
     return out;
   }
 
-  // For the library: a point light given by position, and the eye, as parameters.
-  std::string point_shade_functions() {
-    std::string out;
-    for (int ch = 0; ch < channels(); ++ch) {
-      std::string suffix = channel_dependent() ? std::string("_") + kChannel[ch] : "";
-      out += fmt::format(
-          "#declare Facet_Point_Shade{0}__1 = function(Nx, Ny, Nz, Lx, Ly, Lz, Vx, Vy, Vz, D, Dv) {{ "
-          "Facet_Reflect{0}(Nx, Ny, Nz, Lx/D, Ly/D, Lz/D, Vx/Dv, Vy/Dv, Vz/Dv) }}\n"
-          "#declare Facet_Point_Shade{0} = function(x, y, z, Nx, Ny, Nz, Px, Py, Pz, Ex, Ey, Ez) {{ "
-          "Facet_Point_Shade{0}__1(Nx, Ny, Nz, Px-x, Py-y, Pz-z, Ex-x, Ey-y, Ez-z, "
-          "sqrt((Px-x)*(Px-x) + (Py-y)*(Py-y) + (Pz-z)*(Pz-z)), sqrt((Ex-x)*(Ex-x) + (Ey-y)*(Ey-y) + (Ez-z)*(Ez-z))) }}\n",
-          suffix);
-    }
-    return out;
-  }
-
-  // The per-object radiance of light i: the object's normal fed to Facet_Light{i}.
+  // Facet_Object{o}_Light{i}: light i on object o. Spheres and squares take
+  // (x, y, z); meshes take (x, y, z) and the unnormalized interpolated normal.
   std::string object_function(size_t o, size_t i, int ch) {
     const Object& obj = s_.objects[o];
-    std::string suffix = channel_dependent() ? std::string("_") + kChannel[ch] : "";
-    std::string name = fmt::format("Facet_Object{}_Light{}{}", o, i, suffix);
-    std::string light = fmt::format("Facet_Light{}{}", i, suffix);
+    const Shading& sh = *shadings_[shading_of_[o]];
+    std::string name = fmt::format("Facet_Object{}_Light{}{}", o, i, sh.suffix(ch));
+    std::string light = fmt::format("{}Facet_Light{}{}", sh.prefix, i, sh.suffix(ch));
     if (obj.type == Object::Type::Plane) {
       return fmt::format("#declare {} = function(x, y, z) {{ {}(x, y, z, {}, {}, {}) }}\n", name, light,
                          num(obj.normal.x), num(obj.normal.y), num(obj.normal.z));
+    }
+    if (obj.type == Object::Type::Mesh) {
+      return fmt::format(
+          "#declare {0}__1 = function(x, y, z, Mx, My, Mz, Len) {{ {1}(x, y, z, Mx/Len, My/Len, Mz/Len) }}\n"
+          "#declare {0} = function(x, y, z, Mx, My, Mz) {{ {0}__1(x, y, z, Mx, My, Mz, sqrt(Mx*Mx + My*My + Mz*Mz)) }}\n",
+          name, light);
     }
     // Sphere: N = (P − C)/|P − C|, which holds for the shrunken copies too.
     const Vec3& c = obj.center;
@@ -556,136 +675,185 @@ class PovScene {
         name, light, num(c.x), num(c.y), num(c.z));
   }
 
-  // The pigment of object o for light i, times `weight`, with transmit `t`.
-  // The function holds min(radiance·S, 1), S = the light's colour × exposure:
-  // exact up to the radiance at which the 16-bit output saturates anyway.
-  std::string pigment(size_t o, size_t i, double weight, double t) {
+  // The interpolated normal of a mesh triangle as affine functions of the hit
+  // point: m(P) = n0 + u(P)(n1 − n0) + v(P)(n2 − n0), with the barycentrics u, v
+  // linear in P: u = (P − p0)·a1, v = (P − p0)·a2 for the dual basis a1, a2.
+  static std::string triangle_normal(const Mesh& m, size_t t) {
+    const auto& k = m.triangles[t];
+    Vec3 p0 = m.positions[k[0]], e1 = m.positions[k[1]] - p0, e2 = m.positions[k[2]] - p0;
+    Vec3 g = cross(e1, e2);
+    double g2 = dot(g, g);
+    if (g2 == 0) return fmt::format("{}, {}, {}", num(m.normals[k[0]].x), num(m.normals[k[0]].y), num(m.normals[k[0]].z));
+    Vec3 a1 = cross(e2, g) / g2, a2 = cross(g, e1) / g2;
+    Vec3 n0 = m.normals[k[0]], d1 = m.normals[k[1]] - n0, d2 = m.normals[k[2]] - n0;
+    double c1 = dot(p0, a1), c2 = dot(p0, a2);
+    std::string out;
+    for (int j = 0; j < 3; ++j) {
+      double cx = a1.x * d1[j] + a2.x * d2[j], cy = a1.y * d1[j] + a2.y * d2[j], cz = a1.z * d1[j] + a2.z * d2[j];
+      double c0 = n0[j] - c1 * d1[j] - c2 * d2[j];
+      out += fmt::format("{}{}*x + {}*y + {}*z + {}", j ? ", " : "", num(cx), num(cy), num(cz), num(c0));
+    }
+    return out;
+  }
+
+  // A pigment holding light i's radiance on object o (`call(ch)` evaluates it), × weight,
+  // with transmit t. The function holds min(radiance·S, 1), S = the light's colour ×
+  // exposure: exact up to the radiance at which the 16-bit output saturates anyway.
+  std::string pigment(size_t o, size_t i, double weight, double t, const std::function<std::string(int)>& call) {
+    const Shading& sh = *shadings_[shading_of_[o]];
     const RGB& c = s_.lights[i].color;
     std::string tr = t > 0 ? fmt::format(", {}", num(t)) : "";
     const char* kind = t > 0 ? "rgbt" : "rgb";
-    if (!channel_dependent()) {
+    if (!sh.dependent) {
       double smin = 0;
       for (double x : c)
         if (x > 0 && (smin == 0 || x < smin)) smin = x;
       if (smin == 0) return fmt::format("pigment {{ {} <0, 0, 0{}> }}", kind, tr);
       return fmt::format(
-          "pigment {{ function {{ max(0, min(1, Facet_Object{0}_Light{1}(x, y, z) * {2}*Facet_Exposure)) }}\n"
-          "      color_map {{ [0 {3} <0, 0, 0{4}>] [1 {3} <1, 1, 1{4}>*{5}/({2}*Facet_Exposure)] }} }}",
-          o, i, num(smin), kind, tr, num(weight));
+          "pigment {{ function {{ max(0, min(1, {0} * {1}*Facet_Exposure)) }}"
+          " color_map {{ [0 {2} <0, 0, 0{3}>] [1 {2} <1, 1, 1{3}>*{4}/({1}*Facet_Exposure)] }} }}",
+          call(0), num(smin), kind, tr, num(weight));
     }
-    std::string out = "pigment { average pigment_map {\n";
+    std::string out = "pigment { average pigment_map {";
     for (int ch = 0; ch < 3; ++ch) {
       RGB end{0, 0, 0};
       end[ch] = 1;
       if (c[ch] == 0) {
-        out += fmt::format("      [1 {} <0, 0, 0{}>]\n", kind, tr);
+        out += fmt::format(" [1 {} <0, 0, 0{}>]", kind, tr);
         continue;
       }
       out += fmt::format(
-          "      [1 function {{ max(0, min(1, Facet_Object{0}_Light{1}_{2}(x, y, z) * {3}*Facet_Exposure)) }}\n"
-          "         color_map {{ [0 {4} <0, 0, 0{5}>] [1 {4} <{6}, {7}, {8}{5}>*{9}/({3}*Facet_Exposure)] }}]\n",
-          o, i, kChannel[ch], num(c[ch]), kind, tr, num(end[0]), num(end[1]), num(end[2]), num(3 * weight));
+          "\n      [1 function {{ max(0, min(1, {0} * {1}*Facet_Exposure)) }}"
+          " color_map {{ [0 {2} <0, 0, 0{3}>] [1 {2} <{4}, {5}, {6}{3}>*{7}/({1}*Facet_Exposure)] }}]",
+          call(ch), num(c[ch]), kind, tr, num(end[0]), num(end[1]), num(end[2]), num(3 * weight));
     }
-    return out + "    } }";
+    return out + " } }";
   }
 
-  static std::string lit_finish() {
-    return "finish { ambient 0 emission 0 diffuse 1 brilliance 0 specular 0 phong 0 }";
+  static std::string lit_finish() { return "finish { ambient 0 emission 0 diffuse 1 brilliance 0 specular 0 phong 0 }"; }
+
+  // Object o lit by light i, × weight, with transmit t.
+  std::string lit(size_t o, size_t i, double weight, double t, double shrink, const std::string& mods) {
+    const Object& obj = s_.objects[o];
+    const Shading& sh = *shadings_[shading_of_[o]];
+    if (obj.type != Object::Type::Mesh) {
+      std::string tex = fmt::format("\n  texture {{ {} {} }}\n", pigment(o, i, weight, t, [&](int ch) {
+        return fmt::format("Facet_Object{}_Light{}{}(x, y, z)", o, i, sh.suffix(ch));
+      }), lit_finish());
+      return object(o, shrink, tex, mods);
+    }
+    // One texture per triangle, from a macro taking the triangle's normal
+    // functions (declared once, Facet_Object{o}_T{t}_X/Y/Z).
+    const Mesh& m = *obj.mesh;
+    std::string macro = fmt::format("Facet_Object{}_Light{}_Texture{}", o, i, weight == 1 && t == 0 ? "" : fmt::format("_{}", int(weight)));
+    std::string out = fmt::format("#macro {}(NX, NY, NZ)\n  texture {{ {} {} }}\n#end\n", macro,
+                                  pigment(o, i, weight, t, [&](int ch) {
+                                    return fmt::format("Facet_Object{}_Light{}{}(x, y, z, NX(x, y, z), NY(x, y, z), NZ(x, y, z))",
+                                                       o, i, sh.suffix(ch));
+                                  }),
+                                  lit_finish());
+    std::string list = fmt::format("  texture_list {{ {}", m.triangles.size());
+    for (size_t tr = 0; tr < m.triangles.size(); ++tr)
+      list += fmt::format("{0}{1}(Facet_Object{2}_T{3}_X, Facet_Object{2}_T{3}_Y, Facet_Object{2}_T{3}_Z)",
+                          tr % 2 == 0 ? ",\n    " : ", ", macro, o, tr);
+    return out + object(o, shrink, list + "\n  }\n", mods);
   }
 
-  std::string emission_texture(double weight, double t) {
-    RGB e = emission();
-    return fmt::format("texture {{ pigment {{ rgbt <{}, {}, {}, {}> }} finish {{ ambient 0 emission Facet_Exposure "
-                       "diffuse 0 specular 0 phong 0 }} }}",
-                       num(weight * e[0]), num(weight * e[1]), num(weight * e[2]), num(t));
+  // The interpolated normal of each triangle of mesh o, as three functions of the hit point.
+  std::string mesh_normals(size_t o) {
+    const Mesh& m = *s_.objects[o].mesh;
+    std::string out = fmt::format("// Mesh \"{}\": each triangle's interpolated normal (unnormalized) at the hit point\n",
+                                  s_.objects[o].name);
+    for (size_t tr = 0; tr < m.triangles.size(); ++tr) {
+      std::string n = triangle_normal(m, tr);
+      size_t a = n.find(", "), b = n.find(", ", a + 2);
+      // triangle_normal returns "X, Y, Z" with each a linear form in x, y, z.
+      std::string comps[3] = {n.substr(0, a), n.substr(a + 2, b - a - 2), n.substr(b + 2)};
+      for (int j = 0; j < 3; ++j)
+        out += fmt::format("#declare Facet_Object{}_T{}_{} = function(x, y, z) {{ {} }}\n", o, tr, "XYZ"[j], comps[j]);
+    }
+    return out;
   }
 
-  // The object's geometry with `body` inside; `shrink` > 0 insets a copy.
-  std::string object(const Object& o, double shrink, const std::string& body, const std::string& modifiers) {
-    if (o.type == Object::Type::Sphere)
-      return fmt::format("sphere {{ {}, {}{}{}}}", vec(o.center), num(o.radius * (1 - shrink)), body, modifiers);
-    Vec3 u, v;
-    o.plane_axes(u, v);
-    Vec3 c = o.point - o.normal * shrink;
-    Vec3 p0 = c + (u + v) * o.size, p1 = c + (v - u) * o.size, p2 = c - (u + v) * o.size, p3 = c + (u - v) * o.size;
-    return fmt::format("polygon {{ 5, {}, {}, {}, {}, {}{}{}}}", vec(p0), vec(p1), vec(p2), vec(p3), vec(p0), body,
-                       modifiers);
+  std::string emitting(size_t o, double weight, double t, double shrink, const std::string& mods) {
+    const Shading& sh = *shadings_[shading_of_[o]];
+    RGB e = sh.emission(s_);
+    if (s_.objects[o].type != Object::Type::Mesh) return object(o, shrink, "\n  " + emission_texture(e, weight, t) + "\n", mods);
+    const Mesh& m = *s_.objects[o].mesh;
+    std::string list = fmt::format("  texture_list {{ {}", m.triangles.size());
+    for (size_t tr = 0; tr < m.triangles.size(); ++tr) list += ",\n    " + emission_texture(e, weight, t);
+    return object(o, shrink, list + "\n  }\n", mods);
   }
 
   std::string lit_objects() {
-    std::string out = "// ---- Lights: the radiance of each light of unit colour, per object\n";
-    for (size_t i = 0; i < s_.lights.size(); ++i)
-      for (int ch = 0; ch < channels(); ++ch) out += light_function(i, ch);
+    std::string out = "// ---- Lights: the radiance of each light of unit colour, per material and object\n";
+    for (const auto& sh : shadings_)
+      for (size_t i = 0; i < s_.lights.size(); ++i)
+        for (int ch = 0; ch < sh->channels(); ++ch) out += light_function(*sh, i, ch);
     for (size_t o = 0; o < s_.objects.size(); ++o)
       for (size_t i = 0; i < s_.lights.size(); ++i)
-        for (int ch = 0; ch < channels(); ++ch) out += object_function(o, i, ch);
+        for (int ch = 0; ch < shadings_[shading_of_[o]]->channels(); ++ch) out += object_function(o, i, ch);
+    for (size_t o = 0; o < s_.objects.size(); ++o)
+      if (s_.objects[o].type == Object::Type::Mesh) out += mesh_normals(o);
     out += "\n";
-    bool emits = !black(emission());
     size_t n = s_.lights.size();
+    bool emits = false;
+    for (size_t o = 0; o < s_.objects.size(); ++o) emits |= !black(shadings_[shading_of_[o]]->emission(s_));
 
-    // One light at a time (Facet_Light = i) is exact. The emission goes with
-    // light 0 as a layer of transmit 0.5 over the lit texture of weight 2.
-    auto light_source = [&](const Light& l) {
-      bool parallel = l.type == Light::Type::Directional;
-      return fmt::format("light_source {{ {} color rgb {}*Facet_Exposure{} }}\n",
-                         parallel ? vec(Vec3(0, 0, 0) - l.direction * 1e5) : vec(l.position), rgb(l.color),
-                         parallel ? " parallel point_at <0, 0, 0>" : "");
-    };
+    // One pass at a time is exact: Facet_Light = i < n renders light i alone,
+    // i = n the emission (m_a ⊗ A + m_e) alone; the passes sum to the image.
+    size_t items = n + (emits ? 1 : 0);
     auto pass = [&](size_t i) {
-      std::string p = n > 0 ? light_source(s_.lights[i]) : "";
-      for (size_t o = 0; o < s_.objects.size(); ++o) {
-        bool layer = emits && i == 0;
-        std::string tex;
-        if (n > 0) tex = fmt::format("\n  texture {{ {} {} }}", pigment(o, i, layer ? 2 : 1, 0), lit_finish());
-        if (layer) tex += "\n  " + emission_texture(n == 0 ? 1 : 2, n == 0 ? 0 : 0.5);
-        p += object(s_.objects[o], 0, tex + "\n", "") + "\n";
-      }
+      std::string p = i < n ? light_source(s_.lights[i]) + "\n" : "";
+      for (size_t o = 0; o < s_.objects.size(); ++o)
+        p += (i < n ? lit(o, i, 1, 0, 0, "") : emitting(o, 1, 0, 0, "")) + "\n";
       return p;
     };
-    if (n <= 1) return out + pass(0);
+    if (items <= 1) return out + (items == 1 ? pass(0) : "");
 
     out += "#if (Facet_Light >= 0)\n#switch (Facet_Light)\n";
-    for (size_t i = 0; i < n; ++i) out += fmt::format("#case ({})\n", i) + pass(i) + "#break\n";
+    for (size_t i = 0; i < items; ++i)
+      out += fmt::format("#case ({})  // {}\n", i, i < n ? fmt::format("light {}", i) : "emission") + pass(i) + "#break\n";
     out += "#end\n#else\n";
-    // Every light at once: nested copies, one light_group each. Copy k lets
+    // Every pass at once: nested copies, one light_group each. Copy k lets
     // (items − k − 1)/(items − k) through to the copies inside it, so each
     // contributes 1/items of its weighted pigment; only the innermost casts shadows.
-    size_t items = n + (emits ? 1 : 0);
     for (size_t k = 0; k < items; ++k) {
       double t = double(items - 1 - k) / double(items - k);
       double weight = double(items - k);  // compensates (1 − t) = 1/(items − k)
       double shrink = 1e-4 * double(k);
-      std::string mods = k + 1 == items ? "" : " no_shadow";
+      std::string mods = k + 1 == items ? "" : "  no_shadow\n";
       if (k < n) {
-        out += "light_group {\n  " + light_source(s_.lights[k]);
-        for (size_t o = 0; o < s_.objects.size(); ++o) {
-          std::string tex = fmt::format("\n  texture {{ {} {} }}\n", pigment(o, k, weight, t), lit_finish());
-          out += "  " + object(s_.objects[o], shrink, tex, mods) + "\n";
-        }
+        out += "light_group {\n  " + light_source(s_.lights[k]) + "\n";
+        for (size_t o = 0; o < s_.objects.size(); ++o) out += lit(o, k, weight, t, shrink, mods) + "\n";
         out += "  global_lights off\n}\n";
       } else {
-        for (size_t o = 0; o < s_.objects.size(); ++o)
-          out += object(s_.objects[o], shrink, "\n  " + emission_texture(weight, t) + "\n", mods) + "\n";
+        for (size_t o = 0; o < s_.objects.size(); ++o) out += emitting(o, weight, t, shrink, mods) + "\n";
       }
     }
     out += "#end\n";
     return out;
   }
 
-  const Material& m_;
   const Scene& s_;
   std::string source_;
-  MaterialProgram program_;
   PovPlan plan_;
-  PovPrinter printer_;
+  std::vector<std::unique_ptr<Shading>> shadings_;
+  std::vector<size_t> shading_of_;
+  double scale_ = 1;
 };
 
 }  // namespace
 
 std::string generate_pov(const Material& m, const GenerateOptions& o) {
   Scene s = o.scene ? *o.scene : default_scene();
-  PovScene scene(m, s, o.source);
+  PovScene scene(s, &m, o.source);
   return o.library ? scene.library() : scene.render();
+}
+
+std::string generate_pov_scene(const Scene& s, const Material* fallback, const std::string& source) {
+  PovScene scene(s, fallback, source);
+  return scene.render();
 }
 
 }  // namespace facet

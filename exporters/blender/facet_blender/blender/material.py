@@ -1,0 +1,49 @@
+"""A Blender material's facet settings <-> facet's material JSON."""
+
+from ..core import UserError, props as plan_mod
+from . import properties, state
+
+
+def has_settings(material):
+    """Whether the material has facet settings (its facet panel is enabled)."""
+    pg = getattr(material, "facet", None)
+    return bool(pg is not None and getattr(pg, plan_mod.USE_FACET, False))
+
+
+def no_settings_error(material):
+    return UserError(f"material '{material.name}' has no facet settings: enable facet in its "
+                     f"Material Properties > facet panel, or run 'Convert Blender Material to facet'")
+
+
+def to_json(material):
+    """facet's material JSON (a dict) from the material's facet settings."""
+    catalog, plan = state.require()
+    if not has_settings(material):
+        raise no_settings_error(material)
+    values = properties.read(material.facet, plan)
+    return plan_mod.material_to_json(catalog, plan, values, material.name)
+
+
+def from_json(material, data):
+    """Sets the material's facet settings from a (valid) material JSON."""
+    catalog, plan = state.require()
+    values = plan_mod.material_from_json(catalog, plan, data)   # everything computed first,
+    properties.write(material.facet, plan, values)              # then written in one go
+
+
+def set_lobes(material, result):
+    """Sets the facet settings from a core.convert.Result (Blender BSDF mapping)."""
+    catalog, plan = state.require()
+    values = {plan_mod.USE_FACET: True}
+    for section in ("diffuse", "specular"):
+        lobe = getattr(result, section)
+        if lobe is None:
+            values[f"{section}_model"] = plan_mod.NONE
+            continue
+        values[f"{section}_model"] = lobe["model"]
+        group = plan.field(f"{section}_{lobe['model']}").group
+        values[f"{section}_{lobe['model']}"] = plan_mod.lobe_from_json(group, lobe)
+    emission = next((k for k in catalog.material_keys if k.name == "emission"), None)
+    if emission:
+        values["emission"] = list(result.emission) if result.emission else [0.0, 0.0, 0.0]
+    properties.write(material.facet, plan, values)

@@ -1,0 +1,193 @@
+"""Putting generated OSL into a material: Text datablock + Script node, compiled by Cycles.
+
+Compiling headless: `bpy.ops.node.shader_script_update` needs a node editor in Blender
+4.5 (its poll fails in background mode), so the add-on calls Cycles' own driver,
+`cycles.osl.update_script_node(node, report)`, which is what that operator runs. That
+driver imports `oslquery`, which the pip `bpy` wheel keeps in Blender's bundled
+site-packages, not on sys.path; `enable_oslquery` appends it.
+"""
+
+import ctypes
+import glob
+import os
+import sys
+import tempfile
+
+import bpy
+
+from ..core import UserError
+
+NODE_NAME = "facet OSL"
+
+
+def available():
+    """(True, "") when this Blender's Cycles has OSL, else (False, why not)."""
+    version = bpy.app.version_string
+    if not getattr(bpy.app.build_options, "cycles_osl", False):
+        return False, f"this Blender ({version}) was built without OSL (Open Shading Language)"
+    try:
+        import _cycles
+    except ImportError:
+        return False, f"this Blender ({version}) has no Cycles"
+    if not getattr(_cycles, "with_osl", False):
+        return False, f"this Blender's Cycles ({version}) was built without OSL"
+    return True, ""
+
+
+def enable_oslquery():
+    try:
+        import oslquery  # noqa: F401
+        return
+    except ImportError:
+        pass
+    root = bpy.utils.system_resource("PYTHON")
+    for folder in sorted(glob.glob(os.path.join(root, "lib", "python*", "site-packages"))):
+        if os.path.isdir(os.path.join(folder, "oslquery")) and folder not in sys.path:
+            sys.path.append(folder)
+    try:
+        import oslquery  # noqa: F401,F811
+    except ImportError as e:
+        raise UserError(f"Blender's OSL query module is missing ({e}); cannot compile OSL")
+
+
+class _CaptureNative:
+    """Captures what native code (the OSL compiler) prints on fds 1 and 2."""
+
+    def __enter__(self):
+        self.text = ""
+        try:
+            self._flush()
+            self._file = tempfile.TemporaryFile()
+            self._saved = [os.dup(1), os.dup(2)]
+            os.dup2(self._file.fileno(), 1)
+            os.dup2(self._file.fileno(), 2)
+        except OSError:
+            self._file = None
+        return self
+
+    def __exit__(self, *exc):
+        if self._file is None:
+            return False
+        self._flush()
+        os.dup2(self._saved[0], 1)
+        os.dup2(self._saved[1], 2)
+        for fd in self._saved:
+            os.close(fd)
+        self._file.seek(0)
+        self.text = self._file.read().decode("utf-8", "replace")
+        self._file.close()
+        return False
+
+    @staticmethod
+    def _flush():
+        sys.stdout.flush()
+        sys.stderr.flush()
+        try:
+            ctypes.CDLL(None).fflush(None)
+        except (OSError, AttributeError):
+            pass
+
+
+def _output_node(tree):
+    from .nodes import output_node
+    node = output_node(tree)
+    if node is None:
+        node = tree.nodes.new("ShaderNodeOutputMaterial")
+        node.target = "ALL"
+    return node
+
+
+def _compile(tree, text):
+    """A new INTERNAL Script node in `tree` running `text`, compiled. Returns the node;
+    on failure removes it and raises a UserError with the compiler's words."""
+    import cycles.osl  # Cycles' add-on
+
+    script = tree.nodes.new("ShaderNodeScript")
+    script.mode = "INTERNAL"
+    reports = []
+    ok = False
+    saved_tempdir = tempfile.tempdir
+    capture = None
+    try:
+        # Cycles compiles the text to a temporary .oso it never deletes: keep those in a
+        # folder of our own. Setting `script` also starts a compile (the node's update),
+        # whose report is lost; the explicit call below reports.
+        with tempfile.TemporaryDirectory(prefix="facet-osl-") as work:
+            tempfile.tempdir = work
+            try:
+                with _CaptureNative() as capture:
+                    script.script = text
+                    ok = cycles.osl.update_script_node(script, lambda kind, msg: reports.append(msg))
+            finally:
+                tempfile.tempdir = saved_tempdir
+        if not (ok and script.bytecode and "Out" in script.outputs):
+            words = [line for line in (capture.text if capture else "").splitlines() if "error" in line.lower()]
+            words += [m for m in reports if m and "succeeded" not in m]
+            raise UserError("the OSL compiler rejected the generated shader:\n"
+                            + "\n".join(words or ["no bytecode, or no output named Out"]))
+    except BaseException:
+        tree.nodes.remove(script)
+        raise
+    return script
+
+
+def install(material, osl_text, text_name):
+    """Compiles `osl_text` in a new Script node of `material` and wires its "Out" to the
+    Material Output's Surface, replacing an earlier facet OSL node.
+
+    The shader is first compiled in a scratch material, so a shader that does not
+    compile leaves `material` exactly as it was (not even its node tree is created)."""
+    enable_oslquery()
+    text = bpy.data.texts.new(text_name)
+    text.write(osl_text)
+    scratch = bpy.data.materials.new("facet OSL check")
+    try:
+        scratch.use_nodes = True
+        _compile(scratch.node_tree, text)
+    except BaseException:
+        bpy.data.texts.remove(text)
+        raise
+    finally:
+        bpy.data.materials.remove(scratch)
+    material.use_nodes = True
+    tree = material.node_tree
+    try:
+        script = _compile(tree, text)
+    except BaseException:
+        bpy.data.texts.remove(text)
+        raise
+
+    # Success: replace an earlier facet node and its text, then wire the new one.
+    old_texts = set()
+    for node in [n for n in tree.nodes if n.type == "SCRIPT" and n != script and n.name.startswith(NODE_NAME)]:
+        if node.script is not None:
+            old_texts.add(node.script.name)
+        tree.nodes.remove(node)
+    if text_name in bpy.data.texts and text_name != text.name:
+        old_texts.add(text_name)
+    in_use = _texts_in_use()
+    for name in old_texts - in_use:
+        bpy.data.texts.remove(bpy.data.texts[name])
+    if text_name not in bpy.data.texts:
+        text.name = text_name
+    script.name = script.label = NODE_NAME
+    output = _output_node(tree)
+    script.location = (output.location.x - 300, output.location.y)
+    tree.links.new(script.outputs["Out"], output.inputs["Surface"])
+    if hasattr(material, "cycles") and hasattr(material.cycles, "emission_sampling"):
+        # The shader emits the lit result; it is not a light source for other objects.
+        material.cycles.emission_sampling = "NONE"
+    return script
+
+
+def _texts_in_use():
+    """Names of the Texts some Script node (in any material or node group) runs."""
+    trees = [m.node_tree for m in bpy.data.materials if m.node_tree] + list(bpy.data.node_groups)
+    return {n.script.name for t in trees for n in t.nodes if n.type == "SCRIPT" and n.script is not None}
+
+
+def configure_scene(scene):
+    """Cycles on the CPU with the OSL shading system, as Script nodes need."""
+    scene.render.engine = "CYCLES"
+    scene.cycles.device = "CPU"
+    scene.cycles.shading_system = True

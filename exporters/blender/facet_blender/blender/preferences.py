@@ -1,0 +1,84 @@
+"""Add-on preferences: where the facet and POV-Ray executables are."""
+
+import shutil
+
+import bpy
+from bpy.props import StringProperty
+
+from ..core import UserError, cli
+
+# The add-on's own module name: "facet_blender" as a legacy add-on,
+# "bl_ext.<repository>.facet" as an extension. This module is <root>.blender.preferences.
+ADDON_ID = __package__.rpartition(".")[0]
+
+
+def _facet_path_changed(self, context):
+    # A new path may bring the catalog (and the panel's properties) back.
+    from . import state
+    state.reload(self.facet_path)
+
+
+class FACET_AP_preferences(bpy.types.AddonPreferences):
+    bl_idname = ADDON_ID
+
+    facet_path: StringProperty(
+        name="facet executable",
+        description="Path of the facet command-line tool, which holds the model catalog and generates "
+                    "the GLSL, OSL and POV-Ray code. Default: facet on PATH, else $FACET_BIN",
+        subtype="FILE_PATH",
+        default=cli.default_facet_path(),
+        update=_facet_path_changed,
+    )
+    povray_path: StringProperty(
+        name="POV-Ray executable",
+        description="Path of POV-Ray 3.7 (povray), used to render exported POV-Ray scenes. "
+                    "Default: povray on PATH",
+        subtype="FILE_PATH",
+        default=shutil.which("povray") or "",
+    )
+
+    def draw(self, context):
+        from . import state
+        layout = self.layout
+        layout.prop(self, "facet_path")
+        if state.STATE.catalog:
+            c = state.STATE.catalog
+            layout.label(text=f"facet {c.version}: {len(c.models('diffuse'))} diffuse and "
+                              f"{len(c.models('specular'))} specular models ({state.STATE.exe})",
+                         icon="CHECKMARK")
+        else:
+            for line in state.STATE.error.splitlines() or ["facet is not loaded"]:
+                layout.label(text=line, icon="ERROR")
+        layout.operator("facet.reload_catalog", icon="FILE_REFRESH")
+        layout.prop(self, "povray_path")
+
+
+def get(context=None):
+    """The preferences, or None when the add-on is registered without an add-on entry
+    (e.g. by calling register() directly from a script)."""
+    context = context or bpy.context
+    addon = context.preferences.addons.get(ADDON_ID)
+    return addon.preferences if addon else None
+
+
+def facet_path_setting(context=None):
+    prefs = get(context)
+    return prefs.facet_path if prefs else ""
+
+
+def facet_exe(context=None):
+    """The facet executable to run (raises a UserError that says where to set it)."""
+    return cli.find_facet(facet_path_setting(context))
+
+
+def povray_exe(context=None):
+    prefs = get(context)
+    path = (prefs.povray_path if prefs else "") or shutil.which("povray") or ""
+    found = shutil.which(path) if path else None
+    if not found:
+        raise UserError(f"POV-Ray not found{f' at {path!r}' if path else ''}: install POV-Ray 3.7 or set "
+                        f"its path in Edit > Preferences > Add-ons > facet > POV-Ray executable")
+    return found
+
+
+classes = (FACET_AP_preferences,)

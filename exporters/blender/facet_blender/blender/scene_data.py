@@ -1,0 +1,212 @@
+"""The Blender scene read into plain data and assembled into facet's scene JSON.
+
+Only reading happens here (bpy -> lists and dicts); every conversion (axes, units,
+normals, windings) is in core/scene.py.
+"""
+
+import bpy
+
+from ..core import UserError, scene as core_scene
+from . import material as material_mod
+
+MESH_TYPES = {"MESH", "CURVE", "SURFACE", "META", "FONT"}
+
+
+def _rows(matrix):
+    return [[float(x) for x in row] for row in matrix]
+
+
+def render_size(scene):
+    r = scene.render
+    return (max(1, r.resolution_x * r.resolution_percentage // 100),
+            max(1, r.resolution_y * r.resolution_percentage // 100))
+
+
+def camera_json(scene):
+    """(facet camera, notes) of the scene's active camera."""
+    obj = scene.camera
+    if obj is None or obj.type != "CAMERA":
+        raise UserError(f"scene '{scene.name}' has no active camera")
+    cam = obj.data
+    width, height = render_size(scene)
+    return core_scene.camera({
+        "name": obj.name, "type": cam.type, "matrix": _rows(obj.matrix_world),
+        "lens": cam.lens, "sensor_width": cam.sensor_width, "sensor_height": cam.sensor_height,
+        "sensor_fit": cam.sensor_fit, "width": width, "height": height,
+        "pixel_aspect_x": scene.render.pixel_aspect_x, "pixel_aspect_y": scene.render.pixel_aspect_y,
+        "shift_x": cam.shift_x, "shift_y": cam.shift_y})
+
+
+def world_ambient(scene):
+    """(ambient RGB, notes): the World's colour × strength when it is a plain Background."""
+    world = scene.world
+    if world is None:
+        return [0.0, 0.0, 0.0], []
+    if not world.use_nodes or world.node_tree is None:
+        return [float(c) for c in world.color], []
+    outputs = [n for n in world.node_tree.nodes if n.type == "OUTPUT_WORLD"]
+    output = next((n for n in outputs if n.is_active_output), outputs[0] if outputs else None)
+    surface = output.inputs.get("Surface") if output else None
+    node = surface.links[0].from_node if surface is not None and surface.is_linked else None
+    if node is None:
+        return [0.0, 0.0, 0.0], []
+    color, strength = node.inputs.get("Color"), node.inputs.get("Strength")
+    if node.type != "BACKGROUND" or color.is_linked or strength.is_linked:
+        return [0.0, 0.0, 0.0], [f"world '{world.name}' is not a plain Background colour; ambient 0"]
+    return [float(c) * float(strength.default_value) for c in list(color.default_value)[:3]], []
+
+
+def _light_desc(obj, matrix):
+    light = obj.data
+    return {"name": obj.name, "type": light.type, "matrix": _rows(matrix),
+            "color": [float(c) for c in light.color], "energy": float(light.energy),
+            "shadow_soft_size": float(getattr(light, "shadow_soft_size", 0.0)),
+            "angle": float(getattr(light, "angle", 0.0)),
+            "spot_size": float(getattr(light, "spot_size", 0.0)),
+            "spot_blend": float(getattr(light, "spot_blend", 0.0)),
+            "use_nodes": bool(getattr(light, "use_nodes", False))}
+
+
+def _instances(depsgraph):
+    """(name, evaluated object, world matrix) of everything the scene renders,
+    instances included, hidden-for-render objects excluded."""
+    seen = {}
+    for inst in depsgraph.object_instances:
+        obj = inst.object
+        original = obj.original
+        if getattr(original, "hide_render", False):
+            continue
+        name = original.name
+        if inst.is_instance:
+            seen[name] = seen.get(name, 0) + 1
+            name = f"{name}.instance{seen[name]}"
+        yield name, obj, inst.matrix_world.copy()
+
+
+def lights_json(depsgraph):
+    """(facet lights, notes) of every light the scene renders."""
+    lights, notes = [], []
+    for name, obj, matrix in _instances(depsgraph):
+        if obj.type != "LIGHT":
+            continue
+        desc = _light_desc(obj, matrix)
+        desc["name"] = name
+        light, light_notes = core_scene.light(desc, tuple(bpy.app.version))
+        notes.extend(light_notes)
+        if light:
+            lights.append(light)
+    return lights, notes
+
+
+def _corner_normals(mesh):
+    """Per-corner normals, flat list (Blender 4.1+: corner_normals; older: split normals)."""
+    values = [0.0] * (3 * len(mesh.loops))
+    if hasattr(mesh, "corner_normals"):
+        mesh.corner_normals.foreach_get("vector", values)
+    else:
+        mesh.calc_normals_split()
+        mesh.loops.foreach_get("normal", values)
+    return values
+
+
+def _mesh_data(obj, mesh):
+    """Positions, triangles, per-corner normals and per-triangle slot indices."""
+    mesh.calc_loop_triangles()
+    count = len(mesh.loop_triangles)
+    co = [0.0] * (3 * len(mesh.vertices))
+    mesh.vertices.foreach_get("co", co)
+    positions = [tuple(co[i:i + 3]) for i in range(0, len(co), 3)]
+    verts, loops = [0] * (3 * count), [0] * (3 * count)
+    polys, slots = [0] * count, [0] * count
+    mesh.loop_triangles.foreach_get("vertices", verts)
+    mesh.loop_triangles.foreach_get("loops", loops)
+    mesh.loop_triangles.foreach_get("polygon_index", polys)
+    mesh.loop_triangles.foreach_get("material_index", slots)
+    corner = _corner_normals(mesh)
+    smooth = [False] * len(mesh.polygons)
+    mesh.polygons.foreach_get("use_smooth", smooth)
+    face_normal = [0.0] * (3 * len(mesh.polygons))
+    mesh.polygons.foreach_get("normal", face_normal)
+
+    triangles, normals = [], []
+    for t in range(count):
+        triangles.append(tuple(verts[3 * t:3 * t + 3]))
+        p = polys[t]
+        if smooth[p]:
+            normals.append(tuple(tuple(corner[3 * l:3 * l + 3]) for l in loops[3 * t:3 * t + 3]))
+        else:
+            n = tuple(face_normal[3 * p:3 * p + 3])
+            normals.append((n, n, n))
+    return positions, triangles, normals, slots
+
+
+def objects_json(depsgraph, materials):
+    """(facet mesh objects, notes). `materials` collects name -> Blender material of
+    every material used (their facet settings are checked by the caller)."""
+    objects, notes = [], []
+    for name, obj, matrix in _instances(depsgraph):
+        if obj.type not in MESH_TYPES:
+            if obj.type not in ("LIGHT", "CAMERA", "EMPTY"):
+                notes.append(f"object '{name}' ({obj.type}) is not a mesh; skipped")
+            continue
+        mesh = obj.to_mesh()
+        try:
+            if mesh is None or not mesh.polygons:
+                continue
+            positions, triangles, normals, slot_of = _mesh_data(obj, mesh)
+            slots = [s.material for s in obj.material_slots]
+            names = []
+            for slot in slot_of:
+                mat = slots[slot] if slot < len(slots) else None
+                if mat is None:
+                    raise UserError(f"object '{name}' has no material"
+                                    + (f" in slot {slot + 1}" if slots else "")
+                                    + ": give it a material with facet settings")
+                materials[mat.name] = mat.original if hasattr(mat, "original") else mat
+                names.append(mat.name)
+            objects.extend(core_scene.mesh_objects(name, _rows(matrix), positions, triangles, normals, names))
+        finally:
+            obj.to_mesh_clear()
+    return objects, notes
+
+
+def full_scene(context):
+    """(facet scene JSON with materials and meshes, notes) of the whole scene.
+
+    Raises a UserError naming the first material without facet settings."""
+    scene = context.scene
+    depsgraph = context.evaluated_depsgraph_get()
+    cam, notes = camera_json(scene)
+    ambient, more = world_ambient(scene)
+    notes += more
+    used = {}
+    objects, more = objects_json(depsgraph, used)
+    notes += more
+    if not objects:
+        raise UserError(f"scene '{scene.name}' has no mesh objects to export")
+    materials = {}
+    for name in sorted(used):
+        materials[name] = material_mod.to_json(used[name])
+    lights, more = lights_json(depsgraph)
+    notes += more
+    return core_scene.scene(scene.name, cam, ambient, lights, objects, materials), notes
+
+
+def lights_scene(context, catalog):
+    """(facet scene JSON, notes) for generating OSL: the lights and ambient colour.
+
+    facet's OSL generator reads only those. The camera is the scene's (facet's default
+    camera when there is none, or it is not a perspective one) and the objects are a
+    placeholder: exporting every mesh (and requiring facet settings on every material)
+    just to generate one material's shader would cost time for nothing."""
+    scene = context.scene
+    depsgraph = context.evaluated_depsgraph_get()
+    ambient, notes = world_ambient(scene)
+    lights, more = lights_json(depsgraph)
+    notes += more
+    try:
+        camera, _ = camera_json(scene)
+    except UserError:
+        camera = {p.name: p.default for p in catalog.model("camera", "perspective").params}
+    return core_scene.scene(scene.name, camera, ambient, lights,
+                            [dict(core_scene.OSL_PLACEHOLDER_OBJECT)]), notes

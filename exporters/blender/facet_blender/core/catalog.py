@@ -1,0 +1,162 @@
+"""The model catalog, as the facet executable describes it.
+
+`facet models --json` lists every section (diffuse, specular, fresnel, modifier,
+light, ...) and in each its models with typed parameters: type, range, default,
+choices, documentation. `facet schema` adds the material-level keys (ambient,
+emission, tangent_axis) with their defaults and descriptions. The add-on builds its
+whole user interface from these two outputs and never repeats them in Python, so a
+model added to facet's C++ catalog shows up in Blender without touching the add-on.
+"""
+
+from dataclasses import dataclass, field
+
+from . import UserError
+
+# The sections whose models are a material's lobes (the panel's two drop-downs).
+LOBE_SECTIONS = ("diffuse", "specular")
+
+
+@dataclass(frozen=True)
+class Range:
+    """A numeric range; None is unbounded. Blender's own limits are inclusive, so an
+    exclusive bound is kept as the limit and facet rejects the bound itself."""
+    min: float = None
+    max: float = None
+    min_exclusive: bool = False
+    max_exclusive: bool = False
+
+    def contains(self, x):
+        if self.min is not None and (x < self.min or (self.min_exclusive and x == self.min)):
+            return False
+        if self.max is not None and (x > self.max or (self.max_exclusive and x == self.max)):
+            return False
+        return True
+
+
+@dataclass(frozen=True)
+class Param:
+    """One parameter of a model, exactly as `facet models --json` gives it."""
+    name: str
+    type: str                 # number | color | vector | boolean | string | model | object
+    doc: str = ""
+    allowed: str = ""         # facet's own words for the valid values
+    default: object = None
+    required: bool = False
+    range: Range = None
+    choices: tuple = None     # for strings with a fixed set of values
+    section: str = None       # for type model/object: the catalog section of the value
+
+
+@dataclass(frozen=True)
+class Model:
+    section: str
+    name: str
+    title: str
+    doc: str = ""
+    formula: str = ""
+    citation: str = ""
+    params: tuple = ()
+    cycles: dict = None       # how exact Cycles' closest closure is (informative)
+    pov: dict = None
+
+    def param(self, name):
+        for p in self.params:
+            if p.name == name:
+                return p
+        raise KeyError(f"{self.section} model {self.name} has no parameter {name}")
+
+
+@dataclass(frozen=True)
+class MaterialKey:
+    """A material-level key of the material schema (ambient, emission, tangent_axis)."""
+    name: str
+    kind: str                 # "color" (RGB or grey number) or "vector" (three numbers)
+    default: tuple
+    doc: str = ""
+
+
+@dataclass
+class Catalog:
+    version: str
+    epsilon: float
+    sections: dict                        # section name -> list of Model
+    material_keys: list = field(default_factory=list)
+
+    def models(self, section):
+        return self.sections.get(section, [])
+
+    def model(self, section, name):
+        for m in self.models(section):
+            if m.name == name:
+                return m
+        raise KeyError(f"no {section} model named {name!r}")
+
+    def has_model(self, section, name):
+        return any(m.name == name for m in self.models(section))
+
+
+def _range(data):
+    if not isinstance(data, dict):
+        return None
+    return Range(min=data.get("min"), max=data.get("max"),
+                 min_exclusive=bool(data.get("min_exclusive")),
+                 max_exclusive=bool(data.get("max_exclusive")))
+
+
+def _param(data):
+    choices = data.get("choices")
+    return Param(name=data["name"], type=data["type"], doc=data.get("doc", ""),
+                 allowed=data.get("allowed", ""), default=data.get("default"),
+                 required=bool(data.get("required")), range=_range(data.get("range")),
+                 choices=tuple(choices) if choices else None, section=data.get("section"))
+
+
+def _model(section, data):
+    return Model(section=section, name=data["name"], title=data.get("title", data["name"]),
+                 doc=data.get("doc", ""), formula=data.get("formula", ""),
+                 citation=data.get("citation", ""),
+                 params=tuple(_param(p) for p in data.get("parameters", [])),
+                 cycles=data.get("cycles"), pov=data.get("pov"))
+
+
+def _material_keys(schema):
+    """ambient/emission/tangent_axis (and whatever facet adds later) from `facet schema`."""
+    keys = []
+    for name, prop in schema.get("properties", {}).items():
+        if name in ("$schema", "name") or name in LOBE_SECTIONS:
+            continue
+        default = prop.get("default")
+        if isinstance(default, (int, float)):
+            default = [float(default)] * 3
+        if not (isinstance(default, list) and len(default) == 3):
+            continue  # not a three-number key: nothing the panel can edit
+        # A colour may be written as one grey number (the schema's oneOf number/array);
+        # a vector is only ever an array.
+        kind = "color" if "oneOf" in prop else "vector"
+        keys.append(MaterialKey(name=name, kind=kind, default=tuple(float(x) for x in default),
+                                doc=prop.get("description", "")))
+    return keys
+
+
+def parse(models_json, material_schema_json):
+    """A Catalog from the outputs of `facet models --json` and `facet schema`."""
+    try:
+        sections = {name: [_model(name, m) for m in models]
+                    for name, models in models_json["sections"].items()}
+        catalog = Catalog(version=str(models_json.get("facet", "")),
+                          epsilon=float(models_json.get("epsilon", 1e-4)),
+                          sections=sections,
+                          material_keys=_material_keys(material_schema_json))
+    except (KeyError, TypeError, ValueError) as e:
+        raise UserError(f"facet's catalog is not in the expected format ({type(e).__name__}: {e}); "
+                        f"is the facet executable too old or too new for this add-on?")
+    for section in LOBE_SECTIONS:
+        if not catalog.models(section):
+            raise UserError(f"facet's catalog has no {section} models")
+    return catalog
+
+
+def load(exe):
+    """Runs facet and parses its catalog."""
+    from . import cli
+    return parse(cli.models(exe), cli.material_schema(exe))

@@ -1,0 +1,297 @@
+"""Blender shader nodes -> facet lobes: the mapping table.
+
+The Blender layer describes the nodes that feed the Material Output's Surface as plain
+data (see `map_surface`); these functions choose the facet models and parameters and
+say how faithful each choice is. "Exact" means the facet model computes the same
+radiance as Cycles for a point or sun light of radius 0 (see scene.py for the units).
+
+| Blender node (Cycles)                     | facet                                               | how faithful |
+|-------------------------------------------|-----------------------------------------------------|--------------|
+| Diffuse BSDF, Roughness 0                 | lambert, color = Color                              | exact: Cycles' diffuse is ρ/π, facet's Lambert the same lobe |
+| Diffuse BSDF, Roughness r > 0             | oren_nayar, color = Color, sigma = r                | approximate: Cycles uses Fujii's improved Oren–Nayar (4.3+: plus a multiscatter term), facet the 1994 qualitative model with σ in radians |
+| Glossy BSDF, GGX, Roughness r             | ggx, color = Color, alpha = r², geometry smith_ggx, fresnel none | approximate: Cycles' masking-shadowing is the height-correlated Smith G, facet's the separable one (equal at normal incidence, differ at grazing angles) |
+| Glossy BSDF, Multiscatter GGX             | as GGX                                              | approximate: Cycles adds multiple-scattering energy |
+| Glossy BSDF, Beckmann, Roughness r        | beckmann, m = r², geometry smith_ggx, fresnel none  | approximate: Cycles uses Smith G for Beckmann |
+| Glossy BSDF, Roughness 0 / Sharp          | (no specular lobe)                                  | a mirror reflects no point light |
+| Glossy BSDF, Ashikhmin–Shirley            | refused                                             | no facet model |
+| Principled BSDF                           | lambert, color = Base·(1−Metallic)·(1−Transmission) | approximate: Cycles layers the diffuse under a Fresnel-weighted specular (4.x) / uses Disney's retro-reflective diffuse (3.x) |
+|   (Diffuse Roughness d > 0, 4.3+)         | oren_nayar, sigma = d                               | approximate, as the Diffuse BSDF |
+|   + specular                              | ggx, color 1, alpha = Roughness², geometry smith_ggx, fresnel schlick f0 = mix(F0_dielectric, Base, Metallic) | approximate: height-correlated Smith, multiscatter GGX, F82-tinted metals (4.x) |
+|   F0_dielectric, 4.x                      | ((IOR−1)/(IOR+1))² · 2·Specular IOR Level · Specular Tint (IOR 1.5, level 0.5: 0.04) | |
+|   F0_dielectric, 3.x                      | 0.08 · Specular · mix(1, Base/luminance(Base), Specular Tint) (Specular 0.5: 0.04) | |
+|   Emission (× Strength)                   | emission                                            | exact |
+|   Coat, Sheen, Subsurface, Transmission, Alpha, Anisotropic | ignored, reported                   | |
+| Add Shader (a, b)                         | the lobes of a and b together                       | as exact as a and b (one diffuse and one specular lobe at most) |
+| Mix Shader (Fac f, a, b)                  | a's colours × (1−f), b's colours × f               | as exact as a and b |
+| anything else                             | refused: "no Diffuse, Glossy or Principled BSDF feeds the Material Output" | |
+
+Colours are linear RGB in both; a socket that is linked to other nodes (a texture)
+cannot be followed: its unlinked value is used and the mapping reported approximate.
+"""
+
+from . import UserError
+
+EXACT, APPROXIMATE, IGNORED = "exact", "approximate", "ignored"
+NOTHING_TO_MAP = "no Diffuse, Glossy or Principled BSDF feeds the Material Output"
+LUMINANCE = (0.2126, 0.7152, 0.0722)     # Rec. 709, Blender's default scene-linear luminance
+
+
+class Result:
+    """The facet lobes found, and one (level, message) note per mapping decision."""
+
+    def __init__(self):
+        self.diffuse = None
+        self.specular = None
+        self.emission = None
+        self.notes = []
+
+    def note(self, level, message):
+        self.notes.append((level, message))
+
+    @property
+    def exact(self):
+        return all(level == EXACT for level, _ in self.notes)
+
+    def material(self, name):
+        """A facet material object with the lobes found (emission only if any)."""
+        data = {"name": name}
+        if self.diffuse:
+            data["diffuse"] = self.diffuse
+        if self.specular:
+            data["specular"] = self.specular
+        if self.emission is not None and any(self.emission):
+            data["emission"] = self.emission
+        return data
+
+    def summary(self):
+        """One line per note, exact ones first."""
+        order = {EXACT: 0, APPROXIMATE: 1, IGNORED: 2}
+        return [f"{level}: {message}" for level, message in sorted(self.notes, key=lambda n: order[n[0]])]
+
+
+def _rgb(value):
+    if isinstance(value, (int, float)):
+        return [float(value)] * 3
+    return [float(x) for x in list(value)[:3]]
+
+
+def _scale(rgb, w):
+    return [c * w for c in rgb]
+
+
+class _Node:
+    """Accessors for one plain node description with linked-input bookkeeping."""
+
+    def __init__(self, desc, result):
+        self.desc, self.result = desc, result
+        self.label = desc.get("name") or desc.get("type")
+        self.inputs = desc.get("inputs", {})
+        self.linked = set(desc.get("linked", ()))
+
+    def has(self, name):
+        return name in self.inputs
+
+    def get(self, name, default=None):
+        if name not in self.inputs:
+            return default
+        if name in self.linked:
+            self.result.note(APPROXIMATE, f"{self.label}: input '{name}' is linked to other nodes; "
+                                          f"its unlinked value {self._fmt(self.inputs[name])} is used")
+        return self.inputs[name]
+
+    def first(self, names, default=None):
+        """The value of the first input of `names` the node has (3.x vs 4.x names)."""
+        for n in names:
+            if n in self.inputs:
+                return self.get(n)
+        return default
+
+    @staticmethod
+    def _fmt(v):
+        if isinstance(v, (list, tuple)):
+            return "(" + ", ".join(f"{x:.3g}" for x in v[:3]) + ")"
+        return f"{v:.3g}"
+
+
+# ----------------------------------------------------------------------------- single nodes
+
+def diffuse_bsdf(node, weight, result):
+    color = _scale(_rgb(node.get("Color", (0.8, 0.8, 0.8))), weight)
+    roughness = float(node.get("Roughness", 0.0))
+    if roughness <= 0.0:
+        result.note(EXACT, f"{node.label} -> lambert (Cycles' diffuse is ρ/π, facet's Lambert the same lobe)")
+        return {"model": "lambert", "color": color}
+    result.note(APPROXIMATE, f"{node.label} (Roughness {roughness:.3g}) -> oren_nayar sigma {roughness:.3g} "
+                             f"(Cycles uses Fujii's improved Oren–Nayar, facet the 1994 qualitative model)")
+    return {"model": "oren_nayar", "color": color, "sigma": roughness}
+
+
+def _microfacet(node, result, distribution, roughness, color, fresnel, what):
+    """ggx/beckmann lobe of Cycles' GGX/Beckmann (α = roughness²), or None for a mirror."""
+    alpha = roughness * roughness
+    if distribution == "ASHIKHMIN_SHIRLEY":
+        raise UserError(f"{node.label}: the Ashikhmin–Shirley distribution has no facet model; "
+                        f"use GGX or Beckmann")
+    if distribution == "SHARP" or alpha <= 0.0:
+        result.note(APPROXIMATE, f"{node.label}: roughness 0 is a perfect mirror, which reflects no point "
+                                 f"light; no specular lobe")
+        return None
+    geometry_note = "Cycles' masking-shadowing is the height-correlated Smith G, facet's the separable Smith G"
+    if distribution == "BECKMANN":
+        result.note(APPROXIMATE, f"{what} -> beckmann m = Roughness² = {alpha:.4g}, geometry smith_ggx "
+                                 f"(Cycles uses Smith G for Beckmann)")
+        return {"model": "beckmann", "color": color, "m": alpha, "geometry": "smith_ggx", "fresnel": fresnel}
+    extra = "; Multiscatter GGX adds multiple-scattering energy" if distribution == "MULTI_GGX" else ""
+    result.note(APPROXIMATE, f"{what} -> ggx alpha = Roughness² = {alpha:.4g}, geometry smith_ggx "
+                             f"({geometry_note}{extra})")
+    return {"model": "ggx", "color": color, "alpha": alpha, "geometry": "smith_ggx", "fresnel": fresnel}
+
+
+def glossy_bsdf(node, weight, result):
+    color = _scale(_rgb(node.get("Color", (0.8, 0.8, 0.8))), weight)
+    roughness = float(node.get("Roughness", 0.5))
+    anisotropy = float(node.get("Anisotropy", 0.0)) if node.has("Anisotropy") else 0.0
+    if anisotropy:
+        result.note(IGNORED, f"{node.label}: Anisotropy {anisotropy:.3g} is ignored (isotropic lobe)")
+    return _microfacet(node, result, node.desc.get("distribution", "GGX"), roughness, color,
+                       {"model": "none"}, f"{node.label} ({node.desc.get('distribution', 'GGX')})")
+
+
+def _dielectric_f0(node, base):
+    """Principled's dielectric reflectance at normal incidence, per Blender version."""
+    if node.has("Specular IOR Level"):            # Blender 4.x
+        ior = float(node.get("IOR", 1.5))
+        level = float(node.get("Specular IOR Level", 0.5))
+        tint = _rgb(node.get("Specular Tint", (1.0, 1.0, 1.0))) if node.has("Specular Tint") else [1.0] * 3
+        f0 = ((ior - 1.0) / (ior + 1.0)) ** 2 * 2.0 * max(level, 0.0)
+        return [f0 * t for t in tint]
+    specular = float(node.get("Specular", 0.5))   # Blender 2.8-3.x
+    tint = float(node.get("Specular Tint", 0.0)) if node.has("Specular Tint") else 0.0
+    lum = sum(c * k for c, k in zip(base, LUMINANCE))
+    ctint = [c / lum for c in base] if lum > 0.0 else [1.0] * 3
+    return [0.08 * specular * ((1.0 - tint) + ct * tint) for ct in ctint]
+
+
+# (3.x name, 4.x name, value meaning "off") of inputs facet cannot represent.
+_PRINCIPLED_IGNORED = (
+    (("Subsurface", "Subsurface Weight"), 0.0, "subsurface scattering"),
+    (("Sheen", "Sheen Weight"), 0.0, "sheen"),
+    (("Clearcoat", "Coat Weight"), 0.0, "coat"),
+    (("Anisotropic",), 0.0, "anisotropy"),
+    (("Alpha",), 1.0, "alpha (transparency)"),
+)
+
+
+def principled_bsdf(node, weight, result):
+    """(diffuse lobe, specular lobe, emission) of a Principled BSDF."""
+    base = _rgb(node.get("Base Color", (0.8, 0.8, 0.8)))
+    metallic = min(max(float(node.get("Metallic", 0.0)), 0.0), 1.0)
+    roughness = min(max(float(node.get("Roughness", 0.5)), 0.0), 1.0)
+    transmission = float(node.first(("Transmission Weight", "Transmission"), 0.0))
+    for names, off, what in _PRINCIPLED_IGNORED:
+        for n in names:
+            if node.has(n) and float(node.inputs[n]) != off:
+                result.note(IGNORED, f"{node.label}: {n} {float(node.inputs[n]):.3g} ({what}) has no facet "
+                                     f"equivalent and is ignored")
+    if transmission > 0.0:
+        result.note(IGNORED, f"{node.label}: Transmission {transmission:.3g} is ignored (only the diffuse colour "
+                             f"is scaled by 1 − Transmission)")
+
+    # Diffuse: what Cycles weights its diffuse closure with.
+    kd = [c * (1.0 - metallic) * (1.0 - transmission) * weight for c in base]
+    diffuse_roughness = float(node.get("Diffuse Roughness", 0.0)) if node.has("Diffuse Roughness") else 0.0
+    layered = ("Cycles layers the diffuse under the Fresnel-weighted specular" if node.has("Specular IOR Level")
+               else "Cycles' 3.x Principled diffuse is Disney's retro-reflective lobe")
+    if diffuse_roughness > 0.0:
+        diffuse = {"model": "oren_nayar", "color": kd, "sigma": diffuse_roughness}
+        result.note(APPROXIMATE, f"{node.label} -> oren_nayar color Base·(1−Metallic)·(1−Transmission), sigma = "
+                                 f"Diffuse Roughness {diffuse_roughness:.3g} ({layered}; Fujii's Oren–Nayar)")
+    else:
+        diffuse = {"model": "lambert", "color": kd}
+        result.note(APPROXIMATE, f"{node.label} -> lambert color Base·(1−Metallic)·(1−Transmission) ({layered})")
+
+    # Specular: GGX with Schlick's Fresnel from the dielectric f0 and the metal's base colour.
+    f0_dielectric = _dielectric_f0(node, base)
+    f0 = [min(max(d * (1.0 - metallic) + b * metallic, 0.0), 1.0) for d, b in zip(f0_dielectric, base)]
+    distribution = node.desc.get("distribution", "GGX")
+    specular = _microfacet(node, result, distribution, roughness, [weight] * 3,
+                           {"model": "schlick", "f0": f0}, f"{node.label} specular")
+    if specular:
+        result.note(APPROXIMATE, f"{node.label} -> fresnel schlick f0 = mix(dielectric f0, Base, Metallic) = "
+                                 f"({', '.join(f'{x:.4g}' for x in f0)})"
+                                 + (" (Cycles' metals use the F82-tint Fresnel)" if metallic > 0.0 else ""))
+
+    # Emission: radiance, the same on both sides.
+    color = node.first(("Emission Color", "Emission"), (0.0, 0.0, 0.0))
+    strength = float(node.get("Emission Strength", 1.0)) if node.has("Emission Strength") else 1.0
+    emission = _scale(_rgb(color), strength * weight)
+    if any(emission):
+        result.note(EXACT, f"{node.label}: emission colour × strength -> emission")
+    return diffuse, specular, emission
+
+
+# ----------------------------------------------------------------------------- the tree
+
+def _terms(desc, weight, result, out):
+    """Flattens Add/Mix Shader trees into (weight, node description) terms."""
+    if desc is None or weight == 0.0:
+        return
+    kind = desc.get("type")
+    if kind == "ADD_SHADER":
+        for child in desc.get("shaders", []):
+            _terms(child, weight, result, out)
+    elif kind == "MIX_SHADER":
+        node = _Node(desc, result)
+        fac = min(max(float(node.get("Fac", 0.5)), 0.0), 1.0)
+        shaders = list(desc.get("shaders", [None, None])) + [None, None]
+        _terms(shaders[0], weight * (1.0 - fac), result, out)
+        _terms(shaders[1], weight * fac, result, out)
+    else:
+        out.append((weight, desc))
+
+
+def map_surface(surface):
+    """Maps the shader tree feeding the Material Output's Surface onto facet lobes.
+
+    `surface` is None (nothing linked) or a node description:
+        {"type": "BSDF_DIFFUSE" | "BSDF_GLOSSY" | "BSDF_PRINCIPLED" | "ADD_SHADER" |
+                 "MIX_SHADER" | any other Blender node type,
+         "name": the node's name, "distribution": Glossy/Principled distribution,
+         "inputs": {socket name: unlinked value (number or RGBA)},
+         "linked": [names of linked inputs],
+         "shaders": [child description or None, ...]   (Add/Mix Shader)}
+    Returns a Result; raises UserError when nothing maps or the lobes do not fit one
+    facet material (one diffuse and one specular lobe)."""
+    result = Result()
+    terms = []
+    _terms(surface, 1.0, result, terms)
+    handled = {"BSDF_DIFFUSE", "BSDF_GLOSSY", "BSDF_PRINCIPLED"}
+    others = [d for _, d in terms if d.get("type") not in handled]
+    if not terms or others:
+        found = ", ".join(sorted({d.get("name") or d.get("type") for d in others}))
+        raise UserError(NOTHING_TO_MAP + (f" (found: {found})" if found else ""))
+
+    def put(section, lobe, label):
+        if lobe is None:
+            return
+        if getattr(result, section) is not None:
+            raise UserError(f"more than one {section} lobe feeds the Material Output ({label}); "
+                            f"a facet material has one diffuse and one specular lobe")
+        setattr(result, section, lobe)
+
+    for weight, desc in terms:
+        node = _Node(desc, result)
+        if desc["type"] == "BSDF_DIFFUSE":
+            put("diffuse", diffuse_bsdf(node, weight, result), node.label)
+        elif desc["type"] == "BSDF_GLOSSY":
+            put("specular", glossy_bsdf(node, weight, result), node.label)
+        else:
+            diffuse, specular, emission = principled_bsdf(node, weight, result)
+            put("diffuse", diffuse, node.label)
+            put("specular", specular, node.label)
+            result.emission = emission
+        if weight != 1.0:
+            result.note(EXACT, f"{node.label}: Mix Shader weight {weight:.4g} -> colours scaled by it")
+    if result.diffuse is None and result.specular is None:
+        raise UserError(f"nothing facet can render remains: {'; '.join(m for _, m in result.notes)}")
+    return result

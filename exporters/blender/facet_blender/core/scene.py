@@ -1,0 +1,213 @@
+"""Blender cameras, lights and meshes -> facet's scene JSON (plain data in, plain data out).
+
+Scene contract (facet's world, +Y up; every Blender point and direction goes through
+`coords.to_facet`):
+
+    {"name": ..., "camera": {"position", "look_at", "up", "fov"}, "ambient": [r, g, b],
+     "materials": {name: material}, "objects": [mesh, ...], "lights": [light, ...]}
+
+Units (exact for Cycles with light radius 0, measured in Blender 3.4.1 and 4.5.15):
+facet's light of colour C on a white Lambert surface facing it at distance 1 gives
+radiance C. A Cycles point light of power P watts has intensity P/(4π) W/sr and the
+Diffuse BSDF is ρ/π, so
+
+    point, spot:  C = colour · P / (4π²),  attenuation inverse_square
+    sun:          C = colour · S / π,      direction = the light's local −Z in world space
+    spot:         cutoff = spot_size / 2 (degrees); Cycles ≤ 3.4 multiplies a spot by the
+                  cosine to its axis (exponent 1), Cycles ≥ 3.5 does not (exponent 0)
+                  (cycles src/kernel/light: spot_light_attenuation, v3.4.0 vs v3.5.0)
+
+Approximations are returned as notes: a light radius (shadow_soft_size) or sun angle
+> 0 (facet lights are points), spot_blend > 0 (facet's cone is hard), area lights
+(skipped), camera shift, non-square pixels.
+"""
+
+import math
+
+from . import UserError
+from .coords import (clean_vector, column_scale, cross, det3, normal_matrix, normalize,
+                     to_facet, transform_direction, transform_point)
+
+# facet's scene format needs at least one object. Generating OSL reads only the lights
+# and the ambient colour of a scene, so that scene carries this stand-in instead of the
+# Blender scene's whole geometry.
+OSL_PLACEHOLDER_OBJECT = {"type": "sphere", "name": "unused_by_osl", "center": [0.0, 0.0, 0.0], "radius": 1.0}
+
+FOUR_PI_SQUARED = 4.0 * math.pi * math.pi
+SPOT_MAX_CUTOFF = 89.999        # facet's cutoff is < 90 degrees
+
+
+# ----------------------------------------------------------------------------- camera
+
+def vertical_fov(lens, sensor_width, sensor_height, sensor_fit, width, height,
+                 pixel_aspect_x=1.0, pixel_aspect_y=1.0):
+    """The vertical field of view (degrees) of a Blender perspective camera.
+
+    Blender's rule (BKE_camera_params_compute_viewplane): the sensor size is the
+    sensor *width* unless sensor_fit is VERTICAL; it spans the image's width when the
+    fit is HORIZONTAL, or AUTO with the image at least as wide as tall, and its height
+    otherwise. `lens` and the sensor are in millimetres; only their ratio matters."""
+    size_x, size_y = width * pixel_aspect_x, height * pixel_aspect_y
+    if sensor_fit == "AUTO":
+        fit = "HORIZONTAL" if size_x >= size_y else "VERTICAL"
+    else:
+        fit = sensor_fit
+    sensor = sensor_height if sensor_fit == "VERTICAL" else sensor_width
+    tan_half = 0.5 * sensor / lens                      # along the fitted axis
+    if fit == "HORIZONTAL":
+        ycor = pixel_aspect_y / pixel_aspect_x
+        tan_half *= ycor * height / width
+    return math.degrees(2.0 * math.atan(tan_half))
+
+
+def camera(cam):
+    """facet's camera from a plain camera description; returns (camera, notes).
+
+    `cam`: {"name", "type" (PERSP/ORTHO/PANO), "matrix" (4x4 rows, world), "lens",
+    "sensor_width", "sensor_height", "sensor_fit", "width", "height" (render pixels),
+    "pixel_aspect_x", "pixel_aspect_y", "shift_x", "shift_y"}."""
+    notes = []
+    name = cam.get("name", "camera")
+    if cam.get("type", "PERSP") != "PERSP":
+        raise UserError(f"camera '{name}' is {cam['type']}: facet has only a perspective camera")
+    m = cam["matrix"]
+    position = [m[0][3], m[1][3], m[2][3]]
+    forward = normalize(transform_direction(m, (0.0, 0.0, -1.0)))   # cameras look down local -Z
+    up = normalize(transform_direction(m, (0.0, 1.0, 0.0)))         # with local +Y up
+    ax, ay = cam.get("pixel_aspect_x", 1.0), cam.get("pixel_aspect_y", 1.0)
+    fov = vertical_fov(cam["lens"], cam["sensor_width"], cam["sensor_height"], cam["sensor_fit"],
+                       cam["width"], cam["height"], ax, ay)
+    if ax != ay:
+        notes.append(f"camera '{name}': pixel aspect {ax}:{ay} is not square; facet's pixels are (approximate)")
+    if cam.get("shift_x", 0.0) or cam.get("shift_y", 0.0):
+        notes.append(f"camera '{name}': lens shift has no facet equivalent and is ignored (approximate)")
+    if not 0.0 < fov < 180.0:
+        raise UserError(f"camera '{name}': vertical field of view {fov:.3f} degrees is not in (0, 180)")
+    return {"position": to_facet(position),
+            "look_at": to_facet([p + f for p, f in zip(position, forward)]),
+            "up": to_facet(up),
+            "fov": fov}, notes
+
+
+# ----------------------------------------------------------------------------- lights
+
+def light(desc, blender_version=(4, 5, 0)):
+    """facet's light from a plain Blender light description; returns (light or None, notes).
+
+    `desc`: {"name", "type" (POINT/SUN/SPOT/AREA), "matrix" (4x4 rows, world),
+    "color" (RGB), "energy" (W, or W/m² for a sun), "shadow_soft_size", "angle" (sun,
+    radians), "spot_size" (radians), "spot_blend", "use_nodes"}."""
+    notes = []
+    name, kind = desc.get("name", "light"), desc["type"]
+    m = desc["matrix"]
+    position = to_facet([m[0][3], m[1][3], m[2][3]])
+    color = [float(c) for c in desc["color"]]
+    energy = float(desc["energy"])
+    if desc.get("use_nodes"):
+        notes.append(f"light '{name}': its node tree is ignored; colour × power are used (approximate)")
+    if kind == "AREA":
+        notes.append(f"light '{name}': area lights have no facet equivalent; skipped")
+        return None, notes
+    if kind == "SUN":
+        if desc.get("angle", 0.0) > 0.0:
+            notes.append(f"light '{name}': sun angle > 0 (soft shadows); facet's directional light is "
+                         f"a parallel beam (exact only with Angle 0)")
+        direction = normalize(transform_direction(m, (0.0, 0.0, -1.0)))
+        return {"type": "directional", "direction": to_facet(direction),
+                "color": clean_vector(c * energy / math.pi for c in color)}, notes
+    if kind not in ("POINT", "SPOT"):
+        notes.append(f"light '{name}': {kind} lights have no facet equivalent; skipped")
+        return None, notes
+    if desc.get("shadow_soft_size", 0.0) > 0.0:
+        notes.append(f"light '{name}': radius {desc['shadow_soft_size']:g} > 0; facet treats the light as "
+                     f"a point (exact only with Radius 0)")
+    out = {"type": "point", "position": position,
+           "color": clean_vector(c * energy / FOUR_PI_SQUARED for c in color),
+           "attenuation": "inverse_square"}
+    if kind == "POINT":
+        return out, notes
+    direction = normalize(transform_direction(m, (0.0, 0.0, -1.0)))
+    cutoff = math.degrees(desc["spot_size"]) / 2.0
+    if cutoff >= SPOT_MAX_CUTOFF:
+        notes.append(f"light '{name}': spot size {2 * cutoff:g}° reaches 180°; facet's cutoff is < 90°, "
+                     f"using {SPOT_MAX_CUTOFF}° (approximate)")
+        cutoff = SPOT_MAX_CUTOFF
+    if desc.get("spot_blend", 0.0) > 0.0:
+        notes.append(f"light '{name}': spot blend {desc['spot_blend']:g} > 0 has no facet equivalent; "
+                     f"facet's cone edge is hard (approximate)")
+    sx, sy, _ = column_scale(m)
+    if abs(sx - sy) > 1e-6 * max(sx, sy):
+        notes.append(f"light '{name}': non-uniform scale makes Cycles' cone elliptical; facet's is "
+                     f"circular (approximate)")
+    exponent = 1.0 if tuple(blender_version[:2]) < (3, 5) else 0.0
+    out.update({"type": "spot", "direction": to_facet(direction), "cutoff": cutoff, "exponent": exponent})
+    return {k: out[k] for k in ("type", "position", "direction", "cutoff", "exponent", "color",
+                                "attenuation")}, notes
+
+
+# ----------------------------------------------------------------------------- meshes
+
+def _triangle_normal(a, b, c):
+    n = cross([b[i] - a[i] for i in range(3)], [c[i] - a[i] for i in range(3)])
+    try:
+        return normalize(n)
+    except ValueError:
+        return [0.0, 0.0, 1.0]
+
+
+def mesh_objects(name, matrix, positions, triangles, corner_normals, materials):
+    """facet mesh objects (one per material) of one Blender mesh.
+
+    positions:       [(x, y, z), ...] local vertex positions
+    triangles:       [(v0, v1, v2), ...] vertex indices, counter-clockwise seen from the
+                     side the face's normal points to (Blender's loop triangles)
+    corner_normals:  [((nx, ny, nz), (..), (..)), ...] per triangle, local space: the
+                     per-corner normals of smooth faces, the face normal of flat faces
+    materials:       [material name, ...] per triangle
+
+    Positions go to world space through `matrix` (4x4 rows), normals through its
+    inverse transpose. A vertex is split where its corners' normals differ. A mirroring
+    matrix (negative determinant) reverses the winding, so triangles stay
+    counter-clockwise seen from their normals' side."""
+    nm = normal_matrix(matrix)
+    flip = det3(matrix) < 0.0
+    out = {}   # material -> [index map, positions, normals, triangles]
+    world = {}
+    for tri, normals, material in zip(triangles, corner_normals, materials):
+        entry = out.setdefault(material, [{}, [], [], []])
+        index, pos, nor, tris = entry
+        corners = []
+        for v, n in zip(tri, normals):
+            key = (v, tuple(n))
+            i = index.get(key)
+            if i is None:
+                if v not in world:
+                    world[v] = transform_point(matrix, positions[v])
+                try:
+                    wn = normalize(transform_direction(nm, n))
+                except ValueError:   # a degenerate normal: fall back to the triangle's
+                    p = [transform_point(matrix, positions[u]) for u in tri]
+                    wn = _triangle_normal(*p) if not flip else _triangle_normal(p[0], p[2], p[1])
+                i = index[key] = len(pos)
+                pos.append(to_facet(world[v]))
+                nor.append(to_facet(wn))
+            corners.append(i)
+        tris.append([corners[0], corners[2], corners[1]] if flip else corners)
+    objects = []
+    for material, (_, pos, nor, tris) in out.items():
+        objects.append({"type": "mesh",
+                        "name": name if len(out) == 1 else f"{name}.{material}",
+                        "material": material, "positions": pos, "normals": nor, "triangles": tris})
+    return objects
+
+
+# ----------------------------------------------------------------------------- the scene
+
+def scene(name, camera_json, ambient, lights, objects, materials=None):
+    """The scene JSON, keys in the contract's order."""
+    data = {"name": name, "camera": camera_json, "ambient": clean_vector(ambient)}
+    if materials is not None:
+        data["materials"] = materials
+    data["objects"] = objects
+    data["lights"] = lights
+    return data

@@ -1,0 +1,1454 @@
+"""Tests of the facet Blender add-on, headless, in Blender 4.5 (pip bpy) and 3.4.
+
+    .venv/bin/python exporters/blender/tests/run_tests.py --facet build/bin/facet
+    blender -b --factory-startup --python-exit-code 1 \\
+        --python exporters/blender/tests/run_tests.py -- --facet build/bin/facet
+
+Options: --facet PATH (required), -k SUBSTRING (run matching tests only), --keep (keep
+the work folder), --povray PATH. Every test is a function below; the last line printed
+is "N passed, M failed" and the exit status is 1 when a test failed. Tests that only
+make sense in one Blender (rendering OSL needs 4.x; the clean refusal is checked in a
+Blender without OSL) are listed as not applicable in the other, never passed silently.
+
+The tests check results against facet itself (its catalog from `facet models --json`,
+its reference renderer) and against Blender (Cycles renders, Blender's own camera
+projection), not against the add-on's own code.
+"""
+
+import array
+import json
+import math
+import os
+import shutil
+import struct
+import subprocess
+import sys
+import tempfile
+import time
+import traceback
+import types
+import zlib
+
+import bpy
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ADDON_ROOT = os.path.dirname(HERE)          # exporters/blender: holds facet_blender/
+ADDON = "facet_blender"
+TOL = 2e-3                                   # |Δ| ≤ TOL · max(1, |ref|), as facet validate
+BLENDER = tuple(bpy.app.version)
+
+
+# ============================================================================ harness
+
+def parse_args():
+    argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else sys.argv[1:]
+    opts = types.SimpleNamespace(facet=None, k=None, keep=False, povray=shutil.which("povray"))
+    it = iter(argv)
+    for a in it:
+        if a == "--facet":
+            opts.facet = os.path.abspath(next(it))
+        elif a == "-k":
+            opts.k = next(it)
+        elif a == "--keep":
+            opts.keep = True
+        elif a == "--povray":
+            opts.povray = next(it)
+        else:
+            raise SystemExit(f"run_tests.py: unknown argument {a!r}")
+    if not opts.facet:
+        raise SystemExit("run_tests.py: --facet PATH is required")
+    return opts
+
+
+OPTS = None
+WORK = None
+TESTS = []          # (name, function)
+NOT_APPLICABLE = []  # (name, why)
+
+
+def test(when=None, why=""):
+    """Registers a test; `when(BLENDER)` false -> not applicable in this Blender."""
+    def wrap(fn):
+        if when is None or when(BLENDER):
+            TESTS.append((fn.__name__, fn))
+        else:
+            NOT_APPLICABLE.append((fn.__name__, why))
+        return fn
+    return wrap
+
+
+class Failure(AssertionError):
+    pass
+
+
+def check(cond, message):
+    if not cond:
+        raise Failure(message)
+
+
+def check_equal(got, expected, what):
+    if got != expected:
+        raise Failure(f"{what}:\n  got      {got!r}\n  expected {expected!r}")
+
+
+def close(a, b, tol=1e-6):
+    if isinstance(a, (list, tuple)) or isinstance(b, (list, tuple)):
+        return len(a) == len(b) and all(close(x, y, tol) for x, y in zip(a, b))
+    if isinstance(a, dict) or isinstance(b, dict):
+        return a.keys() == b.keys() and all(close(a[k], b[k], tol) for k in a)
+    if isinstance(a, (int, float)) and isinstance(b, (int, float)) and not isinstance(a, bool):
+        return abs(a - b) <= tol * max(1.0, abs(b))
+    return a == b
+
+
+def check_close(got, expected, what, tol=1e-6):
+    if not close(got, expected, tol):
+        raise Failure(f"{what} (tolerance {tol:g}):\n  got      {got!r}\n  expected {expected!r}")
+
+
+def info(message):
+    print("      " + message, flush=True)
+
+
+# ============================================================================ facet and files
+
+def facet(*args, check_rc=True):
+    proc = subprocess.run([OPTS.facet] + [str(a) for a in args], stdout=subprocess.PIPE,
+                          stderr=subprocess.PIPE, text=True)
+    if check_rc and proc.returncode != 0:
+        raise Failure(f"facet {' '.join(map(str, args))} failed:\n{proc.stderr}")
+    return proc
+
+
+def catalog_json():
+    return json.loads(facet("models", "--json").stdout)
+
+
+def schema_json(scene=False):
+    return json.loads(facet("schema", *(["--scene"] if scene else [])).stdout)
+
+
+def work(name):
+    return os.path.join(WORK, name)
+
+
+def write_json(path, data):
+    with open(path, "w") as f:
+        json.dump(data, f, indent=2)
+    return path
+
+
+def read_json(path):
+    with open(path) as f:
+        return json.load(f)
+
+
+def read_pfm(path):
+    """(width, height, rows) with rows[j][i] = (r, g, b), j = 0 the BOTTOM row."""
+    with open(path, "rb") as f:
+        data = f.read()
+    parts, pos = [], 0
+    while len(parts) < 3:                        # magic, "w h", scale
+        end = data.index(b"\n", pos)
+        parts.append(data[pos:end].decode())
+        pos = end + 1
+    w, h = map(int, parts[1].split())
+    channels = 3 if parts[0] == "PF" else 1
+    floats = array.array("f")
+    floats.frombytes(data[pos:pos + 4 * w * h * channels])
+    if float(parts[2]) > 0:
+        floats.byteswap()
+    rows = [[tuple(floats[(j * w + i) * channels:(j * w + i) * channels + channels]) for i in range(w)]
+            for j in range(h)]
+    return w, h, rows
+
+
+def read_png16(path):
+    """(width, height, rows) of an 8/16-bit RGB(A) PNG, values in [0, 1], j = 0 the BOTTOM row."""
+    with open(path, "rb") as f:
+        data = f.read()
+    check(data[:8] == b"\x89PNG\r\n\x1a\n", f"{path} is not a PNG")
+    pos, idat, header = 8, b"", None
+    while pos < len(data):
+        length, kind = struct.unpack(">I4s", data[pos:pos + 8])
+        chunk = data[pos + 8:pos + 8 + length]
+        if kind == b"IHDR":
+            header = struct.unpack(">IIBBBBB", chunk)
+        elif kind == b"IDAT":
+            idat += chunk
+        pos += 12 + length
+    w, h, depth, color_type, _, _, interlace = header
+    check(interlace == 0 and color_type in (2, 6), f"{path}: unsupported PNG layout")
+    channels = 3 if color_type == 2 else 4
+    bpp = channels * depth // 8
+    raw = zlib.decompress(idat)
+    stride = w * bpp
+    prev = bytearray(stride)
+    rows, p = [], 0
+    for _ in range(h):
+        kind, line = raw[p], bytearray(raw[p + 1:p + 1 + stride])
+        p += 1 + stride
+        for x in range(stride):
+            a = line[x - bpp] if x >= bpp else 0
+            b = prev[x]
+            c = prev[x - bpp] if x >= bpp else 0
+            if kind == 1:
+                line[x] = (line[x] + a) & 255
+            elif kind == 2:
+                line[x] = (line[x] + b) & 255
+            elif kind == 3:
+                line[x] = (line[x] + (a + b) // 2) & 255
+            elif kind == 4:
+                pa, pb, pc = abs(b - c), abs(a - c), abs(a + b - 2 * c)
+                line[x] = (line[x] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
+        prev = line
+        scale = 65535.0 if depth == 16 else 255.0
+        if depth == 16:
+            values = [struct.unpack(">H", line[k:k + 2])[0] / scale for k in range(0, stride, 2)]
+        else:
+            values = [v / scale for v in line]
+        rows.append([tuple(values[i * channels:i * channels + 3]) for i in range(w)])
+    rows.reverse()
+    return w, h, rows
+
+
+# ============================================================================ Blender helpers
+
+import addon_utils  # noqa: E402  (after bpy)
+
+
+def prefs():
+    return bpy.context.preferences.addons[ADDON].preferences
+
+
+def reset():
+    """An empty scene with no data blocks left from an earlier test."""
+    for collection in (bpy.data.objects, bpy.data.meshes, bpy.data.materials, bpy.data.lights,
+                       bpy.data.cameras, bpy.data.texts, bpy.data.images, bpy.data.worlds,
+                       bpy.data.node_groups, bpy.data.curves, bpy.data.pointclouds
+                       if hasattr(bpy.data, "pointclouds") else []):
+        for block in list(collection):
+            collection.remove(block)
+    scene = bpy.context.scene
+    scene.render.engine = "CYCLES"
+    scene.render.resolution_x, scene.render.resolution_y = 32, 32
+    scene.render.resolution_percentage = 100
+    scene.render.pixel_aspect_x = scene.render.pixel_aspect_y = 1.0
+    scene.cycles.shading_system = False
+    scene.camera = None
+    scene.world = None
+    from facet_blender.blender import operators
+    operators.LAST_REPORTS.clear()
+
+
+def run_op(name, material=None, **kwargs):
+    """Runs bpy.ops.facet.<name> (with context.material = material).
+
+    Returns (result set, error text or None, [(level, message), ...])."""
+    from facet_blender.blender import operators
+    fn = getattr(bpy.ops.facet, name)
+    override = {"material": material} if material is not None else {}
+    error = None
+    try:
+        with bpy.context.temp_override(**override):
+            result = fn(**kwargs)
+    except RuntimeError as e:
+        result, error = {"CANCELLED"}, str(e)
+    return result, error, list(operators.LAST_REPORTS)
+
+
+def expect_error(name, material, fragments, **kwargs):
+    """Runs an operator that must fail; its error must contain every fragment."""
+    result, error, _ = run_op(name, material, **kwargs)
+    check(result == {"CANCELLED"} and error, f"facet.{name} should have failed, returned {result}")
+    for fragment in fragments:
+        check(fragment in error, f"facet.{name}: error should mention {fragment!r}; it says:\n{error}")
+    return error
+
+
+def expect_ok(name, material=None, **kwargs):
+    result, error, reports = run_op(name, material, **kwargs)
+    check(result == {"FINISHED"}, f"facet.{name} failed: {error}")
+    return reports
+
+
+def new_material(name="M", diffuse="lambert", specular="none"):
+    mat = bpy.data.materials.new(name)
+    mat.facet.use_facet = True
+    mat.facet.diffuse_model = diffuse
+    mat.facet.specular_model = specular
+    return mat
+
+
+def export_material(mat, name=None):
+    path = work(name or f"{mat.name}.json")
+    if os.path.exists(path):
+        os.remove(path)
+    expect_ok("export_material", mat, filepath=path)
+    return read_json(path)
+
+
+def link(obj):
+    bpy.context.scene.collection.objects.link(obj)
+    return obj
+
+
+def add_camera(location, look_at, lens=50.0, sensor_fit="AUTO", sensor_width=36.0, sensor_height=24.0):
+    from mathutils import Vector
+    data = bpy.data.cameras.new("Camera")
+    data.lens, data.sensor_fit = lens, sensor_fit
+    data.sensor_width, data.sensor_height = sensor_width, sensor_height
+    data.clip_start, data.clip_end = 0.01, 1000.0
+    obj = link(bpy.data.objects.new("Camera", data))
+    obj.location = location
+    direction = Vector(look_at) - Vector(location)
+    obj.rotation_euler = direction.to_track_quat("-Z", "Y").to_euler()
+    bpy.context.scene.camera = obj
+    bpy.context.view_layer.update()
+    return obj
+
+
+def add_light(kind, location, energy, color=(1.0, 1.0, 1.0), rotation=(0.0, 0.0, 0.0), **settings):
+    data = bpy.data.lights.new(f"{kind.lower()}_light", kind)
+    data.energy, data.color = energy, color
+    if kind in ("POINT", "SPOT"):
+        data.shadow_soft_size = 0.0
+    if kind == "SUN":
+        data.angle = 0.0
+    for key, value in settings.items():
+        setattr(data, key, value)
+    obj = link(bpy.data.objects.new(data.name, data))
+    obj.location, obj.rotation_euler = location, rotation
+    bpy.context.view_layer.update()
+    return obj
+
+
+def add_quad(name, size, z=0.0, material=None):
+    mesh = bpy.data.meshes.new(name)
+    mesh.from_pydata([(-size, -size, z), (size, -size, z), (size, size, z), (-size, size, z)], [], [(0, 1, 2, 3)])
+    mesh.update()
+    if material:
+        mesh.materials.append(material)
+    return link(bpy.data.objects.new(name, mesh))
+
+
+def add_uv_sphere(name, location, radius, segments=32, rings=16, smooth=True, material=None):
+    """A UV sphere built by hand (no operators: they need a window context in 3.4)."""
+    verts = [(0.0, 0.0, radius)]
+    for r in range(1, rings):
+        theta = math.pi * r / rings
+        for s in range(segments):
+            phi = 2.0 * math.pi * s / segments
+            verts.append((radius * math.sin(theta) * math.cos(phi), radius * math.sin(theta) * math.sin(phi),
+                          radius * math.cos(theta)))
+    verts.append((0.0, 0.0, -radius))
+    bottom = len(verts) - 1
+    ring = lambda r, s: 1 + (r - 1) * segments + (s % segments)   # noqa: E731
+    faces = [(0, ring(1, s), ring(1, s + 1)) for s in range(segments)]
+    for r in range(1, rings - 1):
+        faces += [(ring(r, s), ring(r + 1, s), ring(r + 1, s + 1), ring(r, s + 1)) for s in range(segments)]
+    faces += [(ring(rings - 1, s), bottom, ring(rings - 1, s + 1)) for s in range(segments)]
+    mesh = bpy.data.meshes.new(name)
+    mesh.from_pydata(verts, [], faces)
+    mesh.update()
+    for p in mesh.polygons:
+        p.use_smooth = smooth
+    if material:
+        mesh.materials.append(material)
+    obj = link(bpy.data.objects.new(name, mesh))
+    obj.location = location
+    bpy.context.view_layer.update()
+    return obj
+
+
+def add_point_sphere(name, center, radius, material):
+    """An exact sphere for Cycles: one vertex -> Geometry Nodes Mesh to Points (4.x API)."""
+    mesh = bpy.data.meshes.new(name)
+    mesh.from_pydata([tuple(center)], [], [])
+    obj = link(bpy.data.objects.new(name, mesh))
+    tree = bpy.data.node_groups.new(name, "GeometryNodeTree")
+    tree.interface.new_socket("Geometry", in_out="INPUT", socket_type="NodeSocketGeometry")
+    tree.interface.new_socket("Geometry", in_out="OUTPUT", socket_type="NodeSocketGeometry")
+    gin, gout = tree.nodes.new("NodeGroupInput"), tree.nodes.new("NodeGroupOutput")
+    points = tree.nodes.new("GeometryNodeMeshToPoints")
+    points.inputs["Radius"].default_value = radius
+    setmat = tree.nodes.new("GeometryNodeSetMaterial")
+    setmat.inputs["Material"].default_value = material
+    tree.links.new(gin.outputs[0], points.inputs["Mesh"])
+    tree.links.new(points.outputs["Points"], setmat.inputs["Geometry"])
+    tree.links.new(setmat.outputs["Geometry"], gout.inputs[0])
+    obj.modifiers.new(name, "NODES").node_group = tree
+    return obj
+
+
+def set_world(color, strength=1.0):
+    world = bpy.data.worlds.new("World")
+    world.use_nodes = True
+    bg = world.node_tree.nodes["Background"]
+    bg.inputs["Color"].default_value = tuple(color) + (1.0,)
+    bg.inputs["Strength"].default_value = strength
+    bpy.context.scene.world = world
+    return world
+
+
+def node_material(name, build):
+    """A material whose node tree `build(nodes, links, output)` makes."""
+    mat = bpy.data.materials.new(name)
+    mat.use_nodes = True
+    tree = mat.node_tree
+    tree.nodes.clear()
+    output = tree.nodes.new("ShaderNodeOutputMaterial")
+    build(tree.nodes, tree.links, output)
+    return mat
+
+
+def cycles_render(path, width, height):
+    """Point-sampled Cycles render of the scene (1 sample at each pixel centre, no
+    bounces, linear), returned as rows of RGBA, row 0 the BOTTOM row."""
+    scene = bpy.context.scene
+    r = scene.render
+    r.engine = "CYCLES"
+    r.resolution_x, r.resolution_y, r.resolution_percentage = width, height, 100
+    r.film_transparent = True
+    r.use_compositing = r.use_sequencer = False
+    r.dither_intensity = 0.0
+    r.filepath = path
+    r.image_settings.file_format = "OPEN_EXR"
+    r.image_settings.color_depth = "32"
+    r.image_settings.color_mode = "RGBA"
+    c = scene.cycles
+    c.device = "CPU"
+    c.samples = 1
+    c.use_adaptive_sampling = False
+    c.use_denoising = False
+    c.pixel_filter_type = "GAUSSIAN"
+    c.filter_width = 0.01
+    c.max_bounces = 0
+    c.light_sampling_threshold = 0.0
+    c.seed = 0
+    scene.view_settings.view_transform = "Standard"
+    scene.view_settings.look = "None"
+    scene.view_settings.exposure = 0.0
+    scene.view_settings.gamma = 1.0
+    if os.path.exists(path):
+        os.remove(path)
+    bpy.ops.render.render(write_still=True)
+    image = bpy.data.images.load(path, check_existing=False)
+    px = list(image.pixels)
+    bpy.data.images.remove(image)
+    return [[tuple(px[4 * (j * width + i):4 * (j * width + i) + 4]) for i in range(width)] for j in range(height)]
+
+
+def interior(mask_rows, i, j):
+    """The pixel and its 8 neighbours all carry the same (non-zero) label."""
+    h, w = len(mask_rows), len(mask_rows[0])
+    if not (0 < i < w - 1 and 0 < j < h - 1):
+        return False
+    label = mask_rows[j][i]
+    return bool(label) and all(mask_rows[j + dj][i + di] == label for dj in (-1, 0, 1) for di in (-1, 0, 1))
+
+
+def compare(got_rows, ref_rows, mask_rows, what):
+    """|got − ref| ≤ TOL·max(1, |ref|) on every channel of every interior pixel.
+    Returns (interior pixels, max |Δ|, max |Δ|/max(1, |ref|))."""
+    count, worst_abs, worst_rel, where = 0, 0.0, 0.0, None
+    for j in range(len(ref_rows)):
+        for i in range(len(ref_rows[0])):
+            if not interior(mask_rows, i, j):
+                continue
+            count += 1
+            for c in range(3):
+                g, r = got_rows[j][i][c], ref_rows[j][i][c]
+                d = abs(g - r)
+                rel = d / max(1.0, abs(r))
+                worst_abs = max(worst_abs, d)
+                if rel > worst_rel:
+                    worst_rel, where = rel, (i, j, c, g, r)
+    check(count > 0, f"{what}: no interior pixels")
+    info(f"{what}: {count} interior pixels, max |Δ| {worst_abs:.3g}, max |Δ|/max(1,|ref|) {worst_rel:.3g}")
+    check(worst_rel <= TOL, f"{what}: |Δ|/max(1,|ref|) = {worst_rel:.3g} > {TOL} at pixel "
+                            f"(i, j from bottom, channel, got, ref) = {where}")
+    return count, worst_abs, worst_rel
+
+
+def facet_reference(material_path, scene_json, width, height, name):
+    """facet's reference render: of a material on a scene, or (material_path None) of a
+    scene whose objects carry their own materials: `facet render SCENE.json`."""
+    scene_path = write_json(work(f"{name}.scene.json"), scene_json)
+    out = work(f"{name}.ref.pfm")
+    where = [material_path, "--scene", scene_path] if material_path else [scene_path]
+    args = ["render"] + where + ["-r", "reference", "--size", f"{width}x{height}", "-o", out]
+    facet(*args)
+    return read_pfm(out)[2]
+
+
+def exporter_scene(objects):
+    """Camera, ambient and lights through the add-on's exporter, with `objects`."""
+    from facet_blender.blender import scene_data
+    from facet_blender.core import scene as core_scene
+    scene = bpy.context.scene
+    camera, _ = scene_data.camera_json(scene)
+    ambient, _ = scene_data.world_ambient(scene)
+    lights, _ = scene_data.lights_json(bpy.context.evaluated_depsgraph_get())
+    return core_scene.scene(scene.name, camera, ambient, lights, objects)
+
+
+def to_facet(v):
+    return [v[0], v[2], -v[1]]
+
+
+class Recorder:
+    """A stand-in for bpy.types.UILayout that records what a panel draws."""
+
+    def __init__(self, log=None):
+        self.log = [] if log is None else log
+        self.use_property_split = self.active = self.enabled = False
+        self.scale_y = 1.0
+
+    def _sub(self, *a, **k):
+        return Recorder(self.log)
+
+    row = column = box = split = _sub
+
+    def prop(self, data, name, **k):
+        check(hasattr(data, name), f"panel draws missing property {name!r}")
+        self.log.append(("prop", name, k.get("text")))
+
+    def label(self, text="", **k):
+        self.log.append(("label", text))
+
+    def operator(self, idname, **k):
+        self.log.append(("operator", idname))
+        return types.SimpleNamespace()
+
+    def separator(self, **k):
+        pass
+
+
+def draw_panel(panel_cls, material, **attrs):
+    layout = Recorder()
+    fake = types.SimpleNamespace(layout=layout, **attrs)
+    ctx = types.SimpleNamespace(material=material, object=None)
+    if panel_cls.poll(ctx):
+        panel_cls.draw(fake, ctx)
+    return layout.log
+
+
+# ============================================================================ tests: add-on
+
+@test()
+def test_register_unregister():
+    import facet_blender
+    from facet_blender.blender import operators, ui
+    check(facet_blender.bl_info["blender"] <= (3, 4, 0), "bl_info must allow Blender 3.4")
+    from facet_blender.blender import preferences, state
+    fixed = operators.classes + ui.classes + preferences.classes
+    for cls in fixed:
+        check(cls.is_registered, f"{cls.__name__} is not registered")
+    check("facet" in bpy.types.Material.bl_rna.properties, "Material.facet is not registered")
+    groups = list(state.STATE.classes)
+    check(len(groups) > 20 and all(c.is_registered for c in groups), "catalog PropertyGroups not registered")
+    check(hasattr(bpy.ops.facet, "export_pov") and hasattr(bpy.ops.facet, "generate_osl"), "operators missing")
+    mat = new_material("Kept", "oren_nayar", "ward")
+    mat.facet.diffuse_oren_nayar.sigma = 0.7
+    addon_utils.disable(ADDON, default_set=True)
+    for cls in fixed:
+        check(not cls.is_registered, f"{cls.__name__} is still registered after disabling")
+    check(not any(c.is_registered for c in groups), "catalog PropertyGroups still registered after disabling")
+    check("facet" not in bpy.types.Material.bl_rna.properties, "Material.facet still registered after disabling")
+    enable_addon()
+    check(hasattr(bpy.types.Material, "facet"), "Material.facet missing after enabling again")
+    check_equal((mat.facet.diffuse_model, mat.facet.specular_model), ("oren_nayar", "ward"),
+                "settings kept across disable/enable")
+    check_close(mat.facet.diffuse_oren_nayar.sigma, 0.7, "sigma kept across disable/enable")
+
+
+@test()
+def test_properties_match_catalog():
+    """Every lobe model of `facet models --json` has its parameters, defaults, ranges,
+    choices and docs in the panel's properties (checked on the RNA, from facet's JSON)."""
+    cat = catalog_json()["sections"]
+    mat = bpy.data.materials.new("Props")
+    rna = mat.facet.bl_rna.properties
+    checked = 0
+
+    def check_param(props_rna, prop_id, p, where, default=None):
+        nonlocal checked
+        check(prop_id in props_rna, f"{where}: no property for parameter {p['name']}")
+        prop = props_rna[prop_id]
+        default = p.get("default") if default is None else default
+        rng = p.get("range") or {}
+        lo, hi = rng.get("min"), rng.get("max")
+        if p["type"] == "number":
+            check_equal(prop.type, "FLOAT", f"{where}.{p['name']} type")
+            check_close(prop.default, default, f"{where}.{p['name']} default")
+        elif p["type"] == "color":
+            check_equal((prop.type, prop.subtype, prop.array_length), ("FLOAT", "COLOR", 3), f"{where}.{p['name']} type")
+            check_close(list(prop.default_array), default if isinstance(default, list) else [default] * 3,
+                        f"{where}.{p['name']} default")
+        elif p["type"] == "boolean":
+            check_equal((prop.type, prop.default), ("BOOLEAN", default), f"{where}.{p['name']}")
+        elif p["type"] == "string":
+            check_equal(prop.type, "ENUM", f"{where}.{p['name']} type")
+            check_equal([i.identifier for i in prop.enum_items], p["choices"], f"{where}.{p['name']} choices")
+            check_equal(prop.default, default, f"{where}.{p['name']} default")
+        if p["type"] in ("number", "color"):
+            check(lo is None and prop.hard_min < -1e30 or lo is not None and close(prop.hard_min, lo),
+                  f"{where}.{p['name']}: hard min {prop.hard_min} for catalog min {lo}")
+            check(hi is None and prop.hard_max > 1e30 or hi is not None and close(prop.hard_max, hi),
+                  f"{where}.{p['name']}: hard max {prop.hard_max} for catalog max {hi}")
+            check(p["doc"][:20].lower() in prop.description.lower(), f"{where}.{p['name']}: tooltip lacks the doc")
+        checked += 1
+
+    for section in ("diffuse", "specular"):
+        enum = rna[f"{section}_model"]
+        check_equal([i.identifier for i in enum.enum_items], ["none"] + [m["name"] for m in cat[section]],
+                    f"{section} model choices")
+        for model in cat[section]:
+            where = f"{section}.{model['name']}"
+            check(f"{section}_{model['name']}" in rna, f"no property group for {where}")
+            group = rna[f"{section}_{model['name']}"].fixed_type.properties
+            for p in model["parameters"]:
+                if p["type"] == "model":          # e.g. fresnel: a model of another section
+                    sub = group[p["name"]].fixed_type.properties
+                    models = cat[p["section"]]
+                    check_equal([i.identifier for i in sub["model"].enum_items], [m["name"] for m in models],
+                                f"{where}.{p['name']} models")
+                    check_equal(sub["model"].default, p["default"]["model"], f"{where}.{p['name']} default model")
+                    for m in models:
+                        for q in m["parameters"]:
+                            d = p["default"].get(q["name"]) if m["name"] == p["default"]["model"] else None
+                            check_param(sub, f"{m['name']}_{q['name']}", q, f"{where}.{p['name']}.{m['name']}", d)
+                elif p["type"] == "object":       # e.g. toon: an optional modifier
+                    sub = group[p["name"]].fixed_type.properties
+                    check_equal(sub["enabled"].default, False, f"{where}.{p['name']} off by default")
+                    modifier = next(m for m in cat[p["section"]] if m["name"] == p["name"])
+                    for q in modifier["parameters"]:
+                        check_param(sub, q["name"], q, f"{where}.{p['name']}")
+                else:
+                    check_param(group, p["name"], p, where)
+    schema = schema_json()["properties"]
+    for key in ("ambient", "emission"):
+        check_close(list(rna[key].default_array), schema[key]["default"], f"material {key} default")
+    check_close(list(rna["tangent_axis"].default_array), [0.0, 0.0, 1.0],
+                "tangent_axis default: facet's +Y is Blender's +Z")
+    info(f"{checked} parameters checked against the catalog")
+
+
+# Settings made in the panel (as a user would) and the JSON facet must receive.
+CASES = [
+    ("rough_brushed",
+     {"diffuse_model": "oren_nayar", "specular_model": "ward",
+      "diffuse_oren_nayar": {"color": (0.6, 0.3, 0.2), "sigma": 0.4, "interreflection": True},
+      "specular_ward": {"color": (0.9, 0.6, 0.5), "alpha_x": 0.08, "alpha_y": 0.3},
+      "tangent_axis": (0.0, 1.0, 0.0), "ambient": (0.02, 0.01, 0.01)},
+     {"diffuse": {"model": "oren_nayar", "color": [0.6, 0.3, 0.2], "sigma": 0.4, "interreflection": True},
+      "specular": {"model": "ward", "color": [0.9, 0.6, 0.5], "alpha_x": 0.08, "alpha_y": 0.3},
+      "ambient": [0.02, 0.01, 0.01], "emission": [0.0, 0.0, 0.0], "tangent_axis": [0.0, 0.0, -1.0]}),
+    ("moon_cook",
+     {"diffuse_model": "minnaert", "specular_model": "cook_torrance",
+      "diffuse_minnaert": {"color": (0.75, 0.73, 0.7), "k": 0.7, "toon": {"enabled": True, "cutoff": 0.4, "width": 0.1}},
+      "specular_cook_torrance": {"m": 0.25, "geometry": "smith_ggx", "fresnel": {"model": "exact", "exact_ior": 1.33}}},
+     {"diffuse": {"model": "minnaert", "color": [0.75, 0.73, 0.7], "k": 0.7, "toon": {"cutoff": 0.4, "width": 0.1}},
+      "specular": {"model": "cook_torrance", "color": [1.0, 1.0, 1.0], "m": 0.25, "geometry": "smith_ggx",
+                   "fresnel": {"model": "exact", "ior": 1.33}},
+      "ambient": [0.0, 0.0, 0.0], "emission": [0.0, 0.0, 0.0], "tangent_axis": [0.0, 1.0, 0.0]}),
+    ("copper_toon",
+     {"diffuse_model": "none", "specular_model": "ggx",
+      "specular_ggx": {"alpha": 0.3, "fresnel": {"model": "schlick", "schlick_f0": (0.95, 0.64, 0.54)},
+                       "toon": {"enabled": True, "cutoff": 0.5}}},
+     {"specular": {"model": "ggx", "color": [1.0, 1.0, 1.0], "alpha": 0.3, "geometry": "smith_ggx",
+                   "fresnel": {"model": "schlick", "f0": [0.95, 0.64, 0.54]}, "toon": {"cutoff": 0.5, "width": 0.0}},
+      "ambient": [0.0, 0.0, 0.0], "emission": [0.0, 0.0, 0.0], "tangent_axis": [0.0, 1.0, 0.0]}),
+    ("glow_blinn",
+     {"diffuse_model": "lambert", "specular_model": "blinn_phong",
+      "diffuse_lambert": {"color": (0.5, 0.45, 0.4)},
+      "specular_blinn_phong": {"color": (0.2, 0.2, 0.2), "n": 60.0, "approximation": "schlick"},
+      "ambient": (0.3, 0.3, 0.3), "emission": (0.15, 0.05, 0.02)},
+     {"diffuse": {"model": "lambert", "color": [0.5, 0.45, 0.4]},
+      "specular": {"model": "blinn_phong", "color": [0.2, 0.2, 0.2], "n": 60.0, "approximation": "schlick"},
+      "ambient": [0.3, 0.3, 0.3], "emission": [0.15, 0.05, 0.02], "tangent_axis": [0.0, 1.0, 0.0]}),
+    ("velvet_blinn",
+     {"diffuse_model": "minnaert_velvet", "specular_model": "blinn",
+      "diffuse_minnaert_velvet": {"color": (0.55, 0.1, 0.25), "k": 0.4},
+      "specular_blinn": {"c": 0.35, "fresnel": {"model": "none"}},
+      "tangent_axis": (0.3, 0.0, 1.0)},
+     {"diffuse": {"model": "minnaert_velvet", "color": [0.55, 0.1, 0.25], "k": 0.4},
+      "specular": {"model": "blinn", "color": [1.0, 1.0, 1.0], "c": 0.35, "fresnel": {"model": "none"}},
+      "ambient": [0.0, 0.0, 0.0], "emission": [0.0, 0.0, 0.0], "tangent_axis": [0.3, 1.0, 0.0]}),
+]
+
+
+def apply_settings(pg, values):
+    for key, value in values.items():
+        if isinstance(value, dict):
+            apply_settings(getattr(pg, key), value)
+        else:
+            setattr(pg, key, value)
+
+
+@test()
+def test_material_json_and_generate():
+    """Panel settings -> material JSON equal to what was set -> facet generates every target."""
+    for name, settings, expected in CASES:
+        mat = bpy.data.materials.new(name)
+        mat.facet.use_facet = True
+        apply_settings(mat.facet, settings)
+        data = export_material(mat)
+        check_equal(data, dict(expected, name=name), f"material JSON of {name}")
+        for target in ("glsl", "glsl450", "essl", "osl", "pov"):
+            facet("generate", work(f"{name}.json"), "--target", target, "-o", work(f"{name}.{target}"))
+    # Every lobe model with the catalog's defaults is accepted by facet as it stands.
+    cat = catalog_json()["sections"]
+    for section in ("diffuse", "specular"):
+        for model in cat[section]:
+            mat = new_material(f"default_{model['name']}", *((model["name"], "none") if section == "diffuse"
+                                                              else ("none", model["name"])))
+            data = export_material(mat)
+            check_equal(data[section]["model"], model["name"], "model written")
+            facet("generate", work(f"{mat.name}.json"), "--target", "glsl", "-o", work(f"{mat.name}.frag"))
+    info(f"{len(CASES)} hand-set materials x 5 targets, {len(cat['diffuse']) + len(cat['specular'])} default models")
+
+
+def normalized_example(data, cat, schema):
+    """An example material with every default written out, from facet's own catalog."""
+    def rgb(v):
+        return [float(v)] * 3 if isinstance(v, (int, float)) else [float(x) for x in v]
+
+    def full(model, given):
+        out = {"model": model["name"]}
+        for p in model["parameters"]:
+            value = given.get(p["name"], p.get("default"))
+            if p["type"] == "color":
+                out[p["name"]] = rgb(value)
+            elif p["type"] == "number":
+                out[p["name"]] = float(value)
+            elif p["type"] == "model":
+                sub_model = next(m for m in cat[p["section"]] if m["name"] == value["model"])
+                out[p["name"]] = full(sub_model, value)
+            elif p["type"] == "object":
+                if p["name"] in given:
+                    modifier = next(m for m in cat[p["section"]] if m["name"] == p["name"])
+                    out[p["name"]] = {k: v for k, v in full(modifier, given[p["name"]]).items() if k != "model"}
+            else:
+                out[p["name"]] = value
+        return out
+
+    result = {"name": data["name"]}
+    for section in ("diffuse", "specular"):
+        if section in data:
+            model = next(m for m in cat[section] if m["name"] == data[section]["model"])
+            result[section] = full(model, data[section])
+    for key in ("ambient", "emission"):
+        result[key] = rgb(data.get(key, schema[key]["default"]))
+    result["tangent_axis"] = [float(x) for x in data.get("tangent_axis", schema["tangent_axis"]["default"])]
+    return result
+
+
+@test()
+def test_import_export_round_trip():
+    """Every example material: import -> export gives the file with defaults written out;
+    importing the export again changes nothing."""
+    cat, schema = catalog_json()["sections"], schema_json()["properties"]
+    folder = os.path.join(os.path.dirname(os.path.dirname(ADDON_ROOT)), "examples", "materials")
+    names = sorted(f for f in os.listdir(folder) if f.endswith(".json"))
+    check(len(names) >= 10, f"too few example materials in {folder}")
+    for file in names:
+        original = read_json(os.path.join(folder, file))
+        mat = bpy.data.materials.new(original["name"])
+        expect_ok("import_material", mat, filepath=os.path.join(folder, file))
+        check(mat.facet.use_facet, f"{file}: import did not enable facet")
+        exported = export_material(mat, f"rt_{file}")
+        check_equal(exported, normalized_example(original, cat, schema), f"{file}: export after import")
+        again = bpy.data.materials.new(original["name"] + "_again")
+        expect_ok("import_material", again, filepath=work(f"rt_{file}"))
+        second = export_material(again, f"rt2_{file}")
+        check_equal(dict(second, name=exported["name"]), exported, f"{file}: second round trip")
+    # No active material: the import creates one, named after the file's material.
+    before = set(bpy.data.materials.keys())
+    reports = expect_ok("import_material", None, filepath=os.path.join(folder, "ward.json"))
+    created = set(bpy.data.materials.keys()) - before
+    check(len(created) == 1 and created.pop().startswith("brushed_copper"),
+          "import without a material should create one named after the file's material")
+    check(any("new material" in m for _, m in reports), f"report should say a material was created: {reports}")
+    info(f"{len(names)} example materials round-tripped")
+
+
+@test()
+def test_import_rejects_invalid_files():
+    mat = new_material("Target", "lambert", "phong")
+    mat.facet.diffuse_lambert.color = (0.1, 0.2, 0.3)
+    bad = write_json(work("bad.json"), {"name": "bad", "diffuse": {"model": "lambert", "color": [-1, 0, 0]}})
+    error = expect_error("import_material", mat, ["diffuse.color", "bad.json"], filepath=bad)
+    info(f"facet's words: {error.splitlines()[0][:120]}")
+    unknown = write_json(work("unknown.json"), {"name": "x", "specular": {"model": "phong", "n": 8, "shiny": 1}})
+    expect_error("import_material", mat, ["specular"], filepath=unknown)
+    with open(work("notjson.json"), "w") as f:
+        f.write("{ not json")
+    expect_error("import_material", mat, ["notjson.json"], filepath=work("notjson.json"))
+    check_equal((mat.facet.diffuse_model, mat.facet.specular_model), ("lambert", "phong"), "material untouched")
+    check_close(list(mat.facet.diffuse_lambert.color), [0.1, 0.2, 0.3], "material untouched")
+
+
+@test()
+def test_export_glsl():
+    mat = new_material("Plastic", "lambert", "ggx")
+    for dialect, version in (("glsl", "#version 330 core"), ("glsl450", "#version 450"), ("essl", "#version 300 es")):
+        for library in (False, True):
+            path = work(f"plastic_{dialect}_{int(library)}.glsl")
+            expect_ok("export_glsl", mat, filepath=path, dialect=dialect, library=library)
+            with open(path) as f:
+                text = f.read()
+            if library:   # just the functions, to paste into an engine's shader
+                check("void main" not in text and "#version" not in text, f"{dialect} library has main/#version")
+                check("facet_reflect" in text, f"{dialect} library lacks facet_reflect")
+            else:
+                check(version in text and "void main" in text, f"{dialect}: {version!r} or main() missing")
+            check("D_ggx" in text, f"{dialect}: the GGX term is missing")
+
+
+# ============================================================================ tests: Blender -> facet mapping
+
+def convert(mat):
+    reports = expect_ok("convert_material", mat)
+    data = export_material(mat, f"conv_{mat.name}.json")
+    text = " ".join(m for _, m in reports)
+    return data, text
+
+
+@test()
+def test_convert_diffuse_and_glossy():
+    def diffuse(roughness):
+        def build(nodes, links, out):
+            d = nodes.new("ShaderNodeBsdfDiffuse")
+            d.inputs["Color"].default_value = (0.8, 0.5, 0.25, 1.0)
+            d.inputs["Roughness"].default_value = roughness
+            links.new(d.outputs[0], out.inputs["Surface"])
+        return build
+
+    data, text = convert(node_material("Lambertian", diffuse(0.0)))
+    check_close(data["diffuse"], {"model": "lambert", "color": [0.8, 0.5, 0.25]}, "Diffuse BSDF roughness 0")
+    check("specular" not in data, "no specular lobe expected")
+    check("exact" in text and "approximate" not in text, f"Lambert mapping should be reported exact: {text}")
+
+    data, text = convert(node_material("Rough", diffuse(0.4)))
+    check_close(data["diffuse"], {"model": "oren_nayar", "color": [0.8, 0.5, 0.25], "sigma": 0.4,
+                                  "interreflection": False}, "Diffuse BSDF roughness 0.4")
+    check("approximate" in text and "Fujii" in text, f"Oren–Nayar mapping should be approximate: {text}")
+
+    def glossy(nodes, links, out):
+        g = nodes.new("ShaderNodeBsdfGlossy")
+        g.distribution = "GGX"
+        g.inputs["Color"].default_value = (0.9, 0.9, 0.8, 1.0)
+        g.inputs["Roughness"].default_value = 0.5
+        links.new(g.outputs[0], out.inputs["Surface"])
+    mat = node_material("Glossy", glossy)
+    data, text = convert(mat)
+    check_close(data["specular"], {"model": "ggx", "color": [0.9, 0.9, 0.8], "alpha": 0.25,
+                                   "geometry": "smith_ggx", "fresnel": {"model": "none"}}, "Glossy BSDF GGX")
+    check_equal(mat.facet.diffuse_model, "none", "Glossy alone has no diffuse lobe")
+    check("approximate" in text and "height-correlated" in text, f"GGX mapping should be approximate: {text}")
+
+    def add_mix(nodes, links, out):
+        d = nodes.new("ShaderNodeBsdfDiffuse")
+        d.inputs["Color"].default_value = (0.5, 0.5, 0.5, 1.0)
+        g = nodes.new("ShaderNodeBsdfGlossy")
+        g.distribution = "GGX"
+        g.inputs["Color"].default_value = (1.0, 1.0, 1.0, 1.0)
+        g.inputs["Roughness"].default_value = 0.3
+        mix = nodes.new("ShaderNodeMixShader")
+        mix.inputs["Fac"].default_value = 0.25
+        links.new(d.outputs[0], mix.inputs[1])
+        links.new(g.outputs[0], mix.inputs[2])
+        links.new(mix.outputs[0], out.inputs["Surface"])
+    data, text = convert(node_material("Mixed", add_mix))
+    check_close(data["diffuse"], {"model": "lambert", "color": [0.375, 0.375, 0.375]}, "Mix Shader diffuse × 0.75")
+    check_close(data["specular"]["color"], [0.25, 0.25, 0.25], "Mix Shader glossy × 0.25")
+    check_close(data["specular"]["alpha"], 0.09, "Mix Shader glossy alpha")
+
+
+@test()
+def test_convert_principled():
+    base, metallic, roughness = (0.8, 0.2, 0.1), 0.3, 0.4
+    modern = BLENDER >= (4, 0, 0)
+
+    def build(nodes, links, out):
+        p = nodes.new("ShaderNodeBsdfPrincipled")
+        p.inputs["Base Color"].default_value = base + (1.0,)
+        p.inputs["Metallic"].default_value = metallic
+        p.inputs["Roughness"].default_value = roughness
+        if modern:
+            p.inputs["IOR"].default_value = 1.45
+            p.inputs["Specular IOR Level"].default_value = 0.25
+            p.inputs["Emission Color"].default_value = (1.0, 0.5, 0.0, 1.0)
+            p.inputs["Emission Strength"].default_value = 0.2
+        else:
+            p.inputs["Specular"].default_value = 0.25
+            p.inputs["Emission"].default_value = (0.2, 0.1, 0.0, 1.0)
+            p.inputs["Emission Strength"].default_value = 1.0
+        links.new(p.outputs[0], out.inputs["Surface"])
+    data, text = convert(node_material("Principled", build))
+    if modern:   # 4.x: dielectric f0 = ((ior-1)/(ior+1))^2 * 2 * Specular IOR Level
+        dielectric = ((1.45 - 1.0) / (1.45 + 1.0)) ** 2 * 2.0 * 0.25
+    else:        # 3.x: 0.08 * Specular
+        dielectric = 0.08 * 0.25
+    f0 = [dielectric * (1 - metallic) + b * metallic for b in base]
+    check_close(data["diffuse"], {"model": "lambert", "color": [b * (1 - metallic) for b in base]},
+                "Principled diffuse = base (1 - metallic)", 1e-5)
+    check_close(data["specular"], {"model": "ggx", "color": [1.0, 1.0, 1.0], "alpha": roughness ** 2,
+                                   "geometry": "smith_ggx", "fresnel": {"model": "schlick", "f0": f0}},
+                "Principled specular", 1e-5)
+    check_close(data["emission"], [0.2, 0.1, 0.0], "Principled emission colour × strength", 1e-5)
+    check("approximate" in text, f"Principled mapping should be reported approximate: {text}")
+    # The defaults give the textbook dielectric f0 = 0.04 in both versions.
+    data, _ = convert(node_material("Default", lambda n, l, o: l.new(n.new("ShaderNodeBsdfPrincipled").outputs[0],
+                                                                     o.inputs["Surface"])))
+    check_close(data["specular"]["fresnel"]["f0"], [0.04] * 3, "default Principled f0", 1e-5)
+
+
+@test()
+def test_convert_refuses_other_nodes():
+    mat = node_material("Glow", lambda n, l, o: l.new(n.new("ShaderNodeEmission").outputs[0], o.inputs["Surface"]))
+    expect_error("convert_material", mat, ["no Diffuse, Glossy or Principled BSDF feeds the Material Output"])
+    check(not mat.facet.use_facet, "a refused conversion must not enable facet")
+    empty = node_material("Empty", lambda n, l, o: None)
+    expect_error("convert_material", empty, ["no Diffuse, Glossy or Principled BSDF feeds the Material Output"])
+
+
+@test()
+def test_convert_core_without_blender():
+    """The mapping on plain data (no bpy): the table's rows and its refusals."""
+    from facet_blender.core import UserError
+    from facet_blender.core.convert import map_surface
+    diffuse = {"type": "BSDF_DIFFUSE", "name": "D", "inputs": {"Color": [0.5, 0.4, 0.3, 1], "Roughness": 0.0}}
+    glossy = {"type": "BSDF_GLOSSY", "name": "G", "distribution": "BECKMANN",
+              "inputs": {"Color": [1, 1, 1, 1], "Roughness": 0.5}}
+    r = map_surface({"type": "ADD_SHADER", "shaders": [diffuse, glossy]})
+    check_equal(r.diffuse, {"model": "lambert", "color": [0.5, 0.4, 0.3]}, "Add Shader diffuse")
+    check_equal(r.specular["model"], "beckmann", "Beckmann glossy")
+    check_close(r.specular["m"], 0.25, "Beckmann m = roughness²")
+    r = map_surface(dict(diffuse, linked=["Color"]))
+    check(not r.exact, "a linked colour makes the mapping approximate")
+    for tree, words in ((None, "no Diffuse, Glossy or Principled"),
+                        ({"type": "ADD_SHADER", "shaders": [diffuse, diffuse]}, "more than one diffuse"),
+                        (dict(glossy, distribution="ASHIKHMIN_SHIRLEY"), "Ashikhmin")):
+        try:
+            map_surface(tree)
+            raise Failure(f"map_surface should refuse {tree}")
+        except UserError as e:
+            check(words in str(e), f"refusal should mention {words!r}: {e}")
+
+
+# ============================================================================ tests: scenes
+
+@test()
+def test_camera_matches_blender_projection():
+    """The exported camera projects world points where Blender's own camera does."""
+    from bpy_extras.object_utils import world_to_camera_view
+    from mathutils import Vector
+    from facet_blender.blender import scene_data
+    scene = bpy.context.scene
+    points = [Vector(p) for p in ((0.3, 0.2, 0.1), (-1.0, 0.5, 0.8), (0.7, -0.4, -0.6), (1.5, 1.0, 0.2))]
+    for fit, (w, h), lens, sensor in (("AUTO", (32, 32), 50.0, (36.0, 24.0)), ("AUTO", (64, 32), 35.0, (36.0, 24.0)),
+                                      ("AUTO", (32, 64), 35.0, (36.0, 24.0)), ("HORIZONTAL", (40, 30), 42.0, (30.0, 20.0)),
+                                      ("VERTICAL", (40, 30), 42.0, (30.0, 20.0)), ("VERTICAL", (30, 40), 28.0, (36.0, 30.0))):
+        reset()
+        cam = add_camera((4.0, -5.0, 3.0), (0.1, 0.2, 0.3), lens, fit, *sensor)
+        cam.rotation_euler.y += 0.2                      # some roll
+        bpy.context.view_layer.update()
+        scene.render.resolution_x, scene.render.resolution_y = w, h
+        camera, notes = scene_data.camera_json(scene)
+        check(not notes, f"unexpected notes {notes}")
+        # Blender's projection: P[1][1] = 1/tan(vertical fov / 2).
+        proj = cam.calc_matrix_camera(bpy.context.evaluated_depsgraph_get(), x=w, y=h)
+        check_close(camera["fov"], math.degrees(2 * math.atan(1.0 / proj[1][1])), f"{fit} {w}x{h} fov", 1e-6)
+        # facet's pinhole (renderers' convention) against world_to_camera_view.
+        pos, look, up = camera["position"], camera["look_at"], camera["up"]
+        fwd = [a - b for a, b in zip(look, pos)]
+        n = math.sqrt(sum(x * x for x in fwd))
+        fwd = [x / n for x in fwd]
+        right = [fwd[1] * up[2] - fwd[2] * up[1], fwd[2] * up[0] - fwd[0] * up[2], fwd[0] * up[1] - fwd[1] * up[0]]
+        n = math.sqrt(sum(x * x for x in right))
+        right = [x / n for x in right]
+        upp = [right[1] * fwd[2] - right[2] * fwd[1], right[2] * fwd[0] - right[0] * fwd[2],
+               right[0] * fwd[1] - right[1] * fwd[0]]
+        t = math.tan(math.radians(camera["fov"]) / 2)
+        for p in points:
+            d = [a - b for a, b in zip(to_facet(p), pos)]
+            z = sum(a * b for a, b in zip(d, fwd))
+            x = sum(a * b for a, b in zip(d, right)) / z / (t * w / h)
+            y = sum(a * b for a, b in zip(d, upp)) / z / t
+            b = world_to_camera_view(scene, cam, p)
+            check_close([x, y], [2 * b.x - 1, 2 * b.y - 1], f"{fit} {w}x{h}: image position of {tuple(p)}", 1e-5)
+
+
+@test()
+def test_scene_export_lights_world_meshes():
+    """Lights (units, axes), World ambient and meshes (split normals, windings) as exported."""
+    from facet_blender.blender import scene_data
+    from facet_blender.core import scene as core_scene
+    set_world((0.2, 0.1, 0.05), 2.0)
+    add_light("POINT", (1.0, 2.0, 3.0), 100.0, (1.0, 0.5, 0.25))
+    add_light("SUN", (0.0, 0.0, 5.0), 3.0, rotation=(math.radians(30), 0.0, 0.0))
+    add_light("SPOT", (0.0, -2.0, 2.0), 50.0, rotation=(math.radians(45), 0.0, 0.0),
+              spot_size=math.radians(60), spot_blend=0.0)
+    add_light("AREA", (0.0, 0.0, 3.0), 10.0)
+    lights, notes = scene_data.lights_json(bpy.context.evaluated_depsgraph_get())
+    by_type = {l["type"]: l for l in lights}
+    check_equal(sorted(by_type), ["directional", "point", "spot"], "exported light types (area skipped)")
+    check(any("area" in n.lower() for n in notes), f"the skipped area light must be reported: {notes}")
+    k = 100.0 / (4 * math.pi ** 2)
+    check_close(by_type["point"], {"type": "point", "position": [1.0, 3.0, -2.0], "color": [k, k / 2, k / 4],
+                                   "attenuation": "inverse_square"}, "point light")
+    s = math.radians(30)
+    check_close(by_type["directional"]["direction"], to_facet([0.0, math.sin(s), -math.cos(s)]), "sun direction", 1e-6)
+    check_close(by_type["directional"]["color"], [3.0 / math.pi] * 3, "sun colour")
+    spot = by_type["spot"]
+    check_close(spot["cutoff"], 30.0, "spot cutoff = spot_size / 2", 1e-5)
+    check_equal(spot["exponent"], 1.0 if BLENDER < (3, 5, 0) else 0.0, "spot exponent for this Cycles")
+    ambient, _ = scene_data.world_ambient(bpy.context.scene)
+    check_close(ambient, [0.4, 0.2, 0.1], "ambient = World colour × strength", 1e-6)
+
+    # A flat cube (24 corners, 12 triangles), a mirrored smooth sphere, a 2-material quad.
+    mat_a, mat_b = new_material("A"), new_material("B")
+    cube = bpy.data.meshes.new("cube")
+    v = [(x, y, z) for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)]
+    cube.from_pydata(v, [], [(0, 1, 3, 2), (4, 6, 7, 5), (0, 4, 5, 1), (2, 3, 7, 6), (0, 2, 6, 4), (1, 5, 7, 3)])
+    cube.update()
+    cube.materials.append(mat_a)
+    cube_obj = link(bpy.data.objects.new("Cube", cube))
+    cube_obj.location = (3.0, 0.0, 0.0)
+    sphere = add_uv_sphere("Ball", (0.0, 0.0, 1.0), 1.0, 16, 8, True, mat_b)
+    sphere.scale = (-1.0, 1.0, 1.5)                     # mirrored: windings must be reversed
+    quad = add_quad("Two", 1.0, material=mat_a)
+    quad.data.materials.append(mat_b)
+    quad.data.polygons[0].material_index = 1
+    bpy.context.view_layer.update()
+    used = {}
+    objects, _ = scene_data.objects_json(bpy.context.evaluated_depsgraph_get(), used)
+    names = {o["name"]: o for o in objects}
+    check_equal(sorted(names), ["Ball", "Cube", "Two"], "exported objects")
+    check_equal((len(names["Cube"]["positions"]), len(names["Cube"]["triangles"])), (24, 12), "flat cube split per face")
+    check_equal(names["Two"]["material"], "B", "face material of the quad")
+    ball = names["Ball"]
+    check_equal(len(ball["positions"]), len(sphere.data.vertices), "smooth sphere shares its vertices")
+    for o in objects:
+        for tri in o["triangles"]:
+            a, b, c = (o["positions"][i] for i in tri)
+            n = [sum(o["normals"][i][k] for i in tri) for k in range(3)]
+            e1, e2 = [b[k] - a[k] for k in range(3)], [c[k] - a[k] for k in range(3)]
+            cr = [e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]]
+            check(sum(x * y for x, y in zip(cr, n)) > 0, f"{o['name']}: triangle {tri} is not counter-clockwise "
+                                                         f"seen from its normals")
+        for n in o["normals"]:
+            check_close(math.sqrt(sum(x * x for x in n)), 1.0, "unit normals", 1e-6)
+    # Sphere normals point away from its (scaled) centre in facet coordinates.
+    centre = to_facet([0.0, 0.0, 1.0])
+    for p, n in zip(ball["positions"], ball["normals"]):
+        check(sum((p[k] - centre[k]) * n[k] for k in range(3)) > 0, "sphere normals point outwards")
+    # The core on its own: a non-uniform scale transforms normals by the inverse transpose.
+    m = [[2.0, 0, 0, 0], [0, 1.0, 0, 0], [0, 0, 1.0, 0], [0, 0, 0, 1]]
+    nrm = [0.6, 0.8, 0.0]
+    (obj,) = core_scene.mesh_objects("t", m, [(0, 0, 0), (1, 0, 0), (0, 1, 0)], [(0, 1, 2)], [(nrm, nrm, nrm)], ["x"])
+    check_close(obj["normals"][0], to_facet([0.3 / math.hypot(0.3, 0.8), 0.8 / math.hypot(0.3, 0.8), 0.0]),
+                "inverse-transpose normal")
+
+
+def lit_plane_case(kind):
+    """A Diffuse BSDF quad lit by one light, seen by a camera that sees only the quad."""
+    reset()
+    mat = node_material("Matte", lambda n, l, o: l.new(n.new("ShaderNodeBsdfDiffuse").outputs[0], o.inputs["Surface"]))
+    diffuse = mat.node_tree.nodes["Diffuse BSDF"]
+    diffuse.inputs["Color"].default_value = (0.8, 0.6, 0.4, 1.0)
+    diffuse.inputs["Roughness"].default_value = 0.0
+    add_quad("Floor", 50.0, material=mat)
+    add_camera((0.5, -4.0, 3.0), (0.0, 0.5, 0.0), 35.0)
+    if kind == "POINT":
+        add_light("POINT", (0.8, 0.3, 1.5), 60.0, (1.0, 0.9, 0.8))
+    elif kind == "SUN":
+        add_light("SUN", (0.0, 0.0, 4.0), 2.5, (0.9, 1.0, 1.0), rotation=(math.radians(35), math.radians(-20), 0.0))
+    else:
+        add_light("SPOT", (0.3, -0.5, 2.0), 150.0, (1.0, 1.0, 0.9), rotation=(math.radians(10), 0.0, 0.0),
+                  spot_size=math.radians(70), spot_blend=0.0)
+    return mat
+
+
+@test()
+def test_light_units_match_cycles():
+    """A Cycles render of a Diffuse BSDF lit by a point, sun and spot light equals facet's
+    reference render of the converted material and the exported camera and lights."""
+    w, h = 40, 30
+    for kind in ("POINT", "SUN", "SPOT"):
+        mat = lit_plane_case(kind)
+        bpy.context.scene.render.resolution_x, bpy.context.scene.render.resolution_y = w, h
+        expect_ok("convert_material", mat)
+        export_material(mat, f"matte_{kind}.json")
+        scene_json = exporter_scene([{"type": "plane", "name": "floor", "point": [0.0, 0.0, 0.0],
+                                      "normal": [0.0, 1.0, 0.0], "size": 50.0}])
+        ref = facet_reference(work(f"matte_{kind}.json"), scene_json, w, h, f"light_{kind}")
+        got = cycles_render(work(f"light_{kind}.exr"), w, h)
+        mask = [[1 if px[3] == 1.0 else 0 for px in row] for row in got]
+        lit = sum(1 for row in ref for px in row if px[0] > 1e-3)
+        check(lit > w * h // 10, f"{kind}: too few lit pixels ({lit}) for a meaningful test")
+        compare(got, ref, mask, f"{kind} light, Cycles vs facet reference")
+
+
+# ============================================================================ tests: OSL
+
+def osl_scene():
+    """Lit analytic sphere + camera + point, sun and spot lights + World ambient."""
+    mat = new_material("Shiny", "lambert", "blinn_phong")
+    mat.facet.diffuse_lambert.color = (0.7, 0.4, 0.2)
+    mat.facet.specular_blinn_phong.color = (0.4, 0.4, 0.4)
+    mat.facet.specular_blinn_phong.n = 40.0
+    mat.facet.ambient = (0.5, 0.5, 0.5)
+    set_world((0.1, 0.12, 0.15), 1.0)
+    center = (0.3, 0.2, 0.1)
+    add_point_sphere("Ball", center, 1.0, mat)
+    add_camera((0.5, -5.0, 1.8), center, 80.0)
+    add_light("POINT", (2.0, -3.0, 3.0), 400.0, (1.0, 0.95, 0.9))
+    add_light("SUN", (0.0, 0.0, 5.0), 0.8, (0.6, 0.7, 1.0), rotation=(math.radians(-40), math.radians(30), 0.0))
+    add_light("SPOT", (-2.5, -2.0, 1.0), 300.0, rotation=(math.radians(80), 0.0, math.radians(-50)),
+              spot_size=math.radians(50), spot_blend=0.0)
+    return mat, center
+
+
+def node_snapshot(mat):
+    tree = mat.node_tree
+    return (mat.use_nodes, sorted(n.name for n in tree.nodes) if tree else None,
+            sorted((l.from_node.name, l.from_socket.name, l.to_node.name, l.to_socket.name)
+                   for l in tree.links) if tree else None, sorted(t.name for t in bpy.data.texts))
+
+
+def has_osl():
+    from facet_blender.blender import osl
+    return osl.available()[0]
+
+
+@test(when=lambda v: v >= (4, 2, 0), why="rendering OSL needs Cycles with OSL and the 4.x Geometry Nodes API")
+def test_generate_osl_renders_like_reference():
+    check(has_osl(), "this Blender 4.x has no OSL: cannot check Generate OSL")
+    w = h = 32
+    mat, center = osl_scene()
+    bpy.context.scene.render.resolution_x = bpy.context.scene.render.resolution_y = w
+    reports = expect_ok("generate_osl", mat)
+    tree = mat.node_tree
+    script = tree.nodes.get("facet OSL")
+    check(script is not None and script.type == "SCRIPT", "no facet OSL Script node")
+    check_equal(script.mode, "INTERNAL", "Script node mode")
+    check(script.script is not None and "shader facet_" in script.script.as_string(), "Text with the shader")
+    check(len(script.bytecode) > 100, "the Script node was not compiled")
+    from facet_blender.blender.nodes import output_node
+    out = output_node(tree)
+    links = out.inputs["Surface"].links
+    check(links and links[0].from_node == script and links[0].from_socket.name == "Out",
+          "Script node's Out must feed the Material Output's Surface")
+    scene = bpy.context.scene
+    check_equal((scene.render.engine, scene.cycles.device, scene.cycles.shading_system), ("CYCLES", "CPU", True),
+                "scene set to Cycles, CPU, OSL")
+    check(any("3 lights" in m for _, m in reports), f"report should count the lights: {reports}")
+    # A second run replaces the node instead of piling up nodes and texts.
+    expect_ok("generate_osl", mat)
+    check_equal(sum(1 for n in tree.nodes if n.type == "SCRIPT"), 1, "one facet Script node after regenerating")
+    check_equal(len(bpy.data.texts), 1, "one Text after regenerating")
+
+    got = cycles_render(work("osl.exr"), w, h)
+    export_material(mat, "osl_material.json")
+    scene_json = exporter_scene([{"type": "sphere", "name": "ball", "center": to_facet(center), "radius": 1.0}])
+    ref = facet_reference(work("osl_material.json"), scene_json, w, h, "osl")
+    mask = [[1 if px[3] == 1.0 else 0 for px in row] for row in got]
+    count, worst_abs, worst_rel = compare(got, ref, mask, "Generate OSL, Cycles 32x32 vs facet reference")
+    check(count > 400, f"only {count} interior pixels")
+
+
+@test(when=lambda v: v >= (4, 2, 0), why="needs a Blender with OSL to provoke failures")
+def test_generate_osl_failures_leave_material_untouched():
+    from facet_blender.blender import osl, operators
+    mat, _ = osl_scene()
+    before = node_snapshot(mat)
+    real_available, real_install = osl.available, osl.install
+    try:
+        osl.available = lambda: (False, "this Blender (simulated) was built without OSL (Open Shading Language)")
+        expect_error("generate_osl", mat, ["without OSL", "was not changed"])
+        check_equal(node_snapshot(mat), before, "material untouched when OSL is missing")
+        osl.available = real_available
+        operators.osl.install = lambda m, text, name: real_install(m, text + "\nthis is not OSL {\n", name)
+        expect_error("generate_osl", mat, ["OSL compiler rejected"])
+        check_equal(node_snapshot(mat), before, "material untouched when the OSL does not compile")
+    finally:
+        osl.available, osl.install = real_available, real_install
+
+
+def has_osl_build():
+    return bool(getattr(bpy.app.build_options, "cycles_osl", False))
+
+
+@test(when=lambda v: not has_osl_build(), why="this Blender has OSL (the refusal is tested with OSL simulated away)")
+def test_generate_osl_refused_without_osl():
+    mat, _ = osl_scene() if BLENDER >= (4, 2, 0) else (new_material("Shiny", "lambert", "phong"), None)
+    mat.use_nodes = True
+    before = node_snapshot(mat)
+    error = expect_error("generate_osl", mat, ["without OSL", f"material '{mat.name}' was not changed"])
+    info(f"message: {error}")
+    check_equal(node_snapshot(mat), before, "material untouched")
+    check_equal(bpy.context.scene.cycles.shading_system, False, "scene settings untouched")
+
+
+# ============================================================================ tests: errors
+
+@test()
+def test_material_without_facet_settings():
+    plain = bpy.data.materials.new("Plain")
+    for op, kw in (("export_material", {"filepath": work("plain.json")}),
+                   ("export_glsl", {"filepath": work("plain.glsl")}),
+                   ("generate_osl", {})):
+        if op == "generate_osl" and not has_osl_build():
+            continue
+        expect_error(op, plain, ["material 'Plain' has no facet settings"], **kw)
+    check(not os.path.exists(work("plain.json")) and not os.path.exists(work("plain.glsl")), "files written")
+    # A whole-scene export names the material of an object.
+    add_camera((0.0, -5.0, 2.0), (0.0, 0.0, 0.0))
+    add_quad("Ground", 2.0, material=plain)
+    for op, path in (("export_pov", work("plain.pov")), ("export_scene", work("plain_scene.json"))):
+        expect_error(op, None, ["material 'Plain' has no facet settings"], filepath=path)
+        check(not os.path.exists(path), f"{op} wrote {path}")
+    check(not os.path.exists(work("plain.png")), "a PNG was written")
+    add_quad("Naked", 1.0)
+    plain.facet.use_facet = True
+    expect_error("export_scene", None, ["object 'Naked' has no material"], filepath=work("naked.json"))
+    check(not os.path.exists(work("naked.json")), "scene written despite the error")
+
+
+@test()
+def test_bad_facet_path():
+    from facet_blender.blender import state, ui
+    mat = new_material("Keep", "oren_nayar", "ggx")
+    mat.facet.specular_ggx.alpha = 0.33
+    good = prefs().facet_path
+    try:
+        prefs().facet_path = "/nonexistent/bin/facet"
+        check(state.STATE.catalog is None, "the catalog should be unloaded with a bad path")
+        check(not hasattr(bpy.types.Material, "facet"), "the dynamic properties should be gone")
+        lines = [entry[1] for entry in draw_panel(ui.FACET_PT_material, mat) if entry[0] == "label"]
+        check(any("/nonexistent/bin/facet" in l and "not found" in l for l in lines),
+              f"the panel should show the error: {lines}")
+        check(any("Preferences" in l for l in lines), "the panel should point to the preferences")
+        for op, kw in (("export_material", {"filepath": work("bad_path.json")}),
+                       ("export_glsl", {"filepath": work("bad_path.glsl")}),
+                       ("convert_material", {}),
+                       ("import_material", {"filepath": work("rough_brushed.json")})):
+            expect_error(op, mat, ["facet executable not found at '/nonexistent/bin/facet'", "Preferences"], **kw)
+        check(not os.path.exists(work("bad_path.json")) and not os.path.exists(work("bad_path.glsl")), "files written")
+        expect_error("reload_catalog", None, ["not found"])
+        # Registering while facet is missing still registers the add-on, with the reason shown.
+        import facet_blender
+        from facet_blender.blender import operators
+        facet_blender.unregister()
+        facet_blender.register()
+        check(all(c.is_registered for c in operators.classes + ui.classes), "add-on not registered without facet")
+        check(state.STATE.catalog is None and "not found" in state.STATE.error, "catalog error kept at register")
+        lines = [entry[1] for entry in draw_panel(ui.FACET_PT_material, mat) if entry[0] == "label"]
+        check(any("not found" in l for l in lines), f"the panel should show the error after registering: {lines}")
+    finally:
+        prefs().facet_path = good
+    check(state.STATE.catalog is not None, f"catalog back after restoring the path: {state.STATE.error}")
+    check_equal((mat.facet.diffuse_model, mat.facet.specular_model), ("oren_nayar", "ggx"), "settings kept")
+    check_close(mat.facet.specular_ggx.alpha, 0.33, "values kept across the reload")
+
+
+@test()
+def test_facet_rejects_out_of_range_value():
+    mat = new_material("Mirror", "lambert", "ggx")
+    mat.facet.specular_ggx.alpha = 0.0          # Blender allows 0; facet needs α > 0
+    target = work("mirror.json")
+    with open(target, "w") as f:
+        f.write("previous contents\n")
+    error = expect_error("export_material", mat, ["specular.alpha", "out of range", "material 'Mirror'"],
+                         filepath=target)
+    info(f"facet's words: {error.splitlines()[0]}")
+    with open(target) as f:
+        check_equal(f.read(), "previous contents\n", "a failed export must leave the old file intact")
+    expect_error("export_glsl", mat, ["specular.alpha"], filepath=work("mirror.glsl"))
+    check(not os.path.exists(work("mirror.glsl")), "GLSL written for an invalid material")
+    leftovers = [f for f in os.listdir(WORK) if f.endswith(".tmp")]
+    check(not leftovers, f"temporary files left behind: {leftovers}")
+
+
+@test()
+def test_panels_draw_the_chosen_models():
+    from facet_blender.blender import ui
+    cat = catalog_json()["sections"]
+    mat = new_material("Drawn", "oren_nayar", "cook_torrance")
+    mat.facet.specular_cook_torrance.fresnel.model = "schlick"
+    log = draw_panel(ui.FACET_PT_diffuse, mat, section="diffuse")
+    log += draw_panel(ui.FACET_PT_specular, mat, section="specular")
+    log += draw_panel(ui.FACET_PT_surface, mat) + draw_panel(ui.FACET_PT_generate, mat)
+    log += draw_panel(ui.FACET_PT_material, mat)
+    from facet_blender.blender import preferences
+    fake = types.SimpleNamespace(layout=Recorder(log), facet_path="", povray_path="")
+    preferences.FACET_AP_preferences.draw(fake, bpy.context)
+    menu = types.SimpleNamespace(layout=Recorder(log))
+    ui.menu_export(menu, bpy.context)
+    drawn = {e[1] for e in log if e[0] == "prop"}
+    for section, name in (("diffuse", "oren_nayar"), ("specular", "cook_torrance")):
+        model = next(m for m in cat[section] if m["name"] == name)
+        for p in model["parameters"]:
+            # Nested parameters are drawn as their switch (toon) or their model choice (fresnel).
+            drawn_as = {"object": "enabled", "model": "model"}.get(p["type"], p["name"])
+            check(drawn_as in drawn, f"panel does not draw {section} {name}.{p['name']}")
+        check(any(e[0] == "label" and e[1] == model["formula"] for e in log), f"formula of {name} not shown")
+    for name in ("schlick_f0", "ambient", "emission", "tangent_axis", "enabled", "cutoff", "width"):
+        check(name in drawn, f"panel does not draw {name}")
+    check("exact_ior" not in drawn, "only the chosen Fresnel model's parameters are drawn")
+    ops = {e[1] for e in log if e[0] == "operator"}
+    check({"facet_path", "povray_path"} <= drawn, "preferences do not draw the executables")
+    for op in ("facet.export_glsl", "facet.generate_osl", "facet.export_pov", "facet.import_material",
+               "facet.export_material", "facet.convert_material", "facet.export_scene", "facet.reload_catalog"):
+        check(op in ops, f"{op} has no button")
+
+
+INSTALL_SCRIPT = """
+import sys, bpy
+zip_path = sys.argv[-1]
+bpy.ops.extensions.package_install_files(filepath=zip_path, repo="user_default", enable_on_install=True)
+addon = bpy.context.preferences.addons.get("bl_ext.user_default.facet")
+mat = bpy.data.materials.new("probe")
+print("RESULT", addon is not None, addon and addon.preferences.facet_path, mat.facet.diffuse_model)
+"""
+
+
+@test(when=lambda v: v >= (4, 2, 0), why="extensions (blender_manifest.toml) exist from Blender 4.2")
+def test_extension_package_builds():
+    import zipfile
+    cli = os.path.join(bpy.utils.system_resource("SCRIPTS"), "addons_core", "bl_pkg", "cli", "blender_ext.py")
+    check(os.path.exists(cli), f"Blender's extension tool not found: {cli}")
+    src = os.path.join(ADDON_ROOT, ADDON)
+    # Build from a clean copy (no __pycache__ from this very run).
+    copy = work("ext_src")
+    shutil.copytree(src, copy, ignore=shutil.ignore_patterns("__pycache__"))
+    out = work("facet.zip")
+    proc = subprocess.run([sys.executable, cli, "build", "--source-dir", copy, "--output-filepath", out],
+                          stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    check(proc.returncode == 0 and os.path.exists(out), f"extension build failed:\n{proc.stdout}")
+    proc = subprocess.run([sys.executable, cli, "validate", out], stdout=subprocess.PIPE,
+                          stderr=subprocess.STDOUT, text=True)
+    check(proc.returncode == 0, f"extension validate failed:\n{proc.stdout}")
+    names = zipfile.ZipFile(out).namelist()
+    for required in ("blender_manifest.toml", "__init__.py", "core/cli.py", "blender/operators.py"):
+        check(required in names, f"{required} missing from the extension zip: {names}")
+    # Install it as an extension in a throw-away user folder, in a separate Blender.
+    script = work("install_extension.py")
+    with open(script, "w") as f:
+        f.write(INSTALL_SCRIPT)
+    if bpy.app.binary_path and os.path.basename(bpy.app.binary_path).startswith("blender"):
+        command = [bpy.app.binary_path, "-b", "--factory-startup", "--python", script, "--", out]
+    else:                                          # pip bpy: a plain Python imports bpy
+        command = [sys.executable, script, out]
+    env = dict(os.environ, BLENDER_USER_RESOURCES=work("user_resources"), FACET_BIN=OPTS.facet)
+    proc = subprocess.run(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, env=env,
+                          timeout=300)
+    result = [l for l in proc.stdout.splitlines() if l.startswith("RESULT")]
+    check_equal(result, [f"RESULT True {OPTS.facet} lambert"], f"installed extension (output:\n{proc.stdout[-2000:]})")
+    info(f"built {os.path.basename(out)} ({len(names)} files), installed and enabled as bl_ext.user_default.facet")
+
+
+# ============================================================================ tests: POV-Ray (scene-level materials)
+
+def scene_support():
+    schema = schema_json(scene=True)
+    text = json.dumps(schema.get("properties", {}).get("objects", {}))
+    return "materials" in schema.get("properties", {}) and '"mesh"' in text
+
+
+@test()
+def test_export_pov_scene_matches_reference():
+    """A smooth UV-sphere mesh on a plane lit by a point light, exported with per-object
+    facet materials, rendered by POV-Ray, equals facet's reference render of the scene."""
+    check(scene_support(), "facet lacks scene materials/meshes")
+    check(OPTS.povray and shutil.which(OPTS.povray), "POV-Ray (povray) is not installed")
+    prefs().povray_path = shutil.which(OPTS.povray)
+    ball = new_material("BallMat", "lambert", "phong")
+    ball.facet.diffuse_lambert.color = (0.7, 0.35, 0.2)
+    ball.facet.specular_phong.color = (0.3, 0.3, 0.3)
+    ball.facet.specular_phong.n = 20.0
+    floor = new_material("FloorMat", "lambert")
+    floor.facet.diffuse_lambert.color = (0.5, 0.5, 0.5)
+    add_uv_sphere("Ball", (0.0, 0.0, 1.0), 1.0, 32, 16, True, ball)
+    add_quad("Floor", 4.0, material=floor)
+    add_camera((0.5, -6.0, 3.0), (0.0, 0.0, 0.8), 40.0)
+    add_light("POINT", (2.0, -3.0, 4.0), 600.0)
+    w, h = 48, 36
+    scene = bpy.context.scene
+    scene.render.resolution_x, scene.render.resolution_y = w, h
+    pov = work("scene.pov")
+    expect_ok("export_pov", None, filepath=pov, render=True, save_scene=True)
+    for path in (pov, work("scene.png"), work("scene.json")):
+        check(os.path.exists(path), f"{path} not written")
+    image = bpy.data.images.get(f"{scene.name} (POV-Ray)")
+    check(image is not None and tuple(image.size) == (w, h), "rendered image not loaded into Blender")
+    _, _, got = read_png16(work("scene.png"))
+    ref = facet_reference(None, read_json(work("scene.json")), w, h, "pov")
+    check(max(max(px) for row in ref for px in row) < 1.0, "reference above 1 would clip in the PNG")
+    # Object ids at pixel centres from Cycles (same camera and geometry): emission id colours.
+    for k, obj in enumerate(o for o in scene.objects if o.type == "MESH"):
+        m = node_material(f"id{k}", lambda n, l, o: l.new(n.new("ShaderNodeEmission").outputs[0], o.inputs["Surface"]))
+        m.node_tree.nodes["Emission"].inputs["Color"].default_value = (k + 1.0, 0.0, 0.0, 1.0)
+        obj.data.materials.clear()
+        obj.data.materials.append(m)
+    ids = cycles_render(work("ids.exr"), w, h)
+    mask = [[round(px[0]) if px[3] == 1.0 else 0 for px in row] for row in ids]
+    compare(got, ref, mask, "Export POV-Ray, POV-Ray vs facet reference")
+
+
+# ============================================================================ main
+
+def enable_addon():
+    mod = addon_utils.enable(ADDON, default_set=True, handle_error=None)
+    check(mod is not None, "the add-on did not enable")
+    if prefs().facet_path != OPTS.facet:
+        prefs().facet_path = OPTS.facet                 # reloads the catalog
+    from facet_blender.blender import state
+    check(state.STATE.catalog is not None, f"the catalog did not load: {state.STATE.error}")
+
+
+def main():
+    global OPTS, WORK
+    OPTS = parse_args()
+    os.environ["FACET_BIN"] = OPTS.facet
+    if ADDON_ROOT not in sys.path:
+        sys.path.insert(0, ADDON_ROOT)
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    WORK = tempfile.mkdtemp(prefix="facet-blender-tests-")
+    print(f"facet add-on tests in Blender {bpy.app.version_string}, facet {OPTS.facet}, work {WORK}", flush=True)
+    passed, failed = [], []
+    try:
+        enable_addon()
+        for name, fn in TESTS:
+            if OPTS.k and OPTS.k not in name:
+                continue
+            t0 = time.perf_counter()
+            try:
+                reset()
+                fn()
+                passed.append(name)
+                print(f"PASS {name} ({time.perf_counter() - t0:.1f} s)", flush=True)
+            except Exception as e:  # noqa: BLE001 - report every failure and go on
+                failed.append(name)
+                detail = str(e) if isinstance(e, Failure) else traceback.format_exc()
+                print(f"FAIL {name} ({time.perf_counter() - t0:.1f} s): {detail}", flush=True)
+        addon_utils.disable(ADDON, default_set=True)
+    finally:
+        if OPTS.keep:
+            print(f"work folder kept: {WORK}")
+        else:
+            shutil.rmtree(WORK, ignore_errors=True)
+    for name, why in NOT_APPLICABLE:
+        print(f"not applicable in Blender {bpy.app.version_string}: {name} ({why})")
+    print(f"{len(passed)} passed, {len(failed)} failed", flush=True)
+    return 1 if failed else 0
+
+
+if __name__ == "__main__":
+    code = main()
+    sys.stdout.flush()
+    sys.exit(code)   # also ends Blender here, so the summary stays the last line
