@@ -86,7 +86,7 @@ def mesh(name, material, data):
 
 scene = {
     "name": "three_meshes",
-    "camera": {"position": [0.2, 2.2, 6.2], "look_at": [0, 0.1, 0], "up": [0, 1, 0], "fov": 38},
+    "camera": {"position": [0.4, 3.4, 6.0], "look_at": [0, -0.35, -0.2], "up": [0, 1, 0], "fov": 36},
     "ambient": [0.03, 0.03, 0.04],
     "materials": {
         "clay": {"name": "clay", "diffuse": {"model": "oren_nayar", "color": [0.72, 0.45, 0.3], "sigma": 0.4},

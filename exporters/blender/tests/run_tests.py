@@ -939,6 +939,30 @@ def test_convert_core_without_blender():
             check(words in str(e), f"refusal should mention {words!r}: {e}")
 
 
+CORE_PROBE = """
+import sys
+sys.modules["bpy"] = None           # any `import bpy` now raises ImportError
+sys.modules["mathutils"] = None
+sys.path.insert(0, sys.argv[1])
+from facet_blender.core import catalog, cli, convert, coords, props, scene
+cat = catalog.load(sys.argv[2])
+plan = props.material_group(cat)
+data = props.material_to_json(cat, plan, props.default_values(plan), "probe")
+print("CORE", sorted(data), len(props.groups_in_registration_order(plan)))
+"""
+
+
+@test()
+def test_core_is_blender_free():
+    """core/ imports and works in a Python where bpy and mathutils cannot be imported."""
+    python = shutil.which("python3") if "blender" in os.path.basename(sys.executable) else sys.executable
+    proc = subprocess.run([python, "-c", CORE_PROBE, ADDON_ROOT, OPTS.facet], stdout=subprocess.PIPE,
+                          stderr=subprocess.STDOUT, text=True)
+    line = [l for l in proc.stdout.splitlines() if l.startswith("CORE")]
+    check(proc.returncode == 0 and line, f"core without bpy failed:\n{proc.stdout}")
+    check(line[0].startswith("CORE ['ambient', 'diffuse', 'emission', 'name', 'tangent_axis']"), line[0])
+
+
 # ============================================================================ tests: scenes
 
 @test()

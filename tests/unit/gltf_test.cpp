@@ -1,0 +1,180 @@
+// glTF through tinygltf: a round trip loses nothing, the example file is what
+// its generator says, and bad files fail clearly without writing.
+#include <cmath>
+#include <filesystem>
+
+#include <gtest/gtest.h>
+
+#include "facet/gltf.h"
+#include "facet/io.h"
+#include "facet/process.h"
+#include "facet/render.h"
+
+namespace facet {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+const fs::path kSource = FACET_SOURCE_DIR;
+
+fs::path scratch(const std::string& name) {
+  fs::path dir = fs::temp_directory_path() / ("facet-gltf-test-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  return dir / name;
+}
+
+void expect_near(const Vec3& a, const Vec3& b, double tol, const std::string& what) {
+  EXPECT_NEAR(a.x, b.x, tol) << what;
+  EXPECT_NEAR(a.y, b.y, tol) << what;
+  EXPECT_NEAR(a.z, b.z, tol) << what;
+}
+
+// Everything a renderer reads survives export then import.
+void check_round_trip(const Scene& original, const Material* fallback, const std::string& file) {
+  std::vector<std::string> notes;
+  export_gltf(original, fallback, file, notes);
+  Scene back = import_gltf(file, {}, notes);
+
+  ASSERT_EQ(back.objects.size(), original.objects.size());
+  for (size_t i = 0; i < original.objects.size(); ++i) {
+    const Object& a = original.objects[i];
+    const Object& b = back.objects[i];
+    EXPECT_EQ(a.type, b.type) << a.name;
+    EXPECT_EQ(a.name, b.name);
+    // Materials: the full facet description, exactly.
+    const Material& ma = original.material_of(i, fallback);
+    const Material& mb = back.material_of(i, nullptr);
+    EXPECT_EQ(to_json(ma), to_json(mb)) << a.name;
+    if (a.type == Object::Type::Sphere) {
+      expect_near(a.center, b.center, 0, a.name);
+      EXPECT_EQ(a.radius, b.radius);
+    } else if (a.type == Object::Type::Plane) {
+      expect_near(a.point, b.point, 0, a.name);
+      expect_near(a.normal, b.normal, 1e-15, a.name);
+      EXPECT_EQ(a.size, b.size);
+    } else {
+      // glTF stores vertex data as float32.
+      ASSERT_EQ(a.mesh->positions.size(), b.mesh->positions.size());
+      ASSERT_EQ(a.mesh->triangles, b.mesh->triangles);
+      for (size_t v = 0; v < a.mesh->positions.size(); ++v) {
+        expect_near(a.mesh->positions[v], b.mesh->positions[v], 1e-6 * (1 + length(a.mesh->positions[v])), a.name);
+        expect_near(a.mesh->normals[v], b.mesh->normals[v], 2e-7, a.name);
+      }
+    }
+  }
+  ASSERT_EQ(back.lights.size(), original.lights.size());
+  for (size_t i = 0; i < original.lights.size(); ++i) {
+    const Light& a = original.lights[i];
+    const Light& b = back.lights[i];
+    EXPECT_EQ(a.type, b.type);
+    EXPECT_EQ(a.color, b.color);
+    EXPECT_EQ(a.attenuation.law, b.attenuation.law);
+    EXPECT_EQ(a.attenuation.constant, b.attenuation.constant);
+    EXPECT_EQ(a.attenuation.linear, b.attenuation.linear);
+    EXPECT_EQ(a.attenuation.quadratic, b.attenuation.quadratic);
+    EXPECT_EQ(a.cutoff, b.cutoff);
+    EXPECT_EQ(a.exponent, b.exponent);
+    if (a.type != Light::Type::Directional) expect_near(a.position, b.position, 1e-12, "light position");
+    if (a.type != Light::Type::Point) expect_near(a.direction, b.direction, 1e-12, "light direction");
+  }
+  EXPECT_EQ(original.ambient, back.ambient);
+  Camera::Basis ca = original.camera.basis(), cb = back.camera.basis();
+  expect_near(original.camera.position, back.camera.position, 1e-12, "camera position");
+  expect_near(ca.forward, cb.forward, 1e-12, "camera forward");
+  expect_near(ca.up, cb.up, 1e-12, "camera up");
+  EXPECT_NEAR(original.camera.fov, back.camera.fov, 1e-12);
+
+  // And the pictures agree: the reference renders of both.
+  Render ra = fallback ? render_reference(*fallback, original, 96, 72) : render_reference(original, 96, 72);
+  Render rb = render_reference(back, 96, 72);
+  double worst = 0;
+  size_t differ = 0;
+  for (size_t p = 0; p < ra.object.size(); ++p) {
+    differ += ra.object[p] != rb.object[p];
+    for (int c = 0; c < 3; ++c) worst = std::max(worst, double(std::fabs(ra.image.rgb[p * 3 + size_t(c)] - rb.image.rgb[p * 3 + size_t(c)])));
+  }
+  EXPECT_EQ(differ, 0u);
+  EXPECT_LT(worst, 1e-4) << "float32 vertex data only";
+}
+
+TEST(Gltf, MeshSceneRoundTrip) {
+  check_round_trip(load_scene((kSource / "examples/scenes/three_meshes.json").string()), nullptr,
+                   scratch("three_meshes.gltf").string());
+}
+
+TEST(Gltf, AnalyticSceneRoundTripAsGlb) {
+  Material ward = load_material((kSource / "examples/materials/ward.json").string());
+  check_round_trip(load_scene("shadows"), &ward, scratch("shadows.glb").string());
+}
+
+TEST(Gltf, ExampleFileIsTheExampleScene) {
+  // examples/scenes/three_meshes.gltf is `facet export-gltf three_meshes.json`.
+  std::vector<std::string> notes;
+  Scene g = import_gltf((kSource / "examples/scenes/three_meshes.gltf").string(), {}, notes);
+  Scene j = load_scene((kSource / "examples/scenes/three_meshes.json").string());
+  ASSERT_EQ(g.objects.size(), 4u);
+  EXPECT_GE(g.materials.size(), 3u);
+  size_t curved = 0;
+  for (const auto& o : g.objects) {
+    ASSERT_EQ(o.type, Object::Type::Mesh);
+    if (o.mesh->triangles.size() > 100) ++curved;
+  }
+  EXPECT_GE(curved, 2u) << "a smooth sphere and a torus";
+  for (const auto& [k, m] : j.materials) EXPECT_EQ(to_json(m), to_json(g.materials.at(k))) << k;
+}
+
+TEST(Gltf, MetallicRoughnessMapsOntoGgx) {
+  std::vector<std::string> notes;
+  Scene s = import_gltf((kSource / "tests/gltf/one_triangle.gltf").string(), {}, notes);
+  const Material& m = s.materials.begin()->second;
+  ASSERT_TRUE(m.diffuse && m.specular);
+  EXPECT_EQ(m.diffuse->def->name, "lambert");
+  EXPECT_EQ(m.diffuse->at("color").rgb, (RGB{0.8, 0.2, 0.1}));  // metallic 0: base colour
+  EXPECT_EQ(m.specular->def->name, "ggx");
+  EXPECT_DOUBLE_EQ(m.specular->at("alpha").number, 0.25);       // roughness²
+  EXPECT_EQ(m.specular->at("geometry").choice, "smith_ggx");
+  EXPECT_EQ(m.specular->at("fresnel").model->at("f0").rgb, (RGB{0.04, 0.04, 0.04}));
+  bool told = false;
+  for (const auto& n : notes) told |= n.find("(1 − F)") != std::string::npos;
+  EXPECT_TRUE(told) << "the approximate dielectric diffuse is reported";
+}
+
+struct Bad {
+  const char* file;
+  const char* path;
+  const char* words;
+};
+
+class BadGltf : public ::testing::TestWithParam<Bad> {};
+
+TEST_P(BadGltf, FailsClearlyAndWritesNothing) {
+  const Bad& b = GetParam();
+  fs::path out = scratch(std::string(b.file) + ".json");
+  fs::remove(out);
+  std::string cmd = std::string(FACET_BIN) + " import-gltf " + (kSource / "tests/gltf" / b.file).string() + " -o " +
+                    out.string();
+  ProcessResult r = run_process({"sh", "-c", cmd});
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find(std::string(": ") + b.path + ": "), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find(b.words), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(out));
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Files, BadGltf,
+    ::testing::Values(Bad{"no_material.gltf", "meshes[0].primitives[0].material", "--default-material"},
+                      Bad{"missing_buffer.gltf", "buffers[0].uri", "missing_buffer.bin"},
+                      Bad{"required_extension.gltf", "extensionsRequired[0]", "KHR_draco_mesh_compression"}),
+    [](const auto& info) { return fs::path(info.param.file).stem().string(); });
+
+TEST(Gltf, DefaultMaterialShadesPrimitivesWithoutOne) {
+  GltfImportOptions o;
+  o.default_material = load_material((kSource / "examples/materials/lambert.json").string());
+  std::vector<std::string> notes;
+  Scene s = import_gltf((kSource / "tests/gltf/no_material.gltf").string(), o, notes);
+  ASSERT_EQ(s.objects.size(), 1u);
+  EXPECT_EQ(s.material_of(0, nullptr).name, "lambert");
+}
+
+}  // namespace
+}  // namespace facet
