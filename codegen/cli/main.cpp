@@ -1,5 +1,8 @@
 // facet — the command line.
+#include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <thread>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -22,6 +25,7 @@
 #include "facet/material.h"
 #include "facet/reference.h"
 #include "facet/scene.h"
+#include "facet/sweep.h"
 #include "facet/targets.h"
 #include "facet/validate.h"
 
@@ -40,15 +44,34 @@ struct GenerateArgs {
   bool library = false;
 };
 
+// The material argument may be left out for a POV-Ray scene whose objects all carry their own materials.
+std::optional<Material> load_optional_material(const std::string& path, const std::optional<Scene>& scene,
+                                               const std::string& why) {
+  if (!path.empty()) return load_material(path);
+  if (scene && scene->has_own_materials()) return std::nullopt;
+  throw InputError({{"command line", "MATERIAL", "a material file is required " + why, 0, 0}});
+}
+
 int run_generate(const GenerateArgs& a) {
   auto target = parse_target(a.target);  // CLI11 already checked the name
-  Material m = load_material(a.material);
-  GenerateOptions o;
-  o.target = *target;
-  o.library = a.library;
-  o.source = a.material;
-  if (!a.scene.empty()) o.scene = load_scene(a.scene);
-  std::string code = generate(m, o);
+  std::optional<Scene> scene;
+  if (!a.scene.empty()) scene = load_scene(a.scene);
+  bool whole_scene = *target == Target::Pov && !a.library;
+  std::optional<Material> m = whole_scene ? load_optional_material(a.material, scene,
+                                                                   "unless every object of --scene has its own")
+                                          : load_optional_material(a.material, std::nullopt,
+                                                                   "for --target " + a.target + (a.library ? " --library" : ""));
+  std::string code;
+  if (m) {
+    GenerateOptions o;
+    o.target = *target;
+    o.library = a.library;
+    o.source = a.material;
+    o.scene = scene;
+    code = generate(*m, o);
+  } else {
+    code = generate_pov_scene(*scene, nullptr, a.scene);
+  }
   if (a.output.empty() || a.output == "-") {
     std::cout << code;
     return 0;
@@ -159,10 +182,10 @@ bool parse_size(const std::string& s, int& w, int& h) {
 
 int run_render(const RenderArgs& a) {
   int w, h;
-  if (!parse_size(a.size, w, h)) throw InputError({{"--size", "", "expected WIDTHxHEIGHT, e.g. 256x256", 0, 0}});
-  Material m = load_material(a.material);
+  if (!parse_size(a.size, w, h)) throw InputError({{"command line", "--size", "expected WIDTHxHEIGHT, e.g. 256x256", 0, 0}});
   Scene scene = load_scene(a.scene);
-  Render ref = render_reference(m, scene, w, h);
+  std::optional<Material> m = load_optional_material(a.material, scene, "unless every object of --scene has its own");
+  Render ref = m ? render_reference(*m, scene, w, h) : render_reference(scene, w, h);
   Image image = ref.image;
   if (a.renderer == "pov") {
     RenderJob job;
@@ -203,7 +226,7 @@ int run_render(const RenderArgs& a) {
     Metrics mt = compare_images(ref, image, interior_mask(ref), tol);
     fmt::print("{} vs reference, {}: max |Δ| {:.3g}, max |Δ|/max(1,|ref|) {:.3g}, rmse {:.3g}; {} of {} interior pixels "
                "over {:g}; NaN/Inf {}; worst at ({}, {}): ref [{:.6g} {:.6g} {:.6g}] got [{:.6g} {:.6g} {:.6g}]\n",
-               a.renderer, m.name, mt.max_abs, mt.max_excess, mt.rmse, mt.over, mt.pixels, tol, mt.nan, mt.worst_x,
+               a.renderer, m ? m->name : std::filesystem::path(a.scene).stem().string(), mt.max_abs, mt.max_excess, mt.rmse, mt.over, mt.pixels, tol, mt.nan, mt.worst_x,
                mt.worst_y, mt.worst_ref[0], mt.worst_ref[1], mt.worst_ref[2], mt.worst_got[0], mt.worst_got[1],
                mt.worst_got[2]);
     if (a.check >= 0 && (mt.over > 0 || mt.nan > 0 || mt.pixels == 0)) status = 3;
@@ -211,6 +234,81 @@ int run_render(const RenderArgs& a) {
   if (!a.output.empty()) write_pfm(a.output, image);
   if (!a.preview.empty()) write_png_preview(a.preview, image);
   return status;
+}
+
+// ---------------------------------------------------------------- sweep
+
+struct SweepArgs {
+  std::vector<std::string> materials;
+  bool extremes = false;
+  std::string renderers = "reference,glsl,osl,pov";
+  int grid = 1024;
+  size_t random = 800000;
+  std::string workdir;
+  std::string python;
+};
+
+int run_sweep(const SweepArgs& a) {
+  std::vector<Material> ms;
+  std::vector<std::string> files = a.materials;
+  if (files.empty()) {
+    for (const auto& e : std::filesystem::directory_iterator(std::filesystem::path(FACET_SOURCE_DIR) / "examples/materials"))
+      files.push_back(e.path().string());
+    std::sort(files.begin(), files.end());
+  }
+  for (const auto& f : files) ms.push_back(load_material(f));
+  if (a.extremes)
+    for (auto& m : extreme_materials()) ms.push_back(m);
+  std::string workdir = a.workdir.empty() ? (std::filesystem::temp_directory_path() / "facet-sweep").string() : a.workdir;
+  auto has = [&](const char* r) { return a.renderers.find(r) != std::string::npos; };
+  std::vector<std::vector<SweepCount>> rows(ms.size());
+  // Targets run one after another; the reference on both cores.
+  if (has("reference")) {
+    std::vector<SweepCount> counts(ms.size());
+    std::atomic<size_t> next{0};
+    auto work = [&] {
+      for (size_t i; (i = next++) < ms.size();) counts[i] = sweep_reference(ms[i], 512, a.random);
+    };
+    std::thread t1(work), t2(work);
+    t1.join();
+    t2.join();
+    for (size_t i = 0; i < ms.size(); ++i) rows[i].push_back(counts[i]);
+    fmt::print(stderr, "reference: {} materials swept\n", ms.size());
+  }
+  if (has("glsl")) {
+    GlRenderer gl;
+    for (size_t i = 0; i < ms.size(); ++i) rows[i].push_back(sweep_glsl(gl, ms[i], a.grid));
+    fmt::print(stderr, "glsl: {} materials swept\n", ms.size());
+  }
+  if (has("osl")) {
+    auto counts = sweep_osl(ms, std::min(a.grid, 512), a.python.empty() ? default_python() : a.python, workdir + "/osl");
+    for (size_t i = 0; i < ms.size(); ++i) rows[i].push_back(counts[i]);
+    fmt::print(stderr, "osl: {} materials swept\n", ms.size());
+  }
+  if (has("pov")) {
+    for (size_t i = 0; i < ms.size(); ++i) rows[i].push_back(sweep_pov(ms[i], std::min(a.grid, 256), workdir + "/pov"));
+    fmt::print(stderr, "pov: {} materials swept\n", ms.size());
+  }
+  std::map<std::string, size_t> samples;
+  size_t bad_rows = 0;
+  fmt::print("{:<34} {:<10} {:>10} {:>6} {:>6} {:>9}\n", "material", "target", "samples", "NaN", "Inf", "negative");
+  for (size_t i = 0; i < ms.size(); ++i) {
+    for (const auto& c : rows[i]) {
+      samples[c.target] += c.samples;
+      if (!c.ok()) ++bad_rows;
+      if (!c.error.empty()) {
+        fmt::print("{:<34} {:<10} FAILED: {}\n", ms[i].name, c.target, c.error.substr(0, c.error.find('\n')));
+        continue;
+      }
+      fmt::print("{:<34} {:<10} {:>10} {:>6} {:>6} {:>9}{}\n", ms[i].name, c.target, c.samples, c.nan, c.inf, c.negative,
+                 c.ok() ? "" : "   <-- bad values");
+    }
+  }
+  std::string totals;
+  for (const auto& [t, n] : samples) totals += fmt::format("{}{} {}", totals.empty() ? "" : ", ", t, n);
+  fmt::print("sweep: {} materials; direction sets checked: {}; {} with NaN, Inf or negative values or errors\n", ms.size(),
+             totals, bad_rows);
+  return bad_rows ? 1 : 0;
 }
 
 // ---------------------------------------------------------------- models
@@ -305,7 +403,9 @@ int main(int argc, char** argv) {
 
   GenerateArgs gen;
   auto* g = app.add_subcommand("generate", "Generate GLSL, OSL or POV-Ray code from a material file");
-  g->add_option("material", gen.material, "The material (JSON; see 'facet schema')")->required();
+  g->add_option("material", gen.material,
+                "The material (JSON; see 'facet schema'). May be left out for --target pov when every object of "
+                "--scene has its own material");
   g->add_option("-t,--target", gen.target,
                 "glsl (GLSL 3.30 core), glsl450 (Vulkan, compiles to SPIR-V), essl (OpenGL ES 3.00), "
                 "osl (Cycles shader), pov (POV-Ray 3.7 scene)")
@@ -323,6 +423,7 @@ int main(int argc, char** argv) {
       "  facet generate mat.json --target osl --scene shadows -o mat.osl\n"
       "  facet generate mat.json --target pov -o mat.pov      # a complete scene: sphere, camera, light\n"
       "  facet generate mat.json --target glsl --library       # just the functions: facet_reflect(n, l, v, t)\n"
+      "  facet generate --target pov --scene examples/scenes/three_meshes.json -o meshes.pov  # objects' own materials\n"
       "Nothing is written when the material has an error; the exit status is then 1.");
 
   std::string eval_material;
@@ -341,7 +442,8 @@ int main(int argc, char** argv) {
 
   RenderArgs ra;
   auto* rn = app.add_subcommand("render", "Render a material on a scene with one renderer (float image)");
-  rn->add_option("material", ra.material, "The material (JSON)")->required();
+  rn->add_option("material", ra.material,
+                 "The material (JSON). May be left out when every object of --scene has its own material");
   rn->add_option("-r,--renderer", ra.renderer,
                  "reference (C++ ray caster), glsl (OpenGL through EGL) or pov (POV-Ray 3.7)")
       ->check(CLI::IsMember({"reference", "glsl", "pov"}))
@@ -408,6 +510,23 @@ int main(int argc, char** argv) {
       "fallback; spheres and planes are tessellated and keep their exact definition (FACET_object). Example:\n"
       "  facet export-gltf examples/scenes/three_meshes.json -o three_meshes.gltf");
 
+  SweepArgs sw;
+  auto* swc = app.add_subcommand("sweep", "Check for NaN, Inf and negative values over dense direction sets");
+  swc->add_option("materials", sw.materials, "Material files (default: every examples/materials/*.json)");
+  swc->add_flag("--extremes", sw.extremes, "Also every model at the ends of its parameter ranges");
+  swc->add_option("--renderers", sw.renderers, "Comma-separated: reference, glsl, osl, pov")->capture_default_str();
+  swc->add_option("--grid", sw.grid, "Direction-set grid side for OpenGL (OSL takes at most 512, POV-Ray 256)")
+      ->capture_default_str();
+  swc->add_option("--random", sw.random, "Random direction sets on the C++ reference, besides its 512² grid")
+      ->capture_default_str();
+  swc->add_option("--workdir", sw.workdir, "Where the harnesses' files go");
+  swc->add_option("--python", sw.python, "The Python with bpy 4.5 (default: FACET_PYTHON, then the build's .venv)");
+  swc->footer(
+      "The grid (facet/sweep.h) holds the hard places: n·l and n·v at 1, 1e-7, 1e-4, 0, below the horizon;\n"
+      "l = v; h = n; l = −v grazing; the normal along the tangent axis. The reference adds random sets near\n"
+      "them. Exit 1 when any value is NaN, infinite or negative. Example:\n"
+      "  facet sweep my.json --extremes --renderers reference,glsl");
+
   bool schema_scene = false;
   auto* sc = app.add_subcommand("schema", "Print the JSON Schema of material files (or of scene files)");
   sc->add_flag("--scene", schema_scene, "The scene schema instead");
@@ -419,6 +538,7 @@ int main(int argc, char** argv) {
     if (e->parsed()) return run_eval(eval_material);
     if (mo->parsed()) return run_models(models_json);
     if (rn->parsed()) return run_render(ra);
+    if (swc->parsed()) return run_sweep(sw);
     if (gi->parsed()) {
       GltfImportOptions opt;
       if (!gi_default.empty()) opt.default_material = load_material(gi_default);
@@ -441,7 +561,7 @@ int main(int argc, char** argv) {
     }
     if (v->parsed()) {
       int w, h;
-      if (!parse_size(va_size, w, h)) throw InputError({{"--size", "", "expected WIDTHxHEIGHT, e.g. 256x256", 0, 0}});
+      if (!parse_size(va_size, w, h)) throw InputError({{"command line", "--size", "expected WIDTHxHEIGHT, e.g. 256x256", 0, 0}});
       va.width = w;
       va.height = h;
       va.renderers.clear();

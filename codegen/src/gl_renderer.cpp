@@ -111,6 +111,55 @@ GlRenderer::~GlRenderer() {
   delete state_;
 }
 
+RenderOutcome GlRenderer::sweep(const std::string& source, int grid) {
+  RenderOutcome out;
+  if (!ok()) {
+    out.error = error_;
+    return out;
+  }
+  GLuint fragment = glCreateShader(GL_FRAGMENT_SHADER);
+  const char* src = source.c_str();
+  glShaderSource(fragment, 1, &src, nullptr);
+  glCompileShader(fragment);
+  GLint status = 0;
+  glGetShaderiv(fragment, GL_COMPILE_STATUS, &status);
+  if (!status) {
+    out.error = "the sweep's GLSL did not compile: " + shader_log(fragment, false);
+    glDeleteShader(fragment);
+    return out;
+  }
+  GLuint prog = glCreateProgram();
+  glAttachShader(prog, state_->vertex);
+  glAttachShader(prog, fragment);
+  glLinkProgram(prog);
+  glDeleteShader(fragment);
+  glUseProgram(prog);
+  glUniform2f(glGetUniformLocation(prog, "facet_resolution"), float(grid), float(grid));
+  GLuint fbo = 0, rbo = 0;
+  glGenFramebuffers(1, &fbo);
+  glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+  glGenRenderbuffers(1, &rbo);
+  glBindRenderbuffer(GL_RENDERBUFFER, rbo);
+  glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA32F, grid, grid);
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, rbo);
+  glViewport(0, 0, grid, grid);
+  glBindVertexArray(state_->vao);
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  std::vector<float> px(size_t(grid) * size_t(grid) * 4);
+  glReadPixels(0, 0, grid, grid, GL_RGBA, GL_FLOAT, px.data());
+  out.image = Image(grid, grid);
+  for (size_t i = 0; i < size_t(grid) * size_t(grid); ++i)
+    for (int c = 0; c < 3; ++c) out.image.rgb[i * 3 + size_t(c)] = px[i * 4 + size_t(c)];
+  GLenum e = glGetError();
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  glDeleteRenderbuffers(1, &rbo);
+  glDeleteFramebuffers(1, &fbo);
+  glDeleteProgram(prog);
+  if (e != GL_NO_ERROR) out.error = fmt::format("OpenGL error 0x{:x}", e);
+  else out.ok = true;
+  return out;
+}
+
 std::string GlRenderer::fragment_source(const Material& m) {
   GlslParts parts = glsl_parts(compile(m), Target::Glsl, m.source);
   return "#version 330 core\n" + parts.header + parts.library + parts.lights + render_template("glsl/raycast.glsl", {});

@@ -93,6 +93,9 @@ Expr atan2(const Expr& y, const Expr& x) {
   return op(Op::Atan2, {y, x});
 }
 Expr abs(const Expr& x) { return op(Op::Abs, {x}); }
+Expr sin(const Expr& x) { return op(Op::Sin, {x}); }
+Expr cos(const Expr& x) { return op(Op::Cos, {x}); }
+Expr floor(const Expr& x) { return op(Op::Floor, {x}); }
 Expr step(const Expr& edge, const Expr& x) {
   if (edge.type() != Type::Float) ill_formed("step edges must be floats");
   return op(Op::Step, {edge, x});

@@ -119,6 +119,9 @@ struct Interpreter::Impl {
       case Op::Acos: return lanes(arg(0), [](double x) { return std::acos(x); });
       case Op::Atan2: return lanes2(arg(0), arg(1), [](double a, double b) { return std::atan2(a, b); });
       case Op::Abs: return lanes(arg(0), [](double x) { return std::fabs(x); });
+      case Op::Sin: return lanes(arg(0), [](double x) { return std::sin(x); });
+      case Op::Cos: return lanes(arg(0), [](double x) { return std::cos(x); });
+      case Op::Floor: return lanes(arg(0), [](double x) { return std::floor(x); });
       case Op::Step: return lanes2(arg(0), arg(1), [](double e, double x) { return x >= e ? 1.0 : 0.0; });
       case Op::Select: return test(f, n.args[0], frame) ? arg(1) : arg(2);
       case Op::Call: {

@@ -1,7 +1,9 @@
 // The comparison has teeth: a deliberately wrong target (an exponent off by
 // one, a missing π) rendered by the real renderer fails the same judgement
 // that `facet validate` applies, while the generated code passes it.
+#include <cmath>
 #include <filesystem>
+#include <functional>
 
 #include <gtest/gtest.h>
 
@@ -9,6 +11,7 @@
 #include "facet/program.h"
 #include "facet/render.h"
 #include "facet/renderers.h"
+#include "facet/sweep.h"
 #include "facet/targets.h"
 #include "facet/validate.h"
 
@@ -121,6 +124,118 @@ TEST(Detection, OslMissingPiAndExponentOffByOneFail) {
   EXPECT_TRUE(judged(ct, r[0]).pass) << log;
   EXPECT_FALSE(judged(ct, r[1]).pass) << log;
   EXPECT_FALSE(judged(bp, r[2]).pass) << log;
+}
+
+// ---------------------------------------------------------------- the sweeps
+
+// The sweep reaches every hard place of facet/sweep.h, on the grid alone and on
+// the random sets alone: a function that goes negative only there is caught.
+TEST(SweepDetection, ReachesEveryHardPlace) {
+  const Vec3 axis(0, 1, 0);
+  struct Place {
+    const char* name;
+    std::function<bool(const Vec3&, const Vec3&, const Vec3&)> at;
+    bool grid_only = false;  // exact values: the grid's business
+  };
+  std::vector<Place> places = {
+      {"n·l = 0 exactly", [](const Vec3& n, const Vec3& l, const Vec3&) { return dot(n, l) == 0; }, true},
+      {"n·v = 0 exactly", [](const Vec3& n, const Vec3&, const Vec3& v) { return dot(n, v) == 0; }, true},
+      {"0 < n·l ≤ 1e-6", [](const Vec3& n, const Vec3& l, const Vec3&) { return dot(n, l) > 0 && dot(n, l) <= 1e-6; }},
+      {"0 < n·v ≤ 1e-6", [](const Vec3& n, const Vec3&, const Vec3& v) { return dot(n, v) > 0 && dot(n, v) <= 1e-6; }},
+      {"light below the horizon", [](const Vec3& n, const Vec3& l, const Vec3&) { return dot(n, l) < 0; }},
+      {"viewer below the horizon", [](const Vec3& n, const Vec3&, const Vec3& v) { return dot(n, v) < 0; }},
+      {"l = v", [](const Vec3&, const Vec3& l, const Vec3& v) { return length(l - v) < 1e-6; }},
+      {"h ∥ n", [](const Vec3& n, const Vec3& l, const Vec3& v) {
+         return dot(n, l) > 0.1 && 1 - dot(n, normalize(l + v)) < 1e-12;
+       }},
+      {"l = −v grazing", [](const Vec3& n, const Vec3& l, const Vec3& v) {
+         return dot(l, v) < -1 + 1e-9 && std::fabs(dot(n, l)) < 1e-6;
+       }},
+      {"n ∥ tangent axis", [&](const Vec3& n, const Vec3&, const Vec3&) { return length(cross(axis, n)) < 1e-4; }},
+  };
+  for (const auto& p : places) {
+    for (auto [grid, random] : {std::pair{256, size_t(0)}, std::pair{0, size_t(200000)}}) {
+      if (p.grid_only && grid == 0) continue;
+      SweepCount c = sweep_directions(grid, random, axis, [&](const Vec3& n, const Vec3& l, const Vec3& v, const Vec3&) {
+        return p.at(n, l, v) ? RGB{-1, 0, 0} : RGB{0, 0, 0};
+      });
+      EXPECT_GT(c.negative, 0u) << p.name << (grid ? " on the grid" : " in the random sets");
+      EXPECT_FALSE(c.ok());
+    }
+  }
+  // And the counting itself: NaN, Inf and negative land in their own columns.
+  SweepCount c = sweep_directions(16, 0, axis, [](const Vec3&, const Vec3&, const Vec3&, const Vec3&) {
+    return RGB{std::nan(""), HUGE_VAL, -1e-300};
+  });
+  EXPECT_EQ(c.samples, 256u);
+  EXPECT_EQ(c.nan, 256u);
+  EXPECT_EQ(c.inf, 256u);
+  EXPECT_EQ(c.negative, 256u);
+}
+
+// On the targets, a harness with a fault at the horizon (n·l = 0 exactly) is
+// caught on exactly the grid cells the C++ side puts there.
+size_t horizon_cells(int grid) {
+  size_t k = 0;
+  for (const auto& s : sweep_grid_sets(grid)) k += dot(s[0], s[1]) == 0;
+  return k;
+}
+
+const int kSweepGrid = 256;
+
+Material sweep_material() { return load_material((kSource / "examples/materials/lambert.json").string()); }
+
+TEST(SweepDetection, GlslFaultAtTheHorizonIsCounted) {
+  GlRenderer gl;
+  ASSERT_TRUE(gl.ok()) << gl.error();
+  Material m = sweep_material();
+  SweepCount good = sweep_glsl(gl, m, kSweepGrid);
+  EXPECT_TRUE(good.ok()) << good.error;
+  std::string bad = inject(glsl_sweep_source(m), "facet_color = vec4(facet_reflect(n, l, v, facet_tangent(n)), 1.0);",
+                           "facet_color = vec4(facet_reflect(n, l, v, facet_tangent(n)), 1.0);\n"
+                           "    float z = dot(n, l);\n"
+                           "    if (z == 0.0) facet_color.r = -1.0;\n"
+                           "    facet_color.g += z / z - 1.0;  // NaN at z = 0\n");
+  SweepCount c = sweep_glsl(gl, m, kSweepGrid, bad);
+  ASSERT_TRUE(c.error.empty()) << c.error;
+  size_t expected = horizon_cells(kSweepGrid);
+  ASSERT_GT(expected, 0u);
+  EXPECT_EQ(c.samples, size_t(kSweepGrid) * kSweepGrid);
+  EXPECT_EQ(c.negative, expected);
+  EXPECT_EQ(c.nan, expected);
+}
+
+TEST(SweepDetection, OslFaultAtTheHorizonIsCounted) {
+  Material m = sweep_material(), faulty = m;
+  faulty.name = "lambert_with_a_fault";
+  std::string bad = inject(osl_sweep_source(m), "    color bad = 0;\n",
+                           "    if (dot(Nn, L) == 0) { r[0] = -1; r[1] = 1e38 * (10 + r[1]); }\n    color bad = 0;\n");
+  std::string workdir = (fs::temp_directory_path() / ("facet-detection-" + std::to_string(::getpid())) / "osl-sweep")
+                            .string();
+  std::vector<SweepCount> c = sweep_osl({m, faulty}, kSweepGrid, default_python(), workdir, {"", bad});
+  ASSERT_EQ(c.size(), 2u);
+  EXPECT_TRUE(c[0].ok()) << c[0].error;
+  ASSERT_TRUE(c[1].error.empty()) << c[1].error;
+  size_t expected = horizon_cells(kSweepGrid);
+  EXPECT_EQ(c[1].samples, size_t(kSweepGrid) * kSweepGrid);
+  EXPECT_EQ(c[1].negative, expected);
+  EXPECT_EQ(c[1].inf, expected);
+}
+
+TEST(SweepDetection, PovFaultAtTheHorizonIsCounted) {
+  Material m = sweep_material();
+  std::string workdir = (fs::temp_directory_path() / ("facet-detection-" + std::to_string(::getpid())) / "pov-sweep")
+                            .string();
+  SweepCount good = sweep_pov(m, kSweepGrid, workdir);
+  EXPECT_TRUE(good.ok()) << good.error;
+  const std::string nl = "Sweep_n_x(x, y) * Sweep_l_x(x, y) + Sweep_n_y(x, y) * Sweep_l_y(x, y) + "
+                         "Sweep_n_z(x, y) * Sweep_l_z(x, y)";
+  std::string bad = inject(generate_pov_sweep(m), "[1 function { Facet_Ok(Facet_Reflect",
+                           "[1 function { Facet_Ok(select(" + nl + ", 0, -1, 0) + Facet_Reflect");
+  SweepCount c = sweep_pov(m, kSweepGrid, workdir, bad);
+  ASSERT_TRUE(c.error.empty()) << c.error;
+  EXPECT_EQ(c.samples, size_t(kSweepGrid) * kSweepGrid);
+  EXPECT_EQ(c.nan, horizon_cells(kSweepGrid));  // POV-Ray counts every bad channel as NaN
 }
 
 }  // namespace

@@ -101,6 +101,11 @@ struct ModelDef {
   std::vector<ParamDef> params;
   Equivalence cycles;    // the nearest Cycles closure
   Equivalence pov;       // POV-Ray's native finish
+  // Physics, as the literature states it (facet physics measures both):
+  // f(l, v) = f(v, l); and directional albedo ≤ 1 for every incidence and roughness.
+  bool reciprocal = false;
+  bool energy_conserving = false;
+  std::string physics_note;  // where the claim comes from, or why not
   // Lobes: build ρ in `ctx` from the material's values. Others: null.
   std::function<ir::Expr(LobeContext&)> build;
 

@@ -29,7 +29,7 @@ enum class Op {
   // arithmetic (Color op Float broadcasts)
   Neg, Add, Sub, Mul, Div,
   // builtins, componentwise
-  Min, Max, Clamp, Sqrt, Exp, Pow, Acos, Atan2, Abs,
+  Min, Max, Clamp, Sqrt, Exp, Pow, Acos, Atan2, Abs, Sin, Cos, Floor,
   Step,        // step(edge, x): x >= edge ? 1 : 0
   // conditions (Float only); And/Or combine conditions
   Lt, Le, Gt, Ge, And, Or,
@@ -89,6 +89,9 @@ Expr pow(const Expr& x, const Expr& e);
 Expr acos(const Expr& x);
 Expr atan2(const Expr& y, const Expr& x);
 Expr abs(const Expr& x);
+Expr sin(const Expr& x);
+Expr cos(const Expr& x);
+Expr floor(const Expr& x);
 Expr step(const Expr& edge, const Expr& x);
 Cond operator<(const Expr& a, const Expr& b);
 Cond operator<=(const Expr& a, const Expr& b);

@@ -66,6 +66,8 @@ class GlRenderer {
   const std::string& error() const { return error_; }  // why there is no context
   const std::string& description() const { return description_; }  // GL_RENDERER and GL_VERSION
   RenderOutcome render(const RenderJob& job);
+  // The robustness sweep: a program from glsl_sweep_source() drawn on `grid` × `grid` pixels, raw values.
+  RenderOutcome sweep(const std::string& fragment_source, int grid);
   // The fragment shader render() compiles for one material: the generated GLSL under the ray caster.
   static std::string fragment_source(const Material& m);
 

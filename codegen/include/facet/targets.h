@@ -34,6 +34,12 @@ struct GlslParts {
 };
 GlslParts glsl_parts(const MaterialProgram& p, Target dialect, const std::string& source);
 
+// The robustness sweep's programs (facet/sweep.h): the material's functions
+// under a main that evaluates the sweep grid.
+std::string glsl_sweep_source(const Material& m);
+std::string osl_sweep_source(const Material& m);
+std::string generate_pov_sweep(const Material& m);
+
 // How POV-Ray evaluates this material in this scene.
 struct PovPlan {
   bool native = false;  // POV's own finish reproduces the model exactly

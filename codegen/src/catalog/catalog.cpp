@@ -128,8 +128,10 @@ LobeContext::LobeContext(const ModelSpec& spec, std::string lobe, ir::FunctionBu
 ir::Expr LobeContext::input(Input i) { return fb_.param(input_name(i)); }
 
 ir::Expr LobeContext::inv_half_length() {
-  // |l + v| = √(2 + 2 l·v); h = (l + v) / |l + v|.
-  if (!inv_half_) inv_half_ = fb_.let("inv_len_h", 1.0 / ir::sqrt(2.0 + 2.0 * LoV()));
+  // |l + v| = √(2 + 2 l·v); h = (l + v) / |l + v|. Where |l + v| < ε (l ≈ −v, both
+  // grazing: h is undefined) it is taken as ε, so rounding (l·v a hair below −1)
+  // cannot give 1/√0 or the root of a negative. n·h stays ≤ 1, since n·(l + v) ≤ |l + v|.
+  if (!inv_half_) inv_half_ = fb_.let("inv_len_h", 1.0 / ir::sqrt(ir::max(2.0 + 2.0 * LoV(), kEpsilon * kEpsilon)));
   return *inv_half_;
 }
 
@@ -142,10 +144,13 @@ ir::Expr LobeContext::derived(const char* name, std::optional<ir::Expr>& slot,
 }
 
 ir::Expr LobeContext::NoH() {
-  return derived("NoH", NoH_, [&] { return (NoL() + NoV()) * inv_half_length(); });
+  // n·h ≤ 1 since n·(l + v) ≤ |l + v|; the min keeps rounding from going above,
+  // where tan²θ_h < 0 would make exp(−tan²θ_h/m²) overflow for a small m.
+  return derived("NoH", NoH_, [&] { return ir::min((NoL() + NoV()) * inv_half_length(), 1.0); });
 }
 ir::Expr LobeContext::VoH() {
-  return derived("VoH", VoH_, [&] { return (1.0 + LoV()) * inv_half_length(); });
+  // v·h = (1 + l·v)/|l + v| ≥ 0; the bracket keeps rounding from making it negative.
+  return derived("VoH", VoH_, [&] { return ir::pos(1.0 + LoV()) * inv_half_length(); });
 }
 ir::Expr LobeContext::HoT() {
   return derived("HoT", HoT_, [&] { return (input(Input::LoT) + input(Input::VoT)) * inv_half_length(); });

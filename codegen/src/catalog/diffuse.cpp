@@ -17,6 +17,9 @@ void add_diffuse(std::vector<ModelDef>& all) {
     m.cycles = exact("diffuse(N) (the Diffuse BSDF, f = 1/π) is the same lobe");
     m.pov = exact("finish { diffuse 1 brilliance 1 } with pigment k_d (POV has no 1/π)");
     m.build = [](LobeContext& c) { return ir::call(terms::lambert(), {c.NoL()}); };
+    m.reciprocal = true;
+    m.energy_conserving = true;
+    m.physics_note = "f = 1/π: albedo exactly 1";
     add_lobe_params(m);
     all.push_back(m);
   }
@@ -33,6 +36,9 @@ void add_diffuse(std::vector<ModelDef>& all) {
     m.cycles = none("Cycles has no Minnaert closure");
     m.pov = none("POV's brilliance gives (n·l)^k but not the (n·v)^(k−1) factor: function pigment");
     m.build = [](LobeContext& c) { return ir::call(terms::minnaert(), {c.NoL(), c.NoV(), c.number("k")}); };
+    m.reciprocal = true;
+    m.physics_note = "f ∝ (n·l)^(k−1)(n·v)^(k−1), symmetric (Minnaert built it for reciprocity); for k < 1 the "
+                     "albedo grows without bound towards the limb";
     add_lobe_params(m);
     all.push_back(m);
   }
@@ -51,6 +57,7 @@ void add_diffuse(std::vector<ModelDef>& all) {
     m.build = [](LobeContext& c) {
       return ir::call(terms::minnaert_velvet(), {c.NoL(), c.NoV(), c.number("k")});
     };
+    m.physics_note = "an artistic limb term: (1 − n·v)^(1−k) is not symmetric in l and v";
     add_lobe_params(m);
     all.push_back(m);
   }
@@ -74,6 +81,9 @@ void add_diffuse(std::vector<ModelDef>& all) {
       double q = c.flag("interreflection") ? 0.57 : 0.33;
       return ir::call(terms::oren_nayar(), {c.NoL(), c.NoV(), c.LoV(), c.number("sigma"), q});
     };
+    m.reciprocal = true;
+    m.energy_conserving = true;
+    m.physics_note = "symmetric in θ_i, θ_r (α = max, β = min); Lambertian facets that only lose light";
     add_lobe_params(m);
     all.push_back(m);
   }

@@ -60,6 +60,7 @@ void add_specular(std::vector<ModelDef>& all) {
       }
       return ir::call(terms::phong(), {NoL, NoV, LoV, c.number("n")});
     };
+    m.physics_note = "ρ = [r·v]^n makes f = ρ/(π n·l) asymmetric; an unnormalized lobe, not a BRDF";
     add_lobe_params(m);
     all.push_back(m);
   }
@@ -80,6 +81,7 @@ void add_specular(std::vector<ModelDef>& all) {
       ir::Expr NoH = c.NoH();
       return power(c, terms::blinn_phong(), {NoH, c.number("n")}, NoH);
     };
+    m.physics_note = "ρ = [n·h]^n makes f = ρ/(π n·l) asymmetric; an unnormalized lobe, not a BRDF";
     add_lobe_params(m);
     all.push_back(m);
   }
@@ -95,6 +97,7 @@ void add_specular(std::vector<ModelDef>& all) {
     m.cycles = none("Cycles has no Gaussian-lobe closure");
     m.pov = none("function pigment");
     m.build = [](LobeContext& c) { return ir::call(terms::gaussian(), {c.NoH(), c.number("m")}); };
+    m.physics_note = "ρ itself is symmetric, so f = ρ/(π n·l) is not; an unnormalized lobe, not a BRDF";
     add_lobe_params(m);
     all.push_back(m);
   }
@@ -114,6 +117,7 @@ void add_specular(std::vector<ModelDef>& all) {
     m.build = [](LobeContext& c) {
       return ir::call(terms::heidrich_seidel(), {c.input(Input::LoT), c.input(Input::VoT), c.number("n")});
     };
+    m.physics_note = "Phong along fibres: ρ symmetric, f = ρ/(π n·l) not; unnormalized";
     add_lobe_params(m);
     all.push_back(m);
   }

@@ -1,12 +1,17 @@
 // The terms of MODELS.md, one IR function each. Each is built once and shared,
 // so a target prints it once however many models call it.
 //
-// Guards, all the same on every target:
+// Guards, all the same on every target (facet sweep checks them):
 //  * pow() bases are clamped to ≥ 0: GPUs return NaN for pow(x < 0, y), and a
 //    rounding error can push a cosine a few ulps below 0.
-//  * sqrt() arguments of the form 1 − c² are clamped to ≥ 0 for the same reason.
+//  * sqrt() arguments of the form 1 − c² are clamped to ≥ 0 for the same reason,
+//    and 1 − c² is computed as (1 − c)(1 + c), exact near c = 1 in float.
 //  * Divisions by n·v, n·l or n·h are safe because the horizon rule
 //    (reflectance(): n·l > 0 and n·v > 0, hence n·h > 0) guards every call.
+//  * Denominators that are products of small powers (π m² cos⁴θ_h) are floored
+//    at kTiny = 1e-30: float's smallest normal is 1.2e-38 and GPUs flush smaller
+//    values to 0, which would turn 0/0 into NaN where the numerator underflowed
+//    first. The floor only bites for roughness below about 1e-15.
 #include "facet/catalog.h"
 
 namespace facet::terms {
@@ -18,6 +23,7 @@ using ir::Type;
 
 namespace {
 const double kPi = 3.14159265358979323846;
+const double kTiny = 1e-30;  // see "Guards" above
 }
 
 // ---------------------------------------------------------------- diffuse
@@ -152,8 +158,8 @@ FunctionPtr distribution_beckmann() {
     Expr NoH = fb.param("NoH"), m = fb.param("m");
     Expr c2 = fb.let("c2", NoH * NoH);
     Expr m2 = fb.let("m2", m * m);
-    Expr tan2 = fb.let("tan2", (1.0 - c2) / c2);
-    return fb.returns(exp(-tan2 / m2) / (kPi * m2 * c2 * c2));
+    Expr tan2 = fb.let("tan2", pos((1.0 - NoH) * (1.0 + NoH)) / c2);
+    return fb.returns(exp(-tan2 / m2) / max(kPi * m2 * c2 * c2, kTiny));
   }();
   return f;
 }
@@ -165,8 +171,9 @@ FunctionPtr distribution_ggx() {
                        "(Trowbridge & Reitz 1975): D = α² / (π ((n·h)²(α²−1) + 1)²)");
     Expr NoH = fb.param("NoH"), alpha = fb.param("alpha");
     Expr a2 = fb.let("a2", alpha * alpha);
-    Expr d = fb.let("d", NoH * NoH * (a2 - 1.0) + 1.0);
-    return fb.returns(a2 / (kPi * d * d));
+    // (n·h)²(α² − 1) + 1, without the cancellation of 1 − (n·h)² in float.
+    Expr d = fb.let("d", (1.0 - NoH) * (1.0 + NoH) + a2 * NoH * NoH);
+    return fb.returns(a2 / max(kPi * d * d, kTiny));
   }();
   return f;
 }
@@ -178,7 +185,8 @@ FunctionPtr distribution_trowbridge_reitz() {
                        "D = (c² / ((n·h)²(c²−1) + 1))²");
     Expr NoH = fb.param("NoH"), c = fb.param("c");
     Expr c2 = fb.let("c2", c * c);
-    Expr r = fb.let("r", c2 / (NoH * NoH * (c2 - 1.0) + 1.0));
+    // (n·h)²(c² − 1) + 1, without the cancellation of 1 − (n·h)² in float.
+    Expr r = fb.let("r", c2 / max((1.0 - NoH) * (1.0 + NoH) + c2 * NoH * NoH, kTiny));
     return fb.returns(r * r);
   }();
   return f;
@@ -233,7 +241,8 @@ FunctionPtr fresnel_exact() {
     Expr ior = fb.param("ior"), c = fb.param("VoH");
     Expr g2 = fb.let("g2", ior * ior + c * c - 1.0);
     Expr g = fb.let("g", sqrt(pos(g2)));
-    Expr a = fb.let("a", (g - c) / (g + c));
+    // g + c = 0 only for η = 1 at c = 0 (l = −v): there a = 0/0; floored, a = 0.
+    Expr a = fb.let("a", (g - c) / max(g + c, kTiny));
     Expr b = fb.let("b", (c * (g + c) - 1.0) / (c * (g - c) + 1.0));
     return fb.returns(select(g2 < 0.0, 1.0, 0.5 * a * a * (1.0 + b * b)));
   }();

@@ -60,6 +60,9 @@ const char* builtin(Op op) {
     case Op::Acos: return "acos";
     case Op::Abs: return "abs";
     case Op::Step: return "step";
+    case Op::Sin: return "sin";
+    case Op::Cos: return "cos";
+    case Op::Floor: return "floor";
     default: return nullptr;
   }
 }

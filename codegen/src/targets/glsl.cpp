@@ -2,6 +2,7 @@
 #include <fmt/format.h>
 
 #include "cfamily.h"
+#include "facet/sweep.h"
 #include "facet/targets.h"
 #include "targets_internal.h"
 #include "templates.h"
@@ -105,6 +106,14 @@ GlslParts glsl_parts(const MaterialProgram& p, Target dialect, const std::string
   parts.lights = render_template("glsl/lights.glsl", {{"uniforms", light_uniforms(dialect)}});
   parts.main = render_template("glsl/main.glsl", {{"inputs", main_inputs(dialect)}});
   return parts;
+}
+
+std::string glsl_sweep_source(const Material& m) {
+  GlslParts parts = glsl_parts(compile(m), Target::Glsl, m.source);
+  targets::CPrinter printer({});
+  std::string grid;
+  for (const auto& f : ir::dependencies(sweep_grid())) grid += printer.function(f) + "\n";
+  return "#version 330 core\n" + parts.header + parts.library + "\n" + grid + render_template("glsl/sweep.glsl", {});
 }
 
 std::string generate_glsl(const Material& m, const GenerateOptions& o) {

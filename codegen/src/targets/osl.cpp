@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include "cfamily.h"
+#include "facet/sweep.h"
 #include "facet/targets.h"
 #include "targets_internal.h"
 #include "templates.h"
@@ -30,6 +31,28 @@ std::string triple(const targets::CPrinter& pr, const char* type, const Vec3& v)
 }
 
 }  // namespace
+
+std::string osl_sweep_source(const Material& m) {
+  GenerateOptions o;
+  o.target = Target::Osl;
+  o.library = true;
+  o.source = m.source;
+  MaterialProgram p = compile(m);
+  targets::CPrinter pr(osl_dialect());
+  std::string grid;
+  for (const auto& f : ir::dependencies(sweep_grid())) grid += pr.function(f) + "\n";
+  std::string params, args;
+  for (const auto& c : pr.free_constants(p.reflectance)) {
+    params += fmt::format("    {} {} = {},\n", pr.type(c->type), c->name,
+                          c->type == ir::Type::Color ? pr.color_literal(c->value) : pr.literal(c->value[0]));
+    args += ", " + c->name;
+  }
+  // The sweep's directions are in facet's frame: the tangent axis as written.
+  Vec3 a = normalize(Vec3(m.tangent_axis));
+  params += fmt::format("    vector tangent_axis = {},", triple(pr, "vector", a));
+  return generate_osl(m, o) + "\n" + grid +
+         render_template("osl/sweep.osl", {{"parameters", params}, {"constant_args", args}});
+}
 
 std::string generate_osl(const Material& m, const GenerateOptions& o) {
   MaterialProgram p = compile(m);

@@ -21,6 +21,7 @@
 
 #include <fmt/format.h>
 
+#include "facet/sweep.h"
 #include "facet/targets.h"
 #include "targets_internal.h"
 #include "templates.h"
@@ -142,6 +143,9 @@ class PovPrinter {
       case Op::Acos: s = "acos(" + a(0) + ")"; break;
       case Op::Atan2: s = "atan2(" + a(0) + ", " + a(1) + ")"; break;
       case Op::Abs: s = "abs(" + a(0) + ")"; break;
+      case Op::Sin: s = "sin(" + a(0) + ")"; break;
+      case Op::Cos: s = "cos(" + a(0) + ")"; break;
+      case Op::Floor: s = "floor(" + a(0) + ")"; break;
       case Op::Step: s = "(" + a(1) + " >= " + a(0) + ")"; break;
       case Op::Select: {
         // select(A, B, C[, D]): A < 0 → B; A = 0 → C; A > 0 → D (or C).
@@ -348,6 +352,31 @@ class PovScene {
     out += camera();
     if (plan_.native) out += native();
     else out += functions() + frames() + lit_objects();
+    return out;
+  }
+
+  // The robustness sweep (facet/sweep.h): each pixel centre of a unit square is a
+  // direction set of the grid; each channel shows whether that channel of the
+  // reflectance is finite and ≥ 0 (POV-Ray would render a NaN black, like a 0).
+  std::string sweep() {
+    const Shading& sh = *shadings_.front();
+    std::string out = header() + "#version 3.7;\nglobal_settings { assumed_gamma 1.0 }\n";
+    out += "camera { orthographic location <0.5, 0.5, -1> direction z right x up y }\n\n";
+    out += functions() + frames();
+    out += "// ---- The sweep grid\n";
+    PovPrinter grid;
+    for (const auto& f : ir::dependencies(sweep_grid())) out += grid.function(f) + "\n";
+    out += "#declare Facet_Ok = function(V) { (V >= 0) & (V <= 1e300) }\n";
+    std::string args;
+    for (const char* v : {"n", "l", "v"})
+      for (const char* c : {"x", "y", "z"}) args += fmt::format("{}Sweep_{}_{}(x, y)", args.empty() ? "" : ", ", v, c);
+    out += "polygon { 5, <0, 0, 0>, <1, 0, 0>, <1, 1, 0>, <0, 1, 0>, <0, 0, 0>\n  pigment { average pigment_map {\n";
+    for (int ch = 0; ch < 3; ++ch) {
+      out += fmt::format("    [1 function {{ Facet_Ok(Facet_Reflect{}({})) }} color_map {{ [0 rgb 0] [1 rgb {}] }}]\n",
+                         sh.suffix(sh.dependent ? ch : 0), args,
+                         ch == 0 ? "<3, 0, 0>" : ch == 1 ? "<0, 3, 0>" : "<0, 0, 3>");
+    }
+    out += "  } }\n  finish { ambient 0 diffuse 0 specular 0 phong 0 emission 1 }\n}\n";
     return out;
   }
 
@@ -849,6 +878,11 @@ std::string generate_pov(const Material& m, const GenerateOptions& o) {
   Scene s = o.scene ? *o.scene : default_scene();
   PovScene scene(s, &m, o.source);
   return o.library ? scene.library() : scene.render();
+}
+
+std::string generate_pov_sweep(const Material& m) {
+  Scene s = default_scene();
+  return PovScene(s, &m, m.source).sweep();
 }
 
 std::string generate_pov_scene(const Scene& s, const Material* fallback, const std::string& source) {

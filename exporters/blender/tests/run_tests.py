@@ -473,11 +473,11 @@ def compare(got_rows, ref_rows, mask_rows, what):
 
 def facet_reference(material_path, scene_json, width, height, name):
     """facet's reference render: of a material on a scene, or (material_path None) of a
-    scene whose objects carry their own materials: `facet render SCENE.json`."""
+    scene whose objects carry their own materials (`facet render --scene SCENE.json`)."""
     scene_path = write_json(work(f"{name}.scene.json"), scene_json)
     out = work(f"{name}.ref.pfm")
-    where = [material_path, "--scene", scene_path] if material_path else [scene_path]
-    args = ["render"] + where + ["-r", "reference", "--size", f"{width}x{height}", "-o", out]
+    args = ["render"] + ([material_path] if material_path else []) + [
+        "--scene", scene_path, "-r", "reference", "--size", f"{width}x{height}", "-o", out]
     facet(*args)
     return read_pfm(out)[2]
 
