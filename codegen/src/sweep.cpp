@@ -81,16 +81,8 @@ double high_end(const Range& r) {
   return r.max_open ? r.max - std::max(1e-6, std::fabs(r.max) * 1e-6) : r.max;
 }
 
-ModelSpec with_fallbacks(const ModelDef& def) {
-  ModelSpec s;
-  s.def = &def;
-  for (const auto& p : def.params)
-    if (p.kind != ParamKind::Object || p.fallback.model) s.values[p.name] = p.fallback;
-  return s;
-}
-
 ModelSpec fresnel(const char* name, std::map<std::string, Value> values) {
-  ModelSpec f = with_fallbacks(*find_model("fresnel", name));
+  ModelSpec f = default_spec(*find_model("fresnel", name));
   for (auto& [k, v] : values) f.values[k] = v;
   return f;
 }
@@ -117,7 +109,7 @@ std::vector<Material> extreme_materials() {
   };
   for (const auto& def : catalog()) {
     if (def.section != "diffuse" && def.section != "specular") continue;
-    ModelSpec low = with_fallbacks(def), high = with_fallbacks(def);
+    ModelSpec low = default_spec(def), high = default_spec(def);
     for (const auto& p : def.params) {
       if (p.kind != ParamKind::Number) continue;
       low.values[p.name] = number_value(low_end(p.range));
@@ -154,8 +146,8 @@ std::vector<Material> extreme_materials() {
   const ModelDef& lambert = *find_model("diffuse", "lambert");
   for (auto [name, cutoff, width] : {std::tuple{"toon_zero", 0.0, 0.0}, std::tuple{"toon_thin", 0.5, 1e-9},
                                      std::tuple{"toon_wide", 1e4, 1e4}}) {
-    ModelSpec s = with_fallbacks(lambert);
-    ModelSpec t = with_fallbacks(*find_model("modifier", "toon"));
+    ModelSpec s = default_spec(lambert);
+    ModelSpec t = default_spec(*find_model("modifier", "toon"));
     t.values["cutoff"] = number_value(cutoff);
     t.values["width"] = number_value(width);
     Value v;

@@ -72,6 +72,50 @@ TEST(Cli, AFailedGenerateLeavesThePreviousOutputIntact) {
   EXPECT_EQ(read_file(out.string()), "previous contents\n");
 }
 
+// Interrupted while writing: the shell's file-size limit (ulimit -f) stops
+// facet in the middle of writing a 7 MB POV-Ray scene, by SIGXFSZ (killed) or,
+// with the signal ignored, by a failing write(2). Either way the previous file
+// is untouched; on the error path the temporary file is gone too.
+std::vector<std::string> hidden_temporaries(const fs::path& dir) {
+  std::vector<std::string> out;
+  for (const auto& e : fs::directory_iterator(dir))
+    if (e.path().filename().string().find(".facet-") != std::string::npos) out.push_back(e.path().string());
+  return out;
+}
+
+ProcessResult limited_generate(const fs::path& out, bool ignore_signal) {
+  std::string cmd = std::string(ignore_signal ? "trap '' XFSZ; " : "") + "ulimit -f 512; exec '" + kFacet +
+                    "' generate --target pov --scene '" + (kSource / "examples/scenes/three_meshes.json").string() +
+                    "' -o '" + out.string() + "'";
+  return run_process({"sh", "-c", cmd});
+}
+
+TEST(Cli, AKilledWriteLeavesThePreviousOutputIntact) {
+  fs::path dir = scratch("killed");
+  fs::create_directories(dir);
+  fs::path out = dir / "scene.pov";
+  write_file_atomic(out.string(), "previous contents\n");
+  ProcessResult r = limited_generate(out, false);
+  EXPECT_NE(r.exit_code, 0) << "the file-size limit should have stopped facet: " << r.output;
+  EXPECT_EQ(read_file(out.string()), "previous contents\n");
+  // The partial data went to a hidden temporary file, which a killed process cannot remove.
+  std::vector<std::string> temps = hidden_temporaries(dir);
+  ASSERT_EQ(temps.size(), 1u);
+  EXPECT_GT(fs::file_size(temps[0]), 0u);
+}
+
+TEST(Cli, AFailedWriteLeavesThePreviousOutputIntactAndNoTemporary) {
+  fs::path dir = scratch("efbig");
+  fs::create_directories(dir);
+  fs::path out = dir / "scene.pov";
+  write_file_atomic(out.string(), "previous contents\n");
+  ProcessResult r = limited_generate(out, true);
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find(out.string() + ": cannot write"), std::string::npos) << r.output;
+  EXPECT_EQ(read_file(out.string()), "previous contents\n");
+  EXPECT_TRUE(hidden_temporaries(dir).empty());
+}
+
 TEST(Cli, GenerateWritesTheFile) {
   fs::path out = scratch("lambert.frag");
   fs::remove(out);

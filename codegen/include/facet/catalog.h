@@ -169,6 +169,8 @@ class LobeContext {
 // are checked and documented the same way.
 const std::vector<ModelDef>& catalog();
 const ModelDef* find_model(const std::string& section, const std::string& name);
+// `def` with every parameter at its default (optional objects such as toon absent).
+ModelSpec default_spec(const ModelDef& def);
 std::vector<const ModelDef*> section(const std::string& name);
 
 // The term functions of the catalog, one per term, each built once. Models

@@ -242,6 +242,14 @@ const std::vector<ModelDef>& catalog() {
   return all;
 }
 
+ModelSpec default_spec(const ModelDef& def) {
+  ModelSpec s;
+  s.def = &def;
+  for (const auto& p : def.params)
+    if (p.kind != ParamKind::Object || p.fallback.model) s.values[p.name] = p.fallback;
+  return s;
+}
+
 const ModelDef* find_model(const std::string& sec, const std::string& name) {
   for (const auto& m : catalog())
     if (m.section == sec && m.name == name) return &m;

@@ -82,8 +82,9 @@ void add_diffuse(std::vector<ModelDef>& all) {
       return ir::call(terms::oren_nayar(), {c.NoL(), c.NoV(), c.LoV(), c.number("sigma"), q});
     };
     m.reciprocal = true;
-    m.energy_conserving = true;
-    m.physics_note = "symmetric in θ_i, θ_r (α = max, β = min); Lambertian facets that only lose light";
+    m.physics_note = "symmetric in θ_i, θ_r (α = max, β = min); the qualitative fit lets a white surface reflect "
+                     "a few % more than it receives at grazing incidence (Fujii 2012, \"A tiny improvement of "
+                     "Oren-Nayar reflectance model\", notes this of the full model too)";
     add_lobe_params(m);
     all.push_back(m);
   }

@@ -138,6 +138,9 @@ void add_specular(std::vector<ModelDef>& all) {
       ir::Expr m_ = c.number("m");
       return microfacet(c, ir::call(terms::distribution_beckmann(), {c.NoH(), m_}), m_);
     };
+    m.reciprocal = true;
+    m.physics_note = "D F/(4 (n·l)(n·v)) is symmetric; without G nothing bounds the albedo as n·l → 0 (add "
+                     "`geometry` for Cook–Torrance)";
     add_lobe_params(m);
     all.push_back(m);
   }
@@ -158,6 +161,11 @@ void add_specular(std::vector<ModelDef>& all) {
       ir::Expr m_ = c.number("m");
       return microfacet(c, ir::call(terms::distribution_beckmann(), {c.NoH(), m_}), m_);
     };
+    m.reciprocal = true;
+    m.energy_conserving = true;
+    m.physics_note = "symmetric; the V-cavity masking function is exact for its microsurface (Heitz 2014, "
+                     "\"Understanding the Masking-Shadowing Function in Microfacet-Based BRDFs\") and G ≤ G1(l), "
+                     "so with F ≤ 1 the albedo is ≤ 1";
     add_lobe_params(m);
     all.push_back(m);
   }
@@ -178,6 +186,10 @@ void add_specular(std::vector<ModelDef>& all) {
       ir::Expr a = c.number("alpha");
       return microfacet(c, ir::call(terms::distribution_ggx(), {c.NoH(), a}), a);
     };
+    m.reciprocal = true;
+    m.energy_conserving = true;
+    m.physics_note = "symmetric; Smith G1 is exact for GGX facets and G = G1(l) G1(v) ≤ G1(l), so with F ≤ 1 the "
+                     "albedo is ≤ 1 (Walter et al. 2007; Heitz 2014); energy of multiple scattering is lost";
     add_lobe_params(m);
     all.push_back(m);
   }
@@ -200,6 +212,8 @@ void add_specular(std::vector<ModelDef>& all) {
       ir::Expr F = c.let("F", c.fresnel());
       return ir::call(terms::blinn(), {D, G, F, c.NoV()});
     };
+    m.reciprocal = true;
+    m.physics_note = "D G F/(π (n·l)(n·v)) is symmetric; D is not normalized (its peak is 1), so no bound is claimed";
     add_lobe_params(m);
     all.push_back(m);
   }
@@ -223,6 +237,12 @@ void add_specular(std::vector<ModelDef>& all) {
       return ir::call(nvidia ? terms::ward_nvidia() : terms::ward(),
                       {c.NoL(), c.NoV(), c.NoH(), c.HoT(), c.HoB(), c.number("alpha_x"), c.number("alpha_y")});
     };
+    m.reciprocal = true;
+    m.physics_note = nvidia ? "symmetric in l and v; the rewritten exponent is not Ward's, so his normalization "
+                              "does not carry over and no bound is claimed"
+                            : "symmetric in l and v; Ward's normalization is approximate: narrow lobes lose energy "
+                              "as cos θ_i (Dür 2006, \"An Improved Normalization for the Ward Reflectance Model\"), "
+                              "and 1/√(n·l) makes the albedo grow without bound at grazing incidence";
     add_lobe_params(m);
     all.push_back(m);
   }
