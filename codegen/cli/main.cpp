@@ -1,18 +1,20 @@
 // facet — the command line.
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cmath>
-#include <thread>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <sstream>
+#include <thread>
 
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
 
 #include "facet/catalog.h"
@@ -23,6 +25,7 @@
 #include "facet/renderers.h"
 #include "facet/io.h"
 #include "facet/material.h"
+#include "facet/physics.h"
 #include "facet/reference.h"
 #include "facet/scene.h"
 #include "facet/sweep.h"
@@ -165,6 +168,7 @@ struct RenderArgs {
   std::string workdir;
   bool compare = false;
   bool exact = false;
+  bool one_run = false;
   double check = -1;
 };
 
@@ -195,6 +199,7 @@ int run_render(const RenderArgs& a) {
     job.height = h;
     job.workdir = a.workdir.empty() ? (std::filesystem::temp_directory_path() / "facet-render").string() : a.workdir;
     job.bracket = a.exact;
+    job.one_run = a.one_run;
     job.max_value = 0;
     for (float v : ref.image.rgb) job.max_value = std::max<double>(job.max_value, v);
     RenderOutcome r = render_pov(job);
@@ -311,6 +316,57 @@ int run_sweep(const SweepArgs& a) {
   return bad_rows ? 1 : 0;
 }
 
+// ---------------------------------------------------------------- physics
+
+struct PhysicsArgs {
+  std::string output;
+  std::string check;
+  size_t samples = PhysicsOptions{}.albedo_samples;
+};
+
+int run_physics(const PhysicsArgs& a) {
+  PhysicsOptions o;
+  o.albedo_samples = a.samples;
+  fmt::print(stderr, "physics: measuring every lobe ({} samples per albedo estimate)…\n", o.albedo_samples);
+  auto start = std::chrono::steady_clock::now();
+  std::vector<PhysicsRow> rows = measure_physics(o);
+  std::string text = physics_markdown(rows, o);
+  fmt::print(stderr, "physics: {:.1f} s\n",
+             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  int status = 0;
+  fmt::print("{:<18} {:<10} {:>12} {:<10} {:>22}  {}\n", "lobe", "reciprocal", "asymmetry", "conserving",
+             "max albedo", "verdict");
+  for (const auto& r : rows) {
+    std::vector<std::string> wrong;
+    if (r.measured_reciprocal != r.model->reciprocal)
+      wrong.push_back(r.model->reciprocal ? "catalog says reciprocal, measured not" : "catalog says not reciprocal, measured reciprocal");
+    if (r.model->energy_conserving && !r.measured_conserving()) wrong.push_back("catalog says energy-conserving, albedo exceeds 1");
+    const AlbedoEstimate& m = r.max_albedo();
+    fmt::print("{:<18} {:<10} {:>12.3g} {:<10} {:>12.6g} ± {:<7.2g}  {}\n", r.model->name,
+               r.model->reciprocal ? "yes" : "no", r.asymmetry, r.model->energy_conserving ? "yes" : "no", m.albedo,
+               m.error, wrong.empty() ? "ok" : fmt::format("WRONG: {}", fmt::join(wrong, "; ")));
+    if (!wrong.empty()) status = 1;
+  }
+  if (!a.output.empty()) write_file_atomic(a.output, text);
+  if (!a.check.empty()) {
+    std::string committed;
+    try {
+      committed = read_file(a.check);
+    } catch (const std::exception& e) {
+      fmt::print(stderr, "error: {}\n", e.what());
+      return 1;
+    }
+    if (committed != text) {
+      fmt::print("{} differs from the measurement; regenerate it with: facet physics -o {}\n", a.check, a.check);
+      status = 1;
+    } else {
+      fmt::print("{} is what the measurement gives\n", a.check);
+    }
+  }
+  if (a.output.empty() && a.check.empty()) std::cout << "\n" << text;
+  return status;
+}
+
 // ---------------------------------------------------------------- models
 
 json value_json(const Value& v, ParamKind kind) {
@@ -352,6 +408,10 @@ json catalog_json() {
     if (m.section == "diffuse" || m.section == "specular") {
       mj["cycles"] = {{"level", level_name(m.cycles.level)}, {"note", m.cycles.note}};
       mj["pov"] = {{"level", level_name(m.pov.level)}, {"note", m.pov.note}};
+      // Claims from the literature; docs/physics.md holds the measurement (facet physics).
+      mj["physics"] = {{"reciprocal", m.reciprocal},
+                       {"energy_conserving", m.energy_conserving},
+                       {"note", m.physics_note}};
     }
     sections[m.section].push_back(mj);
   }
@@ -459,6 +519,8 @@ int main(int argc, char** argv) {
       ->check(CLI::NonNegativeNumber);
   rn->add_flag("--exact", ra.exact,
                "POV-Ray: bracket exposures so every pixel keeps 16-bit relative precision (slower)");
+  rn->add_flag("--one-run", ra.one_run,
+               "POV-Ray: render every light in one run (the generated file's default) instead of one pass per light");
 
   ValidateOptions va;
   std::string va_size = "256x256", va_renderers = "reference,glsl,osl,pov";
@@ -527,6 +589,20 @@ int main(int argc, char** argv) {
       "them. Exit 1 when any value is NaN, infinite or negative. Example:\n"
       "  facet sweep my.json --extremes --renderers reference,glsl");
 
+  PhysicsArgs ph;
+  auto* phc = app.add_subcommand("physics", "Measure each lobe's reciprocity and albedo (the white furnace)");
+  phc->add_option("-o,--output", ph.output, "Write the Markdown report (docs/physics.md)");
+  phc->add_option("--check", ph.check, "Exit 1 unless this file is exactly what the measurement gives");
+  phc->add_option("--samples", ph.samples, "Monte Carlo samples per albedo estimate")->capture_default_str()
+      ->check(CLI::Range(size_t(64), size_t(1) << 30));
+  phc->footer(
+      "f(l, v) = ρ/(π n·l) against f(v, l), and a(l) = ∫ f (n·v) dω by importance-sampled Monte Carlo, for every\n"
+      "diffuse and specular lobe over its parameters and incidence angles (see facet/physics.h). Exit 1 when a\n"
+      "measurement contradicts the catalog: reciprocity, or albedo above 1 for a lobe called energy-conserving.\n"
+      "Examples:\n"
+      "  facet physics -o docs/physics.md\n"
+      "  facet physics --check docs/physics.md");
+
   bool schema_scene = false;
   auto* sc = app.add_subcommand("schema", "Print the JSON Schema of material files (or of scene files)");
   sc->add_flag("--scene", schema_scene, "The scene schema instead");
@@ -539,6 +615,7 @@ int main(int argc, char** argv) {
     if (mo->parsed()) return run_models(models_json);
     if (rn->parsed()) return run_render(ra);
     if (swc->parsed()) return run_sweep(sw);
+    if (phc->parsed()) return run_physics(ph);
     if (gi->parsed()) {
       GltfImportOptions opt;
       if (!gi_default.empty()) opt.default_material = load_material(gi_default);

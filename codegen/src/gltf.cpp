@@ -647,6 +647,17 @@ void export_gltf(const Scene& s, const Material* fallback, const std::string& pa
     cam.type = "perspective";
     cam.perspective.yfov = s.camera.fov * kPi / 180;
     cam.perspective.znear = 0.01;
+    // facet's camera has no far plane. glTF's way to say so is to leave zfar out,
+    // which tinygltf cannot (it writes 0, an invalid value that makes Blender clip
+    // everything), so the far plane goes far beyond the scene instead.
+    double extent = 1;
+    for (const auto& o : s.objects) {
+      Vec3 c;
+      double r = 0;
+      o.bounds(c, r);
+      extent = std::max(extent, length(c - s.camera.position) + r);
+    }
+    cam.perspective.zfar = 1000 * extent;
     model.cameras.push_back(cam);
     Camera::Basis b = s.camera.basis();
     tinygltf::Node node;

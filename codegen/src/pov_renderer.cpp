@@ -53,7 +53,7 @@ RenderOutcome render_pov(const RenderJob& job) {
   if (!job.bracket) exposures.push_back(e);
 
   // Frame f renders light pass f % passes at exposure f / passes.
-  const int passes = plan.passes, frames = passes * int(exposures.size());
+  const int passes = job.one_run ? 1 : plan.passes, frames = passes * int(exposures.size());
   std::string exposure_table;
   for (size_t k = 0; k < exposures.size(); ++k) exposure_table += fmt::format("{}{}", k ? ", " : "", exposures[k]);
   std::string wrapper = fmt::format(
@@ -62,7 +62,7 @@ RenderOutcome render_pov(const RenderJob& job) {
       "#declare Facet_Light = {3};\n"
       "#declare Facet_Exposure = Facet_Exposures[div(frame_number, {0})];\n"
       "#include \"{4}.pov\"\n",
-      passes, exposures.size(), exposure_table, passes > 1 ? fmt::format("mod(frame_number, {})", passes) : "-1",
+      passes, exposures.size(), exposure_table, passes > 1 ? fmt::format("mod(frame_number, {})", passes) : "-1",  // -1: every light at once
       base);
   write_file_atomic((fs::path(job.workdir) / (base + "_harness.pov")).string(), wrapper);
   for (const auto& entry : fs::directory_iterator(job.workdir)) {

@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "facet/gltf.h"
 #include "facet/io.h"
@@ -100,6 +101,21 @@ void check_round_trip(const Scene& original, const Material* fallback, const std
 TEST(Gltf, MeshSceneRoundTrip) {
   check_round_trip(load_scene((kSource / "examples/scenes/three_meshes.json").string()), nullptr,
                    scratch("three_meshes.gltf").string());
+}
+
+TEST(Gltf, ExportedCameraHasAValidFarPlane) {
+  // glTF 2.0: zfar, when present, is greater than znear (0 made Blender clip the whole scene).
+  std::string path = scratch("camera.gltf").string();
+  std::vector<std::string> notes;
+  export_gltf(load_scene((kSource / "examples/scenes/three_meshes.json").string()), nullptr, path, notes);
+  for (const std::string& file : {path, (kSource / "examples/scenes/three_meshes.gltf").string()}) {
+    nlohmann::json doc = nlohmann::json::parse(read_file(file));
+    const auto& p = doc.at("cameras").at(0).at("perspective");
+    EXPECT_GT(p.at("znear").get<double>(), 0) << file;
+    if (p.contains("zfar")) {
+      EXPECT_GT(p["zfar"].get<double>(), p["znear"].get<double>()) << file;
+    }
+  }
 }
 
 TEST(Gltf, AnalyticSceneRoundTripAsGlb) {

@@ -24,6 +24,9 @@ struct RenderJob {
   // every pass keeps 16-bit relative precision (≤ 1.6e-5 · value); otherwise one
   // exposure for the whole image (error ≤ 7.7e-6 / exposure per pass).
   bool bracket = false;
+  // POV-Ray: render the generated file as a user would, in one run with every
+  // light at once (Facet_Light = -1: light_group copies), instead of one pass per light.
+  bool one_run = false;
   // Render this code instead of generating it (tests feed deliberately wrong targets).
   std::string code_override;
 };

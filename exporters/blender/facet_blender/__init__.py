@@ -6,6 +6,9 @@ code generators: the panel is built from `facet models --json`, and every export
 `facet generate`. `core/` is free of bpy (plain data + the facet CLI); `blender/`
 reads and writes Blender data.
 
+With the add-on enabled, Blender's own glTF importer gives materials, lights and the
+World what facet's glTF extensions describe (`glTF2ImportUserExtension` below).
+
 Loads as a Blender 4.2+ extension (blender_manifest.toml) and as a legacy add-on
 (bl_info) in Blender 3.4+.
 """
@@ -20,6 +23,29 @@ bl_info = {
                    "-> GLSL, OSL and POV-Ray, through the facet command-line tool",
     "category": "Material",
 }
+
+
+class glTF2ImportUserExtension:
+    """Blender's glTF importer makes one of these per import when the add-on is enabled
+    (it looks for this name in every enabled add-on's module): the hooks give the
+    imported materials, lights and World what facet's glTF extensions (FACET_material,
+    FACET_light, FACET_scene) describe. See blender/gltf_import.py."""
+
+    def __init__(self):
+        from .blender import gltf_import
+        self._hooks = gltf_import.ImportHooks()
+
+    def gather_import_material_after_hook(self, *args):
+        self._hooks.gather_import_material_after_hook(*args)
+
+    def gather_import_light_after_hook(self, *args):
+        self._hooks.gather_import_light_after_hook(*args)
+
+    def gather_import_camera_after_hook(self, *args):
+        self._hooks.gather_import_camera_after_hook(*args)
+
+    def gather_import_scene_after_nodes_hook(self, *args):
+        self._hooks.gather_import_scene_after_nodes_hook(*args)
 
 
 def register():

@@ -944,7 +944,7 @@ import sys
 sys.modules["bpy"] = None           # any `import bpy` now raises ImportError
 sys.modules["mathutils"] = None
 sys.path.insert(0, sys.argv[1])
-from facet_blender.core import catalog, cli, convert, coords, props, scene
+from facet_blender.core import catalog, cli, convert, coords, gltf, pov, props, scene
 cat = catalog.load(sys.argv[2])
 plan = props.material_group(cat)
 data = props.material_to_json(cat, plan, props.default_values(plan), "probe")
@@ -1422,6 +1422,306 @@ def test_export_pov_scene_matches_reference():
     ids = cycles_render(work("ids.exr"), w, h)
     mask = [[round(px[0]) if px[3] == 1.0 else 0 for px in row] for row in ids]
     compare(got, ref, mask, "Export POV-Ray, POV-Ray vs facet reference")
+
+
+@test()
+def test_export_pov_render_failure_keeps_old_png():
+    """A POV-Ray that fails in one of the passes (one per light): a clear error naming the
+    pass, the other runs stopped, the previous PNG intact and no temporary files left."""
+    check(scene_support(), "facet lacks scene materials/meshes")
+    mat = new_material("Two", "lambert", "ggx")
+    add_uv_sphere("Ball", (0.0, 0.0, 1.0), 1.0, 12, 6, True, mat)
+    add_camera((0.5, -6.0, 3.0), (0.0, 0.0, 0.8), 40.0)
+    add_light("POINT", (2.0, -3.0, 4.0), 600.0)
+    add_light("SUN", (0.0, 0.0, 5.0), 2.0, rotation=(0.3, 0.2, 0.0))
+    folder = work("failing_pov")
+    os.makedirs(folder)
+    fake = os.path.join(folder, "povray")
+    with open(fake, "w") as f:   # fails on the second light's pass, renders nothing otherwise
+        f.write("#!/bin/sh\ncase \"$*\" in *Facet_Light=1*) echo 'Parse Error: simulated' >&2; exit 3;; esac\n"
+                "for a; do case \"$a\" in +O*) echo x > \"${a#+O}\";; esac; done; sleep 0.2\n")
+    os.chmod(fake, 0o755)
+    png = os.path.join(folder, "scene.png")
+    with open(png, "w") as f:
+        f.write("old image")
+    prefs().povray_path = fake
+    try:
+        error = expect_error("export_pov", None, ["POV-Ray failed", "pass 2 of 2", "exit status 3", "simulated"],
+                             filepath=os.path.join(folder, "scene.pov"), render=True)
+    finally:
+        prefs().povray_path = shutil.which(OPTS.povray) or ""
+    info(f"message: {error.splitlines()[0]}")
+    with open(png) as f:
+        check_equal(f.read(), "old image", "the previous PNG must be intact")
+    left = sorted(n for n in os.listdir(folder) if n not in ("povray", "scene.png", "scene.pov"))
+    check(not left, f"temporary files left behind: {left}")
+
+
+# ============================================================================ tests: glTF with facet's extensions
+
+REPO = os.path.dirname(os.path.dirname(ADDON_ROOT))
+GLTF_SCENE = os.path.join(REPO, "examples", "scenes", "three_meshes.gltf")
+GLTF_SIZE = (160, 120)
+NO_GLTF_IMPORTER = "Blender's glTF importer needs numpy, which this Blender's Python lacks (Debian's 3.4)"
+
+
+def gltf_importer_usable():
+    """Blender's glTF importer (io_scene_gltf2) imports numpy for every file."""
+    try:
+        import numpy  # noqa: F401
+    except ImportError:
+        return False
+    return True
+
+
+def import_gltf(path):
+    """File > Import > glTF 2.0 with the importer's default options (its default Lighting
+    Mode, Standard, divides by 683 lm/W: only FACET_light makes the lights facet's).
+    Returns the add-on hook's report lines."""
+    from facet_blender.blender import gltf_import
+    gltf_import.LAST_IMPORT.clear()
+    result = bpy.ops.import_scene.gltf(filepath=path)
+    check(result == {"FINISHED"}, f"the glTF importer returned {result}")
+    bpy.context.view_layer.update()
+    return list(gltf_import.LAST_IMPORT)
+
+
+def gltf_original_scene():
+    """facet's own reading of the glTF file (`facet import-gltf`): what the scene is."""
+    path = work("three_meshes.facet.json")
+    if not os.path.exists(path):
+        facet("import-gltf", GLTF_SCENE, "-o", path)
+    return read_json(path)
+
+
+def reference_ids(scene_json, w, h, name):
+    """Object number (1, 2, ...; 0 background) at each pixel centre, by facet's reference
+    ray caster: every object gets a material that reflects nothing and emits its number."""
+    ids = json.loads(json.dumps(scene_json))
+    ids["ambient"] = [0.0, 0.0, 0.0]
+    ids["materials"] = {}
+    for k, obj in enumerate(ids["objects"]):
+        ids["materials"][f"id{k}"] = {"name": f"id{k}", "diffuse": {"model": "lambert", "color": [0.0, 0.0, 0.0]},
+                                      "emission": [float(k + 1), 0.0, 0.0]}
+        obj["material"] = f"id{k}"
+    rows = facet_reference(None, ids, w, h, f"{name}.ids")
+    return [[int(round(px[0])) for px in row] for row in rows]
+
+
+def coverage_mismatch(ids, covered, what):
+    """Pixels where the renderer covers an object and the reference does not, or the
+    reverse; at most 0.1 % of the image, as facet validate allows."""
+    h, w = len(ids), len(ids[0])
+    bad = sum(1 for j in range(h) for i in range(w) if (ids[j][i] > 0) != bool(covered[j][i]))
+    info(f"{what}: coverage differs on {bad} of {w * h} pixels")
+    check(bad <= w * h // 1000, f"{what}: coverage differs on {bad} pixels (> 0.1 %)")
+    return bad
+
+
+def material_of_objects(scene_json):
+    return {o["name"]: o["material"] for o in scene_json["objects"]}
+
+
+@test(when=lambda v: gltf_importer_usable(), why=NO_GLTF_IMPORTER)
+def test_gltf_import_applies_facet_extensions():
+    """Blender's glTF importer, with the add-on enabled, gives each material its facet
+    settings from FACET_material and each light FACET_light's colour and power; the
+    add-on then exports the scene facet reads from the same file (facet import-gltf)."""
+    reports = import_gltf(GLTF_SCENE)
+    original = gltf_original_scene()
+    for name, expected in original["materials"].items():
+        mat = bpy.data.materials.get(name)
+        check(mat is not None, f"the glTF importer made no material '{name}'")
+        check(mat.facet.use_facet, f"material '{name}' has no facet settings after the import: {reports}")
+        check_close(export_material(mat, f"gltf_{name}.json"), expected, f"facet settings of '{name}'", 1e-6)
+        check(any(level == "INFO" and f"material '{name}'" in m for level, m in reports),
+              f"no report line for material '{name}': {reports}")
+    path = work("gltf_export.json")
+    expect_ok("export_scene", None, filepath=path)
+    exported = read_json(path)
+    check_equal(material_of_objects(exported), material_of_objects(original), "object -> material")
+    check_close(exported["lights"], original["lights"], "lights (units, positions, directions)", 1e-6)
+    check_close(exported["camera"], original["camera"], "camera", 1e-6)
+    check_close(exported["ambient"], original["ambient"], "ambient (FACET_scene -> World -> ambient)", 1e-6)
+    for obj, ref in zip(exported["objects"], original["objects"]):
+        check_equal(len(obj["triangles"]), len(ref["triangles"]), f"{obj['name']}: triangles")
+    lights = [o for o in bpy.context.scene.objects if o.type == "LIGHT"]
+    check(all(o.data.angle == 0.0 if o.data.type == "SUN" else o.data.shadow_soft_size == 0.0 for o in lights),
+          "FACET_light lights must have radius 0 (sun: angle 0)")
+    info(f"{len(original['materials'])} materials, {len(lights)} lights, camera and ambient as facet reads the file")
+
+    # A file whose first material is invalid and whose second has no FACET_material:
+    # the import goes on, the invalid one is reported with facet's key path and keeps
+    # only the glTF fallback, the others are applied.
+    reset()
+    data = read_json(GLTF_SCENE)
+    bad_name = data["materials"][0]["name"]
+    plain_name = data["materials"][1]["name"]
+    data["materials"][0]["extensions"]["FACET_material"]["material"]["diffuse"]["color"] = [-1.0, 0.0, 0.0]
+    del data["materials"][1]["extensions"]
+    reports = import_gltf(write_json(work("broken.gltf"), data))
+    warnings = [m for level, m in reports if level == "WARNING" and bad_name in m]
+    check(warnings and "diffuse.color" in warnings[0] and "keeps only the glTF fallback" in warnings[0],
+          f"the invalid facet material should be reported with facet's words: {reports}")
+    info(f"reported: {warnings[0].splitlines()[0]} / {warnings[0].splitlines()[-1][:100]}")
+    check(not bpy.data.materials[bad_name].facet.use_facet, "the invalid facet material must not be applied")
+    check(not bpy.data.materials[plain_name].facet.use_facet, "a material without FACET_material gets no settings")
+    third = data["materials"][2]["name"]
+    check(bpy.data.materials[third].facet.use_facet, f"material '{third}' should still get its facet settings")
+    check(bpy.data.materials[bad_name].node_tree is not None, "the glTF fallback node tree is kept")
+
+
+@test(when=lambda v: gltf_importer_usable(), why=NO_GLTF_IMPORTER)
+def test_gltf_scene_pov_matches_reference():
+    """examples/scenes/three_meshes.gltf imported by Blender's glTF importer, exported
+    by Export POV-Ray (facet), rendered by POV-Ray: equal to facet's reference render of
+    the scene the add-on exported, and to that of the glTF file as facet reads it."""
+    check(OPTS.povray and shutil.which(OPTS.povray), "POV-Ray (povray) is not installed")
+    prefs().povray_path = shutil.which(OPTS.povray)
+    import_gltf(GLTF_SCENE)
+    w, h = GLTF_SIZE
+    scene = bpy.context.scene
+    scene.render.resolution_x, scene.render.resolution_y = w, h
+    pov = work("three_meshes.pov")
+    exposure = 0.25                 # the GGX highlight reaches 3.5; the PNG clips at 1
+    t0 = time.perf_counter()
+    expect_ok("export_pov", None, filepath=pov, render=True, save_scene=True, exposure=exposure)
+    info(f"Export POV-Ray with POV-Ray render at {w}x{h}: {time.perf_counter() - t0:.1f} s")
+    _, _, png = read_png16(work("three_meshes.png"))
+    got = [[tuple(c / exposure for c in px) for px in row] for row in png]
+    exported = read_json(work("three_meshes.json"))
+    ref = facet_reference(None, exported, w, h, "gltf_pov")
+    brightest = max(max(px) for row in ref for px in row)
+    check(1.0 < brightest and brightest * exposure < 1.0,
+          f"reference maximum {brightest:.3g}: expected above 1 (a test of Exposure) and below 1/{exposure:g}")
+    ids = reference_ids(exported, w, h, "gltf_pov")
+    # Every object pixel has the ambient term (> 0); the background is black.
+    coverage_mismatch(ids, [[max(px) > 0.0 for px in row] for row in got], "POV-Ray vs reference")
+    compare(got, ref, ids, "glTF scene, POV-Ray vs reference of the exported scene")
+    original = facet_reference(None, gltf_original_scene(), w, h, "gltf_original")
+    compare(got, original, ids, "glTF scene, POV-Ray vs reference of the glTF file (facet import-gltf)")
+
+
+@test(when=lambda v: v >= (4, 2, 0) and gltf_importer_usable(),
+      why="rendering OSL needs Cycles with OSL (4.x), and the glTF importer numpy")
+def test_gltf_scene_osl_matches_reference():
+    """The same imported scene, each material through Generate OSL, rendered by Cycles
+    (one sample at each pixel centre): equal to facet's reference render of the scene the
+    add-on exports, and to that of the glTF file as facet reads it."""
+    check(has_osl(), "this Blender 4.x has no OSL: cannot check Generate OSL")
+    import_gltf(GLTF_SCENE)
+    w, h = GLTF_SIZE
+    scene = bpy.context.scene
+    scene.render.resolution_x, scene.render.resolution_y = w, h
+    used = sorted({s.material.name for o in scene.objects if o.type == "MESH" for s in o.material_slots})
+    check_equal(len(used), 3, "materials used by the imported meshes")
+    for name in used:
+        expect_ok("generate_osl", bpy.data.materials[name])
+    path = work("three_meshes_osl.json")
+    expect_ok("export_scene", None, filepath=path)
+    exported = read_json(path)
+    t0 = time.perf_counter()
+    got = cycles_render(work("three_meshes_osl.exr"), w, h)
+    info(f"Cycles OSL render at {w}x{h}: {time.perf_counter() - t0:.1f} s")
+    ref = facet_reference(None, exported, w, h, "gltf_osl")
+    ids = reference_ids(exported, w, h, "gltf_osl")
+    coverage_mismatch(ids, [[px[3] > 0.5 for px in row] for row in got], "Cycles vs reference")
+    compare(got, ref, ids, "glTF scene, Cycles OSL vs reference of the exported scene")
+    original = facet_reference(None, gltf_original_scene(), w, h, "gltf_original")
+    compare(got, original, ids, "glTF scene, Cycles OSL vs reference of the glTF file (facet import-gltf)")
+
+
+@test()
+def test_gltf_light_units_core():
+    """core/gltf.py's FACET_light -> Blender light is the inverse of the export's units
+    (core/scene.py): on plain data, for point, spot and directional lights."""
+    from facet_blender.core import UserError, gltf as core_gltf, scene as core_scene
+    identity = [[1.0, 0, 0, 0], [0, 1.0, 0, 0], [0, 0, 1.0, 0], [0, 0, 0, 1.0]]
+    exponent = 1.0 if BLENDER < (3, 5, 0) else 0.0
+    cases = [{"type": "point", "color": [18.0, 17.0, 16.0], "attenuation": "inverse_square"},
+             {"type": "directional", "color": [0.35, 0.36, 0.42]},
+             {"type": "spot", "color": [2.0, 0.5, 0.0], "attenuation": "inverse_square", "cutoff": 30.0,
+              "exponent": exponent}]
+    for facet_light in cases:
+        settings, notes = core_gltf.blender_light(facet_light, BLENDER)
+        check(not notes, f"unexpected notes {notes}")
+        desc = dict(settings, name="probe", matrix=identity, use_nodes=False)
+        light, _ = core_scene.light(desc, BLENDER)
+        check_close(light["color"], facet_light["color"], f"{facet_light['type']}: colour round trip", 1e-12)
+        if facet_light["type"] == "spot":
+            check_close(light["cutoff"], 30.0, "spot cutoff round trip", 1e-12)
+    _, notes = core_gltf.blender_light({"type": "point", "color": [1, 1, 1]}, BLENDER)
+    check(notes and "attenuation" in notes[0], f"a point light without inverse_square must be reported: {notes}")
+    for bad in ({"FACET_material": {"material": 3}}, {"FACET_material": []}):
+        try:
+            core_gltf.material_of(bad, "glTF material 'x'")
+            raise Failure(f"material_of should refuse {bad}")
+        except UserError as e:
+            check("glTF material 'x'" in str(e), f"the refusal should name the material: {e}")
+    check(core_gltf.material_of({"KHR_materials_unlit": {}}, "m") is None, "no FACET_material -> None")
+
+
+@test()
+def test_pov_passes_core():
+    """core/pov.py: the pass count from facet's header, 16-bit PPM in, passes added and
+    clipped, 16-bit PNG out (read back by this file's own PNG reader)."""
+    from facet_blender.core import UserError, pov
+    check_equal(pov.passes("#version 3.7;\n#declare Facet_Passes = 3;  // renders with Facet_Light = 0 … 2\n"), 3,
+                "passes from the declaration")
+    check_equal(pov.passes("#version 3.7;\n#declare Facet_Passes = 1;  // …\n"), 1, "one run")
+    try:
+        pov.passes("#version 3.7;\nglobal_settings { assumed_gamma 1.0 }\n")
+        check(False, "a scene without Facet_Passes should be refused")
+    except UserError as e:
+        check("Facet_Passes" in str(e), f"the refusal should name Facet_Passes: {e}")
+    w, h = 3, 2
+    a = [0, 1, 2, 65535, 40000, 3, 7, 8, 9, 100, 200, 300, 65000, 1000, 0, 5, 6, 7]
+    b = [1, 1, 1, 1, 30000, 0, 0, 0, 0, 1, 2, 3, 1000, 0, 0, 0, 0, 65535]
+    images = []
+    for k, samples in enumerate((a, b)):
+        path = work(f"pass{k}.ppm")
+        with open(path, "wb") as f:
+            f.write(b"P6\n# Software: POV-Ray\n3 2\n65535\n" + struct.pack(">18H", *samples))
+        got_w, got_h, got = pov.read_ppm16(path)
+        check_equal((got_w, got_h, list(got)), (w, h, samples), f"PPM {k} read back")
+        images.append(got)
+    total = pov.add_clipped(images)
+    check_equal(list(total), [min(x + y, 65535) for x, y in zip(a, b)], "passes added, clipped at 65535")
+    with open(work("sum.png"), "wb") as f:
+        f.write(pov.png16(w, h, total))
+    _, _, rows = read_png16(work("sum.png"))
+    flat = [round(v * 65535) for row in reversed(rows) for px in row for v in px]
+    check_equal(flat, list(total), "16-bit PNG read back")
+
+
+# ============================================================================ tests: Blender materials, render_povray vs facet
+
+def render_povray_bundled():
+    import importlib.util
+    return importlib.util.find_spec("render_povray") is not None and bool(bpy.app.binary_path)
+
+
+@test(when=lambda v: render_povray_bundled(),
+      why="render_povray is not bundled with this Blender (from 4.2 it is an extension)")
+def test_blender_materials_render_povray_vs_facet():
+    """compare_render_povray.py --check in a Blender of its own: Diffuse, Glossy and
+    Principled materials rendered by Cycles, by Blender's bundled POV-Ray exporter and by
+    facet's; the exact mapping (Diffuse BSDF, roughness 0) within 2e-3 of Cycles."""
+    check(OPTS.povray and shutil.which(OPTS.povray), "POV-Ray (povray) is not installed")
+    out = work("render_povray_compare")
+    command = [bpy.app.binary_path, "-b", "--factory-startup", "--python", os.path.join(HERE, "compare_render_povray.py"),
+               "--", "--facet", OPTS.facet, "--povray", shutil.which(OPTS.povray), "--out", out, "--check"]
+    proc = subprocess.run(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, errors="replace",
+                          timeout=600)
+    lines = proc.stdout.splitlines()
+    for line in lines:
+        if line.startswith(("| ", "Cycles with", "coverage", "facet POV-Ray vs", "best global", "wall time", "check",
+                            "CHECK FAILED")) or (line.startswith("Blender ") and "interior pixels" in line):
+            info(line)
+    check(proc.returncode == 0, f"compare_render_povray.py failed (exit {proc.returncode}):\n" + "\n".join(lines[-30:]))
+    results = read_json(os.path.join(out, "results.json"))
+    check_equal(sorted(results["materials"]), sorted(["Diffuse", "DiffuseRough", "Glossy", "Plastic", "Metal",
+                                                      "HalfMetal", "Floor"]), "materials measured")
 
 
 # ============================================================================ main

@@ -25,10 +25,10 @@ import subprocess
 import tempfile
 
 import bpy
-from bpy.props import BoolProperty, EnumProperty, StringProperty
+from bpy.props import BoolProperty, EnumProperty, FloatProperty, StringProperty
 from bpy_extras.io_utils import ExportHelper, ImportHelper
 
-from ..core import UserError, cli
+from ..core import UserError, cli, pov
 from ..core.convert import map_surface
 from . import material as material_mod, nodes, osl, preferences, scene_data, state
 
@@ -280,6 +280,11 @@ class FACET_OT_export_pov(_FacetOperator, ExportHelper, bpy.types.Operator):
         name="Save facet Scene",
         description="Also write the facet scene file (JSON) beside the .pov",
         default=False)
+    exposure: FloatProperty(
+        name="Exposure",
+        description="POV-Ray render: every radiance is multiplied by this before the PNG, which clips "
+                    "at 1, is written (the PNG holds radiance × exposure); below 1 keeps bright highlights",
+        default=1.0, min=1e-6, soft_min=0.01, soft_max=1.0)
 
     @classmethod
     def poll(cls, context):
@@ -307,35 +312,94 @@ class FACET_OT_export_pov(_FacetOperator, ExportHelper, bpy.types.Operator):
         if povray:
             png = stem + ".png"
             width, height = scene_data.render_size(context.scene)
-            run_povray(povray, self.filepath, png, width, height)
+            if self.exposure != 1.0:
+                _check_exposure_hook(self.filepath)
+            runs = run_povray(povray, self.filepath, png, width, height, self.exposure)
             image = load_image(png, f"{context.scene.name} (POV-Ray)")
-            message += f"; rendered {width}x{height} to {png} (image '{image.name}')"
+            message += (f"; rendered {width}x{height} to {png} (image '{image.name}'"
+                        + (f", {runs} POV-Ray runs, one per light, added" if runs > 1 else "")
+                        + (f", radiance × {self.exposure:g}" if self.exposure != 1.0 else "") + ")")
         self.report_("INFO", message)
 
 
-def run_povray(povray, pov_path, png_path, width, height):
-    """Renders `pov_path` to `png_path` (linear 16-bit PNG, whole or not at all)."""
-    folder = os.path.dirname(os.path.abspath(pov_path))
-    fd, tmp = tempfile.mkstemp(prefix=".facet-pov-", suffix=".png", dir=folder)
-    os.close(fd)
+EXPOSURE_DECLARATION = "Facet_Exposure"
+
+
+def _check_exposure_hook(pov_path):
+    """facet's POV-Ray scenes declare Facet_Exposure near their top; make sure this one does."""
+    if EXPOSURE_DECLARATION not in pov.read_header(pov_path):
+        raise UserError(f"{pov_path} does not declare {EXPOSURE_DECLARATION} (an older facet?): "
+                        f"render with Exposure 1")
+
+
+def _povray(povray, folder, pov_name, out_name, width, height, options):
+    """One POV-Ray run in `folder`; returns the Popen (output in its .communicate())."""
     # POV-Ray's I/O restrictions allow the working folder: run it there with plain names.
-    command = [povray, "+I" + os.path.basename(pov_path), "+O" + os.path.basename(tmp),
-               f"+W{width}", f"+H{height}", "-A", "+FN16", "File_Gamma=1.0", "-D", "-P", "-V"]
+    command = [povray, "+I" + pov_name, "+O" + out_name, f"+W{width}", f"+H{height}", "-A",
+               "File_Gamma=1.0", "-D", "-P", "-V"] + options
     try:
-        try:
-            proc = subprocess.run(command, cwd=folder, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                                  text=True, errors="replace", timeout=3600)
-        except OSError as e:
-            raise UserError(f"cannot run POV-Ray '{povray}': {e}")
-        except subprocess.TimeoutExpired:
-            raise UserError("POV-Ray took more than an hour; stopped")
-        if proc.returncode != 0 or os.path.getsize(tmp) == 0:
-            lines = [l for l in (proc.stderr + proc.stdout).splitlines() if l.strip()][-8:]
-            raise UserError("POV-Ray failed:\n" + "\n".join(lines))
-        os.replace(tmp, png_path)
-    finally:
-        if os.path.exists(tmp):
-            os.remove(tmp)
+        return subprocess.Popen(command, cwd=folder, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                                text=True, errors="replace")
+    except OSError as e:
+        raise UserError(f"cannot run POV-Ray '{povray}': {e}")
+
+
+def _finish(proc, out_path, what):
+    try:
+        stdout, stderr = proc.communicate(timeout=3600)
+    except subprocess.TimeoutExpired:
+        proc.kill()
+        proc.communicate()
+        raise UserError(f"POV-Ray took more than an hour ({what}); stopped")
+    if proc.returncode != 0 or not os.path.exists(out_path) or os.path.getsize(out_path) == 0:
+        why = f"exit status {proc.returncode}" if proc.returncode != 0 else "it wrote no image"
+        lines = [l for l in (stderr + stdout).splitlines() if l.strip()][-8:]
+        raise UserError(f"POV-Ray failed ({what}; {why}):\n" + "\n".join(lines))
+
+
+def run_povray(povray, pov_path, png_path, width, height, exposure=1.0):
+    """Renders `pov_path` to `png_path` (linear 16-bit PNG, whole or not at all); the PNG
+    holds radiance × `exposure` (facet's scenes declare Facet_Exposure for that).
+
+    A scene whose function pigments hold one light each (core/pov.py) is rendered the
+    exact way: one run per light (Declare=Facet_Light=i), as many at a time as there are
+    processors, each a 16-bit PPM, added up. Returns the number of runs."""
+    folder = os.path.dirname(os.path.abspath(pov_path))
+    count = pov.passes(pov.read_header(pov_path))
+    options = [f"Declare={EXPOSURE_DECLARATION}={exposure!r}"] if exposure != 1.0 else []
+    with tempfile.TemporaryDirectory(prefix=".facet-pov-", dir=folder) as tmp:
+        name = os.path.basename(tmp)
+        if count == 1:
+            out = os.path.join(tmp, "render.png")
+            _finish(_povray(povray, folder, os.path.basename(pov_path), os.path.join(name, "render.png"),
+                            width, height, ["+FN16"] + options), out, "one run")
+            result = out
+        else:
+            outs = [os.path.join(tmp, f"pass{i}.ppm") for i in range(count)]
+            running, at_once = [], max(1, os.cpu_count() or 1)
+            try:
+                for i in range(count):
+                    if len(running) >= at_once:
+                        _finish(*running.pop(0))
+                    running.append((_povray(povray, folder, os.path.basename(pov_path),
+                                            os.path.join(name, f"pass{i}.ppm"), width, height,
+                                            ["+FP16", f"Declare=Facet_Light={i}"] + options),
+                                    outs[i], f"pass {i + 1} of {count}"))
+                while running:
+                    _finish(*running.pop(0))
+            finally:
+                for proc, _, _ in running:          # after a failure: stop the others
+                    proc.kill()
+                    proc.communicate()
+            images = [pov.read_ppm16(path) for path in outs]
+            if any(img[:2] != (width, height) for img in images):
+                raise UserError(f"POV-Ray wrote images of another size than {width}x{height}")
+            result = os.path.join(tmp, "sum.png")
+            with open(result, "wb") as f:
+                f.write(pov.png16(width, height, pov.add_clipped([img[2] for img in images])))
+        with open(result, "rb") as f:
+            cli.write_atomic(png_path, f.read())
+    return count
 
 
 def load_image(path, name):
