@@ -44,6 +44,34 @@ std::string shader_log(GLuint id, bool program) {
   return log.c_str();
 }
 
+// A program of the shared vertex shader and `source`; 0 with `error` set when
+// it does not compile or link (`what` names the code in the message).
+GLuint fragment_program(GLuint vertex, const std::string& source, const std::string& what, std::string& error) {
+  GLuint fragment = glCreateShader(GL_FRAGMENT_SHADER);
+  const char* src = source.c_str();
+  glShaderSource(fragment, 1, &src, nullptr);
+  glCompileShader(fragment);
+  GLint status = 0;
+  glGetShaderiv(fragment, GL_COMPILE_STATUS, &status);
+  if (!status) {
+    error = what + " did not compile: " + shader_log(fragment, false);
+    glDeleteShader(fragment);
+    return 0;
+  }
+  GLuint prog = glCreateProgram();
+  glAttachShader(prog, vertex);
+  glAttachShader(prog, fragment);
+  glLinkProgram(prog);
+  glDeleteShader(fragment);
+  glGetProgramiv(prog, GL_LINK_STATUS, &status);
+  if (!status) {
+    error = what + " did not link: " + shader_log(prog, true);
+    glDeleteProgram(prog);
+    return 0;
+  }
+  return prog;
+}
+
 }  // namespace
 
 struct GlRenderer::State {
@@ -117,22 +145,8 @@ RenderOutcome GlRenderer::sweep(const std::string& source, int grid) {
     out.error = error_;
     return out;
   }
-  GLuint fragment = glCreateShader(GL_FRAGMENT_SHADER);
-  const char* src = source.c_str();
-  glShaderSource(fragment, 1, &src, nullptr);
-  glCompileShader(fragment);
-  GLint status = 0;
-  glGetShaderiv(fragment, GL_COMPILE_STATUS, &status);
-  if (!status) {
-    out.error = "the sweep's GLSL did not compile: " + shader_log(fragment, false);
-    glDeleteShader(fragment);
-    return out;
-  }
-  GLuint prog = glCreateProgram();
-  glAttachShader(prog, state_->vertex);
-  glAttachShader(prog, fragment);
-  glLinkProgram(prog);
-  glDeleteShader(fragment);
+  GLuint prog = fragment_program(state_->vertex, source, "the sweep's GLSL", out.error);
+  if (!prog) return out;
   glUseProgram(prog);
   glUniform2f(glGetUniformLocation(prog, "facet_resolution"), float(grid), float(grid));
   GLuint fbo = 0, rbo = 0;
@@ -279,27 +293,8 @@ RenderOutcome GlRenderer::render(const RenderJob& job) {
       if (passes.size() > 1) base += "_" + identifier(passes[k]->name);
       write_file_atomic((std::filesystem::path(job.workdir) / (base + ".frag")).string(), source);
     }
-    GLuint fragment = glCreateShader(GL_FRAGMENT_SHADER);
-    const char* src = source.c_str();
-    glShaderSource(fragment, 1, &src, nullptr);
-    glCompileShader(fragment);
-    GLint status = 0;
-    glGetShaderiv(fragment, GL_COMPILE_STATUS, &status);
-    if (!status) {
-      out.error = "the GLSL of \"" + passes[k]->name + "\" did not compile: " + shader_log(fragment, false);
-      glDeleteShader(fragment);
-      cleanup();
-      return out;
-    }
-    GLuint prog = glCreateProgram();
-    glAttachShader(prog, state_->vertex);
-    glAttachShader(prog, fragment);
-    glLinkProgram(prog);
-    glDeleteShader(fragment);
-    glGetProgramiv(prog, GL_LINK_STATUS, &status);
-    if (!status) {
-      out.error = "the GLSL did not link: " + shader_log(prog, true);
-      glDeleteProgram(prog);
+    GLuint prog = fragment_program(state_->vertex, source, "the GLSL of \"" + passes[k]->name + "\"", out.error);
+    if (!prog) {
       cleanup();
       return out;
     }

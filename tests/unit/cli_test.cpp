@@ -90,11 +90,16 @@ ProcessResult limited_generate(const fs::path& out, bool ignore_signal) {
   return run_process({"sh", "-c", cmd});
 }
 
-TEST(Cli, AKilledWriteLeavesThePreviousOutputIntact) {
-  fs::path dir = scratch("killed");
+// A folder of its own holding scene.pov from an earlier run.
+fs::path previous_output(const std::string& folder) {
+  fs::path dir = scratch(folder);
   fs::create_directories(dir);
-  fs::path out = dir / "scene.pov";
-  write_file_atomic(out.string(), "previous contents\n");
+  write_file_atomic((dir / "scene.pov").string(), "previous contents\n");
+  return dir / "scene.pov";
+}
+
+TEST(Cli, AKilledWriteLeavesThePreviousOutputIntact) {
+  fs::path out = previous_output("killed"), dir = out.parent_path();
   ProcessResult r = limited_generate(out, false);
   EXPECT_NE(r.exit_code, 0) << "the file-size limit should have stopped facet: " << r.output;
   EXPECT_EQ(read_file(out.string()), "previous contents\n");
@@ -105,10 +110,7 @@ TEST(Cli, AKilledWriteLeavesThePreviousOutputIntact) {
 }
 
 TEST(Cli, AFailedWriteLeavesThePreviousOutputIntactAndNoTemporary) {
-  fs::path dir = scratch("efbig");
-  fs::create_directories(dir);
-  fs::path out = dir / "scene.pov";
-  write_file_atomic(out.string(), "previous contents\n");
+  fs::path out = previous_output("efbig"), dir = out.parent_path();
   ProcessResult r = limited_generate(out, true);
   EXPECT_EQ(r.exit_code, 1) << r.output;
   EXPECT_NE(r.output.find(out.string() + ": cannot write"), std::string::npos) << r.output;

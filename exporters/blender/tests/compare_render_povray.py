@@ -59,6 +59,9 @@ import zlib
 import bpy
 import addon_utils
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from blender_scene import add_uv_sphere, link, point_sampled_cycles  # noqa: E402  (the tests' shared scene building)
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 ADDON_ROOT = os.path.dirname(HERE)
 ADDON = "facet_blender"
@@ -104,40 +107,6 @@ def parse_args():
 
 
 # ============================================================================ scene
-
-def link(obj):
-    bpy.context.scene.collection.objects.link(obj)
-    return obj
-
-
-def uv_sphere(name, location, radius, segments, rings, material):
-    verts = [(0.0, 0.0, radius)]
-    for r in range(1, rings):
-        theta = math.pi * r / rings
-        for s in range(segments):
-            phi = 2.0 * math.pi * s / segments
-            verts.append((radius * math.sin(theta) * math.cos(phi), radius * math.sin(theta) * math.sin(phi),
-                          radius * math.cos(theta)))
-    verts.append((0.0, 0.0, -radius))
-    bottom = len(verts) - 1
-    ring = lambda r, s: 1 + (r - 1) * segments + (s % segments)   # noqa: E731
-    faces = [(0, ring(1, s), ring(1, s + 1)) for s in range(segments)]
-    for r in range(1, rings - 1):
-        faces += [(ring(r, s), ring(r + 1, s), ring(r + 1, s + 1), ring(r, s + 1)) for s in range(segments)]
-    faces += [(ring(rings - 1, s), bottom, ring(rings - 1, s + 1)) for s in range(segments)]
-    mesh = bpy.data.meshes.new(name)
-    mesh.from_pydata(verts, [], faces)
-    mesh.update()
-    for p in mesh.polygons:
-        p.use_smooth = True
-    mesh.materials.append(material)
-    obj = link(bpy.data.objects.new(name, mesh))
-    obj.location = location
-    # Cycles' default Geometry Offset (0.1) starts shadow rays off the faceted surface to
-    # hide the terminator of coarse meshes; POV-Ray and facet start them on the surface.
-    obj.cycles.shadow_terminator_geometry_offset = 0.0
-    return obj
-
 
 def quad(name, size, material):
     mesh = bpy.data.meshes.new(name)
@@ -193,7 +162,11 @@ def build_scene(width, height):
     for k, (name, _, spec) in enumerate(MATERIALS):
         x = (k % 3 - 1) * 1.25
         y = (k // 3) * 1.25 - 0.3
-        spheres.append(uv_sphere(name, (x, y, 0.5), 0.5, 32, 16, node_material(name, spec)))
+        sphere = add_uv_sphere(name, (x, y, 0.5), 0.5, 32, 16, True, node_material(name, spec))
+        # Cycles' default Geometry Offset (0.1) starts shadow rays off the faceted surface to
+        # hide the terminator of coarse meshes; POV-Ray and facet start them on the surface.
+        sphere.cycles.shadow_terminator_geometry_offset = 0.0
+        spheres.append(sphere)
     quad(FLOOR[0], 6.0, node_material(FLOOR[0], FLOOR[2]))
 
     from mathutils import Vector
@@ -234,33 +207,9 @@ def load_pixels(path, width, height):
             for j in range(height)]
 
 
-def cycles_settings(scene, seed):
-    r = scene.render
-    r.engine = "CYCLES"
-    r.film_transparent = True
-    r.use_compositing = r.use_sequencer = False
-    r.dither_intensity = 0.0
-    r.image_settings.file_format = "OPEN_EXR"
-    r.image_settings.color_depth = "32"
-    r.image_settings.color_mode = "RGBA"
-    c = scene.cycles
-    c.device = "CPU"
-    c.samples = 1
-    c.use_adaptive_sampling = False
-    c.use_denoising = False
-    c.pixel_filter_type = "GAUSSIAN"
-    c.filter_width = 0.01
-    c.max_bounces = 0
-    c.light_sampling_threshold = 0.0
-    c.seed = seed
-    c.use_animated_seed = False
-    scene.view_settings.view_transform = "Standard"
-    scene.view_settings.look = "None"
-
-
 def cycles_render(path, width, height, seed=0):
     scene = bpy.context.scene
-    cycles_settings(scene, seed)
+    point_sampled_cycles(scene, seed)
     scene.render.filepath = path
     bpy.ops.render.render(write_still=True)
     return load_pixels(path, width, height)
@@ -275,7 +224,7 @@ def cycles_render_samples(path, width, height, samples):
     is noisy; its mean over the image checks that the per-light sum is what Cycles
     converges to."""
     scene = bpy.context.scene
-    cycles_settings(scene, 7)
+    point_sampled_cycles(scene, 7)
     scene.cycles.samples = samples
     scene.render.filepath = path
     bpy.ops.render.render(write_still=True)

@@ -31,6 +31,9 @@ import zlib
 
 import bpy
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from blender_scene import add_uv_sphere, link, point_sampled_cycles  # noqa: E402  (the tests' shared scene building)
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 ADDON_ROOT = os.path.dirname(HERE)          # exporters/blender: holds facet_blender/
 ADDON = "facet_blender"
@@ -288,11 +291,6 @@ def export_material(mat, name=None):
     return read_json(path)
 
 
-def link(obj):
-    bpy.context.scene.collection.objects.link(obj)
-    return obj
-
-
 def add_camera(location, look_at, lens=50.0, sensor_fit="AUTO", sensor_width=36.0, sensor_height=24.0):
     from mathutils import Vector
     data = bpy.data.cameras.new("Camera")
@@ -330,35 +328,6 @@ def add_quad(name, size, z=0.0, material=None):
     if material:
         mesh.materials.append(material)
     return link(bpy.data.objects.new(name, mesh))
-
-
-def add_uv_sphere(name, location, radius, segments=32, rings=16, smooth=True, material=None):
-    """A UV sphere built by hand (no operators: they need a window context in 3.4)."""
-    verts = [(0.0, 0.0, radius)]
-    for r in range(1, rings):
-        theta = math.pi * r / rings
-        for s in range(segments):
-            phi = 2.0 * math.pi * s / segments
-            verts.append((radius * math.sin(theta) * math.cos(phi), radius * math.sin(theta) * math.sin(phi),
-                          radius * math.cos(theta)))
-    verts.append((0.0, 0.0, -radius))
-    bottom = len(verts) - 1
-    ring = lambda r, s: 1 + (r - 1) * segments + (s % segments)   # noqa: E731
-    faces = [(0, ring(1, s), ring(1, s + 1)) for s in range(segments)]
-    for r in range(1, rings - 1):
-        faces += [(ring(r, s), ring(r + 1, s), ring(r + 1, s + 1), ring(r, s + 1)) for s in range(segments)]
-    faces += [(ring(rings - 1, s), bottom, ring(rings - 1, s + 1)) for s in range(segments)]
-    mesh = bpy.data.meshes.new(name)
-    mesh.from_pydata(verts, [], faces)
-    mesh.update()
-    for p in mesh.polygons:
-        p.use_smooth = smooth
-    if material:
-        mesh.materials.append(material)
-    obj = link(bpy.data.objects.new(name, mesh))
-    obj.location = location
-    bpy.context.view_layer.update()
-    return obj
 
 
 def add_point_sphere(name, center, radius, material):
@@ -406,30 +375,10 @@ def cycles_render(path, width, height):
     """Point-sampled Cycles render of the scene (1 sample at each pixel centre, no
     bounces, linear), returned as rows of RGBA, row 0 the BOTTOM row."""
     scene = bpy.context.scene
+    point_sampled_cycles(scene)
     r = scene.render
-    r.engine = "CYCLES"
     r.resolution_x, r.resolution_y, r.resolution_percentage = width, height, 100
-    r.film_transparent = True
-    r.use_compositing = r.use_sequencer = False
-    r.dither_intensity = 0.0
     r.filepath = path
-    r.image_settings.file_format = "OPEN_EXR"
-    r.image_settings.color_depth = "32"
-    r.image_settings.color_mode = "RGBA"
-    c = scene.cycles
-    c.device = "CPU"
-    c.samples = 1
-    c.use_adaptive_sampling = False
-    c.use_denoising = False
-    c.pixel_filter_type = "GAUSSIAN"
-    c.filter_width = 0.01
-    c.max_bounces = 0
-    c.light_sampling_threshold = 0.0
-    c.seed = 0
-    scene.view_settings.view_transform = "Standard"
-    scene.view_settings.look = "None"
-    scene.view_settings.exposure = 0.0
-    scene.view_settings.gamma = 1.0
     if os.path.exists(path):
         os.remove(path)
     bpy.ops.render.render(write_still=True)
