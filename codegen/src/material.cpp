@@ -81,6 +81,20 @@ Material parse_material(const json& doc, const std::string& file) {
 
 Material load_material(const std::string& path) { return parse_material(read_json_file(path), path); }
 
+Material lobe_material(const ModelSpec& spec, const std::string& name) {
+  Material m;
+  m.name = name;
+  (spec.def->section == "diffuse" ? m.diffuse : m.specular) = spec;
+  return m;
+}
+
+std::vector<Material> model_materials() {
+  std::vector<Material> out;
+  for (const auto& def : catalog())
+    if (def.section == "diffuse" || def.section == "specular") out.push_back(lobe_material(default_spec(def), def.name));
+  return out;
+}
+
 namespace {
 
 json value_json(const Value& v);

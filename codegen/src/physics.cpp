@@ -108,10 +108,7 @@ std::vector<Variant> variants(const ModelDef& def) {
   }
   std::vector<Variant> out;
   for (auto& [label, spec] : specs) {
-    Material m;
-    m.name = def.name;
-    (def.section == "diffuse" ? m.diffuse : m.specular) = spec;
-    out.push_back({label, m});
+    out.push_back({label, lobe_material(spec, def.name)});
   }
   return out;
 }

@@ -100,12 +100,9 @@ const std::vector<ir::FunctionPtr>& sweep_grid() {
 
 std::vector<Material> extreme_materials() {
   std::vector<Material> out;
-  auto lobe_material = [&](const ModelDef& def, const std::string& suffix, const ModelSpec& spec) {
-    Material m;
-    m.name = def.name + "_" + suffix;
-    m.source = "extremes";
-    (def.section == "diffuse" ? m.diffuse : m.specular) = spec;
-    out.push_back(m);
+  auto add = [&](const ModelDef& def, const std::string& suffix, const ModelSpec& spec) {
+    out.push_back(facet::lobe_material(spec, def.name + "_" + suffix));
+    out.back().source = "extremes";
   };
   for (const auto& def : catalog()) {
     if (def.section != "diffuse" && def.section != "specular") continue;
@@ -115,8 +112,8 @@ std::vector<Material> extreme_materials() {
       low.values[p.name] = number_value(low_end(p.range));
       high.values[p.name] = number_value(high_end(p.range));
     }
-    lobe_material(def, "low", low);
-    lobe_material(def, "high", high);
+    add(def, "low", low);
+    add(def, "high", high);
     if (!def.param("fresnel")) continue;
     // The Fresnel terms at their ends: f0 = 0 and 1; η below 1 (total internal
     // reflection), exactly 1 (no reflection) and large.
@@ -139,7 +136,7 @@ std::vector<Material> extreme_materials() {
       v.choice = f.def->name;
       v.model = std::make_shared<ModelSpec>(f);
       s.values["fresnel"] = v;
-      lobe_material(def, name, s);
+      add(def, name, s);
     }
   }
   // Toon at its ends on a lobe that reaches both 0 and 1.
@@ -154,7 +151,7 @@ std::vector<Material> extreme_materials() {
     v.kind = ParamKind::Object;
     v.model = std::make_shared<ModelSpec>(t);
     s.values["toon"] = v;
-    lobe_material(lambert, name, s);
+    add(lambert, name, s);
   }
   return out;
 }

@@ -4,6 +4,7 @@
 #include <array>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -28,6 +29,15 @@ struct Material {
 // `file` and the key path. Throws InputError with all of them.
 Material parse_material(const nlohmann::json& doc, const std::string& file);
 Material load_material(const std::string& path);
+
+// A material of one lobe: `spec` as the diffuse or the specular lobe (by its
+// model's section), nothing else, named `name`. The sweep, the physics checks,
+// the cost table and the docs build their materials with it.
+Material lobe_material(const ModelSpec& spec, const std::string& name);
+// One material per lobe model of the catalog (every diffuse and specular model),
+// the lobe alone at its defaults, named after the model, in catalog order: what
+// `facet cost` measures and `facet docs` shows when given no material.
+std::vector<Material> model_materials();
 
 // The canonical JSON form (every default written out), which parses back to an
 // equal material.
