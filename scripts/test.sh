@@ -1,8 +1,62 @@
 #!/usr/bin/env bash
-# facet's whole test suite: makes sure everything is installed and built
-# (scripts/setup.sh --no-run), then runs every test with CTest.
+# facet's whole test suite, what CI runs (.ci/run). Three stages, each its own
+# build tree under the repo (ignored by git, kept between runs):
+#
+#   main      build/        every test (CTest), the release build users get
+#   sanitize  build-asan/   the same whole suite again, built with
+#                           AddressSanitizer and UndefinedBehaviorSanitizer
+#   fuzz      build-fuzz/   the libFuzzer targets (clang), a bounded run each
+#                           from the seed corpus (tests/fuzz)
+#
+#   scripts/test.sh                   all three stages
+#   scripts/test.sh -L pov            CTest arguments go to every stage
+#   FACET_TEST_STAGES=main scripts/test.sh   some stages only (local work; CI runs all)
+#
+# It first makes sure everything is installed and built (scripts/setup.sh --no-run).
 set -euo pipefail
 cd "$(dirname "$0")/.."
+stages=${FACET_TEST_STAGES:-main sanitize fuzz}
+jobs=$(nproc)
+
+say() { printf '\033[1m==> %s\033[0m\n' "$*"; }
+
+# configure DIR ARGS…, then build it; the log is shown only when it fails.
+build_tree() {
+  local dir=$1
+  shift
+  mkdir -p "$dir"
+  cmake -S . -B "$dir" "$@" > "$dir/build.log" 2>&1 || { cat "$dir/build.log"; exit 1; }
+  cmake --build "$dir" -j"$jobs" >> "$dir/build.log" 2>&1 || { tail -50 "$dir/build.log"; exit 1; }
+}
+
 scripts/setup.sh --no-run
-cd build
-ctest --output-on-failure -j"$(nproc)" "$@"
+
+for stage in $stages; do
+  case $stage in
+    main)
+      say "Stage main: the whole suite (build/)"
+      (cd build && ctest --output-on-failure -j"$jobs" "$@")
+      ;;
+    sanitize)
+      say "Stage sanitize: the whole suite under AddressSanitizer and UndefinedBehaviorSanitizer (build-asan/)"
+      build_tree build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DFACET_SANITIZE=ON -DFACET_WERROR=ON \
+        -DFACET_PYTHON="$PWD/.venv/bin/python"
+      # Leak checking included: facet's processes end with every allocation freed
+      # or still reachable (gl_renderer.cpp pins Mesa's driver so its own stays reachable).
+      (cd build-asan &&
+        ASAN_OPTIONS=detect_leaks=1:strict_string_checks=1 \
+        UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+        ctest --output-on-failure -j"$jobs" "$@")
+      ;;
+    fuzz)
+      say "Stage fuzz: libFuzzer targets, bounded runs (build-fuzz/)"
+      build_tree build-fuzz -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo -DFACET_FUZZ=ON \
+        -DFACET_WERROR=ON
+      (cd build-fuzz && ctest --output-on-failure -j"$jobs" "$@")
+      ;;
+    *)
+      echo "error: FACET_TEST_STAGES: unknown stage \"$stage\"; allowed: main, sanitize, fuzz" >&2
+      exit 2
+      ;;
+  esac
+done

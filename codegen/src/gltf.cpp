@@ -4,6 +4,7 @@
 #include <cstring>
 #include <filesystem>
 #include <functional>
+#include <limits>
 #include <set>
 #include <sstream>
 
@@ -121,11 +122,18 @@ class Reader {
     count = a.count;
     type = a.type;
     component = a.componentType;
-    size_t elem = size_t(tinygltf::GetComponentSizeInBytes(uint32_t(component)) * tinygltf::GetNumComponentsInType(uint32_t(type)));
+    int component_size = tinygltf::GetComponentSizeInBytes(uint32_t(component));
+    int components = tinygltf::GetNumComponentsInType(uint32_t(type));
+    if (component_size <= 0 || components <= 0) fail(apath, "has an unknown componentType or type");
+    size_t elem = size_t(component_size) * size_t(components);
     stride = v.byteStride ? v.byteStride : elem;
-    size_t start = v.byteOffset + a.byteOffset;
-    if (count > 0 && start + stride * (count - 1) + elem > b.data.size())
-      fail(apath, fmt::format("reads past the end of buffer {} ({} bytes)", v.buffer, b.data.size()));
+    if (stride < elem) fail(fmt::format("bufferViews[{}].byteStride", a.bufferView), "is smaller than one element");
+    // start + stride·(count − 1) + elem ≤ size, checked without overflowing.
+    size_t size = b.data.size();
+    bool inside = v.byteOffset <= size && a.byteOffset <= size - v.byteOffset;
+    size_t start = inside ? v.byteOffset + a.byteOffset : 0;
+    if (count > 0) inside = inside && elem <= size - start && (size - start - elem) / stride >= count - 1;
+    if (!inside) fail(apath, fmt::format("reads past the end of buffer {} ({} bytes)", v.buffer, size));
     return b.data.data() + start;
   }
 
@@ -139,6 +147,8 @@ class Reader {
     for (size_t i = 0; i < count; ++i) {
       float f[3];
       std::memcpy(f, p + i * stride, sizeof f);
+      if (!std::isfinite(f[0]) || !std::isfinite(f[1]) || !std::isfinite(f[2]))
+        fail(fmt::format("accessors[{}]", index), fmt::format("element {} is not finite", i));
       out[i] = Vec3(f[0], f[1], f[2]);
     }
     return out;
@@ -284,37 +294,82 @@ void sphere_mesh(const Object& o, std::vector<Vec3>& pos, std::vector<Vec3>& nor
     }
 }
 
-}  // namespace
-
 // ---------------------------------------------------------------- import
 
+// tinygltf reads a glTF's external buffers through these; an import from memory
+// has no folder, so it reads none (and says which it was asked for).
+tinygltf::FsCallbacks no_files() {
+  tinygltf::FsCallbacks fs{};
+  fs.FileExists = [](const std::string&, void*) { return false; };
+  fs.ExpandFilePath = [](const std::string& p, void*) { return p; };
+  fs.ReadWholeFile = [](std::vector<unsigned char>*, std::string* err, const std::string& p, void*) {
+    if (err) *err += "\"" + p + "\" is an external file, and an import from memory reads none\n";
+    return false;
+  };
+  fs.WriteWholeFile = [](std::string*, const std::string&, const std::vector<unsigned char>&, void*) { return false; };
+  return fs;
+}
+
+// A key path of the facet scene JSON import_gltf_data checks ("lights[2].color")
+// as the glTF path it came from ("nodes[4].extensions.FACET_light.color").
+std::string gltf_path(const std::string& p, const std::string& camera, const std::string& scene_ext,
+                      const std::vector<std::string>& objects, const std::vector<std::string>& lights) {
+  auto indexed = [&](const char* key, const std::vector<std::string>& paths) -> std::string {
+    std::string prefix = std::string(key) + "[";
+    if (p.rfind(prefix, 0) != 0) return "";
+    size_t close = p.find(']');
+    size_t i = std::stoul(p.substr(prefix.size(), close - prefix.size()));
+    return i < paths.size() ? paths[i] + p.substr(close + 1) : "";
+  };
+  if (std::string q = indexed("lights", lights); !q.empty()) return q;
+  if (std::string q = indexed("objects", objects); !q.empty()) return q;
+  if (p.rfind("camera", 0) == 0 && !camera.empty()) return camera + " (as a facet camera: " + p + ")";
+  if (p.rfind("ambient", 0) == 0) return scene_ext + "." + p;
+  return p;
+}
+
+// Names a missing external buffer by its key, before tinygltf reports it bare.
+void check_external_buffers(const std::string& text, const std::string& path) {
+  json doc = parse_json(text, path);
+  if (!doc.is_object() || !doc.contains("buffers") || !doc["buffers"].is_array()) return;
+  for (size_t i = 0; i < doc["buffers"].size(); ++i) {
+    const json& b = doc["buffers"][i];
+    if (!b.is_object() || !b.contains("uri") || !b["uri"].is_string()) continue;
+    std::string uri = b["uri"];
+    if (uri.rfind("data:", 0) == 0) continue;
+    fs::path file = fs::path(path).parent_path() / uri;
+    if (!fs::exists(file))
+      throw InputError({{path, fmt::format("buffers[{}].uri", i),
+                         fmt::format("\"{}\" is not there ({}); the buffer must sit beside the glTF", uri,
+                                     file.string()),
+                         0, 0}});
+  }
+}
+
+}  // namespace
+
 Scene import_gltf(const std::string& path, const GltfImportOptions& options, std::vector<std::string>& notes) {
+  if (!fs::exists(path)) throw InputError({{path, "", "no such file", 0, 0}});
+  bool binary = fs::path(path).extension() == ".glb";
+  std::string data = read_file(path);
+  if (!binary) check_external_buffers(data, path);
+  std::string folder = fs::path(path).parent_path().string();
+  return import_gltf_data(data, binary, path, folder.empty() ? "." : folder, options, notes);
+}
+
+Scene import_gltf_data(const std::string& data, bool binary, const std::string& path, const std::string& folder,
+                       const GltfImportOptions& options, std::vector<std::string>& notes) {
   tinygltf::TinyGLTF loader;
   loader.SetStoreOriginalJSONForExtrasAndExtensions(true);
+  if (folder.empty()) loader.SetFsCallbacks(no_files());
   tinygltf::Model model;
   std::string err, warn;
-  bool binary = fs::path(path).extension() == ".glb";
-  if (!fs::exists(path)) throw InputError({{path, "", "no such file", 0, 0}});
-  if (!binary) {
-    // Name a missing external buffer by its key, before tinygltf reports it bare.
-    json doc = parse_json(read_file(path), path);
-    if (doc.contains("buffers") && doc["buffers"].is_array()) {
-      for (size_t i = 0; i < doc["buffers"].size(); ++i) {
-        const json& b = doc["buffers"][i];
-        if (!b.is_object() || !b.contains("uri") || !b["uri"].is_string()) continue;
-        std::string uri = b["uri"];
-        if (uri.rfind("data:", 0) == 0) continue;
-        fs::path file = fs::path(path).parent_path() / uri;
-        if (!fs::exists(file))
-          throw InputError({{path, fmt::format("buffers[{}].uri", i),
-                             fmt::format("\"{}\" is not there ({}); the buffer must sit beside the glTF", uri,
-                                         file.string()),
-                             0, 0}});
-      }
-    }
-  }
-  bool ok = binary ? loader.LoadBinaryFromFile(&model, &err, &warn, path)
-                   : loader.LoadASCIIFromFile(&model, &err, &warn, path);
+  if (data.size() > std::numeric_limits<unsigned int>::max())
+    throw InputError({{path, "", "is larger than 4 GiB, which glTF cannot address", 0, 0}});
+  auto size = static_cast<unsigned int>(data.size());
+  bool ok = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn,
+                                                 reinterpret_cast<const unsigned char*>(data.data()), size, folder)
+                   : loader.LoadASCIIFromString(&model, &err, &warn, data.data(), size, folder);
   if (!warn.empty()) notes.push_back(path + ": tinygltf: " + warn);
   if (!ok) {
     std::string msg = err.empty() ? "tinygltf could not load the file" : err;
@@ -332,13 +387,21 @@ Scene import_gltf(const std::string& path, const GltfImportOptions& options, std
   }
   if (model.scenes.empty()) reader.fail("scenes", "the file has no scene");
   int scene_index = model.defaultScene >= 0 ? model.defaultScene : 0;
+  if (size_t(scene_index) >= model.scenes.size()) reader.fail("scene", fmt::format("names no scene ({})", scene_index));
   const auto& gscene = model.scenes[size_t(scene_index)];
 
   Scene s;
   s.source = path;
   s.name = gscene.name.empty() ? fs::path(path).stem().string() : gscene.name;
+  // What facet's own scene checker reads (camera, lights, analytic objects,
+  // ambient), gathered as facet scene JSON with the glTF path of each part, and
+  // checked in one go at the end: one checker for every source.
+  json checked = json::object();
+  std::vector<std::string> light_paths, object_paths;
+  std::vector<size_t> analytic_objects;  // indices into s.objects
   json scene_ext = extension(gscene.extensions_json_string, kSceneExt);
-  if (scene_ext.is_object() && scene_ext.contains("ambient")) s.ambient = scene_ext["ambient"].get<RGB>();
+  std::string scene_ext_path = fmt::format("scenes[{}].extensions.{}", scene_index, kSceneExt);
+  if (scene_ext.is_object() && scene_ext.contains("ambient")) checked["ambient"] = scene_ext["ambient"];
 
   // Materials, by key; only those the primitives use are kept.
   std::vector<std::string> keys(model.materials.size());
@@ -376,34 +439,45 @@ Scene import_gltf(const std::string& path, const GltfImportOptions& options, std
   };
 
   bool have_camera = false;
-  json lights = json::array();  // met while visiting nodes, as facet scene JSON; checked at the end
+  std::string camera_path;
+  json lights = json::array();  // met while visiting nodes, as facet scene JSON
+  json analytic_json = json::array();
+  std::vector<bool> on_path(model.nodes.size(), false);  // the nodes being visited: a cycle is an error
   std::function<void(int, const Mat4&)> visit = [&](int ni, const Mat4& parent) {
     if (ni < 0 || size_t(ni) >= model.nodes.size()) reader.fail("nodes", fmt::format("no node {}", ni));
+    std::string npath = fmt::format("nodes[{}]", ni);
+    if (on_path[size_t(ni)]) reader.fail(npath + ".children", "the node hierarchy has a cycle through this node");
+    on_path[size_t(ni)] = true;
     const auto& node = model.nodes[size_t(ni)];
     Mat4 world = parent * local_matrix(node);
-    std::string npath = fmt::format("nodes[{}]", ni);
 
     if (node.camera >= 0 && !have_camera) {
+      if (size_t(node.camera) >= model.cameras.size()) reader.fail(npath + ".camera", "names no camera");
       const auto& cam = model.cameras[size_t(node.camera)];
-      if (cam.type != "perspective")
-        reader.fail(fmt::format("cameras[{}]", node.camera), "is " + cam.type + "; facet cameras are perspective");
-      s.camera.position = world.point(Vec3(0, 0, 0));
+      camera_path = fmt::format("cameras[{}]", node.camera);
+      if (cam.type != "perspective") reader.fail(camera_path, "is " + cam.type + "; facet cameras are perspective");
+      Vec3 position = world.point(Vec3(0, 0, 0));
       Vec3 forward = normalize(world.direction(Vec3(0, 0, -1)));
-      s.camera.look_at = s.camera.position + forward;
-      s.camera.up = normalize(world.direction(Vec3(0, 1, 0)));
-      s.camera.fov = cam.perspective.yfov * 180 / kPi;
+      checked["camera"] = {{"position", position.array()},
+                           {"look_at", (position + forward).array()},
+                           {"up", normalize(world.direction(Vec3(0, 1, 0))).array()},
+                           {"fov", cam.perspective.yfov * 180 / kPi}};
       have_camera = true;
     }
     json light_ref = extension(node.extensions_json_string, kLightsExt);
     if (light_ref.is_object() && light_ref.contains("light")) {
-      int li = light_ref["light"].get<int>();
-      if (li < 0 || size_t(li) >= model.lights.size()) reader.fail(npath + ".extensions.KHR_lights_punctual", "names no light");
+      std::string ref_path = npath + ".extensions.KHR_lights_punctual.light";
+      if (!light_ref["light"].is_number_integer()) reader.fail(ref_path, "expected the index of a light");
+      int64_t li = light_ref["light"].get<int64_t>();
+      if (li < 0 || size_t(li) >= model.lights.size()) reader.fail(ref_path, "names no light");
       const auto& gl = model.lights[size_t(li)];
       json exact = extension(node.extensions_json_string, kLightExt);
       json lj;
       if (exact.is_object()) {
         lj = exact;  // facet's own light, exact
+        light_paths.push_back(npath + ".extensions." + kLightExt);
       } else {
+        light_paths.push_back(fmt::format("extensions.KHR_lights_punctual.lights[{}]", li));
         auto c = rgb3(gl.color, 1);
         double k = gl.intensity / kPi;
         lj = {{"type", gl.type}, {"color", {c[0] * k, c[1] * k, c[2] * k}}};
@@ -432,20 +506,10 @@ Scene import_gltf(const std::string& path, const GltfImportOptions& options, std
         o.name = (node.name.empty() ? (mesh.name.empty() ? fmt::format("mesh{}", node.mesh) : mesh.name) : node.name) +
                  (mesh.primitives.size() > 1 ? fmt::format("_{}", pi) : "");
         o.material = material_key(prim.material, ppath);
-        if (analytic.is_object()) {  // facet's own sphere or plane, exact (world space)
-          std::string type = analytic.value("type", "");
-          if (type == "sphere") {
-            o.type = Object::Type::Sphere;
-            o.center = Vec3(analytic.at("center").get<RGB>());
-            o.radius = analytic.at("radius").get<double>();
-          } else if (type == "plane") {
-            o.type = Object::Type::Plane;
-            o.point = Vec3(analytic.at("point").get<RGB>());
-            o.normal = normalize(Vec3(analytic.at("normal").get<RGB>()));
-            o.size = analytic.at("size").get<double>();
-          } else {
-            reader.fail(npath + ".extensions.FACET_object.type", "\"" + type + "\"; allowed: \"sphere\", \"plane\"");
-          }
+        if (analytic.is_object()) {  // facet's own sphere or plane, exact (world space): checked at the end
+          analytic_objects.push_back(s.objects.size());
+          analytic_json.push_back(analytic);
+          object_paths.push_back(npath + ".extensions." + kObjectExt);
           s.objects.push_back(o);
           continue;
         }
@@ -492,6 +556,10 @@ Scene import_gltf(const std::string& path, const GltfImportOptions& options, std
           }
         }
         if (mesh_out->triangles.empty()) reader.fail(ppath, "has no triangles");
+        for (size_t i = 0; i < mesh_out->positions.size(); ++i)
+          if (!finite(mesh_out->positions[i]) || !finite(mesh_out->normals[i]))
+            reader.fail(npath, "its world transform makes a vertex or a normal of " + ppath +
+                                   " infinite or undefined (a zero scale, or a huge one)");
         mesh_out->build_bvh();
         o.type = Object::Type::Mesh;
         o.mesh = mesh_out;
@@ -499,14 +567,37 @@ Scene import_gltf(const std::string& path, const GltfImportOptions& options, std
       }
     }
     for (int child : node.children) visit(child, world);
+    on_path[size_t(ni)] = false;
   };
   for (int root : gscene.nodes) visit(root, Mat4());
   if (s.objects.empty()) reader.fail(fmt::format("scenes[{}]", scene_index), "has no meshes");
 
-  // Lights through the scene parser: one checker for every source.
-  json lights_doc = {{"camera", {{"position", {0, 0, 1}}}}, {"objects", {{{"type", "sphere"}, {"center", {0, 0, 0}}, {"radius", 1}}}},
-                     {"lights", lights}};
-  s.lights = parse_scene(lights_doc, path).lights;
+  // The gathered parts through the scene checker; its diagnostics name the glTF's paths.
+  if (!have_camera) checked["camera"] = {{"position", {0, 0, 1}}};  // framed below
+  checked["objects"] = analytic_json.empty() ? json::array({{{"type", "sphere"}, {"center", {0, 0, 0}}, {"radius", 1}}})
+                                             : analytic_json;
+  checked["lights"] = lights;
+  Scene parts;
+  try {
+    parts = parse_scene(checked, path);
+  } catch (const InputError& e) {
+    std::vector<Diagnostic> ds = e.diagnostics();
+    for (auto& d : ds) d.path = gltf_path(d.path, camera_path, scene_ext_path, object_paths, light_paths);
+    throw InputError(ds);
+  }
+  for (size_t i = 0; i < analytic_objects.size(); ++i) {
+    Object& o = s.objects[analytic_objects[i]];
+    const Object& a = parts.objects[i];
+    o.type = a.type;
+    o.center = a.center;
+    o.radius = a.radius;
+    o.point = a.point;
+    o.normal = a.normal;
+    o.size = a.size;
+  }
+  s.lights = parts.lights;
+  s.ambient = parts.ambient;
+  if (have_camera) s.camera = parts.camera;
 
   if (!have_camera) {
     // Frame the scene's bounding sphere from the front, a little above.

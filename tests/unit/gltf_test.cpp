@@ -180,7 +180,13 @@ INSTANTIATE_TEST_SUITE_P(
     Files, BadGltf,
     ::testing::Values(Bad{"no_material.gltf", "meshes[0].primitives[0].material", "--default-material"},
                       Bad{"missing_buffer.gltf", "buffers[0].uri", "missing_buffer.bin"},
-                      Bad{"required_extension.gltf", "extensionsRequired[0]", "KHR_draco_mesh_compression"}),
+                      Bad{"required_extension.gltf", "extensionsRequired[0]", "KHR_draco_mesh_compression"},
+                      // Found by the fuzzer (tests/fuzz): each once ended facet with an uncaught
+                      // exception, a stack overflow or an unchecked index.
+                      Bad{"facet_object_misspelt.gltf", "nodes[0].extensions.FACET_object.onrmal", "did you mean \"normal\""},
+                      Bad{"node_cycle.gltf", "nodes[0].children", "cycle"},
+                      Bad{"no_such_camera.gltf", "nodes[0].camera", "names no camera"},
+                      Bad{"nan_position.gltf", "accessors[0]", "not finite"}),
     [](const auto& info) { return fs::path(info.param.file).stem().string(); });
 
 TEST(Gltf, DefaultMaterialShadesPrimitivesWithoutOne) {

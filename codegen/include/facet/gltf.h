@@ -37,6 +37,11 @@ struct GltfImportOptions {
 // Throws InputError naming the file and the glTF path of the problem. `notes`
 // receives what was approximate or ignored (textures, alpha modes, spot cones…).
 Scene import_gltf(const std::string& path, const GltfImportOptions& options, std::vector<std::string>& notes);
+// The same from the file's bytes (`binary`: .glb). External buffers are read from
+// `folder`; with an empty `folder` none is read (an error names it), so bytes
+// from anywhere (the fuzzer's, say) touch no file. `path` names the input in errors.
+Scene import_gltf_data(const std::string& data, bool binary, const std::string& path, const std::string& folder,
+                       const GltfImportOptions& options, std::vector<std::string>& notes);
 
 // Writes `s` (objects without a material use `fallback`) as .gltf (one file,
 // buffer embedded) or .glb, by the path's extension. Written whole or not at all.

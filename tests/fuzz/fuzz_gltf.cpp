@@ -1,0 +1,22 @@
+// libFuzzer target: glTF import, .gltf text and .glb containers (the first
+// byte chooses). Every file either imports into a scene or is refused with an
+// InputError; no external file is read (import_gltf_data without a folder).
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "facet/gltf.h"
+#include "fuzz_common.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  std::string bytes(reinterpret_cast<const char*>(data), size);
+  // A .glb starts with its magic; anything else is read as .gltf JSON.
+  bool binary = bytes.rfind("glTF", 0) == 0;
+  facet::fuzz::refuse_only_with_input_errors("gltf", [&] {
+    std::vector<std::string> notes;
+    facet::GltfImportOptions options;
+    (void)facet::import_gltf_data(bytes, binary, binary ? "fuzz.glb" : "fuzz.gltf", "", options, notes);
+  });
+  return 0;
+}

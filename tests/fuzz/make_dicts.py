@@ -1,0 +1,69 @@
+#!/usr/bin/env python3
+"""Writes the libFuzzer dictionaries (material.dict, scene.dict, gltf.dict) from
+the catalog, so the fuzzers know every key and model name facet reads.
+
+    facet models --json | tests/fuzz/make_dicts.py tests/fuzz
+"""
+import json
+import sys
+
+JSON_TOKENS = ['{', '}', '[', ']', ':', ',', 'true', 'false', 'null', '-1e400', '1e-7', '0.0', '-0', '"\\u0000"']
+GLTF_KEYS = ['asset', 'version', '2.0', 'scenes', 'scene', 'nodes', 'children', 'mesh', 'meshes', 'primitives',
+             'attributes', 'POSITION', 'NORMAL', 'indices', 'mode', 'material', 'materials', 'accessors',
+             'bufferView', 'bufferViews', 'buffer', 'buffers', 'byteOffset', 'byteLength', 'byteStride', 'uri',
+             'componentType', 'count', 'type', 'VEC3', 'SCALAR', 'min', 'max', 'matrix', 'translation', 'rotation',
+             'scale', 'camera', 'cameras', 'perspective', 'orthographic', 'yfov', 'znear', 'zfar', 'extensions',
+             'extensionsUsed', 'extensionsRequired', 'pbrMetallicRoughness', 'baseColorFactor', 'metallicFactor',
+             'roughnessFactor', 'emissiveFactor', 'KHR_lights_punctual', 'lights', 'light', 'intensity', 'color',
+             'spot', 'innerConeAngle', 'outerConeAngle', 'range', 'point', 'directional', 'FACET_material',
+             'FACET_object', 'FACET_light', 'FACET_scene', 'sphere', 'plane', 'center', 'radius', 'normal', 'size',
+             'ambient', 'data:application/octet-stream;base64,']
+
+
+def names(catalog, sections):
+    out = set()
+    for section in sections:
+        for model in catalog['sections'].get(section, []):
+            out.add(model['name'])
+            for p in model['parameters']:
+                out.add(p['name'])
+                for c in p.get('choices', []):
+                    out.add(c)
+    return out
+
+
+def escape(word):
+    """A libFuzzer dictionary entry: quoted, with \\, \" and \\xHH escapes."""
+    out = ''
+    for ch in word:
+        if ch in '\\"':
+            out += '\\' + ch
+        elif ' ' <= ch <= '~':
+            out += ch
+        else:
+            out += ''.join('\\x%02X' % b for b in ch.encode())
+    return '"' + out + '"'
+
+
+def write(path, words):
+    with open(path, 'w') as f:
+        f.write('# Made by make_dicts.py from `facet models --json`; libFuzzer dictionary format.\n')
+        for w in sorted(set(words)):
+            f.write(escape(w) + '\n')
+
+
+def main():
+    folder = sys.argv[1]
+    catalog = json.load(sys.stdin)
+    shading = ['diffuse', 'specular', 'fresnel', 'geometry', 'modifier']
+    material = names(catalog, shading) | {'model', 'name', 'ambient', 'emission', 'diffuse', 'specular',
+                                          'tangent_axis', '$schema'}
+    scene = material | names(catalog, ['camera', 'object', 'light', 'attenuation']) | {
+        'camera', 'objects', 'lights', 'materials', 'material', 'attenuation'}
+    write(folder + '/material.dict', material | set(JSON_TOKENS))
+    write(folder + '/scene.dict', scene | set(JSON_TOKENS))
+    write(folder + '/gltf.dict', set(GLTF_KEYS) | material | set(JSON_TOKENS) | {'glTF', 'JSON', 'BIN\x00'})
+
+
+if __name__ == '__main__':
+    main()
