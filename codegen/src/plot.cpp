@@ -183,6 +183,14 @@ std::vector<LegendItem> part_items(const Material& m) {
 
 // ---------------------------------------------------------------- polar
 
+// Where the total is largest (the first such sample, or the last with `ties_to_later`).
+size_t peak_index(const std::vector<LobeValue>& values, bool ties_to_later) {
+  size_t best = 0;
+  for (size_t i = 1; i < values.size(); ++i)
+    if (values[i].total > values[best].total || (ties_to_later && values[i].total == values[best].total)) best = i;
+  return best;
+}
+
 // Within 0.1 % of its peak everywhere: a lobe without a direction of its own.
 bool flat(const std::vector<LobeValue>& values) {
   double lo = INFINITY, hi = 0;
@@ -270,9 +278,10 @@ void polar_panel(Canvas& c, Point centre, double R, const PolarCurve& curve, con
     std::vector<Point> area = diffuse;
     area.push_back(centre);
     c.polygon(area, Style::filled(kDiffuse, 0.35));
-    c.polyline(diffuse, Style::stroked(kDiffuse, 2));
   }
+  // The whole's outline under the diffuse one: where the specular part is nil, the line is blue.
   if (m.specular) c.polyline(total, Style::stroked(kSpecular, 2));
+  if (m.diffuse) c.polyline(diffuse, Style::stroked(kDiffuse, 2));
   surface(c, centre, R);
   polar_directions(c, centre, R, theta_l);
   // The peak, marked and labelled; a lobe the same in every direction (Lambert) has none.
@@ -345,8 +354,13 @@ void add_lobe(std::vector<Piece3>& pieces, const View3& view, const LobeMesh& me
       Vec3 centroid = (p00 + p01 + p11 + p10) * 0.25;
       Vec3 normal = cross(p10 - p00, p01 - p00) + cross(p01 - p11, p10 - p11);
       if (length(normal) < 1e-12) normal = mesh.directions[size_t(i) * size_t(mesh.segments) + size_t(j)];
+      // The surface is star-shaped about the origin, so its outward normal has a positive
+      // dot with the position; seen from above (its open base faces down) every face turned
+      // away from the eye is hidden behind one turned towards it, and is left out.
       normal = normalize(normal);
-      double light = 0.32 + 0.68 * std::fabs(dot(normal, key));
+      if (dot(normal, centroid) < 0) normal = -normal;
+      if (dot(normal, view.toward) < 0) continue;
+      double light = 0.32 + 0.68 * std::max(0.0, dot(normal, key));
       double s = (share(i, j) + share(i, j + 1) + share(i + 1, j + 1) + share(i + 1, j)) / 4;
       Piece3 q{view.depth(centroid), {p00, p01, p11, p10}, shade(share_color(s, true), light), 0, {}};
       if (i % ring_step == 0) q.wires.push_back({0, 1});
@@ -427,18 +441,10 @@ LobeValue LobeSampler::value(const Vec3& l, const Vec3& v) const {
   return out;
 }
 
-double PolarCurve::peak() const {
-  double p = 0;
-  for (const auto& v : values) p = std::max(p, v.total);
-  return p;
-}
+double PolarCurve::peak() const { return values.empty() ? 0 : values[peak_index(values, true)].total; }
 
-double PolarCurve::peak_angle() const {
-  size_t best = 0;
-  for (size_t i = 1; i < values.size(); ++i)
-    if (values[i].total > values[best].total) best = i;
-  return angles.empty() ? 0 : angles[best];
-}
+// A tie goes to the later sample: a symmetric lobe's peak is named on the mirror side.
+double PolarCurve::peak_angle() const { return angles.empty() ? 0 : angles[peak_index(values, true)]; }
 
 std::vector<PolarCurve> polar_curves(const Material& m, double light_angle, int samples) {
   const double edge = kMaxViewAngle;
@@ -462,18 +468,9 @@ std::vector<PolarCurve> polar_curves(const Material& m, double light_angle, int 
   return curves;
 }
 
-double LobeMesh::peak() const {
-  double p = 0;
-  for (const auto& v : values) p = std::max(p, v.total);
-  return p;
-}
+double LobeMesh::peak() const { return values.empty() ? 0 : values[peak_index(values, false)].total; }
 
-Vec3 LobeMesh::peak_direction() const {
-  size_t best = 0;
-  for (size_t i = 1; i < values.size(); ++i)
-    if (values[i].total > values[best].total) best = i;
-  return directions.empty() ? kN : directions[best];
-}
+Vec3 LobeMesh::peak_direction() const { return directions.empty() ? kN : directions[peak_index(values, false)]; }
 
 LobeMesh lobe_mesh(const Material& m, double light_angle, int rings, int segments) {
   LobeSampler sampler(m);
@@ -527,7 +524,8 @@ Canvas polar_plot(const Material& m, const PlotOptions& o) {
 }
 
 Canvas lobe3d_plot(const Material& m, const PlotOptions& o) {
-  LobeMesh mesh = lobe_mesh(m, o.light_angle);
+  // Half-degree rings and one-degree segments: fine enough that flat-shaded quads read as a smooth surface.
+  LobeMesh mesh = lobe_mesh(m, o.light_angle, 179, 361);
   RadialScale scale = scale_for(o, mesh.peak());
   std::vector<LegendItem> items = {{LegendItem::Mark::Ramp, kDiffuse, "colour: the specular part's share of the value, 0 → 1"},
                                    {LegendItem::Mark::Line, kLight, "light l"},
