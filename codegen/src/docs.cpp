@@ -522,6 +522,12 @@ std::vector<Material> chosen_models(const DocsOptions& o) {
   return out;
 }
 
+void make_folder(const fs::path& dir) {
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec) throw IoError(dir.string() + ": cannot create the folder: " + ec.message());
+}
+
 void draw_diagrams(const Material& m, const DocsOptions& o, const fs::path& out) {
   const ModelDef& def = *(m.diffuse ? m.diffuse : m.specular)->def;
   for (double a : o.light_angles) {
@@ -542,8 +548,8 @@ DocsResult write_docs(const DocsOptions& options, std::ostream& progress) {
   DocsOptions o = options;
   std::vector<Material> ms = chosen_models(o);
   fs::path out = o.out;
-  fs::create_directories(out / "models");
-  fs::create_directories(out / "plots");
+  make_folder(out / "models");
+  make_folder(out / "plots");
   progress << fmt::format("facet docs: {} lobe models into {}\n", ms.size(), out.string());
 
   std::vector<bool> anisotropic;

@@ -258,6 +258,12 @@ TEST(DocsCli, BadInputsNameTheOptionOrFileAndWriteNothing) {
     EXPECT_NE(r.output.find(c.named), std::string::npos) << "expected \"" << c.named << "\" in: " << r.output;
     EXPECT_FALSE(fs::exists(dir)) << "nothing is written";
   }
+  // A folder that cannot be made is named, not a crash.
+  fs::path file = scratch("a_file");
+  write_file_atomic(file.string(), "not a folder\n");
+  ProcessResult r = facet({"docs", "-o", file.string(), "--models", "lambert"});
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find(file.string() + "/models: cannot create the folder"), std::string::npos) << r.output;
 }
 
 }  // namespace
