@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Makes docs/facet.png, the README's picture: a few materials on the `shadows`
+# Makes docs/facet.png, the README's picture (and docs/plot_ward.png, its diagram): a few materials on the `shadows`
 # scene as the C++ reference, OpenGL, Cycles (OSL) and POV-Ray render them,
 # from a real `facet validate` run, photographed by headless Chromium.
 set -euo pipefail
@@ -33,3 +33,6 @@ build/bin/facet validate "${files[@]}" --scene shadows --size 256x256 --out "$ou
 chromium --headless --no-sandbox --disable-gpu --hide-scrollbars --window-size=1110,760 \
   --screenshot="$PWD/docs/facet.png" "file://$PWD/$out/picture.html" > /dev/null 2>&1
 echo "docs/facet.png"
+# The README's diagram: Ward's lobe in its two planes.
+build/bin/facet plot examples/materials/ward.json --light-angle 30 -o docs/plot_ward.png 2> /dev/null
+echo "docs/plot_ward.png"

@@ -19,6 +19,7 @@
 
 #include "facet/catalog.h"
 #include "facet/compare.h"
+#include "facet/docs.h"
 #include "facet/gltf.h"
 #include "facet/image.h"
 #include "facet/render.h"
@@ -26,6 +27,7 @@
 #include "facet/io.h"
 #include "facet/material.h"
 #include "facet/physics.h"
+#include "facet/plot.h"
 #include "facet/reference.h"
 #include "facet/scene.h"
 #include "facet/sweep.h"
@@ -367,23 +369,83 @@ int run_physics(const PhysicsArgs& a) {
   return status;
 }
 
-// ---------------------------------------------------------------- models
+// ---------------------------------------------------------------- plot
 
-json value_json(const Value& v, ParamKind kind) {
-  switch (kind) {
-    case ParamKind::Number: return v.number;
-    case ParamKind::Bool: return v.flag;
-    case ParamKind::Enum:
-    case ParamKind::String: return v.choice;
-    case ParamKind::Color:
-    case ParamKind::Vector: return v.rgb;
-    case ParamKind::Model: return v.model ? spec_json(*v.model) : json(nullptr);
-    case ParamKind::Object:
-    case ParamKind::Points:
-    case ParamKind::Triangles: return nullptr;
-  }
-  return nullptr;
+struct PlotArgs {
+  std::string material;
+  double light_angle = 45;
+  std::string view = "polar";
+  std::string scale = "linear";
+  double max = 0;
+  std::string output;
+};
+
+// The command line is checked before the material is read, and nothing is written on an error.
+int run_plot(const PlotArgs& a) {
+  std::string ext = std::filesystem::path(a.output).extension().string();
+  std::vector<Diagnostic> problems;
+  if (ext != ".svg" && ext != ".png")
+    problems.push_back({"command line", "-o", fmt::format("\"{}\" is neither .svg nor .png; allowed: FILE.svg or "
+                                                          "FILE.png", a.output), 0, 0});
+  else if (a.view == "lobe3d" && ext != ".png")
+    problems.push_back({"command line", "-o", fmt::format("\"{}\": the lobe3d view is rendered; allowed: FILE.png",
+                                                          a.output), 0, 0});
+  if (!(a.light_angle >= 0 && a.light_angle < 90))
+    problems.push_back({"command line", "--light-angle", fmt::format("{} is out of range; allowed: 0 ≤ θ_l < 90 "
+                                                                     "(degrees from the normal)", a.light_angle), 0, 0});
+  if (!problems.empty()) throw InputError(problems);
+  Material m = load_material(a.material);
+  PlotOptions o;
+  o.light_angle = a.light_angle;
+  o.view = a.view == "lobe3d" ? PlotOptions::View::Lobe3d : PlotOptions::View::Polar;
+  o.scale = a.scale == "log" ? PlotOptions::Scale::Log : PlotOptions::Scale::Linear;
+  o.max = a.max;
+  write_plot(m, o, a.output);
+  fmt::print(stderr, "{}: {} diagram of {} at θ_l = {:g}°\n", a.output, a.view, m.name, a.light_angle);
+  return 0;
 }
+
+// ---------------------------------------------------------------- docs
+
+struct DocsArgs {
+  DocsOptions options;
+  std::string cost;
+  std::string models;
+  std::string renderers = "reference,glsl,osl,pov";
+};
+
+std::vector<std::string> split_commas(const std::string& s) {
+  std::vector<std::string> out;
+  std::stringstream in(s);
+  for (std::string item; std::getline(in, item, ',');)
+    if (!item.empty()) out.push_back(item);
+  return out;
+}
+
+std::vector<std::string> renderer_list(const std::string& option, const std::string& names) {
+  std::vector<std::string> out;
+  for (const auto& r : split_commas(names)) {
+    if (r != "reference" && r != "glsl" && r != "osl" && r != "pov")
+      throw InputError({{"command line", option, "unknown renderer \"" + r + "\"; allowed: reference, glsl, osl, pov", 0, 0}});
+    out.push_back(r);
+  }
+  return out;
+}
+
+int run_docs(DocsArgs& a) {
+  // Every input is checked before anything is drawn or written.
+  if (!a.cost.empty()) a.options.cost = load_cost_rows(a.cost);
+  a.options.models = split_commas(a.models);
+  a.options.renderers = renderer_list("--renderers", a.renderers);
+  a.options.interactive = isatty(2);
+  DocsResult r = write_docs(a.options, std::cerr);
+  fmt::print("facet docs: {} model pages in {:.1f} s; {} of {} renderer comparisons pass; open {}\n", r.pages,
+             r.seconds, r.passed, r.comparisons, (std::filesystem::path(a.options.out) / "index.html").string());
+  if (r.passed < r.comparisons) fmt::print(stderr, "note: the pages show each failed renderer with its reason\n");
+  return 0;
+}
+
+// ---------------------------------------------------------------- models
 
 json catalog_json() {
   json sections = json::object();
@@ -400,7 +462,7 @@ json catalog_json() {
       }
       if (p.kind == ParamKind::Enum) pj["choices"] = p.choices;
       if (p.kind == ParamKind::Model || p.kind == ParamKind::Object) pj["section"] = p.section;
-      if (p.kind != ParamKind::Object) pj["default"] = value_json(p.fallback, p.kind);
+      if (p.kind != ParamKind::Object) pj["default"] = default_json(p);
       params.push_back(pj);
     }
     json mj = {{"name", m.name},       {"title", m.title}, {"citation", m.citation},
@@ -603,6 +665,49 @@ int main(int argc, char** argv) {
       "  facet physics -o docs/physics.md\n"
       "  facet physics --check docs/physics.md");
 
+  PlotArgs pl;
+  auto* plc = app.add_subcommand("plot", "Draw a material's reflected-light diagram (the NVIDIA survey's lobe plot)");
+  plc->add_option("material", pl.material, "The material (JSON)")->required();
+  plc->add_option("--light-angle", pl.light_angle, "θ_l: the light's angle from the normal, degrees in [0, 90)")
+      ->capture_default_str();
+  plc->add_option("--view", pl.view, "polar (the value over a plane of incidence) or lobe3d (over the hemisphere)")
+      ->check(CLI::IsMember({"polar", "lobe3d"}))
+      ->capture_default_str();
+  plc->add_option("--scale", pl.scale, "Radius scale: linear, or log (3 powers of ten; for sharp highlights)")
+      ->check(CLI::IsMember({"linear", "log"}))
+      ->capture_default_str();
+  plc->add_option("--max", pl.max, "The value of the outer ring (default: a round number ≥ max(peak, 1))")
+      ->check(CLI::PositiveNumber);
+  plc->add_option("-o,--output", pl.output, "FILE.svg or FILE.png (lobe3d: FILE.png). Written whole or not at all")
+      ->required();
+  plc->footer(
+      "The value plotted is the luminance Y (Rec. 709) of k_d ⊗ ρ_d + k_s ⊗ ρ_s for one white light at θ_l, as the\n"
+      "C++ reference computes it, over view directions: blue the diffuse part, orange the specular part stacked on\n"
+      "it, purple the light. Materials that read the tangent (Ward, Heidrich–Seidel) get two planes: n–t and n–b.\n"
+      "Examples:\n"
+      "  facet plot examples/materials/phong.json --light-angle 45 -o phong.svg\n"
+      "  facet plot examples/materials/ward.json --light-angle 30 --view lobe3d -o ward.png\n"
+      "  facet plot examples/materials/ggx.json --light-angle 60 --scale log -o ggx.png");
+
+  DocsArgs da;
+  auto* dc = app.add_subcommand("docs", "Generate the model catalog as static HTML: formulas, diagrams, renders, cost");
+  dc->add_option("-o,--out", da.options.out, "The folder to write (index.html, models/, plots/, validate/)")->required();
+  dc->add_option("--cost", da.cost, "The output of 'facet cost --json': each model's cost row");
+  dc->add_option("--size", da.options.size, "The spheres' side in pixels")->capture_default_str()->check(CLI::Range(8, 2048));
+  dc->add_option("--models", da.models, "Comma-separated lobe models (default: every diffuse and specular model)");
+  dc->add_option("--renderers", da.renderers, "Comma-separated: reference, glsl, osl, pov")->capture_default_str();
+  dc->add_option("--python", da.options.python, "The Python with bpy 4.5 for Cycles (default: FACET_PYTHON, then the "
+                                               "build's .venv)");
+  dc->footer(
+      "One page per lobe model, the lobe alone at its defaults: formula, parameters, citation, notes, physics claims,\n"
+      "polar and 3-D diagrams at θ_l = 20° and 60°, the sphere rendered by the reference, OpenGL, Cycles and POV-Ray\n"
+      "(facet validate on the single scene) with each one's error, and the model's cost row. A renderer that fails is\n"
+      "shown failed with its reason. Viewable offline: no scripts, no network.\n"
+      "Examples:\n"
+      "  facet docs -o out/docs                              # every model, about a minute\n"
+      "  facet docs -o out/docs --cost cost.json             # with cost rows from 'facet cost --json'\n"
+      "  facet docs -o /tmp/d --models lambert,ward --renderers reference,glsl --size 64");
+
   bool schema_scene = false;
   auto* sc = app.add_subcommand("schema", "Print the JSON Schema of material files (or of scene files)");
   sc->add_flag("--scene", schema_scene, "The scene schema instead");
@@ -616,6 +721,8 @@ int main(int argc, char** argv) {
     if (rn->parsed()) return run_render(ra);
     if (swc->parsed()) return run_sweep(sw);
     if (phc->parsed()) return run_physics(ph);
+    if (plc->parsed()) return run_plot(pl);
+    if (dc->parsed()) return run_docs(da);
     if (gi->parsed()) {
       GltfImportOptions opt;
       if (!gi_default.empty()) opt.default_material = load_material(gi_default);
@@ -641,13 +748,7 @@ int main(int argc, char** argv) {
       if (!parse_size(va_size, w, h)) throw InputError({{"command line", "--size", "expected WIDTHxHEIGHT, e.g. 256x256", 0, 0}});
       va.width = w;
       va.height = h;
-      va.renderers.clear();
-      std::stringstream names(va_renderers);
-      for (std::string r; std::getline(names, r, ',');) {
-        if (r != "reference" && r != "glsl" && r != "osl" && r != "pov")
-          throw InputError({{"--renderers", "", "unknown renderer \"" + r + "\"; allowed: reference, glsl, osl, pov", 0, 0}});
-        va.renderers.push_back(r);
-      }
+      va.renderers = renderer_list("--renderers", va_renderers);
       va.interactive = isatty(2);
       ValidateResult result = validate(va, std::cerr);
       std::cout << "facet validate: " << result.summary << "\n";

@@ -87,13 +87,17 @@ void write_png_preview(const std::string& path, const Image& img, float scale, b
     float s = !srgb ? v : v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1 / 2.4f) - 0.055f;
     px[i] = uint8_t(std::lround(s * 255));
   }
+  write_file_atomic(path, encode_png(img.width, img.height, px, path));
+}
+
+std::string encode_png(int width, int height, const std::vector<uint8_t>& rgb8, const std::string& path) {
   std::string data;
   auto append = [](void* context, void* bytes, int size) {
     static_cast<std::string*>(context)->append(static_cast<const char*>(bytes), size_t(size));
   };
-  if (!stbi_write_png_to_func(append, &data, img.width, img.height, 3, px.data(), img.width * 3))
+  if (!stbi_write_png_to_func(append, &data, width, height, 3, rgb8.data(), width * 3))
     throw IoError(path + ": cannot encode the PNG");
-  write_file_atomic(path, data);
+  return data;
 }
 
 }  // namespace facet

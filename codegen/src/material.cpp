@@ -133,6 +133,23 @@ json value_json(const Value& v) {
 
 }  // namespace
 
+json default_json(const ParamDef& p) {
+  const Value& v = p.fallback;
+  switch (p.kind) {
+    case ParamKind::Number: return v.number;
+    case ParamKind::Bool: return v.flag;
+    case ParamKind::Enum:
+    case ParamKind::String: return v.choice;
+    case ParamKind::Color:
+    case ParamKind::Vector: return v.rgb;
+    case ParamKind::Model: return v.model ? spec_json(*v.model) : json(nullptr);
+    case ParamKind::Object:
+    case ParamKind::Points:
+    case ParamKind::Triangles: return nullptr;
+  }
+  return nullptr;
+}
+
 json to_json(const Material& m) {
   json j = json::object();
   j["name"] = m.name;

@@ -6,8 +6,6 @@
 
 namespace facet {
 
-namespace {
-
 std::string describe(const ModelSpec& s) {
   std::string d = s.def->title;
   std::string params;
@@ -17,6 +15,8 @@ std::string describe(const ModelSpec& s) {
   }
   return params.empty() ? d : d + " (" + params + ")";
 }
+
+namespace {
 
 // rho_<lobe>(inputs…): the model's formula, then the toon modifier.
 ir::FunctionPtr build_lobe(const ModelSpec& spec, const std::string& lobe, const std::string& material) {

@@ -16,6 +16,7 @@
 #include "facet/io.h"
 #include "facet/render.h"
 #include "facet/renderers.h"
+#include "html.h"
 
 namespace facet {
 
@@ -34,18 +35,6 @@ bool has_hard_toon(const Material& m) {
     if (it != (*lobe)->values.end() && it->second.model && it->second.model->at("width").number == 0) return true;
   }
   return false;
-}
-
-std::string html_escape(const std::string& s) {
-  std::string o;
-  for (char c : s) {
-    if (c == '<') o += "&lt;";
-    else if (c == '>') o += "&gt;";
-    else if (c == '&') o += "&amp;";
-    else if (c == '"') o += "&quot;";
-    else o += c;
-  }
-  return o;
 }
 
 std::vector<std::string> example_materials() {
@@ -89,7 +78,7 @@ struct Case {
 };
 
 std::string image_name(const Case& c, const std::string& renderer, const char* suffix = "") {
-  return fmt::format("images/{}_{}_{}{}.png", c.key, identifier(c.scene.name), renderer, suffix);
+  return validate_image(c.key, c.scene.name, renderer + suffix);
 }
 
 // A renderer's image beside the reference: its preview and |Δ| × 16.
@@ -204,7 +193,7 @@ img { width: 160px; height: auto; image-rendering: pixelated; display: block; ba
     const Case& c = cases[i];
     html += fmt::format("<tr class={}><td><div class=name>{}</div><div class=muted>{}<br>scene {}<br>{}</div></td>",
                         failed(i) ? "fail" : "pass", html_escape(c.label()),
-                        html_escape(c.material ? c.key + ".json" : c.scene.source), html_escape(c.scene.name),
+                        html_escape(!c.material ? c.scene.source : c.material->source.empty() ? "(built in)" : c.key + ".json"), html_escape(c.scene.name),
                         html_escape(c.models()));
     html += fmt::format("<td><img src=\"{}\" alt=\"reference\"></td>", image_name(c, "reference"));
     for (const auto& t : targets) {
@@ -225,6 +214,10 @@ img { width: 160px; height: auto; image-rendering: pixelated; display: block; ba
 }
 
 }  // namespace
+
+std::string validate_image(const std::string& key, const std::string& scene, const std::string& renderer) {
+  return fmt::format("images/{}_{}_{}.png", key, identifier(scene), renderer);
+}
 
 ComparisonRow judge(const Render& reference, const Image& image, const std::vector<float>& alpha, bool hard_toon,
                     const ValidateOptions& o) {
@@ -259,9 +252,17 @@ ValidateResult validate(const ValidateOptions& options, std::ostream& progress) 
   // Scenes with their own materials render once; the others with every material
   // (by default the example catalog).
   bool need_materials = std::any_of(scenes.begin(), scenes.end(), [](const Scene& s) { return !s.has_own_materials(); });
-  if (o.materials.empty() && need_materials) o.materials = example_materials();
+  if (o.materials.empty() && o.given.empty() && need_materials) o.materials = example_materials();
   std::vector<Material> materials;
-  for (const auto& f : o.materials) materials.push_back(load_material(f));
+  std::vector<std::string> keys;  // names the images
+  for (const auto& f : o.materials) {
+    materials.push_back(load_material(f));
+    keys.push_back(fs::path(f).stem().string());
+  }
+  for (const auto& m : o.given) {
+    materials.push_back(m);
+    keys.push_back(identifier(m.name));
+  }
 
   // Counters update in place on a terminal; a log gets a line per step.
   auto tick = [&](const std::string& what, size_t i, size_t n) {
@@ -286,7 +287,7 @@ ValidateResult validate(const ValidateOptions& options, std::ostream& progress) 
       add(Case{std::nullopt, identifier(s.name), s, {}});
       continue;
     }
-    for (size_t i = 0; i < materials.size(); ++i) add(Case{materials[i], fs::path(o.materials[i]).stem().string(), s, {}});
+    for (size_t i = 0; i < materials.size(); ++i) add(Case{materials[i], keys[i], s, {}});
   }
   result.wall["reference"] = since(t0);
   progress << fmt::format("\r  reference: {} images in {:.1f} s\n", cases.size(), result.wall["reference"]);

@@ -8,6 +8,7 @@
 
 #include "facet/io.h"
 #include "facet/process.h"
+#include "test_support.h"
 
 namespace facet {
 namespace {
@@ -18,20 +19,8 @@ using nlohmann::json;
 const std::string kFacet = FACET_BIN;
 const fs::path kSource = FACET_SOURCE_DIR;
 
-fs::path scratch(const std::string& name) {
-  fs::path dir = fs::temp_directory_path() / ("facet-cli-test-" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  return dir / name;
-}
-
-ProcessResult facet(const std::vector<std::string>& args, const std::string& stdin_file = "") {
-  std::vector<std::string> argv = {"sh", "-c", ""};
-  std::string cmd = "'" + kFacet + "'";
-  for (const auto& a : args) cmd += " '" + a + "'";
-  if (!stdin_file.empty()) cmd += " < '" + stdin_file + "'";
-  argv[2] = cmd;
-  return run_process(argv);
-}
+fs::path scratch(const std::string& name) { return test::scratch("cli", name); }
+using test::facet;
 
 std::vector<std::string> malformed_files() {
   json expected = json::parse(read_file((kSource / "tests/malformed/EXPECTED").string()));

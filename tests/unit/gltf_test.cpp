@@ -10,6 +10,7 @@
 #include "facet/io.h"
 #include "facet/process.h"
 #include "facet/render.h"
+#include "test_support.h"
 
 namespace facet {
 namespace {
@@ -18,11 +19,7 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 const fs::path kSource = FACET_SOURCE_DIR;
 
-fs::path scratch(const std::string& name) {
-  fs::path dir = fs::temp_directory_path() / ("facet-gltf-test-" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  return dir / name;
-}
+fs::path scratch(const std::string& name) { return test::scratch("gltf", name); }
 
 void expect_near(const Vec3& a, const Vec3& b, double tol, const std::string& what) {
   EXPECT_NEAR(a.x, b.x, tol) << what;

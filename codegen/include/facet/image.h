@@ -1,6 +1,7 @@
 // facet — linear RGB float images and the files they travel in.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -28,5 +29,7 @@ Image read_png(const std::string& path);
 // An 8-bit preview, values × scale clamped to [0, 1], sRGB-encoded for viewing
 // (or linear, e.g. for difference images, when srgb is false).
 void write_png_preview(const std::string& path, const Image& img, float scale = 1.0f, bool srgb = true);
+// The bytes of an 8-bit RGB PNG (rows from the top); `path` only names it in the IoError.
+std::string encode_png(int width, int height, const std::vector<uint8_t>& rgb8, const std::string& path);
 
 }  // namespace facet

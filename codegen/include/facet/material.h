@@ -45,6 +45,10 @@ nlohmann::json to_json(const Material& m);
 // One model's object: {"model": name, …every parameter} (no "model" if !with_model).
 nlohmann::json spec_json(const ModelSpec& s, bool with_model = true);
 
+// A parameter's default as `facet models --json` and the docs print it: null where
+// there is none (required meshes, optional objects such as toon).
+nlohmann::json default_json(const ParamDef& p);
+
 // A JSON Schema (draft 2020-12) of material files, generated from the catalog.
 nlohmann::json material_schema();
 

@@ -25,5 +25,8 @@ struct MaterialProgram {
 };
 
 MaterialProgram compile(const Material& m);
+// "Phong (n = 32)": the model's title and its numeric parameters, as the
+// generated code's comments and the diagrams name a lobe.
+std::string describe(const ModelSpec& s);
 
 }  // namespace facet

@@ -14,7 +14,9 @@
 namespace facet {
 
 struct ValidateOptions {
-  std::vector<std::string> materials;  // files; empty: every examples/materials/*.json
+  std::vector<std::string> materials;  // files; empty: every examples/materials/*.json (unless `given` has some)
+  std::vector<Material> given;         // materials built in code (e.g. model_materials()), after the files;
+                                       // their images are named after identifier(name)
   std::vector<std::string> scenes;     // built-in names or files; empty: single and shadows
   int width = 256, height = 256;
   std::vector<std::string> renderers = {"reference", "glsl", "osl", "pov"};
@@ -44,6 +46,9 @@ struct ValidateResult {
   std::string summary;                   // the one-line verdict
   bool pass = false;
 };
+
+// Where OUT/images/ holds an image: "images/<key>_<scene>_<renderer>.png" (key: ComparisonRow::key).
+std::string validate_image(const std::string& key, const std::string& scene, const std::string& renderer);
 
 // Renders, compares, writes OUT/metrics.json, OUT/report.html and OUT/images/.
 ValidateResult validate(const ValidateOptions& options, std::ostream& progress);
