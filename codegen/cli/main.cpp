@@ -441,8 +441,11 @@ int run_docs(DocsArgs& a) {
   DocsResult r = write_docs(a.options, std::cerr);
   fmt::print("facet docs: {} model pages in {:.1f} s; {} of {} renderer comparisons pass; open {}\n", r.pages,
              r.seconds, r.passed, r.comparisons, (std::filesystem::path(a.options.out) / "index.html").string());
-  if (r.passed < r.comparisons) fmt::print(stderr, "note: the pages show each failed renderer with its reason\n");
-  return 0;
+  if (r.passed == r.comparisons) return 0;
+  // The catalog is whole (each failure is on its pages), but what it documents failed.
+  fmt::print(stderr, "error: {} of {} renderer comparisons failed; the pages show each with its reason\n",
+             r.comparisons - r.passed, r.comparisons);
+  return 1;
 }
 
 // ---------------------------------------------------------------- models
@@ -702,7 +705,7 @@ int main(int argc, char** argv) {
       "One page per lobe model, the lobe alone at its defaults: formula, parameters, citation, notes, physics claims,\n"
       "polar and 3-D diagrams at θ_l = 20° and 60°, the sphere rendered by the reference, OpenGL, Cycles and POV-Ray\n"
       "(facet validate on the single scene) with each one's error, and the model's cost row. A renderer that fails is\n"
-      "shown failed with its reason. Viewable offline: no scripts, no network.\n"
+      "shown failed with its reason (and the exit status is 1). Viewable offline: no scripts, no network.\n"
       "Examples:\n"
       "  facet docs -o out/docs                              # every model, about a minute\n"
       "  facet docs -o out/docs --cost cost.json             # with cost rows from 'facet cost --json'\n"

@@ -224,8 +224,9 @@ TEST(DocsCli, AFailedRendererIsShownWithItsReason) {
   fs::remove_all(dir);
   ProcessResult r = facet({"docs", "-o", dir.string(), "--models", "lambert", "--size", "16", "--renderers",
                            "reference,osl", "--python", "/nonexistent/python3"});
-  ASSERT_EQ(r.exit_code, 0) << r.output;
+  ASSERT_EQ(r.exit_code, 1) << "the pages are written, but a renderer failed: " << r.output;
   EXPECT_NE(r.output.find("0 of 1 renderer comparisons pass"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("error: 1 of 1 renderer comparisons failed"), std::string::npos) << r.output;
   expect_self_contained(dir);
   std::string page = read_file((dir / "models/lambert.html").string());
   EXPECT_NE(page.find("<span class=fail>FAILED</span> to render"), std::string::npos) << page;
