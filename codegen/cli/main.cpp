@@ -658,7 +658,10 @@ int main(int argc, char** argv) {
                   "functions) are what the measurement gives; no timings are taken");
   coc->add_flag("--no-timings", co.no_timings, "Only the deterministic counts: no Cycles or POV-Ray render times");
   coc->add_flag("--no-callgrind", co.no_callgrind, "No llvmpipe instruction counts (valgrind)");
-  coc->add_option("--repeats", co.options.repeats, "Interleaved timing rounds; each time is the least")
+  coc->add_option("--repeats", co.options.repeats, "Interleaved rounds of POV-Ray renders; each time is the least")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 100));
+  coc->add_option("--cycles-repeats", co.options.cycles_repeats, "Interleaved rounds of Cycles renders")
       ->capture_default_str()
       ->check(CLI::Range(1, 100));
   coc->add_option("--jobs", co.options.jobs, "Processes at once")->capture_default_str()->check(CLI::Range(1, 64));

@@ -66,7 +66,7 @@ const char* kEmptyLibrary = R"(
 const vec3 material_ambient = vec3(0.0);
 const vec3 material_emission = vec3(0.0);
 vec3 facet_tangent(vec3 n) { return n; }
-vec3 facet_reflect(vec3 n, vec3 l, vec3 v, vec3 t) { return vec3(0.0); }
+vec3 facet_reflect(vec3 n, vec3 l, vec3 v, vec3 t) { return n + l + v; }
 )";
 
 // A constant-emission shader on the same sphere: what Cycles spends on a sample
@@ -314,8 +314,9 @@ OslFigures cycles_costs(const std::vector<Material>& ms, const CostOptions& o, c
   const std::string emission = (dir / "emission.osl").string();
   write_file_atomic(emission, kEmissionOsl);
   items.push_back({{"name", "(emission)"}, {"osl", emission}});
-  json job = {{"width", o.cycles_size},  {"height", o.cycles_size}, {"scene", to_json(default_scene())},
-              {"samples", o.cycles_samples}, {"repeats", o.repeats}, {"time", o.timings}, {"items", items}};
+  json job = {{"width", o.cycles_size},  {"height", o.cycles_size},      {"scene", to_json(default_scene())},
+              {"samples", o.cycles_samples}, {"repeats", o.cycles_repeats}, {"time", o.timings},
+              {"items", items}};
   const fs::path job_file = dir / "cost_job.json";
   write_file_atomic(job_file.string(), job.dump(1));
   fs::remove(job_file.string() + ".result.json");
@@ -459,12 +460,14 @@ std::vector<CostRow> measure_costs(const std::vector<Material>& materials, const
     }
     base.callgrind_empty_per_pixel = counts.back().per_pixel;
   }
-  say(options.timings ? "OSL: Blender compiles and times every shader in Cycles; POV-Ray traces every scene"
-                      : "OSL: Blender compiles every shader");
-  OslFigures osl;
-  std::thread cycles([&] { osl = cycles_costs(ms, options, dir / "osl"); });
-  if (options.timings) pov_timings(ms, options, dir / "pov", pov);
-  cycles.join();
+  // The timings one at a time: Cycles renders on one thread while Blender's
+  // caller busy-waits on the other core, and a third process would slow either.
+  if (options.timings) {
+    say("POV-Ray: tracing every scene");
+    pov_timings(ms, options, dir / "pov", pov);
+  }
+  say(options.timings ? "OSL: Blender compiles and times every shader in Cycles" : "OSL: Blender compiles every shader");
+  OslFigures osl = cycles_costs(ms, options, dir / "osl");
 
   base.cycles_emission_ns_per_pixel = osl.emission_ns_per_pixel;
   base.blender = osl.blender;
@@ -627,7 +630,8 @@ std::string costs_markdown(const std::vector<CostRow>& rows, const CostBaselines
       "instruction counts but the structural ones: OpFunction, OpFunctionParameter, OpFunctionEnd, OpLabel, "
       "OpVariable, OpLine, OpNoLine, OpSelectionMerge, OpLoopMerge, OpPhi, OpBranch, OpReturn, OpReturnValue, "
       "OpUnreachable and OpSwitch (spirv-opt's inliner wraps each early return in a one-case switch on a constant). "
-      "The frame alone (facet_reflect() returning 0) is {} of them.\n",
+      "The frame alone (facet_reflect() returning n + l + v, so the frame's normal, light and view vectors "
+      "are computed) is {} of them.\n",
       b.spirv_empty);
   s += fmt::format(
       "- *llvmpipe instr/px*: x86 instructions callgrind counts while Mesa's llvmpipe draws that shader at "
@@ -649,12 +653,14 @@ std::string costs_markdown(const std::vector<CostRow>& rows, const CostBaselines
       "- *Cycles ns/px*: Cycles (CPU, OSL, one thread, no bounces) rendering the scene `single` at {0}×{0}; the "
       "time of {1} extra samples, (t(1 + {1} samples) − t(1 sample)) / ({1} · {0}²), so session start, scene sync, "
       "the OSL shader's JIT and read-back cancel; background pixels included; the least of {2} "
-      "interleaved rounds, timed as the Blender process's CPU time (less disturbed by other processes than wall "
-      "time). A constant-emission shader on the same sphere takes {3} ns/px: what Cycles spends whatever the "
-      "shader; *net × Lambert* subtracts it. On this shared machine a render's CPU time sometimes doubles for a "
-      "while, which the least of several rounds removes; differences of a few % between materials are within what "
-      "two runs of this command differ by.\n",
-      o.cycles_size, o.cycles_samples, o.repeats, ns(b.cycles_emission_ns_per_pixel));
+      "interleaved rounds, timed as the Blender process's CPU time with Cycles set to two threads (with one, "
+      "Blender's caller thread busy-waits beside the render and doubles the CPU time; with two, about one core "
+      "works at this size and the CPU time is the render's), nothing else of this command running. A "
+      "constant-emission shader on the same sphere takes {3} ns/px: what Cycles spends whatever the shader; *net × "
+      "Lambert* subtracts it. Cycles spends most of a sample outside the shader, so the materials differ by tens of "
+      "%, and on this shared machine two runs of this command differ by a few % per material (now and then 10 %): "
+      "read only the larger differences.\n",
+      o.cycles_size, o.cycles_samples, o.cycles_repeats, ns(b.cycles_emission_ns_per_pixel));
   s += fmt::format(
       "- *POV-Ray*: `native` where POV-Ray's own finish is the model, otherwise the number of `#declare … = "
       "function` in the generated scene (`facet generate --target pov`, scene `single`). *POV-Ray ns/px*: the "

@@ -11,7 +11,7 @@
 //    MESA_SHADER_CACHE_DISABLE so every process compiles alike).
 //  * OSL: the ops of the shader Blender's OSL compiler makes (.oso), and Cycles'
 //    render time per pixel and sample, by difference of two sample counts (the
-//    per-render set-up cancels), min over interleaved repeats.
+//    per-render set-up cancels), min over interleaved repeats, in CPU time.
 //  * POV-Ray: the `#declare … = function` count of the generated scene
 //    (`native` for a native finish) and the trace time per pixel POV-Ray reports
 //    (+WT1), min over interleaved repeats.
@@ -81,8 +81,9 @@ struct CostOptions {
   int callgrind_size = 256;  // the draw's width and height
   int cycles_size = 128;
   int cycles_samples = 64;   // the extra samples whose time is measured (1 + this against 1)
+  int cycles_repeats = 7;  // interleaved rounds of Cycles renders; each time is the least
   int pov_size = 384;
-  int repeats = 5;        // interleaved rounds; each timing is the least
+  int repeats = 5;        // interleaved rounds of POV-Ray renders; each time is the least
   int jobs = 2;           // processes at once (valgrind runs, renders)
   std::string python;     // bpy's Python; empty: default_python()
   std::string facet;      // this facet binary (its draw-shaders command runs under valgrind); empty: the built one
