@@ -20,6 +20,7 @@
 #include "facet/catalog.h"
 #include "facet/compare.h"
 #include "facet/docs.h"
+#include "facet/cost.h"
 #include "facet/gltf.h"
 #include "facet/image.h"
 #include "facet/render.h"
@@ -370,6 +371,51 @@ int run_physics(const PhysicsArgs& a) {
 }
 
 // ---------------------------------------------------------------- plot
+// ---------------------------------------------------------------- cost
+
+struct CostArgs {
+  std::vector<std::string> materials;
+  bool as_json = false;
+  std::string markdown;
+  std::string check;
+  bool no_timings = false;
+  bool no_callgrind = false;
+  CostOptions options;
+};
+
+int run_cost(CostArgs a) {
+  std::vector<Material> ms;
+  for (const auto& f : a.materials) ms.push_back(load_material(f));
+  if (ms.empty()) ms = model_materials();
+  a.options.timings = !a.no_timings && a.check.empty();
+  a.options.callgrind = !a.no_callgrind;
+  auto start = std::chrono::steady_clock::now();
+  auto progress = [&](const std::string& what) {
+    fmt::print(stderr, "cost [{:5.1f} s]: {}\n", std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
+               what);
+  };
+  CostBaselines baselines;
+  std::vector<CostRow> rows = measure_costs(ms, a.options, progress, &baselines);
+  double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  fmt::print(stderr, "cost: {} materials in {:.1f} s\n", rows.size(), wall);
+  int status = std::all_of(rows.begin(), rows.end(), [](const CostRow& r) { return r.ok(); }) ? 0 : 1;
+  if (a.as_json) std::cout << costs_json(rows, baselines).dump(2) << "\n";
+  else std::cout << costs_table(rows, baselines);
+  if (!a.markdown.empty()) write_file_atomic(a.markdown, costs_markdown(rows, baselines, a.options, wall));
+  if (!a.check.empty()) {
+    std::vector<std::string> stale = stale_costs(read_file(a.check), rows);
+    for (const auto& line : stale) fmt::print("stale: {}\n", line);
+    if (!stale.empty()) {
+      fmt::print("{} is out of date; regenerate it with: facet cost --markdown {}\n", a.check, a.check);
+      status = 1;
+    } else {
+      fmt::print("{}: every count is what the measurement gives\n", a.check);
+    }
+  }
+  return status;
+}
+
+// ---------------------------------------------------------------- models
 
 struct PlotArgs {
   std::string material;
@@ -410,6 +456,7 @@ int run_plot(const PlotArgs& a) {
 struct DocsArgs {
   DocsOptions options;
   std::string cost;
+  bool no_cost = false;
   std::string models;
   std::string renderers = "reference,glsl,osl,pov";
 };
@@ -437,6 +484,22 @@ int run_docs(DocsArgs& a) {
   if (!a.cost.empty()) a.options.cost = load_cost_rows(a.cost);
   a.options.models = split_commas(a.models);
   a.options.renderers = renderer_list("--renderers", a.renderers);
+  if (a.cost.empty() && !a.no_cost) {
+    // The cost rows measured now, through the same JSON `facet cost --json` prints.
+    std::vector<Material> ms;
+    for (const Material& m : model_materials())
+      if (a.options.models.empty() ||
+          std::find(a.options.models.begin(), a.options.models.end(), m.name) != a.options.models.end())
+        ms.push_back(m);
+    if (ms.size() == (a.options.models.empty() ? model_materials().size() : a.options.models.size())) {
+      CostOptions co;
+      co.python = a.options.python;
+      CostBaselines baselines;
+      auto rows = measure_costs(ms, co, [](const std::string& what) { fmt::print(stderr, "  cost: {}\n", what); },
+                                &baselines);
+      a.options.cost = parse_cost_rows(costs_json(rows, baselines), "facet cost (measured for these pages)");
+    }  // else an unknown --models name, which write_docs reports before doing anything
+  }
   a.options.interactive = isatty(2);
   DocsResult r = write_docs(a.options, std::cerr);
   fmt::print("facet docs: {} model pages in {:.1f} s; {} of {} renderer comparisons pass; open {}\n", r.pages,
@@ -695,7 +758,8 @@ int main(int argc, char** argv) {
   DocsArgs da;
   auto* dc = app.add_subcommand("docs", "Generate the model catalog as static HTML: formulas, diagrams, renders, cost");
   dc->add_option("-o,--out", da.options.out, "The folder to write (index.html, models/, plots/, validate/)")->required();
-  dc->add_option("--cost", da.cost, "The output of 'facet cost --json': each model's cost row");
+  dc->add_option("--cost", da.cost, "The output of 'facet cost --json': each model's cost row (default: measured now)");
+  dc->add_flag("--no-cost", da.no_cost, "Leave the cost out (the pages say it was not measured)");
   dc->add_option("--size", da.options.size, "The spheres' side in pixels")->capture_default_str()->check(CLI::Range(8, 2048));
   dc->add_option("--models", da.models, "Comma-separated lobe models (default: every diffuse and specular model)");
   dc->add_option("--renderers", da.renderers, "Comma-separated: reference, glsl, osl, pov")->capture_default_str();
@@ -707,9 +771,46 @@ int main(int argc, char** argv) {
       "(facet validate on the single scene) with each one's error, and the model's cost row. A renderer that fails is\n"
       "shown failed with its reason (and the exit status is 1). Viewable offline: no scripts, no network.\n"
       "Examples:\n"
-      "  facet docs -o out/docs                              # every model, about a minute\n"
-      "  facet docs -o out/docs --cost cost.json             # with cost rows from 'facet cost --json'\n"
+      "  facet docs -o out/docs                              # every model, its cost measured: a few minutes\n"
+      "  facet docs -o out/docs --cost cost.json             # cost rows from an earlier 'facet cost --json'\n"
+      "  facet docs -o out/docs --no-cost                    # no cost rows: about 20 s\n"
       "  facet docs -o /tmp/d --models lambert,ward --renderers reference,glsl --size 64");
+  CostArgs co;
+  auto* coc = app.add_subcommand("cost", "Measure what each material costs on each target (the survey's Appendix B)");
+  coc->add_option("materials", co.materials, "Material files (default: every lobe model of the catalog at its defaults)");
+  coc->add_flag("--json", co.as_json, "Print {\"baseline\": \"lambert\", \"rows\": [...]} instead of the table");
+  coc->add_option("--markdown", co.markdown, "Also write the table as Markdown (docs/cost.md)");
+  coc->add_option("--check", co.check,
+                  "Exit 1 unless this Markdown file's counts (SPIR-V, llvmpipe instructions, OSL ops, POV-Ray "
+                  "functions) are what the measurement gives; no timings are taken");
+  coc->add_flag("--no-timings", co.no_timings, "Only the deterministic counts: no Cycles or POV-Ray render times");
+  coc->add_flag("--no-callgrind", co.no_callgrind, "No llvmpipe instruction counts (valgrind)");
+  coc->add_option("--repeats", co.options.repeats, "Interleaved rounds of POV-Ray renders; each time is the least")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 100));
+  coc->add_option("--cycles-repeats", co.options.cycles_repeats, "Interleaved rounds of Cycles renders")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 100));
+  coc->add_option("--jobs", co.options.jobs, "Processes at once")->capture_default_str()->check(CLI::Range(1, 64));
+  coc->add_option("--workdir", co.options.workdir, "Where shaders, scenes and the tools' outputs go (default: a temporary folder)");
+  coc->add_option("--python", co.options.python, "The Python with bpy 4.5 (default: FACET_PYTHON, then the build's .venv)");
+  coc->footer(
+      "Per material (a row) and target: GLSL — SPIR-V instructions after spirv-opt -O of the single-light cost\n"
+      "frame's fragment shader, and x86 instructions per pixel of its llvmpipe draw under callgrind; OSL — ops of\n"
+      "the compiled .oso and Cycles' time per pixel and sample; POV-Ray — native finish or its function count, and\n"
+      "the trace time per pixel. Times and counts also relative to Lambert. The table goes to standard output,\n"
+      "progress to standard error; a tool that cannot run is an error in its rows and exit status 1.\n"
+      "Examples:\n"
+      "  facet cost                                   # the whole catalog, a few minutes\n"
+      "  facet cost examples/materials/ward.json --json\n"
+      "  facet cost --markdown docs/cost.md\n"
+      "  facet cost --check docs/cost.md              # the counts only; what the test cost.table runs");
+
+  // Hidden: what `facet cost` runs under valgrind (facet/cost.h, run_draw_job).
+  std::string draw_job;
+  auto* dr = app.add_subcommand("draw-shaders", "Draw the shaders of a cost job (run under callgrind by facet cost)");
+  dr->group("");
+  dr->add_option("job", draw_job, "The job file")->required();
 
   bool schema_scene = false;
   auto* sc = app.add_subcommand("schema", "Print the JSON Schema of material files (or of scene files)");
@@ -726,6 +827,8 @@ int main(int argc, char** argv) {
     if (phc->parsed()) return run_physics(ph);
     if (plc->parsed()) return run_plot(pl);
     if (dc->parsed()) return run_docs(da);
+    if (dr->parsed()) return run_draw_job(draw_job);
+    if (coc->parsed()) return run_cost(co);
     if (gi->parsed()) {
       GltfImportOptions opt;
       if (!gi_default.empty()) opt.default_material = load_material(gi_default);

@@ -29,11 +29,11 @@ const CostFigure* CostCell::find(const std::string& key) const {
   return nullptr;
 }
 
-const CostCell& CostRow::cell(const std::string& target) const {
+const CostCell& CostPageRow::cell(const std::string& target) const {
   return target == "glsl" ? glsl : target == "osl" ? osl : pov;
 }
 
-const CostRow* CostTable::find(const std::string& name) const {
+const CostPageRow* CostTable::find(const std::string& name) const {
   for (const auto& r : rows)
     if (r.name == name) return &r;
   return nullptr;
@@ -141,9 +141,9 @@ std::string string_or_null(const json& row, const char* key, const std::string& 
   return v.get<std::string>();
 }
 
-CostRow parse_row(const json& row, const std::string& path, DiagnosticSink& sink) {
+CostPageRow parse_row(const json& row, const std::string& path, DiagnosticSink& sink) {
   static const std::vector<std::string> keys = {"name", "material", "diffuse", "specular", "glsl", "osl", "pov"};
-  CostRow r;
+  CostPageRow r;
   if (!row.is_object()) {
     sink.error(path, fmt::format("expected an object (one row), found {}", json_type_name(row)));
     return r;
@@ -191,7 +191,7 @@ CostTable parse_cost_rows(const json& doc, const std::string& file) {
     std::map<std::string, size_t> seen;
     for (size_t i = 0; i < doc["rows"].size(); ++i) {
       std::string path = index_path("rows", i);
-      CostRow r = parse_row(doc["rows"][i], path, sink);
+      CostPageRow r = parse_row(doc["rows"][i], path, sink);
       if (!r.name.empty() && !seen.emplace(r.name, i).second)
         sink.error(join_path(path, "name"), fmt::format("\"{}\" is also rows[{}]; allowed: one row per name", r.name, seen[r.name]));
       table.rows.push_back(std::move(r));
@@ -382,7 +382,8 @@ std::string verdict_cell(const std::string& key, const std::string& t, const Ver
 
 std::string not_measured(const DocsOptions& o, const std::string& name) {
   if (!o.cost)
-    return "<p class=skip>Not measured: these pages were generated without <code>--cost COST.json</code> (the output of "
+    return "<p class=skip>Not measured: these pages were generated with <code>--no-cost</code> (without it, "
+           "<code>facet docs</code> measures the cost, or reads <code>--cost COST.json</code>, the output of "
            "<code>facet cost --json</code>).</p>\n";
   return fmt::format("<p class=skip>Not measured: {} has no row named <code>{}</code>.</p>\n", html_escape(o.cost->source),
                      html_escape(name));
@@ -395,7 +396,7 @@ std::string cell_html(const CostCell& c) {
   return h;
 }
 
-std::string cost_row_html(const CostRow& r, const std::string& baseline) {
+std::string cost_row_html(const CostPageRow& r, const std::string& baseline) {
   std::string h = "<table><tr><th>OpenGL (GLSL)</th><th>Cycles (OSL)</th><th>POV-Ray</th></tr><tr>";
   for (const auto& t : kTargets) h += "<td>" + cell_html(r.cell(t)) + "</td>";
   return h + fmt::format("</tr></table>\n<p class=muted>Relative figures are to the baseline, <code>{}</code>; the "
@@ -403,7 +404,7 @@ std::string cost_row_html(const CostRow& r, const std::string& baseline) {
                          html_escape(baseline), html_escape(r.material));
 }
 
-std::string relative_summary(const CostRow& r) {
+std::string relative_summary(const CostPageRow& r) {
   std::string s;
   for (const auto& [t, key] : {std::pair<std::string, const char*>{"glsl", "callgrind_relative"}, {"osl", "relative"}, {"pov", "relative"}}) {
     const CostCell& c = r.cell(t);
@@ -435,7 +436,7 @@ std::string model_page(const Material& m, const ModelDef& def, const DocsOptions
   b += "<h2>Cycles and POV-Ray equivalents</h2>\n" + equivalence_html(def);
   b += "<h2>Physics</h2>\n" + physics_html(def);
   b += "<h2>Cost</h2>\n";
-  const CostRow* row = o.cost ? o.cost->find(def.name) : nullptr;
+  const CostPageRow* row = o.cost ? o.cost->find(def.name) : nullptr;
   b += row ? cost_row_html(*row, o.cost->baseline) : not_measured(o, def.name);
   return page(def.title + " — facet", b, true);
 }
@@ -447,8 +448,8 @@ std::string index_page(const std::vector<Material>& ms, const DocsOptions& o, co
                    "costs.</p>\n<p class=muted>Validation on the <code>single</code> scene at {}×{}: {}</p>\n",
                    o.models.empty() ? "" : " (those asked for)", o.size, o.size, html_escape(r.validate_summary));
   if (!o.cost)
-    b += "<p class=skip>Cost not measured: generate these pages with <code>facet docs -o DIR --cost COST.json</code>, "
-         "COST.json being the output of <code>facet cost --json</code>.</p>\n";
+    b += "<p class=skip>Cost not measured (<code>--no-cost</code>): <code>facet docs -o DIR</code> measures it, or "
+         "reads <code>--cost COST.json</code>, the output of <code>facet cost --json</code>.</p>\n";
   b += "<table><tr><th>model</th><th>lobe</th><th>formula</th><th>sphere</th><th>θ_l = " +
        fmt::format("{:g}", o.light_angles.back()) + "°</th><th>glsl</th><th>osl</th><th>pov</th><th>cost (× baseline)</th></tr>\n";
   for (const auto& m : ms) {
@@ -460,7 +461,7 @@ std::string index_page(const std::vector<Material>& ms, const DocsOptions& o, co
                      html_escape(def.name), html_escape(def.title), def.section, html_escape(def.formula),
                      validate_image(key, "single", "reference"), plot_file(def.name, "polar", o.light_angles.back()));
     for (const auto& t : kTargets) b += verdict_cell(key, t, v);
-    const CostRow* row = o.cost ? o.cost->find(def.name) : nullptr;
+    const CostPageRow* row = o.cost ? o.cost->find(def.name) : nullptr;
     b += "<td>" + (row ? relative_summary(*row) : std::string("<span class=skip>not measured</span>")) + "</td></tr>\n";
   }
   b += "</table>\n";

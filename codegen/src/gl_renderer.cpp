@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <map>
 
 #include <dlfcn.h>
 #include <link.h>
@@ -92,6 +93,53 @@ void pin_loaded_libraries() {
 #endif
 }
 
+// GL rows run bottom-up; facet images top-down. Colours add up (a render's
+// passes), coverage is the largest alpha.
+void add_bottom_up(const std::vector<float>& px, RenderOutcome& out) {
+  const int w = out.image.width, h = out.image.height;
+  for (int y = 0; y < h; ++y) {
+    const float* row = &px[size_t(h - 1 - y) * size_t(w) * 4];
+    for (int x = 0; x < w; ++x) {
+      float* dst = out.image.at(x, y);
+      for (int c = 0; c < 3; ++c) dst[c] += row[x * 4 + c];
+      float& a = out.alpha[size_t(y) * size_t(w) + size_t(x)];
+      a = std::max(a, row[x * 4 + 3]);
+    }
+  }
+}
+
+// An RGBA32F framebuffer, bound while it lives: every draw renders into one.
+class FloatFramebuffer {
+ public:
+  FloatFramebuffer(int width, int height) : width_(width), height_(height) {
+    glGenFramebuffers(1, &fbo_);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
+    glGenRenderbuffers(1, &rbo_);
+    glBindRenderbuffer(GL_RENDERBUFFER, rbo_);
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA32F, width, height);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, rbo_);
+    glViewport(0, 0, width, height);
+  }
+  ~FloatFramebuffer() {
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glDeleteRenderbuffers(1, &rbo_);
+    glDeleteFramebuffers(1, &fbo_);
+  }
+  FloatFramebuffer(const FloatFramebuffer&) = delete;
+  FloatFramebuffer& operator=(const FloatFramebuffer&) = delete;
+  bool complete() const { return glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE; }
+  // RGBA, rows bottom-up as GL stores them.
+  std::vector<float> read() const {
+    std::vector<float> px(size_t(width_) * size_t(height_) * 4);
+    glReadPixels(0, 0, width_, height_, GL_RGBA, GL_FLOAT, px.data());
+    return px;
+  }
+
+ private:
+  int width_, height_;
+  GLuint fbo_ = 0, rbo_ = 0;
+};
+
 }  // namespace
 
 struct GlRenderer::State {
@@ -170,25 +218,17 @@ RenderOutcome GlRenderer::sweep(const std::string& source, int grid) {
   if (!prog) return out;
   glUseProgram(prog);
   glUniform2f(glGetUniformLocation(prog, "facet_resolution"), float(grid), float(grid));
-  GLuint fbo = 0, rbo = 0;
-  glGenFramebuffers(1, &fbo);
-  glBindFramebuffer(GL_FRAMEBUFFER, fbo);
-  glGenRenderbuffers(1, &rbo);
-  glBindRenderbuffer(GL_RENDERBUFFER, rbo);
-  glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA32F, grid, grid);
-  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, rbo);
-  glViewport(0, 0, grid, grid);
-  glBindVertexArray(state_->vao);
-  glDrawArrays(GL_TRIANGLES, 0, 3);
-  std::vector<float> px(size_t(grid) * size_t(grid) * 4);
-  glReadPixels(0, 0, grid, grid, GL_RGBA, GL_FLOAT, px.data());
-  out.image = Image(grid, grid);
-  for (size_t i = 0; i < size_t(grid) * size_t(grid); ++i)
-    for (int c = 0; c < 3; ++c) out.image.rgb[i * 3 + size_t(c)] = px[i * 4 + size_t(c)];
-  GLenum e = glGetError();
-  glBindFramebuffer(GL_FRAMEBUFFER, 0);
-  glDeleteRenderbuffers(1, &rbo);
-  glDeleteFramebuffers(1, &fbo);
+  GLenum e;
+  {
+    FloatFramebuffer fb(grid, grid);
+    glBindVertexArray(state_->vao);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    std::vector<float> px = fb.read();
+    out.image = Image(grid, grid);
+    for (size_t i = 0; i < size_t(grid) * size_t(grid); ++i)
+      for (int c = 0; c < 3; ++c) out.image.rgb[i * 3 + size_t(c)] = px[i * 4 + size_t(c)];
+    e = glGetError();
+  }
   glDeleteProgram(prog);
   if (e != GL_NO_ERROR) out.error = fmt::format("OpenGL error 0x{:x}", e);
   else out.ok = true;
@@ -283,21 +323,12 @@ RenderOutcome GlRenderer::render(const RenderJob& job) {
   MeshBuffers meshes = mesh_buffers(s);
   GLuint buffers[2] = {0, 0};
   GLuint textures[2] = {texture_buffer(meshes.nodes, buffers[0]), texture_buffer(meshes.triangles, buffers[1])};
-  GLuint fbo = 0, rbo = 0;
-  glGenFramebuffers(1, &fbo);
-  glBindFramebuffer(GL_FRAMEBUFFER, fbo);
-  glGenRenderbuffers(1, &rbo);
-  glBindRenderbuffer(GL_RENDERBUFFER, rbo);
-  glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA32F, job.width, job.height);
-  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, rbo);
+  FloatFramebuffer fb(job.width, job.height);
   auto cleanup = [&] {
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    glDeleteRenderbuffers(1, &rbo);
-    glDeleteFramebuffers(1, &fbo);
     glDeleteTextures(2, textures);
     glDeleteBuffers(2, buffers);
   };
-  if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+  if (!fb.complete()) {
     out.error = "no RGBA32F framebuffer";
     cleanup();
     return out;
@@ -305,7 +336,6 @@ RenderOutcome GlRenderer::render(const RenderJob& job) {
 
   out.image = Image(job.width, job.height);
   out.alpha.assign(size_t(job.width) * size_t(job.height), 0);
-  std::vector<float> px(size_t(job.width) * size_t(job.height) * 4);
   for (size_t k = 0; k < passes.size(); ++k) {
     std::string source = !job.code_override.empty() ? job.code_override : fragment_source(*passes[k]);
     if (!job.workdir.empty()) {
@@ -380,32 +410,121 @@ RenderOutcome GlRenderer::render(const RenderJob& job) {
     glBindTexture(GL_TEXTURE_BUFFER, textures[1]);
     glUniform1i(loc("facet_triangles"), 1);
 
-    glViewport(0, 0, job.width, job.height);
     glClearColor(0, 0, 0, 0);
     glClear(GL_COLOR_BUFFER_BIT);
     glBindVertexArray(state_->vao);
     glDrawArrays(GL_TRIANGLES, 0, 3);
-    glReadPixels(0, 0, job.width, job.height, GL_RGBA, GL_FLOAT, px.data());
+    std::vector<float> px = fb.read();
     glDeleteProgram(prog);
     if (GLenum e = glGetError(); e != GL_NO_ERROR) {
       out.error = fmt::format("OpenGL error 0x{:x}", e);
       cleanup();
       return out;
     }
-    // GL rows run bottom-up; facet images top-down. Passes add up.
-    for (int y = 0; y < job.height; ++y) {
-      const float* row = &px[size_t(job.height - 1 - y) * size_t(job.width) * 4];
-      for (int x = 0; x < job.width; ++x) {
-        float* dst = out.image.at(x, y);
-        for (int c = 0; c < 3; ++c) dst[c] += row[x * 4 + c];
-        float& a = out.alpha[size_t(y) * size_t(job.width) + size_t(x)];
-        a = std::max(a, row[x * 4 + 3]);
-      }
-    }
+    add_bottom_up(px, out);
   }
   cleanup();
   out.ok = true;
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+namespace {
+
+// The program's active uniforms: name → (location, type). Arrays answer to
+// "name" and "name[0]" alike.
+std::map<std::string, std::pair<GLint, GLenum>> active_uniforms(GLuint prog) {
+  std::map<std::string, std::pair<GLint, GLenum>> out;
+  GLint count = 0;
+  glGetProgramiv(prog, GL_ACTIVE_UNIFORMS, &count);
+  for (GLint i = 0; i < count; ++i) {
+    char name[256];
+    GLint size = 0;
+    GLenum type = 0;
+    glGetActiveUniform(prog, GLuint(i), sizeof name, nullptr, &size, &type, name);
+    std::string n = name;
+    GLint loc = glGetUniformLocation(prog, name);
+    out[n] = {loc, type};
+    if (n.size() > 3 && n.compare(n.size() - 3, 3, "[0]") == 0) out[n.substr(0, n.size() - 3)] = {loc, type};
+  }
+  return out;
+}
+
+// Sets `values` on the uniform by its declared type; an unused name is ignored,
+// a mismatched arity is an error.
+std::string set_uniform(const std::map<std::string, std::pair<GLint, GLenum>>& active, const std::string& name,
+                        const std::vector<double>& v) {
+  auto it = active.find(name);
+  if (it == active.end()) return "";
+  auto [loc, type] = it->second;
+  auto need = [&](size_t n) {
+    return v.size() == n ? std::string() : fmt::format("uniform {} takes {} values, given {}", name, n, v.size());
+  };
+  auto f = [&](size_t i) { return GLfloat(v[i]); };
+  std::string error;
+  switch (type) {
+    case GL_FLOAT: if ((error = need(1)).empty()) glUniform1f(loc, f(0)); break;
+    case GL_FLOAT_VEC2: if ((error = need(2)).empty()) glUniform2f(loc, f(0), f(1)); break;
+    case GL_FLOAT_VEC3: if ((error = need(3)).empty()) glUniform3f(loc, f(0), f(1), f(2)); break;
+    case GL_FLOAT_VEC4: if ((error = need(4)).empty()) glUniform4f(loc, f(0), f(1), f(2), f(3)); break;
+    case GL_INT:
+    case GL_BOOL: if ((error = need(1)).empty()) glUniform1i(loc, GLint(v[0])); break;
+    default: error = fmt::format("uniform {} has a type (0x{:x}) the harness does not set", name, type);
+  }
+  return error;
+}
+
+}  // namespace
+
+std::vector<RenderOutcome> GlRenderer::draw(const std::vector<ShaderDraw>& shaders, int width, int height,
+                                            const std::function<void(size_t, bool)>& around) {
+  std::vector<RenderOutcome> out(shaders.size());
+  if (!ok()) {
+    for (auto& o : out) o.error = error_;
+    return out;
+  }
+  FloatFramebuffer fb(width, height);
+  glBindVertexArray(state_->vao);
+  std::vector<GLuint> programs(shaders.size(), 0);
+  auto use = [&](size_t i) {
+    glUseProgram(programs[i]);
+    auto active = active_uniforms(programs[i]);
+    for (const auto& [name, values] : shaders[i].uniforms)
+      if (std::string e = set_uniform(active, name, values); !e.empty()) out[i].error = e;
+    glClearColor(0, 0, 0, 0);
+    glClear(GL_COLOR_BUFFER_BIT);
+  };
+  // Compile and link all, then the first draw of each: the JIT, not measured.
+  for (size_t i = 0; i < shaders.size(); ++i)
+    programs[i] = fragment_program(state_->vertex, shaders[i].fragment_source, "the GLSL of \"" + shaders[i].name + "\"",
+                                   out[i].error);
+  for (size_t i = 0; i < shaders.size(); ++i) {
+    if (!programs[i] || !out[i].error.empty()) continue;
+    use(i);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glFinish();
+  }
+  for (size_t i = 0; i < shaders.size(); ++i) {
+    if (!programs[i] || !out[i].error.empty()) continue;
+    use(i);
+    // Once more untimed, so the measured draw finds the state as its own last
+    // draw left it, whatever program ran before.
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glFinish();
+    auto start = std::chrono::steady_clock::now();
+    if (around) around(i, true);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glFinish();
+    if (around) around(i, false);
+    out[i].seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    out[i].image = Image(width, height);
+    out[i].alpha.assign(size_t(width) * size_t(height), 0);
+    add_bottom_up(fb.read(), out[i]);
+    if (GLenum e = glGetError(); e != GL_NO_ERROR) out[i].error = fmt::format("OpenGL error 0x{:x}", e);
+    out[i].ok = out[i].error.empty();
+  }
+  for (GLuint p : programs)
+    if (p) glDeleteProgram(p);
   return out;
 }
 

@@ -65,7 +65,7 @@ MaterialProgram compile(const Material& m) {
 
   ir::FunctionBuilder fb("reflectance",
                          "MODELS.md: k_d ⊗ ρ_d(l, v) + k_s ⊗ ρ_s(l, v) for a light of unit colour",
-                         "Horizon rule: nothing is reflected where n·l ≤ 0 or n·v ≤ 0.");
+                         "Horizon rule: nothing is reflected where n·l ≤ 0 or n·v ≤ 0, i.e. min(n·l, n·v) ≤ 0.");
   // n·l and n·v always, for the horizon rule; then whatever the lobes read.
   fb.param("NoL");
   fb.param("NoV");
@@ -85,7 +85,8 @@ MaterialProgram compile(const Material& m) {
   if (p.diffuse) add(p.diffuse, *m.diffuse, "diffuse");
   if (p.specular) add(p.specular, *m.specular, "specular");
   ir::Expr horizon_zero = ir::color(0, 0, 0);
-  p.reflectance = fb.returns(ir::select(fb.arg("NoL") <= 0.0 || fb.arg("NoV") <= 0.0, horizon_zero, sum));
+  // One comparison of the smaller cosine rather than two and an ||: the same test.
+  p.reflectance = fb.returns(ir::select(ir::min(fb.arg("NoL"), fb.arg("NoV")) <= 0.0, horizon_zero, sum));
   for (const auto& param : p.reflectance->params) p.inputs.push_back(param.name);
   return p;
 }

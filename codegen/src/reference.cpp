@@ -1,5 +1,6 @@
 #include "facet/reference.h"
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <stdexcept>
@@ -165,8 +166,12 @@ int ShadingInputs::index(const std::string& name) {
   throw std::logic_error("facet reference: unknown shading input " + name);
 }
 
+namespace {
+const size_t kInputCount = 11;  // input_order()
+}
+
 double ShadingInputs::get(int i) const {
-  const double v[] = {NoL, NoV, LoV, LoT, VoT, LoB, VoB};
+  const double v[] = {NoL, NoV, LoV, LoT, VoT, LoB, VoB, NoH, VoH, HoT, HoB};
   return v[i];
 }
 
@@ -182,6 +187,12 @@ ShadingInputs shading_inputs(const Vec3& n, const Vec3& l, const Vec3& v, const 
   s.VoT = dot(v, t);
   s.LoB = dot(l, b);
   s.VoB = dot(v, b);
+  // catalog.h, Input: the half vector, its length floored at ε.
+  Vec3 h = (l + v) / std::max(length(l + v), kEpsilon);
+  s.NoH = dot(n, h);
+  s.VoH = dot(v, h);
+  s.HoT = dot(h, t);
+  s.HoB = dot(h, b);
   return s;
 }
 
@@ -225,12 +236,13 @@ double Reference::light_factor(const Light& light, const Vec3& l, double d) cons
 Reference::Prepared Reference::prepare(const ir::FunctionPtr& f) {
   Prepared p;
   p.id = interp_.prepare(f);
+  if (f->params.size() > kInputCount) throw std::logic_error("facet reference: too many inputs for " + f->name);
   for (const auto& param : f->params) p.inputs.push_back(ShadingInputs::index(param.name));
   return p;
 }
 
 RGB Reference::call(const Prepared& f, const ShadingInputs& in) const {
-  RGB args[8];
+  RGB args[kInputCount];  // a function reads each input at most once
   for (size_t i = 0; i < f.inputs.size(); ++i) {
     double x = in.get(f.inputs[i]);
     args[i] = {x, x, x};

@@ -75,7 +75,7 @@ TEST(Detection, GlslMissingPiFails) {
   Fixture f = fixture("cook_torrance", "glsl");
   GlRenderer gl;
   ASSERT_TRUE(gl.ok()) << gl.error();
-  f.job.code_override = inject(GlRenderer::fragment_source(f.material), "return PI * D * G * F", "return D * G * F");
+  f.job.code_override = inject(GlRenderer::fragment_source(f.material), "return PI / 4.0 * D * G * F", "return 1.0 / 4.0 * D * G * F");
   ComparisonRow bad = judged(f, gl.render(f.job));
   EXPECT_FALSE(bad.pass) << "max |Δ|/max(1,|ref|) " << bad.metrics.max_excess;
 }
@@ -88,7 +88,7 @@ TEST(Detection, PovMissingPiFails) {
   std::string good = generate(f.material, o);
   f.job.code_override = good;
   EXPECT_TRUE(judged(f, render_pov(f.job)).pass);
-  f.job.code_override = inject(good, "{ pi * D * G * F / (4 * NoV) }", "{ D * G * F / (4 * NoV) }");
+  f.job.code_override = inject(good, "{ pi / 4 * D * G * F / NoV }", "{ 1 / 4 * D * G * F / NoV }");
   ComparisonRow bad = judged(f, render_pov(f.job));
   EXPECT_FALSE(bad.pass) << "max |Δ|/max(1,|ref|) " << bad.metrics.max_excess;
 }
@@ -115,7 +115,7 @@ TEST(Detection, OslMissingPiAndExponentOffByOneFail) {
   std::vector<RenderJob> jobs = {ct.job, ct.job, bp.job};
   jobs[2].workdir = ct.job.workdir;
   jobs[0].code_override = ct_code;
-  jobs[1].code_override = inject(ct_code, "return M_PI * D * G * F", "return D * G * F");
+  jobs[1].code_override = inject(ct_code, "return M_PI / 4.0 * D * G * F", "return 1.0 / 4.0 * D * G * F");
   jobs[1].material->name = "cook_torrance_without_pi";
   jobs[2].code_override = inject(bp_code, "pow(max(NoH, 0.0), n)", "pow(max(NoH, 0.0), n + 1.0)");
   jobs[2].material->name = "blinn_phong_exponent_plus_one";

@@ -67,7 +67,7 @@ TEST(CostRows, TheAgreedFormatReadsBack) {
   CostTable t = load_cost_rows(kFixture);
   EXPECT_EQ(t.baseline, "lambert");
   ASSERT_EQ(t.rows.size(), 2u);
-  const CostRow* lambert = t.find("lambert");
+  const CostPageRow* lambert = t.find("lambert");
   ASSERT_TRUE(lambert);
   EXPECT_EQ(lambert->diffuse, "lambert");
   EXPECT_EQ(lambert->specular, "");
@@ -76,7 +76,7 @@ TEST(CostRows, TheAgreedFormatReadsBack) {
   EXPECT_EQ(lambert->glsl.find("callgrind_per_pixel")->text, "43.6");
   EXPECT_EQ(lambert->pov.find("native")->text, "yes");
   EXPECT_EQ(lambert->pov.find("functions")->text, "–");
-  const CostRow* phong = t.find("phong");
+  const CostPageRow* phong = t.find("phong");
   ASSERT_TRUE(phong);
   EXPECT_EQ(phong->osl.error, "FIXTURE: the OSL timing run did not finish");
   EXPECT_TRUE(phong->osl.figures.empty());
@@ -223,7 +223,7 @@ TEST(DocsCli, AFailedRendererIsShownWithItsReason) {
   fs::path dir = scratch("failed");
   fs::remove_all(dir);
   ProcessResult r = facet({"docs", "-o", dir.string(), "--models", "lambert", "--size", "16", "--renderers",
-                           "reference,osl", "--python", "/nonexistent/python3"});
+                           "reference,osl", "--python", "/nonexistent/python3", "--no-cost"});
   ASSERT_EQ(r.exit_code, 1) << "the pages are written, but a renderer failed: " << r.output;
   EXPECT_NE(r.output.find("0 of 1 renderer comparisons pass"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("error: 1 of 1 renderer comparisons failed"), std::string::npos) << r.output;
@@ -236,6 +236,7 @@ TEST(DocsCli, AFailedRendererIsShownWithItsReason) {
   std::string index = read_file((dir / "index.html").string());
   EXPECT_NE(index.find(">failed</td>"), std::string::npos);
   EXPECT_NE(index.find("facet cost --json"), std::string::npos) << "how to get the cost";
+  EXPECT_NE(index.find("--no-cost"), std::string::npos) << "why it is not there";
 }
 
 TEST(DocsCli, BadInputsNameTheOptionOrFileAndWriteNothing) {
@@ -262,7 +263,7 @@ TEST(DocsCli, BadInputsNameTheOptionOrFileAndWriteNothing) {
   // A folder that cannot be made is named, not a crash.
   fs::path file = scratch("a_file");
   write_file_atomic(file.string(), "not a folder\n");
-  ProcessResult r = facet({"docs", "-o", file.string(), "--models", "lambert"});
+  ProcessResult r = facet({"docs", "-o", file.string(), "--models", "lambert", "--no-cost"});
   EXPECT_EQ(r.exit_code, 1) << r.output;
   EXPECT_NE(r.output.find(file.string() + "/models: cannot create the folder"), std::string::npos) << r.output;
 }

@@ -119,10 +119,15 @@ struct ModelSpec {
   const Value& at(const std::string& name) const;
 };
 
-// The geometric inputs a lobe can read. Targets compute the first seven from
-// vectors; the half-vector quantities are derived from them in the IR, the same
-// way on every target.
-enum class Input { NoL, NoV, LoV, LoT, VoT, LoB, VoB };
+// The geometric inputs a lobe can read, dot products of unit vectors each target
+// computes: n, l, v, the tangent t, b = n × t, and the half vector
+//   h = (l + v) / max(|l + v|, ε)
+// (where l ≈ −v, both grazing, h is undefined; the floor keeps 1/|l + v| finite).
+// Targets with vector types compute h with one vector normalization, which in
+// SPIR-V is two instructions where deriving n·h, v·h, h·t and h·b from l·v and the
+// other dots took ten; the lobes read the half-vector inputs through LobeContext,
+// which adds the clamps rounding needs.
+enum class Input { NoL, NoV, LoV, LoT, VoT, LoB, VoB, NoH, VoH, HoT, HoB };
 const char* input_name(Input i);
 const std::vector<std::string>& input_order();
 
@@ -136,11 +141,11 @@ class LobeContext {
   ir::Expr NoL() { return input(Input::NoL); }
   ir::Expr NoV() { return input(Input::NoV); }
   ir::Expr LoV() { return input(Input::LoV); }
-  // Half-vector quantities, h = normalize(l + v): (n·h), (v·h), (h·t), (h·b).
+  // Half-vector quantities: min(n·h, 1), [v·h], h·t, h·b.
   ir::Expr NoH();
   ir::Expr VoH();
-  ir::Expr HoT();
-  ir::Expr HoB();
+  ir::Expr HoT() { return input(Input::HoT); }
+  ir::Expr HoB() { return input(Input::HoB); }
 
   ir::Expr number(const std::string& param);  // a named constant, e.g. specular_m
   bool flag(const std::string& param) const;
@@ -150,17 +155,15 @@ class LobeContext {
   ir::Expr let(const std::string& name, const ir::Expr& value) { return fb_.let(name, value); }
   // F(v·h) of the lobe's `fresnel` parameter.
   ir::Expr fresnel();
-  // G of the lobe's `geometry` parameter, with `alpha` the lobe's roughness.
-  ir::Expr geometry(const ir::Expr& alpha);
+  // G of the lobe's `geometry` parameter, none or v_cavity; smith_ggx enters the
+  // microfacet lobes as a visibility term instead (terms::visibility_smith_ggx).
+  ir::Expr geometry();
   const std::string& lobe() const { return lobe_; }
 
  private:
-  ir::Expr inv_half_length();
-  ir::Expr derived(const char* name, std::optional<ir::Expr>& slot, const std::function<ir::Expr()>& value);
   const ModelSpec& spec_;
   std::string lobe_;
   ir::FunctionBuilder& fb_;
-  std::optional<ir::Expr> inv_half_, NoH_, VoH_, HoT_, HoB_;
 };
 
 // The whole catalog, in documentation order. Besides the shading vocabulary
@@ -189,11 +192,16 @@ ir::FunctionPtr distribution_beckmann();
 ir::FunctionPtr distribution_ggx();
 ir::FunctionPtr distribution_trowbridge_reitz();
 ir::FunctionPtr geometry_v_cavity();
-ir::FunctionPtr geometry_smith_ggx();
-ir::FunctionPtr fresnel_schlick();
-ir::FunctionPtr fresnel_exact();
-ir::FunctionPtr microfacet();
-ir::FunctionPtr blinn();
+// Terms whose inputs may be grey (one number) or coloured come in both types:
+// a grey Fresnel term keeps the lobe scalar until k ⊗ ρ.
+ir::FunctionPtr fresnel_schlick(ir::Type f0);
+ir::FunctionPtr fresnel_exact();      // η > 1
+ir::FunctionPtr fresnel_exact_tir();  // η ≤ 1: total internal reflection
+ir::FunctionPtr microfacet(ir::Type F);
+// Smith GGX as the visibility G / (4 (n·l)(n·v)), and ρ = π D V F (n·l) with it.
+ir::FunctionPtr visibility_smith_ggx();
+ir::FunctionPtr microfacet_visibility(ir::Type F);
+ir::FunctionPtr blinn(ir::Type F);
 ir::FunctionPtr ward();
 ir::FunctionPtr ward_nvidia();
 ir::FunctionPtr toon(ir::Type rho);       // smoothstep over [cutoff ± width/2]

@@ -38,7 +38,7 @@ struct CostCell {
   const CostFigure* find(const std::string& key) const;
 };
 
-struct CostRow {
+struct CostPageRow {
   std::string name, material, diffuse, specular;  // diffuse, specular: "" for null
   CostCell glsl, osl, pov;
   const CostCell& cell(const std::string& target) const;  // "glsl", "osl" or "pov"
@@ -47,8 +47,8 @@ struct CostRow {
 struct CostTable {
   std::string source;  // the file, for the pages
   std::string baseline;
-  std::vector<CostRow> rows;
-  const CostRow* find(const std::string& name) const;
+  std::vector<CostPageRow> rows;
+  const CostPageRow* find(const std::string& name) const;
 };
 
 // Checks `doc` (what `facet cost --json` prints); every problem names `file` and

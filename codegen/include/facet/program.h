@@ -18,7 +18,11 @@ struct MaterialProgram {
   std::vector<std::string> inputs;  // reflectance's parameters, in input_order()
 
   bool uses(const std::string& input) const;
-  bool uses_tangent() const { return uses("LoT") || uses("VoT") || uses("LoB") || uses("VoB"); }
+  bool uses_tangent() const {
+    return uses("LoT") || uses("VoT") || uses("LoB") || uses("VoB") || uses("HoT") || uses("HoB");
+  }
+  bool uses_bitangent() const { return uses("LoB") || uses("VoB") || uses("HoB"); }
+  bool uses_half_vector() const { return uses("NoH") || uses("VoH") || uses("HoT") || uses("HoB"); }
   // Every function to print, callees first (the light functions included).
   std::vector<ir::FunctionPtr> functions() const;
   std::vector<ir::NodePtr> constants() const;

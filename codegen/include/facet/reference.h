@@ -36,6 +36,7 @@ class Interpreter {
 // The dot products a lobe reads (catalog.h: Input).
 struct ShadingInputs {
   double NoL = 0, NoV = 0, LoV = 0, LoT = 0, VoT = 0, LoB = 0, VoB = 0;
+  double NoH = 0, VoH = 0, HoT = 0, HoB = 0;  // h = (l + v) / max(|l + v|, ε)
   double get(const std::string& name) const;
   double get(int index) const;           // in input_order()
   static int index(const std::string& name);

@@ -2,6 +2,7 @@
 // a scene into a linear float image sampled at pixel centres.
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -56,6 +57,16 @@ std::vector<RenderOutcome> render_osl(const std::vector<RenderJob>& jobs, const 
 // The Python with bpy: FACET_PYTHON, else the build's .venv, else "python3".
 std::string default_python();
 
+// A fragment shader of one's own for GlRenderer::draw(): its GLSL and the values
+// of its uniforms, by name ("facet_resolution", "u_lightData[0].position").
+// Float, vecN, int and bool uniforms are set by their declared type; names the
+// program does not use (the compiler may drop them) are ignored.
+struct ShaderDraw {
+  std::string name;
+  std::string fragment_source;
+  std::vector<std::pair<std::string, std::vector<double>>> uniforms;
+};
+
 // OpenGL through EGL (Mesa llvmpipe headless): the generated GLSL 3.30 library
 // and light loop under a ray-casting main, drawn into an RGBA32F framebuffer.
 // One context serves many renders.
@@ -73,6 +84,13 @@ class GlRenderer {
   RenderOutcome sweep(const std::string& fragment_source, int grid);
   // The fragment shader render() compiles for one material: the generated GLSL under the ray caster.
   static std::string fragment_source(const Material& m);
+  // Each shader over the full-screen triangle on width × height pixels: every
+  // program is compiled and drawn once first (llvmpipe JIT-compiles a shader at its
+  // first draw), then each is drawn twice more, the second time between
+  // around(i, true) and around(i, false), glFinish() included, and read back. One outcome per shader,
+  // its image the second draw's (rows from the top, alpha as coverage).
+  std::vector<RenderOutcome> draw(const std::vector<ShaderDraw>& shaders, int width, int height,
+                                  const std::function<void(size_t, bool)>& around = {});
 
  private:
   struct State;

@@ -111,12 +111,17 @@ const char* input_name(Input i) {
     case Input::VoT: return "VoT";
     case Input::LoB: return "LoB";
     case Input::VoB: return "VoB";
+    case Input::NoH: return "NoH";
+    case Input::VoH: return "VoH";
+    case Input::HoT: return "HoT";
+    case Input::HoB: return "HoB";
   }
   return "?";
 }
 
 const std::vector<std::string>& input_order() {
-  static const std::vector<std::string> order = {"NoL", "NoV", "LoV", "LoT", "VoT", "LoB", "VoB"};
+  static const std::vector<std::string> order = {"NoL", "NoV", "LoV", "LoT", "VoT", "LoB", "VoB",
+                                                  "NoH", "VoH", "HoT", "HoB"};
   return order;
 }
 
@@ -127,36 +132,15 @@ LobeContext::LobeContext(const ModelSpec& spec, std::string lobe, ir::FunctionBu
 
 ir::Expr LobeContext::input(Input i) { return fb_.param(input_name(i)); }
 
-ir::Expr LobeContext::inv_half_length() {
-  // |l + v| = √(2 + 2 l·v); h = (l + v) / |l + v|. Where |l + v| < ε (l ≈ −v, both
-  // grazing: h is undefined) it is taken as ε, so rounding (l·v a hair below −1)
-  // cannot give 1/√0 or the root of a negative. n·h stays ≤ 1, since n·(l + v) ≤ |l + v|.
-  if (!inv_half_) inv_half_ = fb_.let("inv_len_h", 1.0 / ir::sqrt(ir::max(2.0 + 2.0 * LoV(), kEpsilon * kEpsilon)));
-  return *inv_half_;
-}
-
-// Each derived quantity is bound once, on first use, so the generated code
-// reads `float NoH = …;` and later lines refer to it.
-ir::Expr LobeContext::derived(const char* name, std::optional<ir::Expr>& slot,
-                              const std::function<ir::Expr()>& value) {
-  if (!slot) slot = fb_.let(name, value());
-  return *slot;
-}
-
 ir::Expr LobeContext::NoH() {
-  // n·h ≤ 1 since n·(l + v) ≤ |l + v|; the min keeps rounding from going above,
-  // where tan²θ_h < 0 would make exp(−tan²θ_h/m²) overflow for a small m.
-  return derived("NoH", NoH_, [&] { return ir::min((NoL() + NoV()) * inv_half_length(), 1.0); });
+  // n·h ≤ 1 for unit vectors, but rounding can go a hair above, where tan²θ_h < 0
+  // or (n·h)²(α² − 1) + 1 < α² would follow; the min keeps it at 1.
+  return ir::min(input(Input::NoH), 1.0);
 }
+
 ir::Expr LobeContext::VoH() {
-  // v·h = (1 + l·v)/|l + v| ≥ 0; the bracket keeps rounding from making it negative.
-  return derived("VoH", VoH_, [&] { return ir::pos(1.0 + LoV()) * inv_half_length(); });
-}
-ir::Expr LobeContext::HoT() {
-  return derived("HoT", HoT_, [&] { return (input(Input::LoT) + input(Input::VoT)) * inv_half_length(); });
-}
-ir::Expr LobeContext::HoB() {
-  return derived("HoB", HoB_, [&] { return (input(Input::LoB) + input(Input::VoB)) * inv_half_length(); });
+  // v·h ≥ 0 (h bisects l and v); the bracket keeps rounding from making it negative.
+  return ir::pos(input(Input::VoH));
 }
 
 bool LobeContext::has(const std::string& param) const { return spec_.values.count(param) > 0; }
@@ -179,17 +163,25 @@ ir::Expr LobeContext::fresnel() {
   const ModelSpec& f = model("fresnel");
   const std::string& name = f.def->name;
   if (name == "none") return 1.0;
-  if (name == "schlick")
-    return ir::call(terms::fresnel_schlick(), {ir::constant(lobe_ + "_fresnel_f0", f.at("f0").rgb), VoH()});
-  if (name == "exact")
-    return ir::call(terms::fresnel_exact(), {ir::constant(lobe_ + "_fresnel_ior", f.at("ior").number), VoH()});
+  if (name == "schlick") {
+    // A grey f0 is one number: F stays scalar until k ⊗ ρ. Schlick's term clamps
+    // its own base, so v·h goes in without the bracket.
+    const std::array<double, 3>& f0 = f.at("f0").rgb;
+    ir::Expr c = f0[0] == f0[1] && f0[1] == f0[2] ? ir::constant(lobe_ + "_fresnel_f0", f0[0])
+                                                 : ir::constant(lobe_ + "_fresnel_f0", f0);
+    return ir::call(terms::fresnel_schlick(c.type()), {c, input(Input::VoH)});
+  }
+  if (name == "exact") {
+    double ior = f.at("ior").number;
+    return ir::call(ior > 1 ? terms::fresnel_exact() : terms::fresnel_exact_tir(),
+                    {ir::constant(lobe_ + "_fresnel_ior", ior), VoH()});
+  }
   throw std::logic_error("facet: unknown Fresnel model " + name);
 }
 
-ir::Expr LobeContext::geometry(const ir::Expr& alpha) {
+ir::Expr LobeContext::geometry() {
   const std::string& g = choice("geometry");
   if (g == "none") return 1.0;
-  if (g == "smith_ggx") return ir::call(terms::geometry_smith_ggx(), {NoL(), NoV(), alpha});
   if (g == "v_cavity") {
     return ir::call(terms::geometry_v_cavity(), {NoL(), NoV(), NoH(), VoH()});
   }

@@ -27,11 +27,18 @@ ir::Expr power(LobeContext& c, const ir::FunctionPtr& exact_form, std::vector<ir
 }
 
 // π D G F / (4 n·v) with the lobe's D, its `geometry` choice and its `fresnel`.
+// Smith GGX goes in as the visibility V = G / (4 (n·l)(n·v)), ρ = π D V F (n·l):
+// the same product without the factors that cancel.
 ir::Expr microfacet(LobeContext& c, const ir::Expr& D, const ir::Expr& alpha) {
   ir::Expr d = c.let("D", D);
-  ir::Expr g = c.let("G", c.geometry(alpha));
+  if (c.choice("geometry") == "smith_ggx") {
+    ir::Expr v = c.let("V", ir::call(terms::visibility_smith_ggx(), {c.NoL(), c.NoV(), alpha}));
+    ir::Expr f = c.let("F", c.fresnel());
+    return ir::call(terms::microfacet_visibility(f.type()), {d, v, f, c.NoL()});
+  }
+  ir::Expr g = c.let("G", c.geometry());
   ir::Expr f = c.let("F", c.fresnel());
-  return ir::call(terms::microfacet(), {d, g, f, c.NoV()});
+  return ir::call(terms::microfacet(f.type()), {d, g, f, c.NoV()});
 }
 
 const char* kMicrofacetPov = "function pigment";
@@ -210,7 +217,7 @@ void add_specular(std::vector<ModelDef>& all) {
       ir::Expr D = c.let("D", ir::call(terms::distribution_trowbridge_reitz(), {c.NoH(), c.number("c")}));
       ir::Expr G = c.let("G", ir::call(terms::geometry_v_cavity(), {c.NoL(), c.NoV(), c.NoH(), c.VoH()}));
       ir::Expr F = c.let("F", c.fresnel());
-      return ir::call(terms::blinn(), {D, G, F, c.NoV()});
+      return ir::call(terms::blinn(F.type()), {D, G, F, c.NoV()});
     };
     m.reciprocal = true;
     m.physics_note = "D G F/(π (n·l)(n·v)) is symmetric; D is not normalized (its peak is 1), so no bound is claimed";

@@ -12,6 +12,8 @@
 //    at kTiny = 1e-30: float's smallest normal is 1.2e-38 and GPUs flush smaller
 //    values to 0, which would turn 0/0 into NaN where the numerator underflowed
 //    first. The floor only bites for roughness below about 1e-15.
+#include <cmath>
+
 #include "facet/catalog.h"
 
 namespace facet::terms {
@@ -70,17 +72,16 @@ FunctionPtr oren_nayar() {
         "Oren & Nayar 1994, \"Generalization of Lambert's Reflectance Model\": "
         "ρ = (n·l)(A + B [cos φ] sin α tan β)",
         "[cos φ] sin α tan β = max(0, l·v − (n·l)(n·v)) / max(n·l, n·v) exactly, which avoids\n"
-        "normalizing the projected vectors; it is 0 where either projection is shorter than ε.");
+        "normalizing the projected vectors; it is 0 where either projection is shorter than ε:\n"
+        "|l − n(n·l)| = sin θ_i < ε where cos θ_i > √(1 − ε²), so where max(n·l, n·v) reaches it.");
     Expr NoL = fb.param("NoL"), NoV = fb.param("NoV"), LoV = fb.param("LoV");
     Expr sigma = fb.param("sigma"), q = fb.param("q");
     Expr s2 = fb.let("s2", sigma * sigma);
     Expr A = fb.let("A", 1.0 - 0.5 * s2 / (s2 + q));
     Expr B = fb.let("B", 0.45 * s2 / (s2 + 0.09));
-    // |l − n(n·l)| = sin θ_i, clamped at 0 against rounding.
-    Expr sin_i = fb.let("sin_i", sqrt(pos(1.0 - NoL * NoL)));
-    Expr sin_r = fb.let("sin_r", sqrt(pos(1.0 - NoV * NoV)));
-    Expr t = fb.let("t", select(sin_i < kEpsilon || sin_r < kEpsilon, 0.0,
-                                pos(LoV - NoL * NoV) / max(NoL, NoV)));
+    // cos β, β = min(θ_i, θ_r): the larger cosine, which also divides.
+    Expr cos_beta = fb.let("cos_beta", max(NoL, NoV));
+    Expr t = fb.let("t", select(cos_beta >= std::sqrt(1.0 - kEpsilon * kEpsilon), 0.0, pos(LoV - NoL * NoV) / cos_beta));
     return fb.returns(NoL * (A + B * t));
   }();
   return f;
@@ -142,7 +143,8 @@ FunctionPtr heidrich_seidel() {
                        "Heidrich & Seidel 1998, \"Efficient Rendering of Anisotropic Surfaces Using "
                        "Computer Graphics Hardware\": ρ = [√(1−(l·t)²)√(1−(v·t)²) − (l·t)(v·t)]^n");
     Expr LoT = fb.param("LoT"), VoT = fb.param("VoT"), n = fb.param("n");
-    Expr x = sqrt(pos(1.0 - LoT * LoT)) * sqrt(pos(1.0 - VoT * VoT)) - LoT * VoT;
+    // √a √b as √(a b): one root.
+    Expr x = sqrt(pos(1.0 - LoT * LoT) * pos(1.0 - VoT * VoT)) - LoT * VoT;
     return fb.returns(pow(pos(x), n));
   }();
   return f;
@@ -159,7 +161,8 @@ FunctionPtr distribution_beckmann() {
     Expr c2 = fb.let("c2", NoH * NoH);
     Expr m2 = fb.let("m2", m * m);
     Expr tan2 = fb.let("tan2", pos((1.0 - NoH) * (1.0 + NoH)) / c2);
-    return fb.returns(exp(-tan2 / m2) / max(kPi * m2 * c2 * c2, kTiny));
+    // × (−1/m²) rather than −(…)/m²: with m a constant, one multiplication.
+    return fb.returns(exp(tan2 * (-1.0 / m2)) / max(kPi * m2 * c2 * c2, kTiny));
   }();
   return f;
 }
@@ -198,38 +201,43 @@ FunctionPtr geometry_v_cavity() {
                        "Cook & Torrance 1982, \"A Reflectance Model for Computer Graphics\": "
                        "G = min(1, 2(n·h)(n·v)/(v·h), 2(n·h)(n·l)/(v·h))");
     Expr NoL = fb.param("NoL"), NoV = fb.param("NoV"), NoH = fb.param("NoH"), VoH = fb.param("VoH");
-    Expr k = fb.let("k", 2.0 * NoH / VoH);
-    return fb.returns(min(1.0, min(k * NoV, k * NoL)));
+    // 2(n·h)/(v·h) ≥ 0 scales both: min(k n·v, k n·l) = k min(n·v, n·l).
+    return fb.returns(min(1.0, 2.0 * NoH * min(NoV, NoL) / VoH));
   }();
   return f;
 }
 
-FunctionPtr geometry_smith_ggx() {
+namespace {
+FunctionPtr fresnel_schlick_form(Type type) {
+  FunctionBuilder fb(type == Type::Float ? "F_schlick" : "F_schlick_rgb",
+                     "Schlick 1994, \"An Inexpensive BRDF Model for Physically-based Rendering\": "
+                     "F = f0 + (1 − f0)(1 − v·h)^5",
+                     "The base is clamped at 0 (v·h a hair above 1); v·h below 0 by rounding is harmless.");
+  Expr f0 = fb.param("f0", type), VoH = fb.param("VoH");
+  return fb.returns(f0 + (1.0 - f0) * pow(pos(1.0 - VoH), 5.0));
+}
+}  // namespace
+
+FunctionPtr visibility_smith_ggx() {
   static const FunctionPtr f = [] {
-    // G1 is its own function: the separable form calls it twice.
-    static const FunctionPtr g1 = [] {
-      FunctionBuilder fb("G1_smith_ggx",
-                         "Walter et al. 2007, Smith masking for GGX: G1(x) = 2x / (x + √(α² + (1−α²)x²))");
-      Expr x = fb.param("x"), alpha = fb.param("alpha");
-      Expr a2 = fb.let("a2", alpha * alpha);
-      return fb.returns(2.0 * x / (x + sqrt(a2 + (1.0 - a2) * x * x)));
-    }();
-    FunctionBuilder fb("G_smith_ggx", "Smith 1967, separable masking-shadowing: G = G1(n·l) G1(n·v)");
+    FunctionBuilder fb("V_smith_ggx",
+                       "Smith 1967 for GGX (Walter et al. 2007), separable, as a visibility term: "
+                       "V = G1(n·l) G1(n·v) / (4 (n·l)(n·v)) = 1 / ((n·l + s_l)(n·v + s_v)), "
+                       "s_x = √(α² + (1−α²)x²)",
+                       "The 2·2/4 of G1's numerators and n·l n·v cancel: no division by n·v, which the\n"
+                       "form ρ = π D G F / (4 n·v) needs.");
     Expr NoL = fb.param("NoL"), NoV = fb.param("NoV"), alpha = fb.param("alpha");
-    return fb.returns(call(g1, {NoL, alpha}) * call(g1, {NoV, alpha}));
+    Expr a2 = fb.let("a2", alpha * alpha);
+    Expr sl = fb.let("s_l", sqrt(a2 + (1.0 - a2) * NoL * NoL));
+    Expr sv = fb.let("s_v", sqrt(a2 + (1.0 - a2) * NoV * NoV));
+    return fb.returns(1.0 / ((NoL + sl) * (NoV + sv)));
   }();
   return f;
 }
 
-FunctionPtr fresnel_schlick() {
-  static const FunctionPtr f = [] {
-    FunctionBuilder fb("F_schlick",
-                       "Schlick 1994, \"An Inexpensive BRDF Model for Physically-based Rendering\": "
-                       "F = f0 + (1 − f0)(1 − v·h)^5");
-    Expr f0 = fb.param("f0", Type::Color), VoH = fb.param("VoH");
-    return fb.returns(f0 + (1.0 - f0) * pow(pos(1.0 - VoH), 5.0));
-  }();
-  return f;
+FunctionPtr fresnel_schlick(Type f0) {
+  static const FunctionPtr f[2] = {fresnel_schlick_form(Type::Float), fresnel_schlick_form(Type::Color)};
+  return f[f0 == Type::Color];
 }
 
 FunctionPtr fresnel_exact() {
@@ -237,7 +245,22 @@ FunctionPtr fresnel_exact() {
     FunctionBuilder fb("F_exact",
                        "Cook & Torrance 1982, unpolarized dielectric Fresnel: "
                        "F = ½ (g−c)²/(g+c)² (1 + ((c(g+c)−1)/(c(g−c)+1))²)",
-                       "g = √(η² + c² − 1); total internal reflection (η² + c² − 1 < 0) gives F = 1.");
+                       "g = √((η² − 1) + c²), for η > 1: then g > 0, g + c > 0 and no total internal reflection.");
+    Expr ior = fb.param("ior"), c = fb.param("VoH");
+    Expr g = fb.let("g", sqrt((ior * ior - 1.0) + c * c));
+    Expr a = fb.let("a", (g - c) / (g + c));
+    Expr b = fb.let("b", (c * (g + c) - 1.0) / (c * (g - c) + 1.0));
+    return fb.returns(0.5 * a * a * (1.0 + b * b));
+  }();
+  return f;
+}
+
+FunctionPtr fresnel_exact_tir() {
+  static const FunctionPtr f = [] {
+    FunctionBuilder fb("F_exact_tir",
+                       "Cook & Torrance 1982, unpolarized dielectric Fresnel: "
+                       "F = ½ (g−c)²/(g+c)² (1 + ((c(g+c)−1)/(c(g−c)+1))²)",
+                       "g = √(η² + c² − 1), for η ≤ 1: total internal reflection (η² + c² − 1 < 0) gives F = 1.");
     Expr ior = fb.param("ior"), c = fb.param("VoH");
     Expr g2 = fb.let("g2", ior * ior + c * c - 1.0);
     Expr g = fb.let("g", sqrt(pos(g2)));
@@ -249,25 +272,46 @@ FunctionPtr fresnel_exact() {
   return f;
 }
 
-FunctionPtr microfacet() {
-  static const FunctionPtr f = [] {
-    FunctionBuilder fb("rho_microfacet",
-                       "Cook & Torrance 1982, microfacet reflection: ρ = π f_r (n·l) = π D G F / (4 (n·v))");
-    Expr D = fb.param("D"), G = fb.param("G"), F = fb.param("F", Type::Color), NoV = fb.param("NoV");
-    return fb.returns(kPi * D * G * F / (4.0 * NoV));
-  }();
-  return f;
+namespace {
+// F is a Float where the Fresnel term is grey (or 1), a Color otherwise.
+FunctionPtr microfacet_form(Type type) {
+  FunctionBuilder fb(type == Type::Float ? "rho_microfacet" : "rho_microfacet_rgb",
+                     "Cook & Torrance 1982, microfacet reflection: ρ = π f_r (n·l) = π D G F / (4 (n·v))");
+  Expr D = fb.param("D"), G = fb.param("G"), F = fb.param("F", type), NoV = fb.param("NoV");
+  // π/4 of two literals: a compiler folds it, and the 4 costs no multiplication.
+  return fb.returns(Expr(kPi) / 4.0 * D * G * F / NoV);
+}
+FunctionPtr blinn_form(Type type) {
+  FunctionBuilder fb(type == Type::Float ? "rho_blinn" : "rho_blinn_rgb",
+                     "Blinn 1977, \"Models of Light Reflection for Computer Synthesized Pictures\", "
+                     "as printed: ρ = D G F / (n·v)");
+  Expr D = fb.param("D"), G = fb.param("G"), F = fb.param("F", type), NoV = fb.param("NoV");
+  return fb.returns(D * G * F / NoV);
+}
+}  // namespace
+
+namespace {
+FunctionPtr microfacet_visibility_form(Type type) {
+  FunctionBuilder fb(type == Type::Float ? "rho_microfacet_v" : "rho_microfacet_v_rgb",
+                     "Cook & Torrance 1982 with the visibility V = G / (4 (n·l)(n·v)): ρ = π D V F (n·l)");
+  Expr D = fb.param("D"), V = fb.param("V"), F = fb.param("F", type), NoL = fb.param("NoL");
+  return fb.returns(kPi * D * V * F * NoL);
+}
+}  // namespace
+
+FunctionPtr microfacet_visibility(Type F) {
+  static const FunctionPtr f[2] = {microfacet_visibility_form(Type::Float), microfacet_visibility_form(Type::Color)};
+  return f[F == Type::Color];
 }
 
-FunctionPtr blinn() {
-  static const FunctionPtr f = [] {
-    FunctionBuilder fb("rho_blinn",
-                       "Blinn 1977, \"Models of Light Reflection for Computer Synthesized Pictures\", "
-                       "as printed: ρ = D G F / (n·v)");
-    Expr D = fb.param("D"), G = fb.param("G"), F = fb.param("F", Type::Color), NoV = fb.param("NoV");
-    return fb.returns(D * G * F / NoV);
-  }();
-  return f;
+FunctionPtr microfacet(Type F) {
+  static const FunctionPtr f[2] = {microfacet_form(Type::Float), microfacet_form(Type::Color)};
+  return f[F == Type::Color];
+}
+
+FunctionPtr blinn(Type F) {
+  static const FunctionPtr f[2] = {blinn_form(Type::Float), blinn_form(Type::Color)};
+  return f[F == Type::Color];
 }
 
 // ---------------------------------------------------------------- Ward

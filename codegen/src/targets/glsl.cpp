@@ -85,8 +85,11 @@ GlslParts glsl_parts(const MaterialProgram& p, Target dialect, const std::string
   for (const auto& f : p.functions()) functions += printer.function(f) + "\n";
 
   std::string inputs, arguments;
-  bool bitangent = p.uses("LoB") || p.uses("VoB");
-  if (bitangent) inputs += "    vec3 b = cross(n, t);\n";
+  if (p.uses_bitangent()) inputs += "    vec3 b = cross(n, t);\n";
+  if (p.uses_half_vector())
+    inputs += fmt::format("    // catalog.h, Input: h = (l + v) / max(|l + v|, ε)\n"
+                          "    vec3 h = (l + v) * inversesqrt(max(dot(l + v, l + v), {}));\n",
+                          printer.literal(kEpsilon * kEpsilon));
   for (const auto& in : p.inputs) {
     // NoL → dot(n, l): the two letters either side of "o" name the vectors.
     std::string a(1, char(std::tolower(in[0]))), b(1, char(std::tolower(in[2])));

@@ -67,7 +67,11 @@ std::string generate_osl(const Material& m, const GenerateOptions& o) {
     constant_args += ", " + c->name;
   }
   std::string inputs, arguments;
-  if (p.uses("LoB") || p.uses("VoB")) inputs += "    vector B = cross(Nn, T);\n";
+  if (p.uses_bitangent()) inputs += "    vector B = cross(Nn, T);\n";
+  if (p.uses_half_vector())
+    inputs += fmt::format("    // h = (L + V) / max(|L + V|, ε), as on every target\n"
+                          "    vector H = (L + V) * inversesqrt(max(dot(L + V, L + V), {}));\n",
+                          pr.literal(kEpsilon * kEpsilon));
   for (const auto& in : p.inputs) {
     auto vec = [](char c) -> std::string { return c == 'N' ? "Nn" : std::string(1, c); };
     inputs += fmt::format("    float {} = dot({}, {});\n", in, vec(in[0]), vec(in[2]));

@@ -620,16 +620,31 @@ class PovScene {
             {"LoT", "Lx*Tx + Ly*Ty + Lz*Tz"}, {"VoT", "Vx*Tx + Vy*Ty + Vz*Tz"},
             // b = n × t
             {"LoB", "Lx*(Ny*Tz - Nz*Ty) + Ly*(Nz*Tx - Nx*Tz) + Lz*(Nx*Ty - Ny*Tx)"},
-            {"VoB", "Vx*(Ny*Tz - Nz*Ty) + Vy*(Nz*Tx - Nx*Tz) + Vz*(Nx*Ty - Ny*Tx)"}};
+            {"VoB", "Vx*(Ny*Tz - Nz*Ty) + Vy*(Nz*Tx - Nx*Tz) + Vz*(Nx*Ty - Ny*Tx)"},
+            // h = (l + v) / Hl, Hl = max(|l + v|, ε) (catalog.h, Input)
+            {"NoH", "(Nx*(Lx+Vx) + Ny*(Ly+Vy) + Nz*(Lz+Vz))/Hl"},
+            {"VoH", "(Vx*(Lx+Vx) + Vy*(Ly+Vy) + Vz*(Lz+Vz))/Hl"},
+            {"HoT", "((Lx+Vx)*Tx + (Ly+Vy)*Ty + (Lz+Vz)*Tz)/Hl"},
+            {"HoB", "((Lx+Vx)*(Ny*Tz - Nz*Ty) + (Ly+Vy)*(Nz*Tx - Nx*Tz) + (Lz+Vz)*(Nx*Ty - Ny*Tx))/Hl"}};
         std::string args;
         for (const auto& in : p.inputs) args += (args.empty() ? "" : ", ") + dots[in];
+        // The function that calls the reflectance; with half-vector inputs it takes
+        // Hl from one more level, as POV-Ray functions have no local variables.
+        auto reflect_level = [&](const std::string& fname, const std::string& sig) {
+          if (!p.uses_half_vector()) return fmt::format("#declare {} = function({}) {{ {}({}) }}\n", fname, sig, refl, args);
+          return fmt::format(
+              "#declare {0}__h = function({1}, Hl) {{ {2}({3}) }}\n"
+              "#declare {0} = function({1}) {{ {0}__h({1}, max(sqrt((Lx+Vx)*(Lx+Vx) + (Ly+Vy)*(Ly+Vy) + "
+              "(Lz+Vz)*(Lz+Vz)), {4})) }}\n",
+              fname, sig, refl, args, num(kEpsilon));
+        };
         if (!p.uses_tangent()) {
-          out += fmt::format("#declare {} = function({}) {{ {}({}) }}\n", name, nlv, refl, args);
+          out += reflect_level(name, nlv);
           continue;
         }
         Vec3 a = normalize(Vec3(sh->material->tangent_axis));
         // t = normalize(axis × n), or x̂ × n = (0, −nz, ny) where |axis × n| < ε.
-        out += fmt::format("#declare {}__3 = function({}, Tx, Ty, Tz) {{ {}({}) }}\n", name, nlv, refl, args);
+        out += reflect_level(name + "__3", std::string(nlv) + ", Tx, Ty, Tz");
         out += fmt::format("#declare {0}__2 = function({1}, Cx, Cy, Cz, Len) {{ {0}__3({1}, Cx/Len, Cy/Len, Cz/Len) }}\n",
                            name, nlv);
         out += fmt::format(
