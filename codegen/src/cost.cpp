@@ -330,8 +330,9 @@ OslFigures cycles_costs(const std::vector<Material>& ms, const CostOptions& o, c
     result = json::parse(read_file(job_file.string() + ".result.json"));
   } catch (const std::exception&) {
     for (auto& c : out.rows)
-      c.error = fmt::format("Blender ({} {}) exited with {} and wrote no result:\n{}", python, script.string(),
-                            r.exit_code, r.output);
+      c.error = r.exit_code < 0 ? fmt::format("cannot run {}: {}", python, r.output)
+                                : fmt::format("Blender ({} {}) exited with {} and wrote no result:\n{}", python,
+                                              script.string(), r.exit_code, r.output);
     return out;
   }
   out.blender = result.value("blender", "");
