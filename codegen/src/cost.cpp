@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <regex>
 #include <sstream>
 #include <thread>
@@ -32,8 +33,10 @@ using nlohmann::json;
 
 // ---------------------------------------------------------------- the GLSL cost frame
 
+std::string cost_raycast_source() { return render_template("glsl/cost_raycast.glsl", {}); }
+
 std::string cost_frame_source(const std::string& library) {
-  return "#version 330 core\n" + library + render_template("glsl/cost.glsl", {});
+  return "#version 330 core\n" + library + cost_raycast_source() + render_template("glsl/cost.glsl", {});
 }
 
 std::string cost_fragment_source(const Material& m) {
@@ -327,8 +330,9 @@ OslFigures cycles_costs(const std::vector<Material>& ms, const CostOptions& o, c
     result = json::parse(read_file(job_file.string() + ".result.json"));
   } catch (const std::exception&) {
     for (auto& c : out.rows)
-      c.error = fmt::format("Blender ({} {}) exited with {} and wrote no result:\n{}", python, script.string(),
-                            r.exit_code, r.output);
+      c.error = r.exit_code < 0 ? fmt::format("cannot run {}: {}", python, r.output)
+                                : fmt::format("Blender ({} {}) exited with {} and wrote no result:\n{}", python,
+                                              script.string(), r.exit_code, r.output);
     return out;
   }
   out.blender = result.value("blender", "");
@@ -502,15 +506,16 @@ namespace {
 
 json or_null(double x) { return x > 0 ? json(x) : json(nullptr); }
 
-// (x − frame) / (Lambert − frame): the shading alone, without what the frame costs.
-double net_ratio(double x, double lambert, double frame) {
-  return x > 0 && lambert > frame && frame > 0 ? (x - frame) / (lambert - frame) : 0;
+// x − frame: the shading alone, without what the frame (or Cycles' own path)
+// costs; absent when either was not measured. Timings may come out a little below
+// the frame's by noise, so the difference keeps its sign.
+std::optional<double> shading(double x, double frame) {
+  if (x > 0 && frame > 0) return x - frame;
+  return std::nullopt;
 }
-
-const CostRow* baseline_row(const std::vector<CostRow>& rows) {
-  for (const auto& r : rows)
-    if (r.name == "lambert" && r.diffuse == "lambert" && r.specular.empty()) return &r;
-  return nullptr;
+json or_null(const std::optional<double>& x) { return x ? json(*x) : json(nullptr); }
+std::string signed_number(const std::optional<double>& x, int decimals) {
+  return x ? fmt::format("{:.{}f}", *x, decimals) : "–";
 }
 
 std::string lobes(const CostRow& r) {
@@ -530,8 +535,6 @@ std::string pov_kind(const PovCost& p) {
 }  // namespace
 
 json costs_json(const std::vector<CostRow>& rows, const CostBaselines& b) {
-  const CostRow* base = baseline_row(rows);
-  const double cg = base ? base->glsl.callgrind_per_pixel : 0, cy = base ? base->osl.ns_per_pixel : 0;
   json out = {{"baseline", "lambert"}, {"rows", json::array()}};
   for (const auto& r : rows) {
     json row = {{"name", r.name},
@@ -543,13 +546,13 @@ json costs_json(const std::vector<CostRow>& rows, const CostBaselines& b) {
       row["glsl"] = {{"spirv", r.glsl.spirv},
                      {"callgrind_per_pixel", or_null(r.glsl.callgrind_per_pixel)},
                      {"callgrind_relative", or_null(r.glsl.callgrind_relative)},
-                     {"callgrind_net_relative", or_null(net_ratio(r.glsl.callgrind_per_pixel, cg, b.callgrind_empty_per_pixel))}};
+                     {"callgrind_shading_per_pixel", or_null(shading(r.glsl.callgrind_per_pixel, b.callgrind_empty_per_pixel))}};
     if (!r.osl.error.empty()) row["osl"] = {{"error", r.osl.error}};
     else
       row["osl"] = {{"instructions", r.osl.instructions},
                     {"ns_per_pixel", or_null(r.osl.ns_per_pixel)},
                     {"relative", or_null(r.osl.relative)},
-                    {"net_relative", or_null(net_ratio(r.osl.ns_per_pixel, cy, b.cycles_emission_ns_per_pixel))}};
+                    {"shading_ns_per_pixel", or_null(shading(r.osl.ns_per_pixel, b.cycles_emission_ns_per_pixel))}};
     if (!r.pov.error.empty()) row["pov"] = {{"error", r.pov.error}};
     else
       row["pov"] = {{"native", r.pov.native},
@@ -603,15 +606,13 @@ std::string machine() {
   return fmt::format("{}, {} logical cores", model, cores);
 }
 
-const char* kMarkdownHeader = "| material | lobe | SPIR-V | llvmpipe instr/px | × Lambert | net × Lambert | OSL ops | "
-                              "Cycles ns/px | × Lambert | net × Lambert | POV-Ray | POV-Ray ns/px | × Lambert |";
+const char* kMarkdownHeader = "| material | lobe | SPIR-V | llvmpipe instr/px | × Lambert | shading instr/px | OSL ops | "
+                              "Cycles ns/px | × Lambert | shading ns/px | POV-Ray | POV-Ray ns/px | × Lambert |";
 
 }  // namespace
 
 std::string costs_markdown(const std::vector<CostRow>& rows, const CostBaselines& b, const CostOptions& o,
                            double wall_seconds) {
-  const CostRow* base = baseline_row(rows);
-  const double cg = base ? base->glsl.callgrind_per_pixel : 0, cy = base ? base->osl.ns_per_pixel : 0;
   std::string s = "# What the generated code costs\n\n";
   s += "The survey's Appendix B (\"the relative costs of the different lighting models\"), measured: every lobe "
        "model of the catalog, alone at its defaults (`facet::model_materials()`), on each target. Generated by "
@@ -641,8 +642,7 @@ std::string costs_markdown(const std::vector<CostRow>& rows, const CostBaselines
       "draw finds the state its own program left, and then measured, collection on only around `glDrawArrays` + "
       "`glFinish`; all shaders in {1} valgrind processes. Repeated runs give the same counts to the instruction; "
       "drawing a shader in another process's company moves its count by a few tens of instructions (1e-3 per "
-      "pixel). The frame alone is {2} instr/px; *net × Lambert* is (x − frame) / (Lambert − frame), the shading "
-      "alone.\n",
+      "pixel). The frame alone (as for SPIR-V) is {2} instr/px; *shading instr/px* is the count less the frame's.\n",
       o.callgrind_size, o.jobs, number(b.callgrind_empty_per_pixel, 1));
   s += fmt::format(
       "- *OSL ops*: the ops of the shader Blender's OSL compiler makes from the generated `.osl` (scene `single`, "
@@ -650,14 +650,14 @@ std::string costs_markdown(const std::vector<CostRow>& rows, const CostBaselines
       "function and marks each inlined body with one). The shader includes its frame (normal, view, tangent, the "
       "light's vector and the `trace()` shadow test).\n");
   s += fmt::format(
-      "- *Cycles ns/px*: Cycles (CPU, OSL, one thread, no bounces) rendering the scene `single` at {0}×{0}; the "
+      "- *Cycles ns/px*: Cycles (CPU, OSL, no bounces) rendering the scene `single` at {0}×{0}; the "
       "time of {1} extra samples, (t(1 + {1} samples) − t(1 sample)) / ({1} · {0}²), so session start, scene sync, "
       "the OSL shader's JIT and read-back cancel; background pixels included; the least of {2} "
       "interleaved rounds, timed as the Blender process's CPU time with Cycles set to two threads (with one, "
       "Blender's caller thread busy-waits beside the render and doubles the CPU time; with two, about one core "
       "works at this size and the CPU time is the render's), nothing else of this command running. A "
-      "constant-emission shader on the same sphere takes {3} ns/px: what Cycles spends whatever the shader; *net × "
-      "Lambert* subtracts it. Cycles spends most of a sample outside the shader, so the materials differ by tens of "
+      "constant-emission shader on the same sphere takes {3} ns/px: what Cycles spends whatever the shader; *shading "
+      "ns/px* subtracts it. Cycles spends most of a sample outside the shader, so the materials differ by tens of "
       "%, and on this shared machine two runs of this command differ by a few % per material (now and then 10 %): "
       "read only the larger differences.\n",
       o.cycles_size, o.cycles_samples, o.cycles_repeats, ns(b.cycles_emission_ns_per_pixel));
@@ -672,11 +672,11 @@ std::string costs_markdown(const std::vector<CostRow>& rows, const CostBaselines
     std::string glsl = r.glsl.error.empty()
                            ? fmt::format("{} | {} | {} | {}", r.glsl.spirv, number(r.glsl.callgrind_per_pixel, 1),
                                          times(r.glsl.callgrind_relative),
-                                         times(net_ratio(r.glsl.callgrind_per_pixel, cg, b.callgrind_empty_per_pixel)))
+                                         signed_number(shading(r.glsl.callgrind_per_pixel, b.callgrind_empty_per_pixel), 1))
                            : "error | | |";
     std::string osl = r.osl.error.empty()
                           ? fmt::format("{} | {} | {} | {}", r.osl.instructions, ns(r.osl.ns_per_pixel), times(r.osl.relative),
-                                        times(net_ratio(r.osl.ns_per_pixel, cy, b.cycles_emission_ns_per_pixel)))
+                                        signed_number(shading(r.osl.ns_per_pixel, b.cycles_emission_ns_per_pixel), 0))
                           : "error | | |";
     s += fmt::format("| `{}` | {} | {} | {} | {} | {} | {} |\n", r.name, lobes(r), glsl, osl, pov_kind(r.pov),
                      ns(r.pov.ns_per_pixel), times(r.pov.relative));

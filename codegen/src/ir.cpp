@@ -219,13 +219,18 @@ Expr call(const FunctionPtr& f, const std::vector<Expr>& args) {
 }
 
 namespace {
-void visit_nodes(const FunctionPtr& f, const std::function<void(const NodePtr&)>& fn) {
-  std::function<void(const NodePtr&)> walk = [&](const NodePtr& n) {
-    fn(n);
-    for (const auto& a : n->args) walk(a);
-  };
-  for (const auto& l : f->lets) walk(l.value.node());
-  walk(f->result.node());
+// Plain recursion rather than a std::function per node: generate() walks every
+// function's tree several times.
+template <typename Visit>
+void walk_nodes(const NodePtr& n, Visit& fn) {
+  fn(n);
+  for (const auto& a : n->args) walk_nodes(a, fn);
+}
+
+template <typename Visit>
+void visit_nodes(const FunctionPtr& f, Visit fn) {
+  for (const auto& l : f->lets) walk_nodes(l.value.node(), fn);
+  walk_nodes(f->result.node(), fn);
 }
 }  // namespace
 

@@ -9,7 +9,10 @@ std::string render_template(const std::string& path, const std::map<std::string,
   auto it = embedded_templates().find(path);
   if (it == embedded_templates().end()) throw std::logic_error("facet: no template " + path);
   const std::string& t = it->second;
+  size_t size = t.size();
+  for (const auto& [k, v] : values) size += v.size();
   std::string out;
+  out.reserve(size);  // generate() fills a few templates with a few kB each
   std::set<std::string> used;
   size_t pos = 0;
   while (true) {
@@ -20,14 +23,15 @@ std::string render_template(const std::string& path, const std::map<std::string,
     std::string key = t.substr(open + 2, close - open - 2);
     auto v = values.find(key);
     if (v == values.end()) throw std::logic_error("facet: template " + path + " needs a value for " + key);
-    out += t.substr(pos, open - pos);
+    out.append(t, pos, open - pos);
     out += v->second;
-    used.insert(key);
+    used.insert(std::move(key));
     pos = close + 2;
   }
-  out += t.substr(pos);
-  for (const auto& [k, v] : values)
-    if (!used.count(k)) throw std::logic_error("facet: template " + path + " has no placeholder " + k);
+  out.append(t, pos, std::string::npos);
+  if (used.size() != values.size())
+    for (const auto& [k, v] : values)
+      if (!used.count(k)) throw std::logic_error("facet: template " + path + " has no placeholder " + k);
   return out;
 }
 

@@ -1,39 +1,12 @@
-
-// ---- facet's cost frame (facet/cost.h): the built-in scene "single" drawn over the
-// full-screen triangle, one ray per pixel centre (gl_FragCoord) against its sphere,
-// shaded by its one point light: no attenuation, no shadow test, no light loop.
-// llvmpipe executes every unrolled iteration and both sides of every branch, so a
-// loop over FACET_MAX_LIGHTS would charge every material for eight lights; this
-// frame is the same for every material, and what differs is facet_reflect().
-uniform vec2 facet_resolution;
-uniform vec3 facet_camera_position;
-uniform vec3 facet_camera_forward;
-uniform vec3 facet_camera_right;
-uniform vec3 facet_camera_up;
-uniform vec2 facet_camera_tan;      // tan(fov/2) · (aspect, 1)
-uniform vec4 facet_sphere;          // centre, radius
-uniform vec3 facet_light_position;
-uniform vec3 facet_light_color;
-uniform vec3 facet_ambient;
 out vec4 facet_color;
 
 void main()
 {
-    vec2 ndc = 2.0 * gl_FragCoord.xy / facet_resolution - 1.0;
-    vec3 dir = normalize(facet_camera_forward + facet_camera_right * (ndc.x * facet_camera_tan.x)
-                         + facet_camera_up * (ndc.y * facet_camera_tan.y));
-    vec3 oc = facet_camera_position - facet_sphere.xyz;
-    float b = dot(oc, dir);
-    float c = dot(oc, oc) - facet_sphere.w * facet_sphere.w;
-    float disc = b * b - c;
-    if (disc < 0.0 || b > 0.0) {
+    vec3 dir, p, n;
+    if (!facet_camera_hit(dir, p, n)) {
         facet_color = vec4(0.0);
         return;
     }
-    // The camera is outside the sphere, looking at it (b < 0): the near root
-    // c / (√disc − b) has no cancellation.
-    vec3 p = facet_camera_position + dir * (c / (sqrt(disc) - b));
-    vec3 n = normalize(p - facet_sphere.xyz);
     vec3 l = normalize(facet_light_position - p);
     vec3 radiance = material_ambient * facet_ambient + material_emission
                   + facet_light_color * facet_reflect(n, l, -dir, facet_tangent(n));

@@ -110,9 +110,12 @@ std::vector<std::string> stale_costs(const std::string& markdown, const std::vec
 
 // ---- The pieces, for the benchmarks in tests/bench.
 
-// The cost frame (templates/glsl/cost.glsl) under `library`: GLSL that defines
-// material_ambient, material_emission, facet_tangent(n) and facet_reflect(n, l, v, t).
+// The cost frame (templates/glsl/cost_raycast.glsl and cost.glsl) under `library`:
+// GLSL that defines material_ambient, material_emission, facet_tangent(n) and
+// facet_reflect(n, l, v, t).
 std::string cost_frame_source(const std::string& library);
+// Its uniforms and facet_camera_hit(dir, p, n), for a main of another generator's.
+std::string cost_raycast_source();
 // facet's generated library under the cost frame.
 std::string cost_fragment_source(const Material& m);
 // The frame's uniforms: the built-in scene "single" at width × height.

@@ -26,7 +26,14 @@ using ir::Type;
 namespace {
 const double kPi = 3.14159265358979323846;
 const double kTiny = 1e-30;  // see "Guards" above
+
+// A term whose input may be grey or coloured: built once per type by `Form`.
+template <FunctionPtr (*Form)(Type)>
+FunctionPtr typed(Type type) {
+  static const FunctionPtr f[2] = {Form(Type::Float), Form(Type::Color)};
+  return f[type == Type::Color];
 }
+}  // namespace
 
 // ---------------------------------------------------------------- diffuse
 
@@ -235,10 +242,7 @@ FunctionPtr visibility_smith_ggx() {
   return f;
 }
 
-FunctionPtr fresnel_schlick(Type f0) {
-  static const FunctionPtr f[2] = {fresnel_schlick_form(Type::Float), fresnel_schlick_form(Type::Color)};
-  return f[f0 == Type::Color];
-}
+FunctionPtr fresnel_schlick(Type f0) { return typed<fresnel_schlick_form>(f0); }
 
 FunctionPtr fresnel_exact() {
   static const FunctionPtr f = [] {
@@ -299,20 +303,11 @@ FunctionPtr microfacet_visibility_form(Type type) {
 }
 }  // namespace
 
-FunctionPtr microfacet_visibility(Type F) {
-  static const FunctionPtr f[2] = {microfacet_visibility_form(Type::Float), microfacet_visibility_form(Type::Color)};
-  return f[F == Type::Color];
-}
+FunctionPtr microfacet_visibility(Type F) { return typed<microfacet_visibility_form>(F); }
 
-FunctionPtr microfacet(Type F) {
-  static const FunctionPtr f[2] = {microfacet_form(Type::Float), microfacet_form(Type::Color)};
-  return f[F == Type::Color];
-}
+FunctionPtr microfacet(Type F) { return typed<microfacet_form>(F); }
 
-FunctionPtr blinn(Type F) {
-  static const FunctionPtr f[2] = {blinn_form(Type::Float), blinn_form(Type::Color)};
-  return f[F == Type::Color];
-}
+FunctionPtr blinn(Type F) { return typed<blinn_form>(F); }
 
 // ---------------------------------------------------------------- Ward
 
@@ -366,15 +361,9 @@ FunctionPtr toon_hard_form(Type type) {
 }
 }  // namespace
 
-FunctionPtr toon(Type type) {
-  static const FunctionPtr f[2] = {toon_form(Type::Float), toon_form(Type::Color)};
-  return f[type == Type::Color];
-}
+FunctionPtr toon(Type type) { return typed<toon_form>(type); }
 
-FunctionPtr toon_hard(Type type) {
-  static const FunctionPtr f[2] = {toon_hard_form(Type::Float), toon_hard_form(Type::Color)};
-  return f[type == Type::Color];
-}
+FunctionPtr toon_hard(Type type) { return typed<toon_hard_form>(type); }
 
 FunctionPtr attenuation_inverse_square() {
   static const FunctionPtr f = [] {

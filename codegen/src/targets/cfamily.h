@@ -29,15 +29,19 @@ class CPrinter {
   std::string literal(double v) const;
   std::string color_literal(const std::array<double, 3>& rgb) const;
   std::string expr(const ir::NodePtr& n) const;
+  // The same, appended to `out`.
+  void literal_to(std::string& out, double v) const;
+  void color_literal_to(std::string& out, const std::array<double, 3>& rgb) const;
+  void expr_to(std::string& out, const ir::NodePtr& n, int context) const;
   // The whole definition: signature, citation on the first line, lets, return.
   std::string function(const ir::FunctionPtr& f) const;
   // The material constants `f` reads, itself or through callees (first-use order).
-  std::vector<ir::NodePtr> free_constants(const ir::FunctionPtr& f) const;
+  const std::vector<ir::NodePtr>& free_constants(const ir::FunctionPtr& f) const;
 
  private:
-  std::string expr(const ir::NodePtr& n, int context) const;
   std::string as(const ir::NodePtr& n, ir::Type wanted) const;  // promotes float → color where asked
-  std::string call_args(const ir::NodePtr& n) const;
+  void as_to(std::string& out, const ir::NodePtr& n, ir::Type wanted) const;
+  void call_args_to(std::string& out, const ir::NodePtr& n) const;
   CDialect d_;
   mutable std::map<const ir::Function*, std::vector<ir::NodePtr>> free_cache_;
 };

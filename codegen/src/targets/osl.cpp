@@ -91,12 +91,14 @@ std::string generate_osl(const Material& m, const GenerateOptions& o) {
                                                             {"arguments", arguments}});
   if (o.library) return header + "\n" + library;
 
-  Scene scene = o.scene ? *o.scene : default_scene();
+  const Scene scene = o.scene ? *o.scene : default_scene();
   // Shader parameters: the material constants, then the scene's ambient and lights.
   std::string params;
   auto param = [&](const std::string& type, const std::string& name, const std::string& value,
-                   const std::string& comment = "") {
-    params += fmt::format("    {} {} = {},{}\n", type, name, value, comment.empty() ? "" : "  // " + comment);
+                   const char* comment = "") {
+    params.append("    ").append(type).append(" ").append(name).append(" = ").append(value).append(",");
+    if (*comment) params.append("  // ").append(comment);
+    params += '\n';
   };
   auto color_value = [&](const RGB& c) { return pr.color_literal(c); };
   for (const auto& c : pr.free_constants(p.reflectance))

@@ -1,5 +1,6 @@
 #include "facet/targets.h"
 
+#include <fmt/compile.h>
 #include <fmt/format.h>
 
 #include "targets_internal.h"
@@ -28,38 +29,49 @@ const std::vector<Target>& all_targets() {
   return all;
 }
 
+namespace {
+void number_to(std::string& out, double v) { fmt::format_to(std::back_inserter(out), FMT_COMPILE("{}"), v); }
+}  // namespace
+
 std::string describe_lobe(const ModelSpec& s) {
   std::string params;
   for (const auto& p : s.def->params) {
     auto it = s.values.find(p.name);
     if (it == s.values.end()) continue;  // an absent optional object (toon)
     const Value& v = it->second;
-    std::string text;
+    if (p.kind == ParamKind::Object && !v.model) continue;
+    const size_t before = params.size();
+    params.append(params.empty() ? "" : ", ").append(p.name).append(" ");
     switch (p.kind) {
-      case ParamKind::Number: text = fmt::format("{}", v.number); break;
-      case ParamKind::Bool: text = v.flag ? "true" : "false"; break;
-      case ParamKind::Enum: text = v.choice; break;
+      case ParamKind::Number: number_to(params, v.number); break;
+      case ParamKind::Bool: params += v.flag ? "true" : "false"; break;
+      case ParamKind::Enum: params += v.choice; break;
       case ParamKind::Color:
-        text = v.rgb[0] == v.rgb[1] && v.rgb[1] == v.rgb[2] ? fmt::format("{}", v.rgb[0])
-                                                              : fmt::format("[{}, {}, {}]", v.rgb[0], v.rgb[1], v.rgb[2]);
+        if (v.rgb[0] == v.rgb[1] && v.rgb[1] == v.rgb[2]) {
+          number_to(params, v.rgb[0]);
+        } else {
+          params += '[';
+          for (int c = 0; c < 3; ++c) {
+            if (c) params += ", ";
+            number_to(params, v.rgb[size_t(c)]);
+          }
+          params += ']';
+        }
         break;
-      case ParamKind::Model: text = describe_lobe(*v.model); break;
-      case ParamKind::Object:
-        if (!v.model) continue;
-        text = "{" + describe_lobe(*v.model) + "}";
-        break;
-      default: continue;
+      case ParamKind::Model: params += describe_lobe(*v.model); break;
+      case ParamKind::Object: params.append("{").append(describe_lobe(*v.model)).append("}"); break;
+      default: params.resize(before);  // not described
     }
-    params += fmt::format("{}{} {}", params.empty() ? "" : ", ", p.name, text);
   }
   return params.empty() ? s.def->name : s.def->name + " (" + params + ")";
 }
 
 std::string describe_material(const Material& m, const std::string& marker) {
   std::string s;
-  if (m.diffuse) s += fmt::format("{} Diffuse:  {} — {}\n", marker, describe_lobe(*m.diffuse), m.diffuse->def->citation);
+  if (m.diffuse)
+    s.append(marker).append(" Diffuse:  ").append(describe_lobe(*m.diffuse)).append(" — ").append(m.diffuse->def->citation).append("\n");
   if (m.specular)
-    s += fmt::format("{} Specular: {} — {}\n", marker, describe_lobe(*m.specular), m.specular->def->citation);
+    s.append(marker).append(" Specular: ").append(describe_lobe(*m.specular)).append(" — ").append(m.specular->def->citation).append("\n");
   return s;
 }
 
