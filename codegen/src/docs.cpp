@@ -78,6 +78,14 @@ std::string figure_text(const json& j, FigureKind kind) {
   return fmt::format("{:.3g}", v);
 }
 
+// A value the format does not name, as the pages print it: numbers to 4 digits.
+std::string shown(const json& v) {
+  if (v.is_string()) return v.get<std::string>();
+  if (v.is_null()) return "–";
+  if (v.is_number_float()) return fmt::format("{:.4g}", v.get<double>());
+  return v.dump();
+}
+
 // One target's object: {"error": why} or its figures.
 CostCell parse_cell(const json& j, const std::string& target, const std::string& path, DiagnosticSink& sink) {
   CostCell cell;
@@ -103,11 +111,11 @@ CostCell parse_cell(const json& j, const std::string& target, const std::string&
     if (d.kind == FigureKind::Flag) {
       ok = v.is_boolean();
       if (!ok) sink.error(p, fmt::format("expected a boolean, found {}", json_type_name(v)));
-    } else if (!(d.kind == FigureKind::CountOrNull && v.is_null())) {
+    } else if (!(d.kind != FigureKind::Count && v.is_null())) {  // null: not measured (e.g. facet cost --no-timings)
       bool count = d.kind == FigureKind::Count || d.kind == FigureKind::CountOrNull;
       const char* allowed = d.kind == FigureKind::CountOrNull ? "null or a whole number ≥ 0"
                             : count                             ? "a whole number ≥ 0"
-                                                                : "a number ≥ 0";
+                                                                : "a number ≥ 0, or null (not measured)";
       auto x = check.number(v, p, allowed);
       ok = x && *x >= 0 && (!count || v.is_number_integer());
       if (x && !ok) sink.error(p, fmt::format("{} is not allowed; allowed: {}", v.dump(), allowed));
@@ -119,7 +127,7 @@ CostCell parse_cell(const json& j, const std::string& target, const std::string&
     const auto& defs = figure_defs().at(target);
     if (std::any_of(defs.begin(), defs.end(), [&](const FigureDef& d) { return key == d.key; })) continue;
     if (v.is_number() || v.is_boolean() || v.is_string() || v.is_null())
-      cell.figures.push_back({key, key, v.is_string() ? v.get<std::string>() : v.dump()});
+      cell.figures.push_back({key, key, shown(v)});
     else sink.error(join_path(path, key), fmt::format("expected a number, boolean, string or null, found {}", json_type_name(v)));
   }
   return cell;
@@ -178,10 +186,19 @@ CostTable parse_cost_rows(const json& doc, const std::string& file) {
     sink.error("", fmt::format("expected an object {{\"baseline\", \"rows\"}} (facet cost --json), found {}", json_type_name(doc)));
     sink.throw_if_any();
   }
-  static const std::vector<std::string> keys = {"baseline", "rows"};
+  static const std::vector<std::string> keys = {"baseline", "rows", "frame", "tools"};
   for (const auto& [key, v] : doc.items())
     if (std::find(keys.begin(), keys.end(), key) == keys.end())
       sink.error(key, "unknown key; allowed keys: " + quoted_list(keys));
+  // The frame's cost and the tools' versions: shown as they are.
+  for (auto [key, list] : {std::pair{"frame", &table.frame}, std::pair{"tools", &table.tools}}) {
+    if (!doc.contains(key)) continue;
+    if (!doc[key].is_object()) {
+      sink.error(key, fmt::format("expected an object, found {}", json_type_name(doc[key])));
+      continue;
+    }
+    for (const auto& [k, v] : doc[key].items()) list->push_back({k, shown(v)});
+  }
   table.baseline = string_or_null(doc, "baseline", "", sink, false);
   if (!doc.contains("rows")) {
     sink.error("rows", "missing; allowed: an array of rows");
@@ -496,7 +513,15 @@ std::string cost_page(const DocsOptions& o) {
     for (const auto& t : kTargets) b += "<td>" + cell_html(r.cell(t)) + "</td>";
     b += "</tr>\n";
   }
-  return page("facet — cost", b + "</table>\n", false);
+  b += "</table>\n";
+  for (const auto& [title, list] : {std::pair{"The frame alone (what every row includes)", &o.cost->frame},
+                                    std::pair{"Measured with", &o.cost->tools}}) {
+    if (list->empty()) continue;
+    b += "<h2>" + std::string(title) + "</h2>\n<table>\n";
+    for (const auto& [k, v] : *list) b += fmt::format("<tr><td><code>{}</code></td><td>{}</td></tr>\n", html_escape(k), html_escape(v));
+    b += "</table>\n";
+  }
+  return page("facet — cost", b, false);
 }
 
 // The lobe models asked for, checked before anything is drawn.

@@ -4,6 +4,7 @@
 //
 // tests/fixtures/cost_rows*.fixture.json are hand-written fixtures in the
 // format `facet cost --json` prints, not measurements.
+#include <algorithm>
 #include <filesystem>
 #include <regex>
 #include <set>
@@ -12,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "facet/diagnostics.h"
+#include "facet/cost.h"
 #include "facet/docs.h"
 #include "facet/io.h"
 #include "test_support.h"
@@ -83,6 +85,37 @@ TEST(CostRows, TheAgreedFormatReadsBack) {
   ASSERT_TRUE(phong->glsl.find("fixture_extra")) << "a figure the format does not name is kept";
   EXPECT_EQ(phong->glsl.find("fixture_extra")->text, "7");
   EXPECT_EQ(t.find("ggx"), nullptr);
+}
+
+// What `facet cost --json` prints (costs_json) is what the docs read, whole:
+// the rows, the frame and the tools.
+TEST(CostRows, WhatFacetCostPrintsReadsBack) {
+  CostRow lambert;
+  lambert.name = lambert.material = lambert.diffuse = "lambert";
+  lambert.glsl.spirv = 65;
+  lambert.glsl.callgrind_per_pixel = 122.25;
+  lambert.glsl.callgrind_relative = 1;
+  lambert.osl.instructions = 47;
+  lambert.pov.native = true;
+  CostRow ggx;
+  ggx.name = ggx.material = ggx.specular = "ggx";
+  ggx.glsl.spirv = 99;
+  ggx.osl.error = "Blender did not start";
+  ggx.pov.functions = 25;
+  CostBaselines b;
+  b.spirv_empty = 61;
+  b.valgrind = "valgrind-3.19.0";
+  CostTable t = parse_cost_rows(costs_json({lambert, ggx}, b), "facet cost");
+  EXPECT_EQ(t.baseline, "lambert");
+  ASSERT_EQ(t.rows.size(), 2u);
+  EXPECT_EQ(t.find("lambert")->glsl.find("spirv")->text, "65");
+  EXPECT_EQ(t.find("ggx")->osl.error, "Blender did not start");
+  EXPECT_EQ(t.find("ggx")->pov.find("functions")->text, "25");
+  auto has = [](const std::vector<std::pair<std::string, std::string>>& list, const std::string& k, const std::string& v) {
+    return std::find(list.begin(), list.end(), std::pair{k, v}) != list.end();
+  };
+  EXPECT_TRUE(has(t.frame, "glsl_spirv", "61"));
+  EXPECT_TRUE(has(t.tools, "valgrind", "valgrind-3.19.0"));
 }
 
 // Each problem names the file and its key path.
@@ -217,6 +250,21 @@ TEST(DocsCli, PagesHoldEveryImageAndTheMeasurements) {
   std::string terms = read_file((dir / "terms.html").string());
   for (const char* term : {"schlick", "v_cavity", "toon", "spot", "inverse_square"})
     EXPECT_NE(terms.find(std::string("<code>") + term + "</code>"), std::string::npos) << term;
+}
+
+// Without --cost, the pages carry the cost measured for them (facet cost's
+// measure_costs(), read back through its JSON): the path a user takes.
+TEST(DocsCli, WithoutCostTheCostIsMeasured) {
+  fs::path dir = scratch("measured");
+  fs::remove_all(dir);
+  ProcessResult r = facet({"docs", "-o", dir.string(), "--models", "lambert", "--size", "16", "--renderers", "reference"});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::string page = read_file((dir / "models/lambert.html").string());
+  EXPECT_EQ(page.find("Not measured"), std::string::npos) << page;
+  EXPECT_NE(page.find("SPIR-V instructions: <b>"), std::string::npos) << page;
+  std::string cost = read_file((dir / "cost.html").string());
+  EXPECT_NE(cost.find("facet cost (measured for these pages)"), std::string::npos);
+  EXPECT_NE(cost.find("valgrind"), std::string::npos) << "the tools that measured";
 }
 
 TEST(DocsCli, AFailedRendererIsShownWithItsReason) {

@@ -23,7 +23,8 @@ namespace facet {
 
 // ---------------------------------------------------------------- cost rows
 
-// `facet cost --json`: {"baseline": NAME, "rows": [ROW, …]}, a ROW being
+// `facet cost --json`: {"baseline": NAME, "rows": [ROW, …], "frame": {…}, "tools": {…}}
+// ("frame" and "tools" optional), a ROW being
 // {"name", "material", "diffuse", "specular", "glsl": {…}, "osl": {…}, "pov": {…}}
 // and each target's object its figures or {"error": "why"}.
 struct CostFigure {
@@ -48,6 +49,9 @@ struct CostTable {
   std::string source;  // the file, for the pages
   std::string baseline;
   std::vector<CostPageRow> rows;
+  // "frame" (what the measuring frame alone costs) and "tools" (their versions),
+  // each key and value as printed; shown on the cost page.
+  std::vector<std::pair<std::string, std::string>> frame, tools;
   const CostPageRow* find(const std::string& name) const;
 };
 
