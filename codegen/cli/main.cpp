@@ -484,22 +484,7 @@ int run_docs(DocsArgs& a) {
   if (!a.cost.empty()) a.options.cost = load_cost_rows(a.cost);
   a.options.models = split_commas(a.models);
   a.options.renderers = renderer_list("--renderers", a.renderers);
-  if (a.cost.empty() && !a.no_cost) {
-    // The cost rows measured now, through the same JSON `facet cost --json` prints.
-    std::vector<Material> ms;
-    for (const Material& m : model_materials())
-      if (a.options.models.empty() ||
-          std::find(a.options.models.begin(), a.options.models.end(), m.name) != a.options.models.end())
-        ms.push_back(m);
-    if (ms.size() == (a.options.models.empty() ? model_materials().size() : a.options.models.size())) {
-      CostOptions co;
-      co.python = a.options.python;
-      CostBaselines baselines;
-      auto rows = measure_costs(ms, co, [](const std::string& what) { fmt::print(stderr, "  cost: {}\n", what); },
-                                &baselines);
-      a.options.cost = parse_cost_rows(costs_json(rows, baselines), "facet cost (measured for these pages)");
-    }  // else an unknown --models name, which write_docs reports before doing anything
-  }
+  a.options.measure_cost = a.cost.empty() && !a.no_cost;
   a.options.interactive = isatty(2);
   DocsResult r = write_docs(a.options, std::cerr);
   fmt::print("facet docs: {} model pages in {:.1f} s; {} of {} renderer comparisons pass; open {}\n", r.pages,

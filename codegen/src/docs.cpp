@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "checker.h"
+#include "facet/cost.h"
 #include "facet/io.h"
 #include "facet/material.h"
 #include "facet/plot.h"
@@ -577,6 +578,14 @@ DocsResult write_docs(const DocsOptions& options, std::ostream& progress) {
   make_folder(out / "models");
   make_folder(out / "plots");
   progress << fmt::format("facet docs: {} lobe models into {}\n", ms.size(), out.string());
+  if (!o.cost && o.measure_cost) {
+    // The rows read back through the JSON `facet cost --json` prints: one reader.
+    CostOptions co;
+    co.python = o.python;
+    CostBaselines baselines;
+    auto rows = measure_costs(ms, co, [&](const std::string& what) { progress << "  cost: " << what << "\n"; }, &baselines);
+    o.cost = parse_cost_rows(costs_json(rows, baselines), "facet cost (measured for these pages)");
+  }
 
   std::vector<bool> anisotropic;
   for (size_t i = 0; i < ms.size(); ++i) {

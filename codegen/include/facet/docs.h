@@ -66,7 +66,8 @@ CostTable load_cost_rows(const std::string& path);
 struct DocsOptions {
   std::string out = "out/docs";
   std::vector<std::string> models;  // lobe model names; empty: every diffuse and specular model
-  std::optional<CostTable> cost;    // absent: the pages say the cost was not measured
+  std::optional<CostTable> cost;    // the cost rows (facet cost --json); absent: see measure_cost
+  bool measure_cost = false;        // without `cost`: measure it for these models (else the pages say it was not)
   int size = 128;                   // the spheres' side, pixels
   std::vector<std::string> renderers = {"reference", "glsl", "osl", "pov"};
   std::string python;               // bpy's Python; empty: default_python()
@@ -81,7 +82,8 @@ struct DocsResult {
   double seconds = 0;
 };
 
-// Checks the model names first (InputError naming --models), then draws, renders
+// Checks the model names first (InputError naming --models), measures the cost
+// when asked (measure_cost), then draws, renders
 // through facet::validate() on the `single` scene, and writes every page whole.
 // A renderer that fails is shown on its pages with its reason.
 DocsResult write_docs(const DocsOptions& options, std::ostream& progress);
