@@ -388,7 +388,10 @@ int run_cost(CostArgs a) {
   for (const auto& f : a.materials) ms.push_back(load_material(f));
   if (ms.empty()) ms = model_materials();
   a.options.timings = !a.no_timings && a.check.empty();
-  a.options.callgrind = !a.no_callgrind;
+  a.options.callgrind = !a.no_callgrind && callgrind_available();
+  if (!a.no_callgrind && !callgrind_available())
+    fmt::print(stderr, "note: no llvmpipe instruction counts: valgrind cannot run this sanitizer build of facet "
+                       "(the release build counts them)\n");
   auto start = std::chrono::steady_clock::now();
   auto progress = [&](const std::string& what) {
     fmt::print(stderr, "cost [{:5.1f} s]: {}\n", std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),

@@ -492,7 +492,7 @@ std::vector<CostRow> measure_costs(const std::vector<Material>& materials, const
     base.povray = tool_version({"povray", "--version"}, "POV-Ray");
     base.glslang = tool_version({"glslangValidator", "--version"}, "Glslang");
     base.spirv_tools = tool_version({"spirv-opt", "--version"}, "SPIRV-Tools");
-    base.valgrind = tool_version({"valgrind", "--version"}, "valgrind");
+    if (options.callgrind) base.valgrind = tool_version({"valgrind", "--version"}, "valgrind");
     GlRenderer gl;
     base.gl_renderer = gl.ok() ? gl.description() : gl.error();
     *baselines = base;
@@ -685,6 +685,14 @@ std::string costs_markdown(const std::vector<CostRow>& rows, const CostBaselines
                    "`facet cost --json` prints the same figures for tools.\n",
                    wall_seconds);
   return s;
+}
+
+bool callgrind_available() {
+#ifdef FACET_LEAK_CHECKED
+  return false;
+#else
+  return true;
+#endif
 }
 
 std::vector<std::string> stale_costs(const std::string& markdown, const std::vector<CostRow>& rows) {

@@ -75,9 +75,14 @@ struct CostBaselines {
   std::string povray, glslang, spirv_tools, valgrind;
 };
 
+// valgrind cannot run a binary built with AddressSanitizer, so a sanitizer
+// build (FACET_SANITIZE) measures everything but llvmpipe's instruction counts;
+// the release build measures those.
+bool callgrind_available();
+
 struct CostOptions {
   bool timings = true;    // Cycles and POV-Ray render times; off: only the deterministic counts
-  bool callgrind = true;  // llvmpipe instructions per pixel under valgrind
+  bool callgrind = callgrind_available();  // llvmpipe instructions per pixel under valgrind
   int callgrind_size = 256;  // the draw's width and height
   int cycles_size = 128;
   int cycles_samples = 64;   // the extra samples whose time is measured (1 + this against 1)
