@@ -124,7 +124,9 @@ CostCell parse_cell(const json& j, const std::string& target, const std::string&
     if (ok) cell.figures.push_back({d.key, d.label, figure_text(v, d.kind)});
   }
   // Figures a newer cost command adds are shown as they are.
-  for (const auto& [key, v] : j.items()) {
+  for (const auto& item : j.items()) {
+    const std::string& key = item.key();
+    const json& v = item.value();
     const auto& defs = figure_defs().at(target);
     if (std::any_of(defs.begin(), defs.end(), [&](const FigureDef& d) { return key == d.key; })) continue;
     if (v.is_number() || v.is_boolean() || v.is_string() || v.is_null())
