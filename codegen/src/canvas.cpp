@@ -10,6 +10,7 @@
 
 #include "facet/image.h"
 #include "facet/io.h"
+#include "facet/vec.h"
 #include "html.h"
 
 namespace facet {
@@ -109,8 +110,6 @@ std::vector<Glyph> layout(const stbtt_fontinfo& info, const std::vector<Run>& ru
 }
 
 // ---------------------------------------------------------------- geometry
-
-constexpr double kPi = 3.14159265358979323846;
 
 std::vector<Point> circle_points(Point c, double r, double pixels_per_unit) {
   int n = std::clamp(int(std::ceil(2 * kPi * r * pixels_per_unit / 2)), 16, 720);

@@ -16,6 +16,7 @@
 #include <tiny_gltf.h>
 
 #include "facet/io.h"
+#include "facet/vec.h"
 
 namespace facet {
 
@@ -24,7 +25,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const double kPi = 3.14159265358979323846;
 const char* kMaterialExt = "FACET_material";
 const char* kObjectExt = "FACET_object";
 const char* kLightExt = "FACET_light";

@@ -12,12 +12,12 @@
 
 #include "facet/material.h"
 #include "facet/reference.h"
+#include "facet/vec.h"
 
 namespace facet {
 
 namespace {
 
-const double kPi = 3.14159265358979323846;
 // The proposals: a mixture of cosine-distributed directions and half vectors
 // from a GGX distribution, v = reflect(l, h). A pilot run picks the width and
 // the cosine share with the least variance for each estimate; its samples are

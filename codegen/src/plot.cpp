@@ -8,12 +8,12 @@
 
 #include "facet/io.h"
 #include "facet/program.h"
+#include "facet/vec.h"
 
 namespace facet {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 double radians(double degrees) { return degrees * kPi / 180; }
 
 const Vec3 kN{0, 0, 1}, kT{1, 0, 0}, kB{0, 1, 0};  // b = n × t

@@ -14,6 +14,7 @@
 #include "facet/process.h"
 #include "facet/reference.h"
 #include "facet/targets.h"
+#include "facet/vec.h"
 #include "templates.h"
 
 namespace facet {
@@ -24,7 +25,6 @@ using nlohmann::json;
 
 namespace {
 
-const double kPi = 3.14159265358979323846;
 // Cells per tile side along each cosine: the first six are the hard values.
 const int kCells = 32;
 

@@ -26,14 +26,13 @@
 #include "facet/scene.h"
 #include "facet/targets.h"
 #include "facet/validate.h"
+#include "facet/vec.h"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
 using namespace facet;
 
 namespace {
-
-const double kPi = 3.14159265358979323846;
 
 // Seconds of one generate(), timed as materialx_bench.py times MaterialX's: after
 // one untimed call, `repeats` calls in ten batches, the least batch mean.

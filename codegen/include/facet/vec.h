@@ -6,6 +6,8 @@
 
 namespace facet {
 
+inline constexpr double kPi = 3.14159265358979323846;
+
 struct Vec3 {
   double x = 0, y = 0, z = 0;
   constexpr Vec3() = default;

@@ -15,6 +15,7 @@
 #include <cmath>
 
 #include "facet/catalog.h"
+#include "facet/vec.h"
 
 namespace facet::terms {
 
@@ -24,7 +25,6 @@ using ir::FunctionPtr;
 using ir::Type;
 
 namespace {
-const double kPi = 3.14159265358979323846;
 const double kTiny = 1e-30;  // see "Guards" above
 
 // A term whose input may be grey or coloured: built once per type by `Form`.

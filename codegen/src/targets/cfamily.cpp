@@ -8,6 +8,8 @@
 #include <fmt/compile.h>
 #include <fmt/format.h>
 
+#include "facet/vec.h"
+
 namespace facet::targets {
 
 using ir::Node;
@@ -16,8 +18,6 @@ using ir::Op;
 using ir::Type;
 
 namespace {
-
-const double kPi = 3.14159265358979323846;
 
 // Operator precedence, higher binds tighter.
 int precedence(const Node& n) {

@@ -24,6 +24,7 @@
 
 #include "facet/sweep.h"
 #include "facet/targets.h"
+#include "facet/vec.h"
 #include "targets_internal.h"
 #include "templates.h"
 
@@ -36,7 +37,6 @@ using ir::Type;
 
 namespace {
 
-const double kPi = 3.14159265358979323846;
 const char* kChannel[3] = {"R", "G", "B"};
 
 std::string num(double v) {
