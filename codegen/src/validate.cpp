@@ -236,6 +236,13 @@ ComparisonRow judge(const Render& reference, const Image& image, const std::vect
   return row;
 }
 
+ComparisonRow judge(const Render& reference, const RenderOutcome& outcome, bool hard_toon, const ValidateOptions& o) {
+  if (outcome.ok) return judge(reference, outcome.image, outcome.alpha, hard_toon, o);
+  ComparisonRow row;
+  row.error = outcome.error.empty() ? "the renderer failed without a message" : outcome.error;
+  return row;
+}
+
 ValidateResult validate(const ValidateOptions& options, std::ostream& progress) {
   ValidateOptions o = options;
   if (o.scenes.empty()) o.scenes = builtin_scene_names();
@@ -304,13 +311,8 @@ ValidateResult validate(const ValidateOptions& options, std::ostream& progress) 
     return j;
   };
   auto record = [&](const Case& c, const std::string& renderer, const RenderOutcome& r) {
-    ComparisonRow row;
-    if (r.ok) {
-      row = judge(c.reference, r.image, r.alpha, c.hard_toon(), o);
-      write_images(out, c, renderer, r.image);
-    } else {
-      row.error = r.error.empty() ? "the renderer failed without a message" : r.error;
-    }
+    ComparisonRow row = judge(c.reference, r, c.hard_toon(), o);
+    if (r.ok) write_images(out, c, renderer, r.image);
     row.material = c.label();
     row.key = c.key;
     row.renderer = renderer;

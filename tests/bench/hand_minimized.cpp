@@ -103,8 +103,7 @@ vec3 facet_reflect(vec3 n, vec3 l, vec3 v, vec3 t) { return n + l + v; }
     Render ref = render_reference(m, scene, a.size, a.size);
     ComparisonRow rf, rh;
     for (auto [row, image] : {std::pair{&rf, &images[2 * k]}, std::pair{&rh, &images[2 * k + 1]}}) {
-      if (!image->ok) row->error = image->error;
-      else *row = judge(ref, image->image, image->alpha, false, tolerance);
+      *row = judge(ref, *image, false, tolerance);
       if (!row->error.empty() || !row->pass)
         problems.push_back(fmt::format("{}: the {} render does not match the reference: {}", m.name,
                                        row == &rf ? "facet" : "hand", row->error.empty() ? verdict(*row) : row->error));

@@ -9,6 +9,7 @@
 
 #include "facet/compare.h"
 #include "facet/material.h"
+#include "facet/renderers.h"
 #include "facet/scene.h"
 
 namespace facet {
@@ -57,5 +58,7 @@ ValidateResult validate(const ValidateOptions& options, std::ostream& progress);
 // image has a toon step of width 0, which may flip options.flip_tolerance of the pixels.
 ComparisonRow judge(const Render& reference, const Image& image, const std::vector<float>& alpha, bool hard_toon,
                     const ValidateOptions& options);
+// The same for what a renderer returned: a renderer that failed is a failed row with its reason.
+ComparisonRow judge(const Render& reference, const RenderOutcome& outcome, bool hard_toon, const ValidateOptions& options);
 
 }  // namespace facet
