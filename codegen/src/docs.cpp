@@ -34,6 +34,10 @@ const CostCell& CostPageRow::cell(const std::string& target) const {
   return target == "glsl" ? glsl : target == "osl" ? osl : pov;
 }
 
+CostCell& CostPageRow::cell(const std::string& target) {
+  return const_cast<CostCell&>(static_cast<const CostPageRow&>(*this).cell(target));
+}
+
 const CostPageRow* CostTable::find(const std::string& name) const {
   for (const auto& r : rows)
     if (r.name == name) return &r;
@@ -42,7 +46,8 @@ const CostPageRow* CostTable::find(const std::string& name) const {
 
 namespace {
 
-const std::vector<std::string> kCostTargets = {"glsl", "osl", "pov"};
+// The targets a cost row and a page's verdicts have, in the order shown.
+const std::vector<std::string> kTargets = {"glsl", "osl", "pov"};
 
 // The figures the agreed format names, per target: key, label, kind.
 enum class FigureKind { Count, Number, Ratio, Flag, CountOrNull };
@@ -169,12 +174,12 @@ CostPageRow parse_row(const json& row, const std::string& path, DiagnosticSink& 
   r.material = string_or_null(row, "material", path, sink, false);
   r.diffuse = string_or_null(row, "diffuse", path, sink, true);
   r.specular = string_or_null(row, "specular", path, sink, true);
-  for (const auto& t : kCostTargets) {
+  for (const auto& t : kTargets) {
     if (!row.contains(t)) {
       sink.error(join_path(path, t), "missing; allowed: the target's figures or {\"error\": \"why\"}");
       continue;
     }
-    (t == "glsl" ? r.glsl : t == "osl" ? r.osl : r.pov) = parse_cell(row[t], t, join_path(path, t), sink);
+    r.cell(t) = parse_cell(row[t], t, join_path(path, t), sink);
   }
   return r;
 }
@@ -229,7 +234,8 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-const std::vector<std::string> kTargets = {"glsl", "osl", "pov"};
+// A model_materials() material's one lobe: the model its pages document.
+const ModelDef& lobe_def(const Material& m) { return *(m.diffuse ? m.diffuse : m.specular)->def; }
 
 const char* renderer_title(const std::string& r) {
   if (r == "reference") return "C++ reference (double)";
@@ -299,12 +305,17 @@ std::string params_table(const ModelDef& m) {
   return h + "</table>\n";
 }
 
-std::string model_header(const ModelDef& m, const std::string& tag) {
-  std::string h = fmt::format("<{0} id=\"{1}\">{2} <code>{1}</code></{0}>\n", tag, html_escape(m.name), html_escape(m.title));
-  h += fmt::format("<div class=formula>{}</div>\n", html_escape(m.formula));
+// The formula, the citation and the documentation of a model, as every page shows them.
+std::string model_text(const ModelDef& m) {
+  std::string h = fmt::format("<div class=formula>{}</div>\n", html_escape(m.formula));
   if (!m.citation.empty()) h += fmt::format("<p class=cite>{}</p>\n", html_escape(m.citation));
   if (!m.doc.empty()) h += fmt::format("<p>{}</p>\n", html_escape(m.doc));
   return h;
+}
+
+std::string model_header(const ModelDef& m, const std::string& tag) {
+  return fmt::format("<{0} id=\"{1}\">{2} <code>{1}</code></{0}>\n", tag, html_escape(m.name), html_escape(m.title)) +
+         model_text(m);
 }
 
 std::string equivalence_html(const ModelDef& m) {
@@ -437,13 +448,12 @@ std::string relative_summary(const CostPageRow& r) {
   return s;
 }
 
-std::string model_page(const Material& m, const ModelDef& def, const DocsOptions& o, const Verdicts& v, bool anisotropic) {
+std::string model_page(const Material& m, const DocsOptions& o, const Verdicts& v, bool anisotropic) {
+  const ModelDef& def = lobe_def(m);
   std::string key = identifier(m.name);
   std::string b = fmt::format("<h1>{} <code>{}</code> <span class=\"badge {}\">{}</span></h1>\n", html_escape(def.title),
                               html_escape(def.name), def.section, def.section);
-  b += fmt::format("<div class=formula>{}</div>\n", html_escape(def.formula));
-  if (!def.citation.empty()) b += fmt::format("<p class=cite>{}</p>\n", html_escape(def.citation));
-  b += fmt::format("<p>{}</p>\n", html_escape(def.doc));
+  b += model_text(def);
   b += "<h2>Parameters</h2>\n" + params_table(def);
   b += "<h2>Reflected light</h2>\n" + diagrams_html(def.name, o, anisotropic);
   b += fmt::format("<h2>The sphere in each renderer</h2>\n<p class=muted>The built-in <code>single</code> scene (one "
@@ -473,7 +483,7 @@ std::string index_page(const std::vector<Material>& ms, const DocsOptions& o, co
   b += "<table><tr><th>model</th><th>lobe</th><th>formula</th><th>sphere</th><th>θ_l = " +
        fmt::format("{:g}", o.light_angles.back()) + "°</th><th>glsl</th><th>osl</th><th>pov</th><th>cost (× baseline)</th></tr>\n";
   for (const auto& m : ms) {
-    const ModelDef& def = *(m.diffuse ? m.diffuse : m.specular)->def;
+    const ModelDef& def = lobe_def(m);
     std::string key = identifier(m.name);
     b += fmt::format("<tr><td><a href=\"models/{0}.html\"><b>{1}</b></a><br><code>{0}</code></td><td><span class=\"badge "
                      "{2}\">{2}</span></td><td><code>{3}</code></td><td><img class=thumb src=\"validate/{4}\" alt=\"\"></td>"
@@ -558,7 +568,7 @@ void make_folder(const fs::path& dir) {
 }
 
 void draw_diagrams(const Material& m, const DocsOptions& o, const fs::path& out) {
-  const ModelDef& def = *(m.diffuse ? m.diffuse : m.specular)->def;
+  const ModelDef& def = lobe_def(m);
   for (double a : o.light_angles) {
     PlotOptions p;
     p.light_angle = a;
@@ -620,9 +630,9 @@ DocsResult write_docs(const DocsOptions& options, std::ostream& progress) {
   Verdicts verdicts{&vr, &o};
   write_file_atomic((out / "style.css").string(), kStyle);
   for (size_t i = 0; i < ms.size(); ++i) {
-    const ModelDef& def = *(ms[i].diffuse ? ms[i].diffuse : ms[i].specular)->def;
+    const ModelDef& def = lobe_def(ms[i]);
     write_file_atomic((out / "models" / (def.name + ".html")).string(),
-                      model_page(ms[i], def, o, verdicts, anisotropic[i]));
+                      model_page(ms[i], o, verdicts, anisotropic[i]));
     ++result.pages;
   }
   write_file_atomic((out / "terms.html").string(), terms_page());

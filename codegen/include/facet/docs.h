@@ -43,6 +43,7 @@ struct CostPageRow {
   std::string name, material, diffuse, specular;  // diffuse, specular: "" for null
   CostCell glsl, osl, pov;
   const CostCell& cell(const std::string& target) const;  // "glsl", "osl" or "pov"
+  CostCell& cell(const std::string& target);
 };
 
 struct CostTable {
