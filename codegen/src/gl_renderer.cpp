@@ -488,16 +488,20 @@ std::vector<RenderOutcome> GlRenderer::draw(const std::vector<ShaderDraw>& shade
   std::vector<GLuint> programs(shaders.size(), 0);
   auto use = [&](size_t i) {
     glUseProgram(programs[i]);
-    auto active = active_uniforms(programs[i]);
-    for (const auto& [name, values] : shaders[i].uniforms)
-      if (std::string e = set_uniform(active, name, values); !e.empty()) out[i].error = e;
     glClearColor(0, 0, 0, 0);
     glClear(GL_COLOR_BUFFER_BIT);
   };
-  // Compile and link all, then the first draw of each: the JIT, not measured.
-  for (size_t i = 0; i < shaders.size(); ++i)
+  // Compile and link all, each with its uniforms set (a program keeps them), then
+  // the first draw of each: the JIT, not measured.
+  for (size_t i = 0; i < shaders.size(); ++i) {
     programs[i] = fragment_program(state_->vertex, shaders[i].fragment_source, "the GLSL of \"" + shaders[i].name + "\"",
                                    out[i].error);
+    if (!programs[i]) continue;
+    glUseProgram(programs[i]);
+    auto active = active_uniforms(programs[i]);
+    for (const auto& [name, values] : shaders[i].uniforms)
+      if (std::string e = set_uniform(active, name, values); !e.empty()) out[i].error = e;
+  }
   for (size_t i = 0; i < shaders.size(); ++i) {
     if (!programs[i] || !out[i].error.empty()) continue;
     use(i);
