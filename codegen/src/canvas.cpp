@@ -404,12 +404,12 @@ std::vector<uint8_t> Canvas::raster(int supersample) const {
   Raster r(width_, height_, supersample, background_);
   double ppu = supersample;  // subsamples per canvas pixel: how finely curves are flattened
   for (const Item& it : items_) {
-    const Style& st = it.style;
-    std::vector<Point> outline = it.kind == Kind::Circle ? circle_points(it.points[0], it.points[1].x, ppu) : it.points;
     if (it.kind == Kind::Text) {
       r.text(it.points[0], it.text, it.text_style);
       continue;
     }
+    const Style& st = it.style;
+    std::vector<Point> outline = it.kind == Kind::Circle ? circle_points(it.points[0], it.points[1].x, ppu) : it.points;
     if (st.fill && it.kind != Kind::Polyline) r.fill({outline}, st.fill_color, st.fill_opacity);
     if (st.stroke_width > 0) {
       if (it.kind != Kind::Polyline) outline.push_back(outline.front());

@@ -167,11 +167,13 @@ int ShadingInputs::index(const std::string& name) {
 }
 
 namespace {
-const size_t kInputCount = 11;  // input_order()
+// Every shading input (catalog.h: Input, whose last is HoB), the size of an argument list.
+constexpr size_t kInputCount = size_t(Input::HoB) + 1;
 }
 
 double ShadingInputs::get(int i) const {
   const double v[] = {NoL, NoV, LoV, LoT, VoT, LoB, VoB, NoH, VoH, HoT, HoB};
+  static_assert(sizeof v / sizeof v[0] == kInputCount, "one value per Input");
   return v[i];
 }
 
