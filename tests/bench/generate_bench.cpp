@@ -8,8 +8,8 @@
 //   build/bin/facet_generate_bench --benchmark_filter='generate/glsl/'
 #include <benchmark/benchmark.h>
 
-#include "facet/material.h"
-#include "facet/targets.h"
+#include "catalog/material.h"
+#include "targets/targets.h"
 
 namespace {
 

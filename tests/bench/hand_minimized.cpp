@@ -15,11 +15,11 @@
 
 #include <fmt/format.h>
 
-#include "facet/cost.h"
-#include "facet/io.h"
-#include "facet/render.h"
-#include "facet/scene.h"
-#include "facet/validate.h"
+#include "analysis/cost.h"
+#include "analysis/validate.h"
+#include "core/io.h"
+#include "reference/raycaster.h"
+#include "scene/scene.h"
 
 namespace fs = std::filesystem;
 using namespace facet;

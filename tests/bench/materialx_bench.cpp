@@ -20,13 +20,13 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "facet/cost.h"
-#include "facet/io.h"
-#include "facet/render.h"
-#include "facet/scene.h"
-#include "facet/targets.h"
-#include "facet/validate.h"
-#include "facet/vec.h"
+#include "analysis/cost.h"
+#include "analysis/validate.h"
+#include "core/io.h"
+#include "core/vec.h"
+#include "reference/raycaster.h"
+#include "scene/scene.h"
+#include "targets/targets.h"
 
 namespace fs = std::filesystem;
 using nlohmann::json;

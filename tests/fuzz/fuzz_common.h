@@ -10,7 +10,7 @@
 #include <exception>
 #include <string>
 
-#include "facet/diagnostics.h"
+#include "core/diagnostics.h"
 
 namespace facet::fuzz {
 

@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "facet/gltf.h"
 #include "fuzz_common.h"
+#include "scene/gltf.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   std::string bytes(reinterpret_cast<const char*>(data), size);

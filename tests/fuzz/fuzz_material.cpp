@@ -4,9 +4,9 @@
 #include <cstdint>
 #include <string>
 
-#include "facet/material.h"
-#include "facet/targets.h"
+#include "catalog/material.h"
 #include "fuzz_common.h"
+#include "targets/targets.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   std::string text(reinterpret_cast<const char*>(data), size);

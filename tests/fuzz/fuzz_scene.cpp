@@ -5,10 +5,10 @@
 #include <cstdint>
 #include <string>
 
-#include "facet/render.h"
-#include "facet/scene.h"
-#include "facet/targets.h"
 #include "fuzz_common.h"
+#include "reference/raycaster.h"
+#include "scene/scene.h"
+#include "targets/targets.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   static const facet::Material lambert = facet::model_materials().front();

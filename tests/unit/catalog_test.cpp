@@ -5,9 +5,9 @@
 
 #include <gtest/gtest.h>
 
-#include "facet/catalog.h"
-#include "facet/material.h"
-#include "facet/targets.h"
+#include "catalog/catalog.h"
+#include "catalog/material.h"
+#include "targets/targets.h"
 
 namespace facet {
 namespace {

@@ -6,8 +6,8 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "facet/io.h"
-#include "facet/process.h"
+#include "core/io.h"
+#include "renderers/process.h"
 #include "test_support.h"
 
 namespace facet {

@@ -10,8 +10,8 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "facet/material.h"
-#include "facet/reference.h"
+#include "catalog/material.h"
+#include "reference/interpreter.h"
 
 namespace facet {
 namespace {

@@ -7,14 +7,14 @@
 
 #include <gtest/gtest.h>
 
-#include "facet/compare.h"
-#include "facet/material.h"
-#include "facet/program.h"
-#include "facet/render.h"
-#include "facet/renderers.h"
-#include "facet/sweep.h"
-#include "facet/targets.h"
-#include "facet/validate.h"
+#include "analysis/sweep.h"
+#include "analysis/validate.h"
+#include "catalog/material.h"
+#include "catalog/program.h"
+#include "reference/raycaster.h"
+#include "renderers/compare.h"
+#include "renderers/renderers.h"
+#include "targets/targets.h"
 
 namespace facet {
 namespace {

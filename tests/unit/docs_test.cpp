@@ -12,10 +12,10 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "facet/diagnostics.h"
-#include "facet/cost.h"
-#include "facet/docs.h"
-#include "facet/io.h"
+#include "analysis/cost.h"
+#include "core/diagnostics.h"
+#include "core/io.h"
+#include "docs/docs.h"
 #include "test_support.h"
 
 namespace facet {

@@ -6,10 +6,10 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "facet/gltf.h"
-#include "facet/io.h"
-#include "facet/process.h"
-#include "facet/render.h"
+#include "core/io.h"
+#include "reference/raycaster.h"
+#include "renderers/process.h"
+#include "scene/gltf.h"
 #include "test_support.h"
 
 namespace facet {

@@ -6,8 +6,8 @@
 
 #include <gtest/gtest.h>
 
-#include "facet/catalog.h"
-#include "facet/physics.h"
+#include "analysis/physics.h"
+#include "catalog/catalog.h"
 
 namespace facet {
 namespace {

@@ -8,10 +8,10 @@
 
 #include <gtest/gtest.h>
 
-#include "facet/canvas.h"
-#include "facet/image.h"
-#include "facet/io.h"
-#include "facet/plot.h"
+#include "core/image.h"
+#include "core/io.h"
+#include "docs/canvas.h"
+#include "docs/plot.h"
 #include "test_support.h"
 
 namespace facet {

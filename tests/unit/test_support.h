@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "facet/process.h"
+#include "renderers/process.h"
 
 namespace facet::test {
 

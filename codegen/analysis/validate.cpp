@@ -1,0 +1,423 @@
+#include "analysis/validate.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <mutex>
+#include <optional>
+#include <thread>
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <nlohmann/json.hpp>
+
+#include "core/html.h"
+#include "core/io.h"
+#include "reference/raycaster.h"
+#include "renderers/renderers.h"
+
+namespace facet {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+bool has_hard_toon(const Material& m) {
+  for (const auto* lobe : {&m.diffuse, &m.specular}) {
+    if (!*lobe) continue;
+    auto it = (*lobe)->values.find("toon");
+    if (it != (*lobe)->values.end() && it->second.model && it->second.model->at("width").number == 0) return true;
+  }
+  return false;
+}
+
+std::vector<std::string> example_materials() {
+  fs::path dir = "examples/materials";
+#ifdef FACET_SOURCE_DIR
+  if (!fs::exists(dir)) dir = fs::path(FACET_SOURCE_DIR) / "examples/materials";
+#endif
+  std::vector<std::string> files;
+  if (fs::exists(dir))
+    for (const auto& e : fs::directory_iterator(dir))
+      if (e.path().extension() == ".json") files.push_back(e.path().string());
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+// One image to compare: a material on a scene, or a scene with its own materials.
+struct Case {
+  std::optional<Material> material;  // absent: the scene's own materials
+  std::string key;                   // names the images: the material file's stem, or the scene's name
+  Scene scene;
+  Render reference;
+  std::string label() const { return material ? material->name : scene.name + " (its own materials)"; }
+  std::string models() const {
+    std::vector<const Material*> ms;
+    if (material) ms.push_back(&*material);
+    for (const auto& [k, m] : scene.materials) ms.push_back(&m);
+    std::string s;
+    for (const Material* m : ms) {
+      std::string lobes = (m->diffuse ? m->diffuse->def->name : std::string("")) +
+                          (m->diffuse && m->specular ? " + " : "") +
+                          (m->specular ? m->specular->def->name : std::string(""));
+      if (s.find(lobes) == std::string::npos) s += (s.empty() ? "" : ", ") + lobes;
+    }
+    return s;
+  }
+  bool hard_toon() const {
+    bool any = material && has_hard_toon(*material);
+    for (const auto& [k, m] : scene.materials) any |= has_hard_toon(m);
+    return any;
+  }
+};
+
+std::string image_name(const Case& c, const std::string& renderer, const char* suffix = "") {
+  return validate_image(c.key, c.scene.name, renderer + suffix);
+}
+
+// A renderer's image beside the reference: its preview and |Δ| × 16.
+void write_images(const fs::path& out, const Case& c, const std::string& renderer, const Image& img) {
+  write_png_preview((out / image_name(c, renderer)).string(), img);
+  if (renderer == "reference") return;
+  Image diff(img.width, img.height);
+  for (size_t i = 0; i < diff.rgb.size(); ++i) diff.rgb[i] = std::fabs(img.rgb[i] - c.reference.image.rgb[i]);
+  write_png_preview((out / image_name(c, renderer, "_diff")).string(), diff, 16.0f, false);
+}
+
+json row_json(const ComparisonRow& r, int w, int h) {
+  const Metrics& m = r.metrics;
+  json j = {{"material", r.material},
+            {"renderer", r.renderer},
+            {"scene", r.scene},
+            {"max_abs", m.max_abs},
+            {"rmse", m.rmse},
+            {"pixels", m.pixels},
+            {"coverage_mismatch", r.coverage_mismatch},
+            {"nan", m.nan},
+            {"pass", r.pass},
+            {"max_relative", m.max_excess},
+            {"over", m.over},
+            {"allowed_flips", r.allowed_flips},
+            {"size", fmt::format("{}x{}", w, h)},
+            {"seconds", r.seconds},
+            {"file", r.key}};
+  if (!r.error.empty()) j["error"] = r.error;
+  if (m.worst_x >= 0)
+    j["worst"] = {{"x", m.worst_x},
+                  {"y", m.worst_y},
+                  {"reference", {m.worst_ref[0], m.worst_ref[1], m.worst_ref[2]}},
+                  {"got", {m.worst_got[0], m.worst_got[1], m.worst_got[2]}}};
+  return j;
+}
+
+std::string figures(const ComparisonRow& r) {
+  if (!r.error.empty()) return "<div class=error>" + html_escape(r.error.substr(0, 2000)) + "</div>";
+  const Metrics& m = r.metrics;
+  return fmt::format(
+      "<div class=figs>max |Δ| {:.3g}<br>max |Δ|/max(1,|ref|) {:.3g}<br>rmse {:.3g}<br>over tolerance {}{}<br>"
+      "coverage differs {:.3f} %<br>NaN/Inf {}<br>{} interior px</div>",
+      m.max_abs, m.max_excess, m.rmse, m.over, r.allowed_flips ? fmt::format(" (≤ {} allowed: toon step)", r.allowed_flips) : "",
+      100 * r.coverage_mismatch, m.nan, m.pixels);
+}
+
+void write_report(const fs::path& out, const ValidateOptions& o, const std::vector<Case>& cases,
+                  const ValidateResult& result) {
+  std::vector<std::string> targets;
+  for (const auto& r : o.renderers)
+    if (r != "reference") targets.push_back(r);
+  std::string html = R"(<!doctype html>
+<html lang=en><head><meta charset=utf-8><title>facet validate</title>
+<style>
+body { font: 14px/1.4 system-ui, sans-serif; margin: 24px; color: #222; background: #fafafa; }
+h1 { margin: 0 0 8px; } .summary { font-size: 16px; font-weight: 600; }
+.summary.pass { color: #1b6e2a; } .summary.fail { color: #b3261e; }
+table { border-collapse: collapse; margin: 12px 0; }
+th, td { border: 1px solid #ddd; padding: 6px 8px; vertical-align: top; background: #fff; }
+th { background: #f0f0f0; text-align: left; }
+tr.fail td:first-child { border-left: 5px solid #b3261e; } tr.pass td:first-child { border-left: 5px solid #1b6e2a; }
+td.bad { background: #fdecea; }
+img { width: 160px; height: auto; image-rendering: pixelated; display: block; background: #000; }
+.pair { display: flex; gap: 4px; } .figs { font: 12px/1.35 ui-monospace, monospace; margin-top: 4px; }
+.error { font: 12px/1.35 ui-monospace, monospace; color: #b3261e; white-space: pre-wrap; max-width: 340px; }
+.name { font-weight: 600; } .muted { color: #666; font-size: 12px; }
+</style></head><body>
+<h1>facet validate</h1>
+)";
+  html += fmt::format("<p class=\"summary {}\">{}</p>\n", result.pass ? "pass" : "fail", html_escape(result.summary));
+  // Per renderer: worst figures and wall time.
+  html += "<table><tr><th>renderer</th><th>comparisons passed</th><th>worst max |Δ|</th><th>worst |Δ|/max(1,|ref|)"
+          "</th><th>where</th><th>wall time</th></tr>\n";
+  for (const auto& t : targets) {
+    size_t n = 0, ok = 0;
+    const ComparisonRow* worst = nullptr;
+    for (const auto& r : result.rows) {
+      if (r.renderer != t) continue;
+      ++n;
+      ok += r.pass;
+      if (r.error.empty() && (!worst || r.metrics.max_excess > worst->metrics.max_excess)) worst = &r;
+    }
+    html += fmt::format("<tr><td>{}</td><td>{} / {}</td><td>{}</td><td>{}</td><td>{}</td><td>{:.1f} s</td></tr>\n", t,
+                        ok, n, worst ? fmt::format("{:.3g}", worst->metrics.max_abs) : "–",
+                        worst ? fmt::format("{:.3g}", worst->metrics.max_excess) : "–",
+                        worst ? html_escape(worst->material + " on " + worst->scene) : "–",
+                        result.wall.count(t) ? result.wall.at(t) : 0.0);
+  }
+  html += "</table>\n";
+  html += fmt::format(
+      "<p class=muted>{}×{} pixels, one sample at each pixel centre. A comparison passes when |renderer − reference| ≤ "
+      "{:g} · max(1, |reference|) per channel on every interior pixel (the reference hit the same object at the pixel "
+      "and its 8 neighbours, and no shadow ray there passes within 1e-4 of an occluder's edge), coverage differs on at "
+      "most {:g} % of pixels, and no value is NaN or Inf. A hard toon step may flip {:g} % of interior pixels. "
+      "Difference images show |Δ| × 16.</p>\n",
+      o.width, o.height, o.tolerance, 100 * o.coverage_tolerance, 100 * o.flip_tolerance);
+
+  // Rows, failures first.
+  std::vector<size_t> order(cases.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+  auto failed = [&](size_t i) {
+    for (const auto& r : result.rows)
+      if (r.key == cases[i].key && r.scene == cases[i].scene.name && !r.pass) return true;
+    return false;
+  };
+  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return failed(a) && !failed(b); });
+  html += "<table><tr><th>material</th><th>reference</th>";
+  for (const auto& t : targets) html += "<th>" + t + " · |Δ| × 16</th>";
+  html += "</tr>\n";
+  for (size_t i : order) {
+    const Case& c = cases[i];
+    html += fmt::format("<tr class={}><td><div class=name>{}</div><div class=muted>{}<br>scene {}<br>{}</div></td>",
+                        failed(i) ? "fail" : "pass", html_escape(c.label()),
+                        html_escape(!c.material ? c.scene.source : c.material->source.empty() ? "(built in)" : c.key + ".json"), html_escape(c.scene.name),
+                        html_escape(c.models()));
+    html += fmt::format("<td><img src=\"{}\" alt=\"reference\"></td>", image_name(c, "reference"));
+    for (const auto& t : targets) {
+      const ComparisonRow* row = nullptr;
+      for (const auto& r : result.rows)
+        if (r.key == c.key && r.scene == c.scene.name && r.renderer == t) row = &r;
+      if (!row) continue;
+      html += fmt::format("<td class=\"{}\">", row->pass ? "" : "bad");
+      if (row->error.empty())
+        html += fmt::format("<div class=pair><img src=\"{}\" alt=\"{}\"><img src=\"{}\" alt=\"difference\"></div>",
+                            image_name(c, t), t, image_name(c, t, "_diff"));
+      html += figures(*row) + "</td>";
+    }
+    html += "</tr>\n";
+  }
+  html += "</table>\n</body></html>\n";
+  write_file_atomic((out / "report.html").string(), html);
+}
+
+}  // namespace
+
+std::string validate_image(const std::string& key, const std::string& scene, const std::string& renderer) {
+  return fmt::format("images/{}_{}_{}.png", key, identifier(scene), renderer);
+}
+
+ComparisonRow judge(const Render& reference, const Image& image, const std::vector<float>& alpha, bool hard_toon,
+                    const ValidateOptions& o) {
+  ComparisonRow row;
+  row.metrics = compare_images(reference, image, interior_mask(reference), o.tolerance);
+  size_t differ = 0;
+  for (size_t i = 0; i < reference.object.size(); ++i) {
+    bool hit = reference.object[i] >= 0;
+    bool covered = alpha.empty() ? hit : alpha[i] >= 0.5f;
+    differ += hit != covered;
+  }
+  row.coverage_mismatch = reference.object.empty() ? 0 : double(differ) / double(reference.object.size());
+  row.allowed_flips = hard_toon ? size_t(std::floor(o.flip_tolerance * double(row.metrics.pixels))) : 0;
+  row.pass = row.metrics.nan == 0 && row.metrics.pixels > 0 && row.metrics.over <= row.allowed_flips &&
+             row.coverage_mismatch <= o.coverage_tolerance;
+  return row;
+}
+
+ComparisonRow judge(const Render& reference, const RenderOutcome& outcome, bool hard_toon, const ValidateOptions& o) {
+  if (outcome.ok) return judge(reference, outcome.image, outcome.alpha, hard_toon, o);
+  ComparisonRow row;
+  row.error = outcome.error.empty() ? "the renderer failed without a message" : outcome.error;
+  return row;
+}
+
+ValidateResult validate(const ValidateOptions& options, std::ostream& progress) {
+  ValidateOptions o = options;
+  if (o.scenes.empty()) o.scenes = builtin_scene_names();
+  if (o.python.empty()) o.python = default_python();
+  fs::path out = o.out;
+  fs::create_directories(out / "images");
+  fs::create_directories(out / "work");
+  ValidateResult result;
+  auto has = [&](const char* r) { return std::find(o.renderers.begin(), o.renderers.end(), r) != o.renderers.end(); };
+
+  // Inputs first: a bad material or scene stops the run before any rendering.
+  std::vector<Scene> scenes;
+  for (const auto& s : o.scenes) scenes.push_back(load_scene(s));
+  // Scenes with their own materials render once; the others with every material
+  // (by default the example catalog).
+  bool need_materials = std::any_of(scenes.begin(), scenes.end(), [](const Scene& s) { return !s.has_own_materials(); });
+  if (o.materials.empty() && o.given.empty() && need_materials) o.materials = example_materials();
+  std::vector<Material> materials;
+  std::vector<std::string> keys;  // names the images
+  for (const auto& f : o.materials) {
+    materials.push_back(load_material(f));
+    keys.push_back(fs::path(f).stem().string());
+  }
+  for (const auto& m : o.given) {
+    materials.push_back(m);
+    keys.push_back(identifier(m.name));
+  }
+
+  // Counters update in place on a terminal; a log gets a line per step.
+  auto tick = [&](const std::string& what, size_t i, size_t n) {
+    if (o.interactive) progress << fmt::format("\r  {} {}/{}", what, i, n) << std::flush;
+    else progress << fmt::format("  {} {}/{}\n", what, i, n);
+  };
+  std::vector<Case> cases;
+  auto t0 = Clock::now();
+  size_t total = 0;
+  for (const auto& s : scenes) total += s.has_own_materials() ? 1 : materials.size();
+  progress << fmt::format("facet validate: {} images ({} scenes) at {}×{} through {}\n", total, scenes.size(),
+                          o.width, o.height, fmt::join(o.renderers, ", "));
+  auto add = [&](Case c) {
+    c.reference = c.material ? render_reference(*c.material, c.scene, o.width, o.height)
+                             : render_reference(c.scene, o.width, o.height);
+    write_images(out, c, "reference", c.reference.image);
+    cases.push_back(std::move(c));
+    tick("reference " + cases.back().key + " on " + cases.back().scene.name, cases.size(), total);
+  };
+  for (const auto& s : scenes) {
+    if (s.has_own_materials()) {
+      add(Case{std::nullopt, identifier(s.name), s, {}});
+      continue;
+    }
+    for (size_t i = 0; i < materials.size(); ++i) add(Case{materials[i], keys[i], s, {}});
+  }
+  result.wall["reference"] = since(t0);
+  progress << fmt::format("\r  reference: {} images in {:.1f} s\n", cases.size(), result.wall["reference"]);
+
+  auto job_for = [&](const Case& c, const std::string& renderer) {
+    RenderJob j;
+    j.material = c.material;
+    j.scene = c.scene;
+    j.width = o.width;
+    j.height = o.height;
+    j.workdir = (out / "work" / renderer / identifier(c.scene.name)).string();
+    j.max_value = 0;
+    for (float v : c.reference.image.rgb) j.max_value = std::max<double>(j.max_value, v);
+    return j;
+  };
+  auto record = [&](const Case& c, const std::string& renderer, const RenderOutcome& r) {
+    ComparisonRow row = judge(c.reference, r, c.hard_toon(), o);
+    if (r.ok) write_images(out, c, renderer, r.image);
+    row.material = c.label();
+    row.key = c.key;
+    row.renderer = renderer;
+    row.scene = c.scene.name;
+    row.seconds = r.seconds;
+    result.rows.push_back(row);
+    return row.pass;
+  };
+  auto report_phase = [&](const std::string& renderer, size_t start) {
+    size_t n = 0, ok = 0;
+    for (size_t i = start; i < result.rows.size(); ++i, ++n) ok += result.rows[i].pass;
+    progress << fmt::format("\r  {}: {} of {} pass in {:.1f} s\n", renderer, ok, n, result.wall[renderer]);
+    for (size_t i = start; i < result.rows.size(); ++i) {
+      const auto& r = result.rows[i];
+      if (!r.pass)
+        progress << fmt::format("    FAIL {} on {}: {}\n", r.material, r.scene,
+                                r.error.empty() ? fmt::format("max |Δ|/max(1,|ref|) {:.3g}, {} pixels over, coverage "
+                                                              "{:.3f} %, NaN/Inf {}",
+                                                              r.metrics.max_excess, r.metrics.over,
+                                                              100 * r.coverage_mismatch, r.metrics.nan)
+                                                : r.error.substr(0, r.error.find('\n')));
+    }
+  };
+
+  if (has("glsl")) {
+    size_t start = result.rows.size();
+    auto t = Clock::now();
+    GlRenderer gl;
+    for (size_t i = 0; i < cases.size(); ++i) {
+      record(cases[i], "glsl", gl.render(job_for(cases[i], "glsl")));
+      tick("glsl " + cases[i].key + " on " + cases[i].scene.name, i + 1, cases.size());
+    }
+    result.wall["glsl"] = since(t);
+    report_phase("glsl", start);
+  }
+  if (has("osl")) {
+    size_t start = result.rows.size();
+    auto t = Clock::now();
+    for (const auto& s : scenes) {
+      std::vector<RenderJob> jobs;
+      std::vector<const Case*> batch;
+      for (const auto& c : cases)
+        if (c.scene.name == s.name) {
+          jobs.push_back(job_for(c, "osl"));
+          batch.push_back(&c);
+        }
+      progress << fmt::format("{}  osl: Blender renders {} materials on {}{}", o.interactive ? "\r" : "", jobs.size(),
+                              s.name, o.interactive ? "" : "\n")
+               << std::flush;
+      std::string log;
+      std::vector<RenderOutcome> outcomes = render_osl(jobs, o.python, log);
+      for (size_t i = 0; i < batch.size(); ++i) record(*batch[i], "osl", outcomes[i]);
+    }
+    result.wall["osl"] = since(t);
+    report_phase("osl", start);
+  }
+  if (has("pov")) {
+    size_t start = result.rows.size();
+    auto t = Clock::now();
+    // POV-Ray's start-up is single-threaded: run two at a time.
+    std::vector<RenderOutcome> outcomes(cases.size());
+    std::atomic<size_t> next{0}, done{0};
+    std::mutex mutex;
+    auto worker = [&] {
+      for (size_t i; (i = next++) < cases.size();) {
+        outcomes[i] = render_pov(job_for(cases[i], "pov"));
+        std::lock_guard<std::mutex> lock(mutex);
+        tick("pov " + cases[i].key + " on " + cases[i].scene.name, ++done, cases.size());
+      }
+    };
+    std::thread a(worker), b(worker);
+    a.join();
+    b.join();
+    for (size_t i = 0; i < cases.size(); ++i) record(cases[i], "pov", outcomes[i]);
+    result.wall["pov"] = since(t);
+    report_phase("pov", start);
+  }
+
+  size_t ok = 0;
+  for (const auto& r : result.rows) ok += r.pass;
+  result.pass = ok == result.rows.size() && !result.rows.empty();
+  std::string worst;
+  for (const auto& renderer : o.renderers) {
+    if (renderer == "reference") continue;
+    double w = -1;
+    for (const auto& r : result.rows)
+      if (r.renderer == renderer && r.error.empty()) w = std::max(w, r.metrics.max_excess);
+    worst += fmt::format("{}{} {}", worst.empty() ? "" : ", ", renderer, w < 0 ? "–" : fmt::format("{:.2g}", w));
+  }
+  std::string times;
+  for (const auto& [r, s] : result.wall) times += fmt::format("{}{} {:.1f} s", times.empty() ? "" : ", ", r, s);
+  std::string what = need_materials ? fmt::format("{} materials × {} scenes", materials.size(), scenes.size())
+                                    : fmt::format("{} scenes with their own materials", scenes.size());
+  result.summary = fmt::format(
+      "{} of {} comparisons pass ({} × {} renderers at {}×{}); worst |Δ|/max(1,|ref|): {} (tolerance {:g}); wall "
+      "time: {}",
+      ok, result.rows.size(), what, o.renderers.size() - has("reference"), o.width, o.height, worst, o.tolerance,
+      times);
+
+  json metrics = json::array();
+  for (const auto& r : result.rows) metrics.push_back(row_json(r, o.width, o.height));
+  write_file_atomic((out / "metrics.json").string(), metrics.dump(2) + "\n");
+  write_report(out, o, cases, result);
+  progress << fmt::format("report: {}\n", (out / "report.html").string());
+  return result;
+}
+
+}  // namespace facet

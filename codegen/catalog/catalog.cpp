@@ -1,0 +1,258 @@
+#include "catalog/catalog.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "catalog/catalog_internal.h"
+
+namespace facet {
+
+bool Range::contains(double v) const {
+  if (std::isnan(v)) return false;
+  if (min_open ? !(v > min) : !(v >= min)) return false;
+  if (max_open ? !(v < max) : !(v <= max)) return false;
+  return true;
+}
+
+std::string Range::describe() const {
+  bool lo = std::isfinite(min), hi = std::isfinite(max);
+  if (!lo && !hi) return "any number";
+  if (lo && !hi) return fmt::format("{} {}", min_open ? ">" : "≥", min);
+  if (!lo && hi) return fmt::format("{} {}", max_open ? "<" : "≤", max);
+  return fmt::format("in {}{}, {}{}", min_open ? "(" : "[", min, max, max_open ? ")" : "]");
+}
+
+const char* param_kind_name(ParamKind k) {
+  switch (k) {
+    case ParamKind::Number: return "number";
+    case ParamKind::Bool: return "boolean";
+    case ParamKind::Enum: return "string";
+    case ParamKind::Color: return "color";
+    case ParamKind::Vector: return "vector";
+    case ParamKind::Model: return "model";
+    case ParamKind::Object: return "object";
+    case ParamKind::String: return "string";
+    case ParamKind::Points: return "points";
+    case ParamKind::Triangles: return "triangles";
+  }
+  return "?";
+}
+
+const char* level_name(Equivalence::Level l) {
+  switch (l) {
+    case Equivalence::Level::Exact: return "exact";
+    case Equivalence::Level::Approximate: return "approximate";
+    case Equivalence::Level::None: return "none";
+  }
+  return "?";
+}
+
+std::string ParamDef::allowed() const {
+  switch (kind) {
+    case ParamKind::Number: return "a number " + range.describe();
+    case ParamKind::Bool: return "true or false";
+    case ParamKind::Enum: {
+      std::string s = "one of";
+      for (size_t i = 0; i < choices.size(); ++i) s += (i ? ", \"" : " \"") + choices[i] + "\"";
+      return s;
+    }
+    case ParamKind::Color:
+      return "an RGB array [r, g, b] or one number for grey, each " + range.describe();
+    case ParamKind::Vector: return nonzero ? "an array of three numbers, not all zero" : "an array of three numbers";
+    case ParamKind::Model: {
+      if (!fixed.empty()) {  // the shorthand form (attenuation)
+        std::string s;
+        for (const auto* m : facet::section(section))
+          if (m->params.empty()) s += (s.empty() ? "\"" : ", \"") + m->name + "\"";
+        const ModelDef* m = find_model(section, fixed);
+        s += ", or an object with keys";
+        for (size_t i = 0; m && i < m->params.size(); ++i) s += (i ? ", \"" : " \"") + m->params[i].name + "\"";
+        return s;
+      }
+      std::string s = "an object {\"model\": …} with model one of";
+      auto models = facet::section(section);
+      for (size_t i = 0; i < models.size(); ++i) s += (i ? ", \"" : " \"") + models[i]->name + "\"";
+      return s;
+    }
+    case ParamKind::String: return "a non-empty string";
+    case ParamKind::Points: return nonzero ? "an array of [x, y, z], none of them zero" : "an array of [x, y, z]";
+    case ParamKind::Triangles: return "an array of [a, b, c], indices of distinct vertices";
+    case ParamKind::Object: {
+      std::string s = "an object with keys";
+      const ModelDef* m = find_model(section, fixed);
+      for (size_t i = 0; m && i < m->params.size(); ++i) s += (i ? ", \"" : " \"") + m->params[i].name + "\"";
+      return s;
+    }
+  }
+  return "?";
+}
+
+const ParamDef* ModelDef::param(const std::string& name) const {
+  for (const auto& p : params)
+    if (p.name == name) return &p;
+  return nullptr;
+}
+
+const Value& ModelSpec::at(const std::string& name) const {
+  auto it = values.find(name);
+  if (it == values.end())
+    throw std::logic_error("facet: " + (def ? def->name : std::string("?")) + " has no value for " + name);
+  return it->second;
+}
+
+const char* input_name(Input i) {
+  switch (i) {
+    case Input::NoL: return "NoL";
+    case Input::NoV: return "NoV";
+    case Input::LoV: return "LoV";
+    case Input::LoT: return "LoT";
+    case Input::VoT: return "VoT";
+    case Input::LoB: return "LoB";
+    case Input::VoB: return "VoB";
+    case Input::NoH: return "NoH";
+    case Input::VoH: return "VoH";
+    case Input::HoT: return "HoT";
+    case Input::HoB: return "HoB";
+  }
+  return "?";
+}
+
+const std::vector<std::string>& input_order() {
+  static const std::vector<std::string> order = {"NoL", "NoV", "LoV", "LoT", "VoT", "LoB", "VoB",
+                                                  "NoH", "VoH", "HoT", "HoB"};
+  return order;
+}
+
+// ---------------------------------------------------------------- LobeContext
+
+LobeContext::LobeContext(const ModelSpec& spec, std::string lobe, ir::FunctionBuilder& fb)
+    : spec_(spec), lobe_(std::move(lobe)), fb_(fb) {}
+
+ir::Expr LobeContext::input(Input i) { return fb_.param(input_name(i)); }
+
+ir::Expr LobeContext::NoH() {
+  // n·h ≤ 1 for unit vectors, but rounding can go a hair above, where tan²θ_h < 0
+  // or (n·h)²(α² − 1) + 1 < α² would follow; the min keeps it at 1.
+  return ir::min(input(Input::NoH), 1.0);
+}
+
+ir::Expr LobeContext::VoH() {
+  // v·h ≥ 0 (h bisects l and v); the bracket keeps rounding from making it negative.
+  return ir::pos(input(Input::VoH));
+}
+
+bool LobeContext::has(const std::string& param) const { return spec_.values.count(param) > 0; }
+
+ir::Expr LobeContext::number(const std::string& param) {
+  const Value& v = spec_.at(param);
+  if (v.kind == ParamKind::Color) return ir::constant(lobe_ + "_" + param, v.rgb);
+  return ir::constant(lobe_ + "_" + param, v.number);
+}
+
+bool LobeContext::flag(const std::string& param) const { return spec_.at(param).flag; }
+const std::string& LobeContext::choice(const std::string& param) const { return spec_.at(param).choice; }
+const ModelSpec& LobeContext::model(const std::string& param) const {
+  const Value& v = spec_.at(param);
+  if (!v.model) throw std::logic_error("facet: " + param + " holds no model");
+  return *v.model;
+}
+
+ir::Expr LobeContext::fresnel() {
+  const ModelSpec& f = model("fresnel");
+  const std::string& name = f.def->name;
+  if (name == "none") return 1.0;
+  if (name == "schlick") {
+    // A grey f0 is one number: F stays scalar until k ⊗ ρ. Schlick's term clamps
+    // its own base, so v·h goes in without the bracket.
+    const std::array<double, 3>& f0 = f.at("f0").rgb;
+    ir::Expr c = f0[0] == f0[1] && f0[1] == f0[2] ? ir::constant(lobe_ + "_fresnel_f0", f0[0])
+                                                 : ir::constant(lobe_ + "_fresnel_f0", f0);
+    return ir::call(terms::fresnel_schlick(c.type()), {c, input(Input::VoH)});
+  }
+  if (name == "exact") {
+    double ior = f.at("ior").number;
+    return ir::call(ior > 1 ? terms::fresnel_exact() : terms::fresnel_exact_tir(),
+                    {ir::constant(lobe_ + "_fresnel_ior", ior), VoH()});
+  }
+  throw std::logic_error("facet: unknown Fresnel model " + name);
+}
+
+ir::Expr LobeContext::geometry() {
+  const std::string& g = choice("geometry");
+  if (g == "none") return 1.0;
+  if (g == "v_cavity") {
+    return ir::call(terms::geometry_v_cavity(), {NoL(), NoV(), NoH(), VoH()});
+  }
+  throw std::logic_error("facet: unknown geometry term " + g);
+}
+
+// ---------------------------------------------------------------- registry
+
+namespace {
+
+// Model- and Object-kind parameters name their models by section and name;
+// once every ModelDef is in place, resolve those names and fill their defaults.
+void resolve_defaults(std::vector<ModelDef>& all) {
+  auto find = [&](const std::string& sec, const std::string& name) -> const ModelDef* {
+    for (const auto& m : all)
+      if (m.section == sec && m.name == name) return &m;
+    return nullptr;
+  };
+  for (auto& m : all) {
+    for (auto& p : m.params) {
+      if (p.kind != ParamKind::Model && p.kind != ParamKind::Object) continue;
+      if (!p.fallback.model) continue;  // an optional object: absent means "off"
+      const std::string& name = p.kind == ParamKind::Model ? p.fallback.choice : p.fixed;
+      const ModelDef* def = find(p.section, name);
+      if (!def) throw std::logic_error("facet catalog: " + m.name + "." + p.name + " names unknown " + name);
+      auto spec = std::make_shared<ModelSpec>(*p.fallback.model);
+      spec->def = def;
+      for (const auto& sub : def->params)
+        if (!spec->values.count(sub.name)) spec->values[sub.name] = sub.fallback;
+      p.fallback.model = spec;
+    }
+  }
+}
+
+std::vector<ModelDef> build_catalog() {
+  std::vector<ModelDef> all;
+  catalog_detail::add_diffuse(all);
+  catalog_detail::add_specular(all);
+  catalog_detail::add_terms(all);
+  catalog_detail::add_lights(all);
+  catalog_detail::add_scene_vocabulary(all);
+  resolve_defaults(all);
+  return all;
+}
+
+}  // namespace
+
+const std::vector<ModelDef>& catalog() {
+  static const std::vector<ModelDef> all = build_catalog();
+  return all;
+}
+
+ModelSpec default_spec(const ModelDef& def) {
+  ModelSpec s;
+  s.def = &def;
+  for (const auto& p : def.params)
+    if (p.kind != ParamKind::Object || p.fallback.model) s.values[p.name] = p.fallback;
+  return s;
+}
+
+const ModelDef* find_model(const std::string& sec, const std::string& name) {
+  for (const auto& m : catalog())
+    if (m.section == sec && m.name == name) return &m;
+  return nullptr;
+}
+
+std::vector<const ModelDef*> section(const std::string& name) {
+  std::vector<const ModelDef*> out;
+  for (const auto& m : catalog())
+    if (m.section == name) out.push_back(&m);
+  return out;
+}
+
+}  // namespace facet

@@ -1,0 +1,214 @@
+// facet — the model catalog.
+//
+// Every reflection model, Fresnel term, geometry term, modifier, light and
+// attenuation law of MODELS.md is one `ModelDef`: its parameters (type, range,
+// default, documentation), its citation, its formula as documentation, how
+// exactly Cycles and POV-Ray can express it natively, and — for the lobes — the
+// function that builds its formula in the IR. Printers and the C++ reference
+// only ever see that IR, so adding a model means adding one ModelDef.
+#pragma once
+
+#include <array>
+#include <functional>
+#include <limits>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/ir.h"
+
+namespace facet {
+
+// ε of MODELS.md: the one tolerance every target uses (see catalog/README in the docs).
+inline constexpr double kEpsilon = 1e-4;
+
+struct Range {
+  double min = -std::numeric_limits<double>::infinity();
+  double max = std::numeric_limits<double>::infinity();
+  bool min_open = false;
+  bool max_open = false;
+  bool contains(double v) const;
+  std::string describe() const;  // "> 0", "in [0, 1]", "any"
+  static Range positive() { return {0, std::numeric_limits<double>::infinity(), true, false}; }
+  static Range non_negative() { return {0, std::numeric_limits<double>::infinity(), false, false}; }
+  static Range at_least(double v) { return {v, std::numeric_limits<double>::infinity(), false, false}; }
+  static Range closed(double a, double b) { return {a, b, false, false}; }
+  static Range left_open(double a, double b) { return {a, b, true, false}; }
+  static Range open(double a, double b) { return {a, b, true, true}; }
+};
+
+enum class ParamKind {
+  Number,  // a finite JSON number within `range`
+  Bool,
+  Enum,    // one of `choices`
+  Color,   // an RGB array, or one number for grey; components within `range`
+  Vector,  // three numbers (not all zero if `nonzero`)
+  Model,   // an object {"model": <a name of section `section`>, …its parameters}
+  Object,  // an object holding the parameters of the fixed model `section`/`fixed`
+  String,     // a non-empty string
+  Points,     // an array of [x, y, z] (mesh positions and normals)
+  Triangles,  // an array of [a, b, c] vertex indices
+};
+const char* param_kind_name(ParamKind k);
+
+// A parameter's value in a material (after defaults are applied).
+struct ModelSpec;
+struct Value {
+  ParamKind kind = ParamKind::Number;
+  double number = 0;
+  bool flag = false;
+  std::string choice;
+  std::array<double, 3> rgb{};
+  std::shared_ptr<const ModelSpec> model;  // Model and Object kinds
+  std::vector<std::array<double, 3>> points;  // Points and Triangles kinds
+};
+
+struct ParamDef {
+  std::string name;
+  ParamKind kind = ParamKind::Number;
+  std::string doc;
+  Range range;
+  bool required = false;
+  Value fallback;                    // the value when the key is absent (optional parameters),
+                                     // or the value editors start from (required ones)
+  std::vector<std::string> choices;  // Enum
+  std::string section;               // Model: the section to choose from; Object: the model's section
+  std::string fixed;                 // Object: the model whose parameters the object holds;
+                                     // Model: the model an object without "model" means
+  bool nonzero = false;              // Vector: a direction, so not the zero vector
+  std::string allowed() const;       // what the error messages say is allowed
+};
+
+// How closely a renderer's own feature reproduces a model.
+struct Equivalence {
+  enum class Level { Exact, Approximate, None };
+  Level level = Level::None;
+  std::string note;
+};
+const char* level_name(Equivalence::Level l);
+
+class LobeContext;
+
+struct ModelDef {
+  std::string section;   // diffuse, specular, fresnel, geometry, distribution, modifier, light, attenuation, term
+  std::string name;      // the key used in material files
+  std::string title;     // human name
+  std::string citation;  // printed on the first line of the generated function
+  std::string formula;   // the formula as in MODELS.md
+  std::string doc;       // a paragraph for `facet models` and the docs
+  std::vector<ParamDef> params;
+  Equivalence cycles;    // the nearest Cycles closure
+  Equivalence pov;       // POV-Ray's native finish
+  // Physics, as the literature states it (facet physics measures both):
+  // f(l, v) = f(v, l); and directional albedo ≤ 1 for every incidence and roughness.
+  bool reciprocal = false;
+  bool energy_conserving = false;
+  std::string physics_note;  // where the claim comes from, or why not
+  // Lobes: build ρ in `ctx` from the material's values. Others: null.
+  std::function<ir::Expr(LobeContext&)> build;
+
+  const ParamDef* param(const std::string& name) const;
+};
+
+// A model chosen in a material, with every parameter's value (defaults applied).
+struct ModelSpec {
+  const ModelDef* def = nullptr;
+  std::map<std::string, Value> values;
+  const Value& at(const std::string& name) const;
+};
+
+// The geometric inputs a lobe can read, dot products of unit vectors each target
+// computes: n, l, v, the tangent t, b = n × t, and the half vector
+//   h = (l + v) / max(|l + v|, ε)
+// (where l ≈ −v, both grazing, h is undefined; the floor keeps 1/|l + v| finite).
+// Targets with vector types compute h with one vector normalization, which in
+// SPIR-V is two instructions where deriving n·h, v·h, h·t and h·b from l·v and the
+// other dots took ten; the lobes read the half-vector inputs through LobeContext,
+// which adds the clamps rounding needs.
+enum class Input { NoL, NoV, LoV, LoT, VoT, LoB, VoB, NoH, VoH, HoT, HoB };
+const char* input_name(Input i);
+const std::vector<std::string>& input_order();
+
+// What a lobe's `build` sees: inputs, the material's parameter values as named
+// constants, and the let-bindings of the lobe function being built.
+class LobeContext {
+ public:
+  LobeContext(const ModelSpec& spec, std::string lobe, ir::FunctionBuilder& fb);
+
+  ir::Expr input(Input i);
+  ir::Expr NoL() { return input(Input::NoL); }
+  ir::Expr NoV() { return input(Input::NoV); }
+  ir::Expr LoV() { return input(Input::LoV); }
+  // Half-vector quantities: min(n·h, 1), [v·h], h·t, h·b.
+  ir::Expr NoH();
+  ir::Expr VoH();
+  ir::Expr HoT() { return input(Input::HoT); }
+  ir::Expr HoB() { return input(Input::HoB); }
+
+  ir::Expr number(const std::string& param);  // a named constant, e.g. specular_m
+  bool flag(const std::string& param) const;
+  const std::string& choice(const std::string& param) const;
+  const ModelSpec& model(const std::string& param) const;  // a Model/Object-kind parameter
+  bool has(const std::string& param) const;
+  ir::Expr let(const std::string& name, const ir::Expr& value) { return fb_.let(name, value); }
+  // F(v·h) of the lobe's `fresnel` parameter.
+  ir::Expr fresnel();
+  // G of the lobe's `geometry` parameter, none or v_cavity; smith_ggx enters the
+  // microfacet lobes as a visibility term instead (terms::visibility_smith_ggx).
+  ir::Expr geometry();
+  const std::string& lobe() const { return lobe_; }
+
+ private:
+  const ModelSpec& spec_;
+  std::string lobe_;
+  ir::FunctionBuilder& fb_;
+};
+
+// The whole catalog, in documentation order. Besides the shading vocabulary
+// (diffuse, specular, fresnel, geometry, distribution, modifier, term, light,
+// attenuation) it holds the scene vocabulary (camera, object), so scene files
+// are checked and documented the same way.
+const std::vector<ModelDef>& catalog();
+const ModelDef* find_model(const std::string& section, const std::string& name);
+// `def` with every parameter at its default (optional objects such as toon absent).
+ModelSpec default_spec(const ModelDef& def);
+std::vector<const ModelDef*> section(const std::string& name);
+
+// The term functions of the catalog, one per term, each built once. Models
+// compose them; tests and the docs reach them here.
+namespace terms {
+ir::FunctionPtr lambert();
+ir::FunctionPtr minnaert();
+ir::FunctionPtr minnaert_velvet();
+ir::FunctionPtr oren_nayar();
+ir::FunctionPtr phong();
+ir::FunctionPtr blinn_phong();
+ir::FunctionPtr schlick_power();
+ir::FunctionPtr gaussian();
+ir::FunctionPtr heidrich_seidel();
+ir::FunctionPtr distribution_beckmann();
+ir::FunctionPtr distribution_ggx();
+ir::FunctionPtr distribution_trowbridge_reitz();
+ir::FunctionPtr geometry_v_cavity();
+// Terms whose inputs may be grey (one number) or coloured come in both types:
+// a grey Fresnel term keeps the lobe scalar until k ⊗ ρ.
+ir::FunctionPtr fresnel_schlick(ir::Type f0);
+ir::FunctionPtr fresnel_exact();      // η > 1
+ir::FunctionPtr fresnel_exact_tir();  // η ≤ 1: total internal reflection
+ir::FunctionPtr microfacet(ir::Type F);
+// Smith GGX as the visibility G / (4 (n·l)(n·v)), and ρ = π D V F (n·l) with it.
+ir::FunctionPtr visibility_smith_ggx();
+ir::FunctionPtr microfacet_visibility(ir::Type F);
+ir::FunctionPtr blinn(ir::Type F);
+ir::FunctionPtr ward();
+ir::FunctionPtr ward_nvidia();
+ir::FunctionPtr toon(ir::Type rho);       // smoothstep over [cutoff ± width/2]
+ir::FunctionPtr toon_hard(ir::Type rho);  // width 0: a step at cutoff
+ir::FunctionPtr attenuation_inverse_square();
+ir::FunctionPtr attenuation_polynomial();
+ir::FunctionPtr spot_cone();
+}  // namespace terms
+
+}  // namespace facet

@@ -1,0 +1,324 @@
+// facet — checking JSON documents against catalog parameter definitions.
+// Private to codegen/src: material and scene files share it.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "catalog/catalog.h"
+#include "catalog/material.h"
+#include "core/diagnostics.h"
+
+namespace facet {
+
+using nlohmann::json;
+
+inline std::string number_text(double v) { return fmt::format("{}", v); }
+
+inline std::string quoted_list(const std::vector<std::string>& xs) {
+  std::string s;
+  for (size_t i = 0; i < xs.size(); ++i) s += (i ? ", \"" : "\"") + xs[i] + "\"";
+  return s;
+}
+
+inline std::vector<std::string> param_names(const ModelDef& m, bool with_model_key) {
+  std::vector<std::string> names;
+  if (with_model_key) names.push_back("model");
+  for (const auto& p : m.params) names.push_back(p.name);
+  return names;
+}
+
+class Checker {
+ public:
+  explicit Checker(DiagnosticSink& sink) : sink_(sink) {}
+
+  // A finite number, else a diagnostic.
+  std::optional<double> number(const json& j, const std::string& path, const std::string& allowed) {
+    if (!j.is_number()) {
+      sink_.error(path, fmt::format("expected a number, found {}; allowed: {}", json_type_name(j), allowed));
+      return std::nullopt;
+    }
+    double v = j.get<double>();
+    if (!std::isfinite(v)) {
+      sink_.error(path, fmt::format("{} is not finite; allowed: {}", number_text(v), allowed));
+      return std::nullopt;
+    }
+    return v;
+  }
+
+  std::optional<double> ranged(const json& j, const std::string& path, const ParamDef& p) {
+    auto v = number(j, path, p.allowed());
+    if (v && !p.range.contains(*v)) {
+      sink_.error(path, fmt::format("{} is out of range; allowed: {}", number_text(*v), p.allowed()));
+      return std::nullopt;
+    }
+    return v;
+  }
+
+  std::optional<RGB> color(const json& j, const std::string& path, const ParamDef& p) {
+    if (j.is_number()) {
+      auto v = ranged(j, path, p);
+      if (!v) return std::nullopt;
+      return RGB{*v, *v, *v};
+    }
+    if (!j.is_array() || j.size() != 3) {
+      std::string found = j.is_array() ? fmt::format("an array of {} values", j.size()) : json_type_name(j);
+      sink_.error(path, fmt::format("expected a colour, found {}; allowed: {}", found, p.allowed()));
+      return std::nullopt;
+    }
+    RGB rgb{};
+    bool ok = true;
+    for (size_t i = 0; i < 3; ++i) {
+      auto v = ranged(j[i], index_path(path, i), p);
+      if (v) rgb[i] = *v;
+      else ok = false;
+    }
+    return ok ? std::optional<RGB>(rgb) : std::nullopt;
+  }
+
+  std::optional<RGB> vector(const json& j, const std::string& path, const ParamDef& p) {
+    if (!j.is_array() || j.size() != 3) {
+      std::string found = j.is_array() ? fmt::format("an array of {} values", j.size()) : json_type_name(j);
+      sink_.error(path, fmt::format("expected a vector, found {}; allowed: {}", found, p.allowed()));
+      return std::nullopt;
+    }
+    RGB v{};
+    bool ok = true;
+    for (size_t i = 0; i < 3; ++i) {
+      auto x = number(j[i], index_path(path, i), p.allowed());
+      if (x) v[i] = *x;
+      else ok = false;
+    }
+    if (ok && p.nonzero && v[0] == 0 && v[1] == 0 && v[2] == 0) {
+      sink_.error(path, "the zero vector has no direction; allowed: " + p.allowed());
+      return std::nullopt;
+    }
+    return ok ? std::optional<RGB>(v) : std::nullopt;
+  }
+
+  // An array of triples: points (finite; not zero if p.nonzero) or triangles
+  // (non-negative integer indices of distinct vertices). At most 8 problems are
+  // reported per list.
+  std::optional<Value> list(const json& j, const std::string& path, const ParamDef& p) {
+    Value out;
+    out.kind = p.kind;
+    if (!j.is_array()) {
+      sink_.error(path, fmt::format("expected an array, found {}; allowed: {}", json_type_name(j), p.allowed()));
+      return std::nullopt;
+    }
+    int problems = 0;
+    auto bad = [&](size_t i, const std::string& what) {
+      if (++problems <= 8) sink_.error(index_path(path, i), what + "; allowed: " + p.allowed());
+    };
+    out.points.reserve(j.size());
+    for (size_t i = 0; i < j.size(); ++i) {
+      const json& e = j[i];
+      if (!e.is_array() || e.size() != 3) {
+        bad(i, "expected three numbers, found " + (e.is_array() ? fmt::format("{} values", e.size()) : json_type_name(e)));
+        continue;
+      }
+      std::array<double, 3> v{};
+      bool ok = true;
+      for (size_t k = 0; k < 3; ++k) {
+        if (!e[k].is_number() || !std::isfinite(e[k].get<double>())) ok = false;
+        else v[k] = e[k].get<double>();
+        if (ok && p.kind == ParamKind::Triangles && (!e[k].is_number_integer() || v[k] < 0)) ok = false;
+      }
+      if (!ok) {
+        bad(i, p.kind == ParamKind::Triangles ? "expected three non-negative integers" : "expected three finite numbers");
+        continue;
+      }
+      if (p.kind == ParamKind::Points && p.nonzero && v[0] == 0 && v[1] == 0 && v[2] == 0) {
+        bad(i, "the zero vector has no direction");
+        continue;
+      }
+      if (p.kind == ParamKind::Triangles && (v[0] == v[1] || v[1] == v[2] || v[0] == v[2])) {
+        bad(i, "a triangle needs three distinct vertices");
+        continue;
+      }
+      out.points.push_back(v);
+    }
+    if (problems > 8) sink_.error(path, fmt::format("{} more problems in this list", problems - 8));
+    if (problems) return std::nullopt;
+    return out;
+  }
+
+  std::optional<Value> value(const json& j, const std::string& path, const ParamDef& p) {
+    Value out;
+    out.kind = p.kind;
+    switch (p.kind) {
+      case ParamKind::Number: {
+        auto v = ranged(j, path, p);
+        if (!v) return std::nullopt;
+        out.number = *v;
+        return out;
+      }
+      case ParamKind::String:
+        if (!j.is_string() || j.get<std::string>().empty()) {
+          sink_.error(path, fmt::format("expected a non-empty string, found {}",
+                                        j.is_string() ? "an empty string" : json_type_name(j)));
+          return std::nullopt;
+        }
+        out.choice = j.get<std::string>();
+        return out;
+      case ParamKind::Points:
+      case ParamKind::Triangles:
+        return list(j, path, p);
+      case ParamKind::Bool:
+        if (!j.is_boolean()) {
+          sink_.error(path, fmt::format("expected a boolean, found {}; allowed: true or false", json_type_name(j)));
+          return std::nullopt;
+        }
+        out.flag = j.get<bool>();
+        return out;
+      case ParamKind::Enum: {
+        if (!j.is_string()) {
+          sink_.error(path, fmt::format("expected a string, found {}; allowed: {}", json_type_name(j), p.allowed()));
+          return std::nullopt;
+        }
+        std::string s = j.get<std::string>();
+        if (std::find(p.choices.begin(), p.choices.end(), s) == p.choices.end()) {
+          std::string hint = suggest(s, p.choices);
+          sink_.error(path, fmt::format("\"{}\" is not allowed{}; allowed: {}", s,
+                                        hint.empty() ? "" : " (did you mean \"" + hint + "\"?)", p.allowed()));
+          return std::nullopt;
+        }
+        out.choice = s;
+        return out;
+      }
+      case ParamKind::Color: {
+        auto c = color(j, path, p);
+        if (!c) return std::nullopt;
+        out.rgb = *c;
+        return out;
+      }
+      case ParamKind::Vector: {
+        auto v = vector(j, path, p);
+        if (!v) return std::nullopt;
+        out.rgb = *v;
+        return out;
+      }
+      case ParamKind::Model: {
+        // Shorthands: a string names a model that needs no parameters; an
+        // object without "model" holds the parameters of `fixed`.
+        if (j.is_string()) {
+          const ModelDef* def = find_model(p.section, j.get<std::string>());
+          if (def && std::none_of(def->params.begin(), def->params.end(), [](const ParamDef& q) { return q.required; })) {
+            ModelSpec spec;
+            spec.def = def;
+            for (const auto& q : def->params) spec.values[q.name] = q.fallback;
+            out.choice = def->name;
+            out.model = std::make_shared<ModelSpec>(spec);
+            return out;
+          }
+        }
+        if (j.is_object() && !j.contains("model") && !p.fixed.empty()) {
+          auto spec = model(j, path, p.section, find_model(p.section, p.fixed));
+          if (!spec) return std::nullopt;
+          out.choice = spec->def->name;
+          out.model = std::make_shared<ModelSpec>(*spec);
+          return out;
+        }
+        if (j.is_string()) {
+          sink_.error(path, fmt::format("\"{}\" is not allowed; allowed: {}", j.get<std::string>(), p.allowed()));
+          return std::nullopt;
+        }
+        auto spec = model(j, path, p.section, nullptr);
+        if (!spec) return std::nullopt;
+        out.choice = spec->def->name;
+        out.model = std::make_shared<ModelSpec>(*spec);
+        return out;
+      }
+      case ParamKind::Object: {
+        auto spec = model(j, path, p.section, find_model(p.section, p.fixed));
+        if (!spec) return std::nullopt;
+        out.model = std::make_shared<ModelSpec>(*spec);
+        return out;
+      }
+    }
+    return std::nullopt;
+  }
+
+  // An object naming a model of `section` with "model" (or holding the
+  // parameters of `fixed`), with every parameter checked and defaults filled.
+  // `key` names the discriminating key: "model" in materials, "type" for lights.
+  std::optional<ModelSpec> model(const json& j, const std::string& path, const std::string& section,
+                                 const ModelDef* fixed, const std::string& key = "model") {
+    auto models = facet::section(section);
+    std::vector<std::string> names;
+    for (const auto* m : models) names.push_back(m->name);
+    if (!j.is_object()) {
+      std::string allowed = fixed ? "an object with keys " + quoted_list(param_names(*fixed, false))
+                                  : "an object {\"" + key + "\": …} with " + key + " one of " + quoted_list(names);
+      sink_.error(path, fmt::format("expected an object, found {}; allowed: {}", json_type_name(j), allowed));
+      return std::nullopt;
+    }
+    const ModelDef* def = fixed;
+    if (!def) {
+      auto it = j.find(key);
+      if (it == j.end()) {
+        sink_.error(join_path(path, key), "missing; allowed: one of " + quoted_list(names));
+        return std::nullopt;
+      }
+      if (!it->is_string()) {
+        sink_.error(join_path(path, key), fmt::format("expected a string, found {}; allowed: one of {}",
+                                                      json_type_name(*it), quoted_list(names)));
+        return std::nullopt;
+      }
+      std::string name = it->get<std::string>();
+      def = find_model(section, name);
+      if (!def) {
+        std::string hint = suggest(name, names);
+        sink_.error(join_path(path, key),
+                    fmt::format("unknown {} model \"{}\"{}; allowed: one of {}", section, name,
+                                hint.empty() ? "" : " (did you mean \"" + hint + "\"?)", quoted_list(names)));
+        return std::nullopt;
+      }
+    }
+    ModelSpec spec;
+    spec.def = def;
+    bool ok = true;
+    std::vector<std::string> keys = param_names(*def, false);
+    if (!fixed) keys.insert(keys.begin(), key);
+    for (const auto& [k, val] : j.items()) {
+      if (k == key && !fixed) continue;
+      const ParamDef* p = def->param(k);
+      if (!p) {
+        std::string hint = suggest(k, keys);
+        sink_.error(join_path(path, k),
+                    fmt::format("unknown key for {} \"{}\"{}; allowed keys: {}", fixed ? "object" : key,
+                                def->name, hint.empty() ? "" : " (did you mean \"" + hint + "\"?)",
+                                quoted_list(keys)));
+        ok = false;
+        continue;
+      }
+      auto v = value(val, join_path(path, k), *p);
+      if (v) spec.values[k] = *v;
+      else ok = false;
+    }
+    for (const auto& p : def->params) {
+      if (spec.values.count(p.name) || j.contains(p.name)) continue;  // present: valid, or already reported
+      if (p.required) {
+        sink_.error(join_path(path, p.name),
+                    fmt::format("missing; {} \"{}\" requires it: {}", fixed ? "object" : "model", def->name, p.allowed()));
+        ok = false;
+      } else if (p.kind != ParamKind::Object || p.fallback.model) {
+        spec.values[p.name] = p.fallback;
+      }
+    }
+    if (!ok) return std::nullopt;
+    return spec;
+  }
+
+ private:
+  DiagnosticSink& sink_;
+};
+
+
+}  // namespace facet

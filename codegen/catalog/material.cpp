@@ -1,0 +1,286 @@
+#include "catalog/material.h"
+
+#include "catalog/checker.h"
+
+#include <cmath>
+#include <filesystem>
+
+#include <fmt/format.h>
+
+namespace facet {
+
+using nlohmann::json;
+
+namespace {
+
+ParamDef material_color(const char* name, const char* doc) {
+  ParamDef p;
+  p.name = name;
+  p.kind = ParamKind::Color;
+  p.doc = doc;
+  p.range = Range::non_negative();
+  p.fallback.kind = ParamKind::Color;
+  return p;
+}
+
+ParamDef tangent_axis_param() {
+  ParamDef p;
+  p.name = "tangent_axis";
+  p.kind = ParamKind::Vector;
+  p.doc = "axis the tangent field t = normalize(axis × n) circles (anisotropic models)";
+  p.fallback.kind = ParamKind::Vector;
+  p.fallback.rgb = {0, 1, 0};
+  p.nonzero = true;
+  return p;
+}
+
+const std::vector<std::string> kMaterialKeys = {"$schema", "name", "ambient", "emission",
+                                                "diffuse", "specular", "tangent_axis"};
+
+}  // namespace
+
+Material parse_material(const json& doc, const std::string& file) {
+  DiagnosticSink sink(file);
+  Checker check(sink);
+  Material m;
+  m.source = file;
+  m.name = std::filesystem::path(file).stem().string();
+  if (!doc.is_object()) {
+    sink.error("", fmt::format("expected a material object, found {}; allowed: an object with keys {}",
+                               json_type_name(doc), quoted_list(kMaterialKeys)));
+    sink.throw_if_any();
+  }
+  for (const auto& [key, val] : doc.items()) {
+    if (key == "$schema") {
+      if (!val.is_string()) sink.error(key, "expected a string (the schema's URL or path)");
+    } else if (key == "name") {
+      if (!val.is_string() || val.get<std::string>().empty())
+        sink.error(key, fmt::format("expected a non-empty string, found {}",
+                                    val.is_string() ? "an empty string" : json_type_name(val)));
+      else m.name = val.get<std::string>();
+    } else if (key == "ambient" || key == "emission") {
+      auto c = check.color(val, key, material_color(key.c_str(), ""));
+      if (c) (key == "ambient" ? m.ambient : m.emission) = *c;
+    } else if (key == "tangent_axis") {
+      auto v = check.vector(val, key, tangent_axis_param());
+      if (v) m.tangent_axis = *v;
+    } else if (key == "diffuse" || key == "specular") {
+      auto spec = check.model(val, key, key, nullptr);
+      if (spec) (key == "diffuse" ? m.diffuse : m.specular) = *spec;
+    } else {
+      std::string hint = suggest(key, kMaterialKeys);
+      sink.error(key, fmt::format("unknown key{}; allowed keys: {}",
+                                  hint.empty() ? "" : " (did you mean \"" + hint + "\"?)", quoted_list(kMaterialKeys)));
+    }
+  }
+  if (!doc.contains("diffuse") && !doc.contains("specular"))
+    sink.error("", "a material needs a \"diffuse\" or a \"specular\" lobe (or both)");
+  sink.throw_if_any();
+  return m;
+}
+
+Material load_material(const std::string& path) { return parse_material(read_json_file(path), path); }
+
+Material lobe_material(const ModelSpec& spec, const std::string& name) {
+  Material m;
+  m.name = name;
+  (spec.def->section == "diffuse" ? m.diffuse : m.specular) = spec;
+  return m;
+}
+
+std::vector<Material> model_materials() {
+  std::vector<Material> out;
+  for (const auto& def : catalog())
+    if (def.section == "diffuse" || def.section == "specular") out.push_back(lobe_material(default_spec(def), def.name));
+  return out;
+}
+
+namespace {
+
+json value_json(const Value& v);
+
+}  // namespace
+
+json spec_json(const ModelSpec& s, bool with_model) {
+  json j = json::object();
+  if (with_model) j["model"] = s.def->name;
+  for (const auto& p : s.def->params) {
+    auto it = s.values.find(p.name);
+    if (it == s.values.end()) continue;
+    if (p.kind == ParamKind::Object && !it->second.model) continue;
+    j[p.name] = value_json(it->second);
+  }
+  return j;
+}
+
+namespace {
+
+json value_json(const Value& v) {
+  switch (v.kind) {
+    case ParamKind::Number: return v.number;
+    case ParamKind::Bool: return v.flag;
+    case ParamKind::Enum: return v.choice;
+    case ParamKind::Color:
+    case ParamKind::Vector: return json::array({v.rgb[0], v.rgb[1], v.rgb[2]});
+    case ParamKind::Model: return spec_json(*v.model, true);
+    case ParamKind::Object: return spec_json(*v.model, false);
+    case ParamKind::String: return v.choice;
+    case ParamKind::Points:
+    case ParamKind::Triangles: return v.points;
+  }
+  return nullptr;
+}
+
+}  // namespace
+
+json default_json(const ParamDef& p) {
+  const Value& v = p.fallback;
+  switch (p.kind) {
+    case ParamKind::Number: return v.number;
+    case ParamKind::Bool: return v.flag;
+    case ParamKind::Enum:
+    case ParamKind::String: return v.choice;
+    case ParamKind::Color:
+    case ParamKind::Vector: return v.rgb;
+    case ParamKind::Model: return v.model ? spec_json(*v.model) : json(nullptr);
+    case ParamKind::Object:
+    case ParamKind::Points:
+    case ParamKind::Triangles: return nullptr;
+  }
+  return nullptr;
+}
+
+json to_json(const Material& m) {
+  json j = json::object();
+  j["name"] = m.name;
+  j["ambient"] = m.ambient;
+  j["emission"] = m.emission;
+  if (m.diffuse) j["diffuse"] = spec_json(*m.diffuse, true);
+  if (m.specular) j["specular"] = spec_json(*m.specular, true);
+  j["tangent_axis"] = m.tangent_axis;
+  return j;
+}
+
+// ---------------------------------------------------------------- schema
+
+namespace {
+
+json number_schema(const Range& r) {
+  json s = {{"type", "number"}};
+  if (std::isfinite(r.min)) s[r.min_open ? "exclusiveMinimum" : "minimum"] = r.min;
+  if (std::isfinite(r.max)) s[r.max_open ? "exclusiveMaximum" : "maximum"] = r.max;
+  return s;
+}
+
+}  // namespace
+
+json param_schema(const ParamDef& p) {
+  json s;
+  switch (p.kind) {
+    case ParamKind::Number:
+      s = number_schema(p.range);
+      s["default"] = p.fallback.number;
+      break;
+    case ParamKind::Bool:
+      s = {{"type", "boolean"}, {"default", p.fallback.flag}};
+      break;
+    case ParamKind::Enum:
+      s = {{"enum", p.choices}, {"default", p.fallback.choice}};
+      break;
+    case ParamKind::String:
+      s = {{"type", "string"}, {"minLength", 1}};
+      break;
+    case ParamKind::Points:
+    case ParamKind::Triangles: {
+      json item = {{"type", p.kind == ParamKind::Points ? "number" : "integer"}};
+      if (p.kind == ParamKind::Triangles) item["minimum"] = 0;
+      s = {{"type", "array"}, {"items", {{"type", "array"}, {"items", item}, {"minItems", 3}, {"maxItems", 3}}}};
+      break;
+    }
+    case ParamKind::Color: {
+      json comp = number_schema(p.range);
+      s = {{"oneOf", json::array({comp, {{"type", "array"}, {"items", comp}, {"minItems", 3}, {"maxItems", 3}}})}};
+      s["default"] = p.fallback.rgb;
+      break;
+    }
+    case ParamKind::Vector:
+      s = {{"type", "array"}, {"items", {{"type", "number"}}}, {"minItems", 3}, {"maxItems", 3}};
+      if (p.nonzero) s["not"] = {{"items", {{"const", 0}}}};
+      s["default"] = p.fallback.rgb;
+      break;
+    case ParamKind::Model: {
+      json alts = json::array();
+      if (!p.fixed.empty()) {  // shorthand: a parameterless model's name, or the fixed model's object
+        json names = json::array();
+        for (const auto* m : section(p.section))
+          if (m->params.empty()) names.push_back(m->name);
+        alts.push_back({{"enum", names}});
+        alts.push_back(model_schema(*find_model(p.section, p.fixed), ""));
+      } else {
+        for (const auto* m : section(p.section)) alts.push_back(model_schema(*m, "model"));
+      }
+      s = {{"oneOf", alts}};
+      break;
+    }
+    case ParamKind::Object:
+      s = model_schema(*find_model(p.section, p.fixed), "");
+      break;
+  }
+  s["description"] = p.doc;
+  return s;
+}
+
+json model_schema(const ModelDef& m, const std::string& key) {
+  json props = json::object();
+  json required = json::array();
+  if (!key.empty()) {
+    props[key] = {{"const", m.name}};
+    required.push_back(key);
+  }
+  for (const auto& p : m.params) {
+    props[p.name] = param_schema(p);
+    if (p.required) required.push_back(p.name);
+  }
+  json s = {{"type", "object"}, {"properties", props}, {"required", required}, {"additionalProperties", false}};
+  s["title"] = m.title;
+  if (!m.citation.empty()) s["description"] = m.citation + ". " + m.formula;
+  return s;
+}
+
+json material_schema() {
+  json lobes = json::object();
+  for (const char* sec : {"diffuse", "specular"}) {
+    json alts = json::array();
+    for (const auto* m : section(sec)) alts.push_back(model_schema(*m, "model"));
+    lobes[sec] = {{"oneOf", alts}, {"description", std::string("the ") + sec + " lobe"}};
+  }
+  json color = param_schema(material_color("color", ""));
+  json ambient = color, emission = color;
+  ambient["description"] = "m_a, multiplied by the scene's ambient colour";
+  emission["description"] = "m_e, emitted radiance";
+  json props = {{"$schema", {{"type", "string"}}},
+                {"name", {{"type", "string"}, {"minLength", 1}, {"description", "the material's name"}}},
+                {"ambient", ambient},
+                {"emission", emission},
+                {"diffuse", lobes["diffuse"]},
+                {"specular", lobes["specular"]},
+                {"tangent_axis", param_schema(tangent_axis_param())}};
+  return {{"$schema", "https://json-schema.org/draft/2020-12/schema"},
+          {"$id", "https://facet.invalid/schemas/material.schema.json"},
+          {"title", "facet material"},
+          {"description", "One material for facet: a diffuse and/or a specular lobe from the model catalog "
+                          "(MODELS.md), with ambient and emissive colours. Generated by `facet schema`."},
+          {"type", "object"},
+          {"properties", props},
+          {"additionalProperties", false},
+          {"anyOf", json::array({{{"required", {"diffuse"}}}, {{"required", {"specular"}}}})}};
+}
+
+std::string identifier(const std::string& name) {
+  std::string s;
+  for (unsigned char c : name) s += std::isalnum(c) ? char(c) : '_';
+  if (s.empty() || std::isdigit(static_cast<unsigned char>(s[0]))) s = "m_" + s;
+  return s;
+}
+
+}  // namespace facet

@@ -1,0 +1,63 @@
+// facet — a material: the one description every target is generated from.
+#pragma once
+
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "catalog/catalog.h"
+#include "core/diagnostics.h"
+
+namespace facet {
+
+using RGB = std::array<double, 3>;
+
+struct Material {
+  std::string name;    // from the file, or the file's stem
+  std::string source;  // the file it was read from ("" when built in code)
+  RGB ambient{0, 0, 0};
+  RGB emission{0, 0, 0};
+  std::optional<ModelSpec> diffuse;
+  std::optional<ModelSpec> specular;
+  RGB tangent_axis{0, 1, 0};
+};
+
+// Checks `doc` against the catalog; every problem becomes a Diagnostic naming
+// `file` and the key path. Throws InputError with all of them.
+Material parse_material(const nlohmann::json& doc, const std::string& file);
+Material load_material(const std::string& path);
+
+// A material of one lobe: `spec` as the diffuse or the specular lobe (by its
+// model's section), nothing else, named `name`. The sweep, the physics checks,
+// the cost table and the docs build their materials with it.
+Material lobe_material(const ModelSpec& spec, const std::string& name);
+// One material per lobe model of the catalog (every diffuse and specular model),
+// the lobe alone at its defaults, named after the model, in catalog order: what
+// `facet cost` measures and `facet docs` shows when given no material.
+std::vector<Material> model_materials();
+
+// The canonical JSON form (every default written out), which parses back to an
+// equal material.
+nlohmann::json to_json(const Material& m);
+// One model's object: {"model": name, …every parameter} (no "model" if !with_model).
+nlohmann::json spec_json(const ModelSpec& s, bool with_model = true);
+
+// A parameter's default as `facet models --json` and the docs print it: null where
+// there is none (required meshes, optional objects such as toon).
+nlohmann::json default_json(const ParamDef& p);
+
+// A JSON Schema (draft 2020-12) of material files, generated from the catalog.
+nlohmann::json material_schema();
+
+// Schema fragments for a parameter, and for a model's object (with `key` naming
+// its discriminator, "model" or "type"; empty for none).
+nlohmann::json param_schema(const ParamDef& p);
+nlohmann::json model_schema(const ModelDef& m, const std::string& key);
+
+// A name usable as an identifier in GLSL, OSL and POV-Ray.
+std::string identifier(const std::string& name);
+
+}  // namespace facet

@@ -1,0 +1,94 @@
+#include "catalog/program.h"
+
+#include <algorithm>
+
+#include <fmt/format.h>
+
+namespace facet {
+
+std::string describe(const ModelSpec& s) {
+  std::string d = s.def->title;
+  std::string params;
+  for (const auto& p : s.def->params) {
+    if (p.kind != ParamKind::Number) continue;
+    params += fmt::format("{}{} = {}", params.empty() ? "" : ", ", p.name, s.at(p.name).number);
+  }
+  return params.empty() ? d : d + " (" + params + ")";
+}
+
+namespace {
+
+// rho_<lobe>(inputs…): the model's formula, then the toon modifier.
+ir::FunctionPtr build_lobe(const ModelSpec& spec, const std::string& lobe, const std::string& material) {
+  ir::FunctionBuilder fb("rho_" + lobe, fmt::format("The {} lobe of \"{}\": {}", lobe, material, describe(spec)));
+  LobeContext ctx(spec, lobe, fb);
+  ir::Expr rho = spec.def->build(ctx);
+  auto toon = spec.values.find("toon");
+  if (toon != spec.values.end() && toon->second.model) {
+    const ModelSpec& t = *toon->second.model;
+    ir::Expr cutoff = ir::constant(lobe + "_toon_cutoff", t.at("cutoff").number);
+    double width = t.at("width").number;
+    if (width > 0) {
+      rho = ir::call(terms::toon(rho.type()), {rho, cutoff, ir::constant(lobe + "_toon_width", width)});
+    } else {
+      rho = ir::call(terms::toon_hard(rho.type()), {rho, cutoff});
+    }
+  }
+  fb.order_params(input_order());
+  return fb.returns(rho);
+}
+
+std::vector<ir::Expr> args_for(const ir::FunctionPtr& f, const ir::FunctionBuilder& fb) {
+  std::vector<ir::Expr> args;
+  for (const auto& p : f->params) args.push_back(fb.arg(p.name));
+  return args;
+}
+
+}  // namespace
+
+bool MaterialProgram::uses(const std::string& input) const {
+  return std::find(inputs.begin(), inputs.end(), input) != inputs.end();
+}
+
+std::vector<ir::FunctionPtr> MaterialProgram::functions() const {
+  return ir::dependencies({terms::attenuation_inverse_square(), terms::attenuation_polynomial(),
+                           terms::spot_cone(), reflectance});
+}
+
+std::vector<ir::NodePtr> MaterialProgram::constants() const { return ir::constants({reflectance}); }
+
+MaterialProgram compile(const Material& m) {
+  MaterialProgram p;
+  p.material = m;
+  if (m.diffuse) p.diffuse = build_lobe(*m.diffuse, "diffuse", m.name);
+  if (m.specular) p.specular = build_lobe(*m.specular, "specular", m.name);
+
+  ir::FunctionBuilder fb("reflectance",
+                         "MODELS.md: k_d ⊗ ρ_d(l, v) + k_s ⊗ ρ_s(l, v) for a light of unit colour",
+                         "Horizon rule: nothing is reflected where n·l ≤ 0 or n·v ≤ 0, i.e. min(n·l, n·v) ≤ 0.");
+  // n·l and n·v always, for the horizon rule; then whatever the lobes read.
+  fb.param("NoL");
+  fb.param("NoV");
+  for (const auto& lobe : {p.diffuse, p.specular})
+    if (lobe)
+      for (const auto& param : lobe->params) fb.param(param.name);
+  fb.order_params(input_order());
+
+  ir::Expr sum = 0.0;
+  bool first = true;
+  auto add = [&](const ir::FunctionPtr& lobe, const ModelSpec& spec, const char* name) {
+    ir::Expr k = ir::constant(std::string(name) + "_color", spec.at("color").rgb);
+    ir::Expr term = k * ir::call(lobe, args_for(lobe, fb));
+    sum = first ? term : sum + term;
+    first = false;
+  };
+  if (p.diffuse) add(p.diffuse, *m.diffuse, "diffuse");
+  if (p.specular) add(p.specular, *m.specular, "specular");
+  ir::Expr horizon_zero = ir::color(0, 0, 0);
+  // One comparison of the smaller cosine rather than two and an ||: the same test.
+  p.reflectance = fb.returns(ir::select(ir::min(fb.arg("NoL"), fb.arg("NoV")) <= 0.0, horizon_zero, sum));
+  for (const auto& param : p.reflectance->params) p.inputs.push_back(param.name);
+  return p;
+}
+
+}  // namespace facet

@@ -1,0 +1,36 @@
+// facet — a material compiled to IR functions, ready for the printers and the
+// C++ reference.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "catalog/material.h"
+#include "core/ir.h"
+
+namespace facet {
+
+struct MaterialProgram {
+  Material material;
+  ir::FunctionPtr diffuse;      // rho_diffuse(inputs…), or null
+  ir::FunctionPtr specular;     // rho_specular(inputs…), or null
+  ir::FunctionPtr reflectance;  // k_d ⊗ ρ_d + k_s ⊗ ρ_s, 0 below the horizon
+  std::vector<std::string> inputs;  // reflectance's parameters, in input_order()
+
+  bool uses(const std::string& input) const;
+  bool uses_tangent() const {
+    return uses("LoT") || uses("VoT") || uses("LoB") || uses("VoB") || uses("HoT") || uses("HoB");
+  }
+  bool uses_bitangent() const { return uses("LoB") || uses("VoB") || uses("HoB"); }
+  bool uses_half_vector() const { return uses("NoH") || uses("VoH") || uses("HoT") || uses("HoB"); }
+  // Every function to print, callees first (the light functions included).
+  std::vector<ir::FunctionPtr> functions() const;
+  std::vector<ir::NodePtr> constants() const;
+};
+
+MaterialProgram compile(const Material& m);
+// "Phong (n = 32)": the model's title and its numeric parameters, as the
+// generated code's comments and the diagrams name a lobe.
+std::string describe(const ModelSpec& s);
+
+}  // namespace facet

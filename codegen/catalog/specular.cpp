@@ -1,0 +1,258 @@
+// Specular models (ρ_s) of MODELS.md: the classic lobes, the microfacet
+// family, Blinn's Trowbridge–Reitz model and Ward's anisotropic model.
+#include "catalog/catalog_internal.h"
+
+namespace facet::catalog_detail {
+
+namespace {
+
+const std::vector<std::string> kGeometries = {"none", "v_cavity", "smith_ggx"};
+
+ParamDef approximation_param() {
+  return choice("approximation",
+                "\"schlick\" replaces x^n by x / (n − n x + x) (Schlick 1994), which needs no pow()",
+                {"none", "schlick"}, "none");
+}
+
+ParamDef geometry_param(const std::string& fallback) {
+  return choice("geometry", "masking-shadowing term G; smith_ggx uses the lobe's roughness as α", kGeometries,
+                fallback);
+}
+
+// x^n, or Schlick's rational approximation of it when the material asks.
+ir::Expr power(LobeContext& c, const ir::FunctionPtr& exact_form, std::vector<ir::Expr> exact_args,
+               const ir::Expr& x) {
+  if (c.choice("approximation") == "schlick") return ir::call(terms::schlick_power(), {x, c.number("n")});
+  return ir::call(exact_form, exact_args);
+}
+
+// π D G F / (4 n·v) with the lobe's D, its `geometry` choice and its `fresnel`.
+// Smith GGX goes in as the visibility V = G / (4 (n·l)(n·v)), ρ = π D V F (n·l):
+// the same product without the factors that cancel.
+ir::Expr microfacet(LobeContext& c, const ir::Expr& D, const ir::Expr& alpha) {
+  ir::Expr d = c.let("D", D);
+  if (c.choice("geometry") == "smith_ggx") {
+    ir::Expr v = c.let("V", ir::call(terms::visibility_smith_ggx(), {c.NoL(), c.NoV(), alpha}));
+    ir::Expr f = c.let("F", c.fresnel());
+    return ir::call(terms::microfacet_visibility(f.type()), {d, v, f, c.NoL()});
+  }
+  ir::Expr g = c.let("G", c.geometry());
+  ir::Expr f = c.let("F", c.fresnel());
+  return ir::call(terms::microfacet(f.type()), {d, g, f, c.NoV()});
+}
+
+const char* kMicrofacetPov = "function pigment";
+
+}  // namespace
+
+void add_specular(std::vector<ModelDef>& all) {
+  {
+    ModelDef m;
+    m.section = "specular";
+    m.name = "phong";
+    m.title = "Phong";
+    m.citation = "Phong 1975, \"Illumination for Computer Generated Pictures\", CACM 18(6)";
+    m.formula = "ρ_s = [r·v]^n, r = 2(n·l)n − l";
+    m.doc = "The classic highlight: a cosine lobe of exponent n around the mirror direction. Not "
+            "energy-conserving and not reciprocal, but cheap and familiar.";
+    m.params = {number("n", "exponent; larger is a tighter highlight", Range::at_least(1), 32),
+                approximation_param()};
+    m.cycles = none("Cycles registers no phong closure (phong_ramp is a different, ramped lobe)");
+    m.pov = exact("finish { phong k_s phong_size n } for a grey k_s without approximation or toon");
+    m.build = [](LobeContext& c) {
+      ir::Expr NoL = c.NoL(), NoV = c.NoV(), LoV = c.LoV();
+      if (c.choice("approximation") == "schlick") {
+        ir::Expr RoV = c.let("RoV", 2.0 * NoL * NoV - LoV);
+        return ir::call(terms::schlick_power(), {RoV, c.number("n")});
+      }
+      return ir::call(terms::phong(), {NoL, NoV, LoV, c.number("n")});
+    };
+    m.physics_note = "ρ = [r·v]^n makes f = ρ/(π n·l) asymmetric; an unnormalized lobe, not a BRDF";
+    add_lobe_params(m);
+    all.push_back(m);
+  }
+  {
+    ModelDef m;
+    m.section = "specular";
+    m.name = "blinn_phong";
+    m.title = "Blinn–Phong";
+    m.citation = "Blinn 1977, \"Models of Light Reflection for Computer Synthesized Pictures\", SIGGRAPH '77";
+    m.formula = "ρ_s = [n·h]^n, h = normalize(l + v)";
+    m.doc = "Phong's lobe measured around the normal with the half vector: the fixed-function "
+            "OpenGL highlight. For the same look as Phong, use about four times the exponent.";
+    m.params = {number("n", "exponent; larger is a tighter highlight", Range::at_least(1), 64),
+                approximation_param()};
+    m.cycles = none("Cycles has no Blinn–Phong closure");
+    m.pov = exact("finish { specular k_s roughness 1/n } for a grey k_s without approximation or toon");
+    m.build = [](LobeContext& c) {
+      ir::Expr NoH = c.NoH();
+      return power(c, terms::blinn_phong(), {NoH, c.number("n")}, NoH);
+    };
+    m.physics_note = "ρ = [n·h]^n makes f = ρ/(π n·l) asymmetric; an unnormalized lobe, not a BRDF";
+    add_lobe_params(m);
+    all.push_back(m);
+  }
+  {
+    ModelDef m;
+    m.section = "specular";
+    m.name = "gaussian";
+    m.title = "Gaussian";
+    m.citation = "Gaussian highlight, after Torrance & Sparrow 1967";
+    m.formula = "ρ_s = exp(−m · acos([n·h])²)";
+    m.doc = "A Gaussian in the angle between the normal and the half vector; larger m, tighter lobe.";
+    m.params = {number("m", "sharpness; larger is a tighter lobe", Range::positive(), 50)};
+    m.cycles = none("Cycles has no Gaussian-lobe closure");
+    m.pov = none("function pigment");
+    m.build = [](LobeContext& c) { return ir::call(terms::gaussian(), {c.NoH(), c.number("m")}); };
+    m.physics_note = "ρ itself is symmetric, so f = ρ/(π n·l) is not; an unnormalized lobe, not a BRDF";
+    add_lobe_params(m);
+    all.push_back(m);
+  }
+  {
+    ModelDef m;
+    m.section = "specular";
+    m.name = "heidrich_seidel";
+    m.title = "Heidrich–Seidel anisotropic";
+    m.citation = "Heidrich & Seidel 1998, \"Efficient Rendering of Anisotropic Surfaces Using Computer "
+                 "Graphics Hardware\"";
+    m.formula = "ρ_s = [√(1−(l·t)²)·√(1−(v·t)²) − (l·t)(v·t)]^n";
+    m.doc = "Phong's lobe for fibres along the tangent t: brushed metal, hair, satin. The highlight is "
+            "a band across the brushing direction.";
+    m.params = {number("n", "exponent; larger is a thinner band", Range::at_least(1), 32)};
+    m.cycles = none("Cycles has no such closure");
+    m.pov = none("function pigment (POV-Ray has no tangent; facet builds it from the analytic normal)");
+    m.build = [](LobeContext& c) {
+      return ir::call(terms::heidrich_seidel(), {c.input(Input::LoT), c.input(Input::VoT), c.number("n")});
+    };
+    m.physics_note = "Phong along fibres: ρ symmetric, f = ρ/(π n·l) not; unnormalized";
+    add_lobe_params(m);
+    all.push_back(m);
+  }
+  {
+    ModelDef m;
+    m.section = "specular";
+    m.name = "beckmann";
+    m.title = "Beckmann";
+    m.citation = "Beckmann & Spizzichino 1963, \"The Scattering of Electromagnetic Waves from Rough Surfaces\"";
+    m.formula = "ρ_s = π D G F / (4 n·v), D = exp(−tan²θ_h/m²)/(π m² cos⁴θ_h); G = 1 and F = 1 by default";
+    m.doc = "The Beckmann microfacet distribution alone; add `geometry` and `fresnel` to make it "
+            "Cook–Torrance. m is the RMS slope of the facets.";
+    m.params = {number("m", "RMS facet slope", Range::positive(), 0.3), geometry_param("none"),
+                model("fresnel", "Fresnel term F", "fresnel", "none")};
+    m.cycles = approximate("microfacet(\"beckmann\", …) uses Smith G and no Fresnel");
+    m.pov = none(kMicrofacetPov);
+    m.build = [](LobeContext& c) {
+      ir::Expr m_ = c.number("m");
+      return microfacet(c, ir::call(terms::distribution_beckmann(), {c.NoH(), m_}), m_);
+    };
+    m.reciprocal = true;
+    m.physics_note = "D F/(4 (n·l)(n·v)) is symmetric; without G nothing bounds the albedo as n·l → 0 (add "
+                     "`geometry` for Cook–Torrance)";
+    add_lobe_params(m);
+    all.push_back(m);
+  }
+  {
+    ModelDef m;
+    m.section = "specular";
+    m.name = "cook_torrance";
+    m.title = "Cook–Torrance";
+    m.citation = "Cook & Torrance 1982, \"A Reflectance Model for Computer Graphics\", ACM TOG 1(1)";
+    m.formula = "ρ_s = π D G F / (4 n·v), Beckmann D, V-cavity G, exact Fresnel (η = 1.5)";
+    m.doc = "The first physically based model in graphics: Beckmann facets that mask and shadow each "
+            "other (V-cavities) and reflect by Fresnel's law, so highlights brighten at grazing angles.";
+    m.params = {number("m", "RMS facet slope", Range::positive(), 0.3), geometry_param("v_cavity"),
+                model("fresnel", "Fresnel term F", "fresnel", "exact", {{"ior", number_value(1.5)}})};
+    m.cycles = approximate("microfacet(\"beckmann\", …) with F multiplied in; Cycles' G is Smith, not V-cavity");
+    m.pov = none(kMicrofacetPov);
+    m.build = [](LobeContext& c) {
+      ir::Expr m_ = c.number("m");
+      return microfacet(c, ir::call(terms::distribution_beckmann(), {c.NoH(), m_}), m_);
+    };
+    m.reciprocal = true;
+    m.energy_conserving = true;
+    m.physics_note = "symmetric; the V-cavity masking function is exact for its microsurface (Heitz 2014, "
+                     "\"Understanding the Masking-Shadowing Function in Microfacet-Based BRDFs\") and G ≤ G1(l), "
+                     "so with F ≤ 1 the albedo is ≤ 1";
+    add_lobe_params(m);
+    all.push_back(m);
+  }
+  {
+    ModelDef m;
+    m.section = "specular";
+    m.name = "ggx";
+    m.title = "GGX (Trowbridge–Reitz)";
+    m.citation = "Walter et al. 2007, \"Microfacet Models for Refraction through Rough Surfaces\", EGSR";
+    m.formula = "ρ_s = π D G F / (4 n·v), D = α²/(π((n·h)²(α²−1)+1)²), separable Smith G, Schlick F (f0 = 0.04)";
+    m.doc = "The long-tailed distribution of real materials and of glTF's metallic–roughness model "
+            "(α = roughness²).";
+    m.params = {number("alpha", "roughness α", Range::positive(), 0.2), geometry_param("smith_ggx"),
+                model("fresnel", "Fresnel term F", "fresnel", "schlick", {{"f0", color_value(0.04)}})};
+    m.cycles = approximate("microfacet(\"ggx\", …) uses height-correlated Smith G and no Fresnel");
+    m.pov = none(kMicrofacetPov);
+    m.build = [](LobeContext& c) {
+      ir::Expr a = c.number("alpha");
+      return microfacet(c, ir::call(terms::distribution_ggx(), {c.NoH(), a}), a);
+    };
+    m.reciprocal = true;
+    m.energy_conserving = true;
+    m.physics_note = "symmetric; Smith G1 is exact for GGX facets and G = G1(l) G1(v) ≤ G1(l), so with F ≤ 1 the "
+                     "albedo is ≤ 1 (Walter et al. 2007; Heitz 2014); energy of multiple scattering is lost";
+    add_lobe_params(m);
+    all.push_back(m);
+  }
+  {
+    ModelDef m;
+    m.section = "specular";
+    m.name = "blinn";
+    m.title = "Blinn (Trowbridge–Reitz)";
+    m.citation = "Blinn 1977, \"Models of Light Reflection for Computer Synthesized Pictures\", SIGGRAPH '77";
+    m.formula = "ρ_s = D G F / (n·v), D = (c²/((n·h)²(c²−1)+1))², V-cavity G, exact Fresnel (η = 1.5)";
+    m.doc = "Blinn's model as printed: the Trowbridge–Reitz ellipsoid distribution with eccentricity "
+            "c, unnormalized, with Cook–Torrance's G and Fresnel.";
+    m.params = {number("c", "eccentricity of the facet ellipsoids", Range::left_open(0, 1), 0.3),
+                model("fresnel", "Fresnel term F", "fresnel", "exact", {{"ior", number_value(1.5)}})};
+    m.cycles = approximate("microfacet(\"ggx\", …) has the same distribution shape, normalized");
+    m.pov = none(kMicrofacetPov);
+    m.build = [](LobeContext& c) {
+      ir::Expr D = c.let("D", ir::call(terms::distribution_trowbridge_reitz(), {c.NoH(), c.number("c")}));
+      ir::Expr G = c.let("G", ir::call(terms::geometry_v_cavity(), {c.NoL(), c.NoV(), c.NoH(), c.VoH()}));
+      ir::Expr F = c.let("F", c.fresnel());
+      return ir::call(terms::blinn(F.type()), {D, G, F, c.NoV()});
+    };
+    m.reciprocal = true;
+    m.physics_note = "D G F/(π (n·l)(n·v)) is symmetric; D is not normalized (its peak is 1), so no bound is claimed";
+    add_lobe_params(m);
+    all.push_back(m);
+  }
+  for (bool nvidia : {false, true}) {
+    ModelDef m;
+    m.section = "specular";
+    m.name = nvidia ? "ward_nvidia" : "ward";
+    m.title = nvidia ? "Ward (NVIDIA survey form)" : "Ward anisotropic";
+    m.citation = nvidia ? "Losasso, \"Surface Reflection Models\", NVIDIA, after Ward 1992"
+                        : "Ward 1992, \"Measuring and Modeling Anisotropic Reflection\", SIGGRAPH '92";
+    m.formula = nvidia ? "as ward, with exponent −2((h·t/αx)² + (h·b/αy)²)/(1 + n·h)"
+                       : "ρ_s = (n·l)/(4 αx αy √((n·l)(n·v))) · exp(−((h·t/αx)² + (h·b/αy)²)/(n·h)²)";
+    m.doc = nvidia ? "The survey's rewriting of Ward's exponent; close to ward for small α, not equal."
+                   : "An elliptical Gaussian of slopes with widths αx along the tangent and αy across it: "
+                     "brushed metal. Fitted to measurements; αx = αy gives the isotropic model.";
+    m.params = {number("alpha_x", "slope deviation along the tangent t", Range::positive(), 0.1),
+                number("alpha_y", "slope deviation along the bitangent b = n × t", Range::positive(), 0.3)};
+    m.cycles = approximate("microfacet(\"beckmann\", N, T, αx, αy, …): the same exponent, other normalization");
+    m.pov = none("function pigment (POV-Ray has no tangent; facet builds it from the analytic normal)");
+    m.build = [nvidia](LobeContext& c) {
+      return ir::call(nvidia ? terms::ward_nvidia() : terms::ward(),
+                      {c.NoL(), c.NoV(), c.NoH(), c.HoT(), c.HoB(), c.number("alpha_x"), c.number("alpha_y")});
+    };
+    m.reciprocal = true;
+    m.physics_note = nvidia ? "symmetric in l and v; the rewritten exponent is not Ward's, so his normalization "
+                              "does not carry over and no bound is claimed"
+                            : "symmetric in l and v; Ward's normalization is approximate: narrow lobes lose energy "
+                              "as cos θ_i (Dür 2006, \"An Improved Normalization for the Ward Reflectance Model\"), "
+                              "and 1/√(n·l) makes the albedo grow without bound at grazing incidence";
+    add_lobe_params(m);
+    all.push_back(m);
+  }
+}
+
+}  // namespace facet::catalog_detail

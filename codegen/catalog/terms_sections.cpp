@@ -1,0 +1,177 @@
+// The building blocks of the catalog that are not lobes on their own: Fresnel
+// and geometry terms, distributions, modifiers, ambient and emission, lights
+// and attenuation laws. They carry documentation and the parameters material
+// and scene files give them; their formulas are the term functions.
+#include "catalog/catalog_internal.h"
+
+namespace facet::catalog_detail {
+
+namespace {
+ModelDef entry(std::string section, std::string name, std::string title, std::string citation,
+               std::string formula, std::string doc) {
+  ModelDef m;
+  m.section = std::move(section);
+  m.name = std::move(name);
+  m.title = std::move(title);
+  m.citation = std::move(citation);
+  m.formula = std::move(formula);
+  m.doc = std::move(doc);
+  return m;
+}
+}  // namespace
+
+void add_terms(std::vector<ModelDef>& all) {
+  // Fresnel
+  all.push_back(entry("fresnel", "none", "No Fresnel", "", "F = 1", "Reflection independent of angle."));
+  {
+    auto m = entry("fresnel", "schlick", "Schlick's Fresnel",
+                   "Schlick 1994, \"An Inexpensive BRDF Model for Physically-based Rendering\"",
+                   "F = f0 + (1 − f0)(1 − v·h)^5",
+                   "Reflectance at normal incidence f0 (RGB for metals), rising to 1 at grazing angles.");
+    m.params = {color("f0", "reflectance at normal incidence", Range::closed(0, 1), {0.04, 0.04, 0.04}, true)};
+    all.push_back(m);
+  }
+  {
+    auto m = entry("fresnel", "exact", "Exact dielectric Fresnel",
+                   "Cook & Torrance 1982, after Fresnel", "g = √(η² + c² − 1), F = ½ (g−c)²/(g+c)² (1 + ((c(g+c)−1)/(c(g−c)+1))²), c = v·h",
+                   "Unpolarized reflectance of a dielectric of relative index η; F = 1 under total internal "
+                   "reflection (η² + c² − 1 < 0).");
+    m.params = {number("ior", "relative index of refraction η", Range::positive(), 1.5)};
+    all.push_back(m);
+  }
+  // Geometry
+  all.push_back(entry("geometry", "none", "No masking", "", "G = 1", "Facets neither mask nor shadow each other."));
+  all.push_back(entry("geometry", "v_cavity", "V-cavity masking", "Cook & Torrance 1982",
+                      "G = min(1, 2(n·h)(n·v)/(v·h), 2(n·h)(n·l)/(v·h))",
+                      "Symmetric V-grooves: the fraction of a facet that is both lit and seen."));
+  all.push_back(entry("geometry", "smith_ggx", "Smith GGX, separable", "Walter et al. 2007, after Smith 1967",
+                      "G = G1(n·l) G1(n·v), G1(x) = 2x/(x + √(α² + (1−α²)x²))",
+                      "Uncorrelated masking and shadowing for the GGX distribution; α is the lobe's roughness."));
+  // Distributions
+  all.push_back(entry("distribution", "beckmann", "Beckmann distribution", "Beckmann & Spizzichino 1963",
+                      "D = exp(−tan²θ_h/m²)/(π m² cos⁴θ_h)", "Gaussian facet slopes of RMS m."));
+  all.push_back(entry("distribution", "ggx", "GGX / Trowbridge–Reitz distribution",
+                      "Walter et al. 2007; Trowbridge & Reitz 1975", "D = α²/(π((n·h)²(α²−1)+1)²)",
+                      "Ellipsoidal facets; a longer tail than Beckmann."));
+  all.push_back(entry("distribution", "trowbridge_reitz", "Trowbridge–Reitz, Blinn's form",
+                      "Blinn 1977", "D = (c²/((n·h)²(c²−1)+1))²", "Unnormalized; c is the eccentricity."));
+  // Modifiers
+  {
+    auto m = entry("modifier", "toon", "Toon", "Lake et al. 2000, \"Stylized Rendering Techniques for Scalable Real-Time 3D Animation\"",
+                   "ρ' = smoothstep(cutoff − width/2, cutoff + width/2, ρ); width 0: ρ' = [ρ ≥ cutoff]",
+                   "Quantizes a lobe into flat bands, as in cartoons. Any diffuse or specular lobe takes it.");
+    m.params = {number("cutoff", "the value of ρ where the band changes", Range::non_negative(), 0.5),
+                number("width", "width of the smooth transition; 0 is a hard step", Range::non_negative(), 0, false)};
+    m.cycles = approximate("diffuse_toon / glossy_toon step on angles, not on ρ");
+    m.pov = none("function pigment");
+    all.push_back(m);
+  }
+  all.push_back(entry("modifier", "schlick_approximation", "Schlick's power approximation",
+                      "Schlick 1994, \"An Inexpensive BRDF Model for Physically-based Rendering\"",
+                      "x^n ≈ x / (n − n x + x)",
+                      "Replaces the power of phong and blinn_phong (\"approximation\": \"schlick\")."));
+  // Ambient and emission
+  all.push_back(entry("term", "ambient", "Ambient", "", "m_a ⊗ A",
+                      "The material's ambient colour times the scene's ambient colour A, added unlit."));
+  all.push_back(entry("term", "emission", "Emission", "", "m_e",
+                      "Radiance the surface emits by itself, added unlit."));
+}
+
+namespace {
+ParamDef attenuation_param() {
+  ParamDef p = model("attenuation", "distance attenuation att(d)", "attenuation", "none");
+  p.fixed = "polynomial";  // {"constant": …, "linear": …, "quadratic": …}
+  return p;
+}
+}  // namespace
+
+void add_lights(std::vector<ModelDef>& all) {
+  {
+    auto m = entry("light", "point", "Point light", "", "l = normalize(p_light − p), d = |p_light − p|",
+                   "Light from a point, attenuated by the light's attenuation law.");
+    m.params = {vector("position", "world position", {0, 0, 0}, true),
+                color("color", "colour C", Range::non_negative(), {1, 1, 1}), attenuation_param()};
+    all.push_back(m);
+  }
+  {
+    auto m = entry("light", "directional", "Directional light", "", "l = −normalize(direction)",
+                   "Light from infinitely far away; never attenuated.");
+    m.params = {vector("direction", "the way the light travels", {0, -1, 0}, true, true),
+                color("color", "colour C", Range::non_negative(), {1, 1, 1})};
+    all.push_back(m);
+  }
+  {
+    auto m = entry("light", "spot", "Spot light", "OpenGL 1.0 fixed-function spotlight",
+                   "spot = [−l·s]^exponent inside the cutoff cone, 0 outside",
+                   "A point light restricted to a cone around its direction s.");
+    m.params = {vector("position", "world position", {0, 0, 0}, true),
+                vector("direction", "the axis of the cone", {0, -1, 0}, true, true),
+                number("cutoff", "half-angle of the cone in degrees", Range::open(0, 90), 30),
+                number("exponent", "concentration towards the axis", Range::non_negative(), 0, false),
+                color("color", "colour C", Range::non_negative(), {1, 1, 1}), attenuation_param()};
+    m.pov = exact("spotlight with radius = falloff = cutoff and tightness = exponent");
+    all.push_back(m);
+  }
+  all.push_back(entry("attenuation", "none", "No attenuation", "", "att(d) = 1", "The default."));
+  {
+    auto m = entry("attenuation", "inverse_square", "Inverse square", "", "att(d) = 1/d²",
+                   "The physical falloff of a point source.");
+    m.pov = exact("fade_distance 0 fade_power 2 (POV-Ray then multiplies by d^−2)");
+    all.push_back(m);
+  }
+  {
+    auto m = entry("attenuation", "polynomial", "Polynomial attenuation",
+                   "Foley, van Dam, Feiner & Hughes 1990, \"Computer Graphics: Principles and Practice\", eq. 16.8",
+                   "att(d) = min(1, 1/(c1 + c2 d + c3 d²))",
+                   "Written {\"constant\": c1, \"linear\": c2, \"quadratic\": c3}. OpenGL's and Direct3D's "
+                   "fixed-function law is the same polynomial without the min(1, ·); the two agree when c1 ≥ 1.");
+    m.params = {number("constant", "c1", Range::non_negative(), 1, false),
+                number("linear", "c2", Range::non_negative(), 0, false),
+                number("quadratic", "c3", Range::non_negative(), 0, false)};
+    m.pov = approximate("exact through fade when c1 ≥ 1 and one of c2, c3 is 0; otherwise in the pigment");
+    all.push_back(m);
+  }
+}
+
+void add_scene_vocabulary(std::vector<ModelDef>& all) {
+  {
+    auto m = entry("camera", "perspective", "Perspective camera", "",
+                   "ray(i, j) through pixel centres; fov is the vertical field of view",
+                   "A pinhole camera at `position` looking at `look_at`, rolled so `up` points up.");
+    m.params = {vector("position", "where the camera is", {0, 0, 4}, true),
+                vector("look_at", "the point at the image centre", {0, 0, 0}),
+                vector("up", "the world direction that is up in the image", {0, 1, 0}, false, true),
+                number("fov", "vertical field of view in degrees", Range::open(0, 180), 40, false)};
+    all.push_back(m);
+  }
+  {
+    auto m = entry("object", "sphere", "Sphere", "", "|p − center| = radius", "An analytic sphere.");
+    m.params = {text("name", "a name for reports"), text("material", "a key of the scene's \"materials\""),
+                vector("center", "centre", {0, 0, 0}, true), number("radius", "radius", Range::positive(), 1)};
+    all.push_back(m);
+  }
+  {
+    auto m = entry("object", "plane", "Plane (square)", "", "(p − point)·normal = 0, |in-plane offset| ≤ size",
+                   "A square of half-side `size` centred at `point`, facing `normal`. Its edges run along "
+                   "normalize(normal × x̂) and normal × that (× ẑ when normal is along x̂).");
+    m.params = {text("name", "a name for reports"), text("material", "a key of the scene's \"materials\""),
+                vector("point", "centre of the square", {0, 0, 0}, true),
+                vector("normal", "the side the square faces", {0, 1, 0}, true, true),
+                number("size", "half the side of the square", Range::positive(), 10, false)};
+    all.push_back(m);
+  }
+  {
+    auto m = entry("object", "mesh", "Triangle mesh", "", "n(p) = normalize(Σ w_i n_i), w the barycentrics of p",
+                   "Triangles in world space with a unit normal per vertex; shading interpolates the normals "
+                   "(smooth shading; give flat faces their own vertices). Anisotropic models take the tangent "
+                   "rule's t from the interpolated normal.");
+    m.params = {text("name", "a name for reports"), text("material", "a key of the scene's \"materials\""),
+                list("positions", "vertex positions, world space", ParamKind::Points),
+                list("normals", "a normal per vertex, world space", ParamKind::Points, true),
+                list("triangles", "vertex indices, counter-clockwise seen from the normals' side",
+                     ParamKind::Triangles)};
+    all.push_back(m);
+  }
+}
+
+}  // namespace facet::catalog_detail

@@ -1,0 +1,273 @@
+#include "reference/interpreter.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <stdexcept>
+#include <unordered_map>
+
+namespace facet {
+
+using ir::Op;
+
+// ---------------------------------------------------------------- interpreter
+
+// Each Function is flattened once into an array of nodes whose operands are
+// indices, with parameters and lets resolved to frame slots.
+struct Interpreter::Impl {
+  struct CNode {
+    Op op;
+    int slot = -1;    // Arg, Local
+    RGB value{};      // Literal, Constant
+    int callee = -1;  // Call
+    std::vector<int> args;
+  };
+  struct CFunction {
+    std::vector<CNode> nodes;
+    std::vector<std::pair<int, int>> lets;  // (slot, root)
+    int result = -1;
+    int slots = 0;
+    int params = 0;
+  };
+
+  std::vector<CFunction> functions;
+  std::unordered_map<const ir::Function*, int> index;
+
+  int compile(const ir::Function& f) {
+    if (auto it = index.find(&f); it != index.end()) return it->second;
+    CFunction cf;
+    std::unordered_map<std::string, int> slots;
+    for (const auto& p : f.params) slots[p.name] = cf.slots++;
+    cf.params = cf.slots;
+    std::function<int(const ir::NodePtr&)> flatten = [&](const ir::NodePtr& n) -> int {
+      CNode c;
+      c.op = n->op;
+      c.value = n->value;
+      if (n->op == Op::Arg || n->op == Op::Local) c.slot = slots.at(n->name);
+      if (n->op == Op::Call) c.callee = compile(*n->callee);
+      for (const auto& a : n->args) c.args.push_back(flatten(a));
+      cf.nodes.push_back(c);
+      return int(cf.nodes.size() - 1);
+    };
+    for (const auto& l : f.lets) {
+      int root = flatten(l.value.node());
+      slots[l.name] = cf.slots++;
+      cf.lets.emplace_back(slots[l.name], root);
+    }
+    cf.result = flatten(f.result.node());
+    functions.push_back(std::move(cf));
+    int id = int(functions.size() - 1);
+    index[&f] = id;
+    return id;
+  }
+
+  RGB run(int fid, const RGB* args) const {
+    const CFunction& f = functions[fid];
+    RGB frame[64];
+    if (f.slots > 64) throw std::logic_error("facet reference: function frame too large");
+    for (int i = 0; i < f.params; ++i) frame[i] = args[i];
+    for (const auto& [slot, root] : f.lets) frame[slot] = eval(f, root, frame);
+    return eval(f, f.result, frame);
+  }
+
+  static RGB lanes(const RGB& a, double (*fn)(double)) { return {fn(a[0]), fn(a[1]), fn(a[2])}; }
+  template <class F>
+  static RGB lanes2(const RGB& a, const RGB& b, F fn) {
+    return {fn(a[0], b[0]), fn(a[1], b[1]), fn(a[2], b[2])};
+  }
+
+  // Conditions are floats (lane 0); only the chosen side of a select is evaluated.
+  bool test(const CFunction& f, int i, const RGB* frame) const {
+    const CNode& n = f.nodes[i];
+    switch (n.op) {
+      case Op::And: return test(f, n.args[0], frame) && test(f, n.args[1], frame);
+      case Op::Or: return test(f, n.args[0], frame) || test(f, n.args[1], frame);
+      default: break;
+    }
+    double a = eval(f, n.args[0], frame)[0], b = eval(f, n.args[1], frame)[0];
+    switch (n.op) {
+      case Op::Lt: return a < b;
+      case Op::Le: return a <= b;
+      case Op::Gt: return a > b;
+      case Op::Ge: return a >= b;
+      default: throw std::logic_error("facet reference: not a condition");
+    }
+  }
+
+  RGB eval(const CFunction& f, int i, const RGB* frame) const {
+    const CNode& n = f.nodes[i];
+    auto arg = [&](int k) { return eval(f, n.args[k], frame); };
+    switch (n.op) {
+      case Op::Literal:
+      case Op::Constant: return n.value;
+      case Op::Arg:
+      case Op::Local: return frame[n.slot];
+      case Op::Neg: return lanes(arg(0), [](double x) { return -x; });
+      case Op::Add: return lanes2(arg(0), arg(1), [](double a, double b) { return a + b; });
+      case Op::Sub: return lanes2(arg(0), arg(1), [](double a, double b) { return a - b; });
+      case Op::Mul: return lanes2(arg(0), arg(1), [](double a, double b) { return a * b; });
+      case Op::Div: return lanes2(arg(0), arg(1), [](double a, double b) { return a / b; });
+      case Op::Min: return lanes2(arg(0), arg(1), [](double a, double b) { return std::fmin(a, b); });
+      case Op::Max: return lanes2(arg(0), arg(1), [](double a, double b) { return std::fmax(a, b); });
+      case Op::Clamp: {
+        RGB x = arg(0), lo = arg(1), hi = arg(2);
+        return {std::fmin(std::fmax(x[0], lo[0]), hi[0]), std::fmin(std::fmax(x[1], lo[1]), hi[1]),
+                std::fmin(std::fmax(x[2], lo[2]), hi[2])};
+      }
+      case Op::Sqrt: return lanes(arg(0), [](double x) { return std::sqrt(x); });
+      case Op::Exp: return lanes(arg(0), [](double x) { return std::exp(x); });
+      case Op::Pow: return lanes2(arg(0), arg(1), [](double a, double b) { return std::pow(a, b); });
+      case Op::Acos: return lanes(arg(0), [](double x) { return std::acos(x); });
+      case Op::Atan2: return lanes2(arg(0), arg(1), [](double a, double b) { return std::atan2(a, b); });
+      case Op::Abs: return lanes(arg(0), [](double x) { return std::fabs(x); });
+      case Op::Sin: return lanes(arg(0), [](double x) { return std::sin(x); });
+      case Op::Cos: return lanes(arg(0), [](double x) { return std::cos(x); });
+      case Op::Floor: return lanes(arg(0), [](double x) { return std::floor(x); });
+      case Op::Step: return lanes2(arg(0), arg(1), [](double e, double x) { return x >= e ? 1.0 : 0.0; });
+      case Op::Select: return test(f, n.args[0], frame) ? arg(1) : arg(2);
+      case Op::Call: {
+        RGB args[64];
+        for (size_t k = 0; k < n.args.size(); ++k) args[k] = eval(f, n.args[k], frame);
+        return run(n.callee, args);
+      }
+      case Op::Lt: case Op::Le: case Op::Gt: case Op::Ge: case Op::And: case Op::Or:
+        throw std::logic_error("facet reference: a condition used as a value");
+    }
+    throw std::logic_error("facet reference: unknown op");
+  }
+};
+
+Interpreter::Interpreter() : impl_(std::make_unique<Impl>()) {}
+Interpreter::~Interpreter() = default;
+Interpreter::Interpreter(Interpreter&&) noexcept = default;
+Interpreter& Interpreter::operator=(Interpreter&&) noexcept = default;
+
+int Interpreter::prepare(const ir::FunctionPtr& f) { return impl_->compile(*f); }
+
+RGB Interpreter::run(int prepared, const RGB* args) const { return impl_->run(prepared, args); }
+
+RGB Interpreter::call(const ir::FunctionPtr& f, const std::vector<RGB>& args) {
+  if (args.size() != f->params.size()) throw std::logic_error("facet reference: wrong argument count for " + f->name);
+  return run(prepare(f), args.data());
+}
+
+double Interpreter::call_float(const ir::FunctionPtr& f, const std::vector<double>& args) {
+  std::vector<RGB> a;
+  for (double x : args) a.push_back({x, x, x});
+  return call(f, a)[0];
+}
+
+// ---------------------------------------------------------------- shading inputs
+
+int ShadingInputs::index(const std::string& name) {
+  const auto& order = input_order();
+  for (size_t i = 0; i < order.size(); ++i)
+    if (order[i] == name) return int(i);
+  throw std::logic_error("facet reference: unknown shading input " + name);
+}
+
+namespace {
+// Every shading input (catalog.h: Input, whose last is HoB), the size of an argument list.
+constexpr size_t kInputCount = size_t(Input::HoB) + 1;
+}
+
+double ShadingInputs::get(int i) const {
+  const double v[] = {NoL, NoV, LoV, LoT, VoT, LoB, VoB, NoH, VoH, HoT, HoB};
+  static_assert(sizeof v / sizeof v[0] == kInputCount, "one value per Input");
+  return v[i];
+}
+
+double ShadingInputs::get(const std::string& name) const { return get(index(name)); }
+
+ShadingInputs shading_inputs(const Vec3& n, const Vec3& l, const Vec3& v, const Vec3& t) {
+  Vec3 b = cross(n, t);
+  ShadingInputs s;
+  s.NoL = dot(n, l);
+  s.NoV = dot(n, v);
+  s.LoV = dot(l, v);
+  s.LoT = dot(l, t);
+  s.VoT = dot(v, t);
+  s.LoB = dot(l, b);
+  s.VoB = dot(v, b);
+  // catalog.h, Input: the half vector, its length floored at ε.
+  Vec3 h = (l + v) / std::max(length(l + v), kEpsilon);
+  s.NoH = dot(n, h);
+  s.VoH = dot(v, h);
+  s.HoT = dot(h, t);
+  s.HoB = dot(h, b);
+  return s;
+}
+
+Vec3 tangent_rule(const Vec3& n, const Vec3& axis) {
+  Vec3 a = normalize(axis);
+  Vec3 t = cross(a, n);
+  if (length(t) < kEpsilon) t = cross(Vec3(1, 0, 0), n);
+  return normalize(t);
+}
+
+// ---------------------------------------------------------------- Reference
+
+Reference::Reference(const Material& m) : program_(compile(m)) {
+  reflectance_ = prepare(program_.reflectance);
+  if (program_.diffuse) diffuse_ = prepare(program_.diffuse);
+  if (program_.specular) specular_ = prepare(program_.specular);
+  inverse_square_ = interp_.prepare(terms::attenuation_inverse_square());
+  polynomial_ = interp_.prepare(terms::attenuation_polynomial());
+  spot_ = interp_.prepare(terms::spot_cone());
+}
+
+double Reference::light_factor(const Light& light, const Vec3& l, double d) const {
+  if (light.type == Light::Type::Directional) return 1.0;
+  auto f = [](double x) { return RGB{x, x, x}; };
+  double factor = 1.0;
+  const Attenuation& a = light.attenuation;
+  if (a.law == Attenuation::Law::InverseSquare) {
+    RGB args[] = {f(d)};
+    factor = interp_.run(inverse_square_, args)[0];
+  } else if (a.law == Attenuation::Law::Polynomial) {
+    RGB args[] = {f(d), f(a.constant), f(a.linear), f(a.quadratic)};
+    factor = interp_.run(polynomial_, args)[0];
+  }
+  if (light.type == Light::Type::Spot) {
+    RGB args[] = {f(-dot(l, light.direction)), f(std::cos(light.cutoff * M_PI / 180.0)), f(light.exponent)};
+    factor *= interp_.run(spot_, args)[0];
+  }
+  return factor;
+}
+
+Reference::Prepared Reference::prepare(const ir::FunctionPtr& f) {
+  Prepared p;
+  p.id = interp_.prepare(f);
+  if (f->params.size() > kInputCount) throw std::logic_error("facet reference: too many inputs for " + f->name);
+  for (const auto& param : f->params) p.inputs.push_back(ShadingInputs::index(param.name));
+  return p;
+}
+
+RGB Reference::call(const Prepared& f, const ShadingInputs& in) const {
+  RGB args[kInputCount];  // a function reads each input at most once
+  for (size_t i = 0; i < f.inputs.size(); ++i) {
+    double x = in.get(f.inputs[i]);
+    args[i] = {x, x, x};
+  }
+  return interp_.run(f.id, args);
+}
+
+RGB Reference::reflectance(const ShadingInputs& in) const { return call(reflectance_, in); }
+
+RGB Reference::reflectance(const Vec3& n, const Vec3& l, const Vec3& v, const Vec3& t) const {
+  return reflectance(shading_inputs(n, l, v, t));
+}
+
+RGB Reference::reflectance(const Vec3& n, const Vec3& l, const Vec3& v) const {
+  return reflectance(n, l, v, tangent_rule(n, Vec3(material().tangent_axis)));
+}
+
+RGB Reference::rho_diffuse(const ShadingInputs& in) const {
+  return program_.diffuse ? call(diffuse_, in) : RGB{0, 0, 0};
+}
+
+RGB Reference::rho_specular(const ShadingInputs& in) const {
+  return program_.specular ? call(specular_, in) : RGB{0, 0, 0};
+}
+
+}  // namespace facet

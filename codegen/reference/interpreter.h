@@ -1,0 +1,79 @@
+// facet — the C++ reference: the catalog's IR evaluated in double precision.
+//
+// Everything else in facet is compared with this: `facet eval`, the reference
+// renderer, and (in the unit tests) closed forms written from the papers.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "catalog/material.h"
+#include "catalog/program.h"
+#include "core/ir.h"
+#include "core/vec.h"
+#include "scene/scene.h"
+
+namespace facet {
+
+// Evaluates IR functions. Colors are three lanes; floats use all three alike.
+// prepare() is not thread-safe; run() on prepared functions is.
+class Interpreter {
+ public:
+  Interpreter();
+  ~Interpreter();
+  Interpreter(Interpreter&&) noexcept;
+  Interpreter& operator=(Interpreter&&) noexcept;
+  int prepare(const ir::FunctionPtr& f);
+  RGB run(int prepared, const RGB* args) const;
+  RGB call(const ir::FunctionPtr& f, const std::vector<RGB>& args);  // prepare + run
+  double call_float(const ir::FunctionPtr& f, const std::vector<double>& args);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// The dot products a lobe reads (catalog.h: Input).
+struct ShadingInputs {
+  double NoL = 0, NoV = 0, LoV = 0, LoT = 0, VoT = 0, LoB = 0, VoB = 0;
+  double NoH = 0, VoH = 0, HoT = 0, HoB = 0;  // h = (l + v) / max(|l + v|, ε)
+  double get(const std::string& name) const;
+  double get(int index) const;           // in input_order()
+  static int index(const std::string& name);
+};
+ShadingInputs shading_inputs(const Vec3& n, const Vec3& l, const Vec3& v, const Vec3& t);
+
+// MODELS.md's tangent rule: t = normalize(axis × n), or normalize(x̂ × n) where
+// |axis × n| < ε.
+Vec3 tangent_rule(const Vec3& n, const Vec3& axis);
+
+class Reference {
+ public:
+  explicit Reference(const Material& m);
+  const MaterialProgram& program() const { return program_; }
+  const Material& material() const { return program_.material; }
+
+  // k_d ⊗ ρ_d + k_s ⊗ ρ_s, zero below the horizon. Unit vectors; t ⟂ n.
+  RGB reflectance(const Vec3& n, const Vec3& l, const Vec3& v, const Vec3& t) const;
+  RGB reflectance(const Vec3& n, const Vec3& l, const Vec3& v) const;  // tangent rule
+  RGB reflectance(const ShadingInputs& in) const;
+  // The lobes alone: ρ without k and without the horizon rule. Zero if absent.
+  RGB rho_diffuse(const ShadingInputs& in) const;
+  RGB rho_specular(const ShadingInputs& in) const;
+  // att(d) · spot for a light seen along unit l at distance d (catalog terms).
+  double light_factor(const Light& light, const Vec3& l, double d) const;
+
+ private:
+  struct Prepared {
+    int id = -1;
+    std::vector<int> inputs;  // index into ShadingInputs::get order per parameter
+  };
+  Prepared prepare(const ir::FunctionPtr& f);
+  RGB call(const Prepared& f, const ShadingInputs& in) const;
+  MaterialProgram program_;
+  Interpreter interp_;
+  Prepared reflectance_, diffuse_, specular_;
+  int inverse_square_ = -1, polynomial_ = -1, spot_ = -1;
+};
+
+}  // namespace facet

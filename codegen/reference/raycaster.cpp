@@ -1,0 +1,174 @@
+#include "reference/raycaster.h"
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <thread>
+
+#include "reference/interpreter.h"
+
+namespace facet {
+
+namespace {
+
+struct SceneHit {
+  Hit hit;
+  int object = -1;
+};
+
+SceneHit nearest(const Scene& s, const Vec3& o, const Vec3& d) {
+  SceneHit best;
+  for (size_t i = 0; i < s.objects.size(); ++i) {
+    Hit h = s.objects[i].hit(o, d, 0);
+    if (h.ok() && (best.object < 0 || h.t < best.hit.t)) best = {h, int(i)};
+  }
+  return best;
+}
+
+// A mesh as an occluder: every triangle the segment's line crosses within
+// (t_min, t_max), with its barycentric margin (> 0 inside, < 0 outside).
+void mesh_occlusion(const Mesh& m, const Vec3& o, const Vec3& d, double t_min, double t_max, double t_close,
+                    int skip, bool& hit, bool& clear, bool& near) {
+  m.candidates(o, d, t_max, 2 * kGrazing, [&](int i) {
+    if (i == skip) return;
+    const auto& k = m.triangles[size_t(i)];
+    Vec3 p0 = m.positions[k[0]], e1 = m.positions[k[1]] - p0, e2 = m.positions[k[2]] - p0;
+    Vec3 pv = cross(d, e2);
+    double det = dot(e1, pv);
+    if (det == 0) return;
+    Vec3 tv = o - p0;
+    double u = dot(tv, pv) / det, v = dot(d, cross(tv, e1)) / det, t = dot(e2, cross(tv, e1)) / det;
+    if (!(t > t_min && t < t_max)) return;
+    double margin = std::min({u, v, 1 - u - v});
+    if (margin >= 0) hit = true;
+    // A block right at the surface point (a smooth normal's shadow ray dipping
+    // under the neighbouring triangle) is as fragile as an edge.
+    if (margin >= kGrazing && t > t_close) clear = true;
+    else if (margin > -kGrazing) near = true;
+  });
+}
+
+// Is the segment p + s·l, s ∈ (offset, dist), blocked? `self` cannot shadow
+// itself when convex; a mesh skips the shading triangle. `grazing` is set when
+// the segment passes within kGrazing of an occluder's edge and nothing blocks
+// it clearly: which side such a ray falls on is a matter of rounding.
+bool blocked(const Scene& s, int self, int self_triangle, const Vec3& p, const Vec3& l, double dist, double offset,
+             double close, bool& grazing) {
+  bool hit = false, clear = false, near = false;
+  for (size_t i = 0; i < s.objects.size(); ++i) {
+    const Object& o = s.objects[i];
+    bool own = int(i) == self;
+    if (own && o.convex()) continue;
+    if (o.type == Object::Type::Sphere) {
+      // Closest approach of the ray's line to the centre, ahead of p.
+      double along = dot(o.center - p, l);
+      double miss = length(o.center - (p + l * along));
+      double t = o.intersect(p, l, offset);
+      if (t > 0 && t < dist) {
+        hit = true;
+        if (miss < o.radius * (1 - kGrazing)) clear = true;
+      }
+      if (along > offset && along - o.radius < dist && std::fabs(miss - o.radius) < kGrazing * o.radius) near = true;
+    } else if (o.type == Object::Type::Plane) {
+      double den = dot(l, o.normal);
+      if (den == 0) continue;
+      double t = dot(o.point - p, o.normal) / den;
+      if (!(t > offset && t < dist)) continue;
+      Vec3 q = p + l * t - o.point, u, v;
+      o.plane_axes(u, v);
+      double edge = std::max(std::fabs(dot(q, u)), std::fabs(dot(q, v)));
+      if (edge <= o.size) hit = true;
+      if (edge <= o.size * (1 - kGrazing)) clear = true;
+      else if (std::fabs(edge - o.size) < kGrazing * o.size) near = true;
+    } else {
+      mesh_occlusion(*o.mesh, p, l, offset, dist, close, own ? self_triangle : -1, hit, clear, near);
+    }
+  }
+  if (near && !clear) grazing = true;
+  return hit;
+}
+
+double scene_scale(const Scene& s) {
+  double r = length(s.camera.position);
+  for (const auto& o : s.objects) {
+    Vec3 c;
+    double radius;
+    o.bounds(c, radius);
+    r = std::max(r, length(c) + radius);
+  }
+  return std::max(r, 1.0);
+}
+
+Render render(const Material* fallback, const Scene& s, int width, int height, int threads) {
+  // One reference per distinct material; object i uses shading[i].
+  std::vector<std::unique_ptr<Reference>> refs;
+  std::vector<const Reference*> shading(s.objects.size());
+  std::map<const Material*, const Reference*> made;
+  for (size_t i = 0; i < s.objects.size(); ++i) {
+    const Material* m = &s.material_of(i, fallback);
+    if (!made.count(m)) {
+      refs.push_back(std::make_unique<Reference>(*m));
+      made[m] = refs.back().get();
+    }
+    shading[i] = made[m];
+  }
+  Render r;
+  r.image = Image(width, height);
+  r.object.assign(size_t(width) * size_t(height), -1);
+  r.grazing.assign(size_t(width) * size_t(height), 0);
+  const double offset = kShadowRayOffset * scene_scale(s);
+  const double close = std::max(kCloseBlock, kGrazing * scene_scale(s));
+
+  auto shade_rows = [&](int y0, int y1) {
+    for (int y = y0; y < y1; ++y) {
+      for (int x = 0; x < width; ++x) {
+        Vec3 dir = s.camera.ray(x, y, width, height);
+        SceneHit h = nearest(s, s.camera.position, dir);
+        if (h.object < 0) continue;
+        size_t idx = size_t(y) * size_t(width) + size_t(x);
+        r.object[idx] = h.object;
+        const Object& obj = s.objects[size_t(h.object)];
+        const Reference& ref = *shading[size_t(h.object)];
+        const Material& m = ref.material();
+        Vec3 p = s.camera.position + dir * h.hit.t;
+        Vec3 n = obj.normal_at(p, h.hit);
+        Vec3 v = -dir;
+        Vec3 t = tangent_rule(n, Vec3(m.tangent_axis));
+        RGB L;
+        for (int c = 0; c < 3; ++c) L[c] = m.ambient[c] * s.ambient[c] + m.emission[c];
+        bool grazing = false;
+        for (const auto& light : s.lights) {
+          Vec3 l;
+          double d;
+          light.toward(p, l, d);
+          double factor = ref.light_factor(light, l, d);
+          if (!(factor > 0) || dot(n, l) <= 0) continue;
+          if (blocked(s, h.object, h.hit.triangle, p, l, d, offset, close, grazing)) continue;
+          RGB f = ref.reflectance(n, l, v, t);
+          for (int c = 0; c < 3; ++c) L[c] += factor * light.color[c] * f[c];
+        }
+        r.grazing[idx] = grazing;
+        float* px = r.image.at(x, y);
+        for (int c = 0; c < 3; ++c) px[c] = float(L[c]);
+      }
+    }
+  };
+  int n = threads > 0 ? threads : int(std::max(1u, std::thread::hardware_concurrency()));
+  n = std::min(n, height);
+  std::vector<std::thread> pool;
+  for (int i = 0; i < n; ++i) pool.emplace_back(shade_rows, height * i / n, height * (i + 1) / n);
+  for (auto& t : pool) t.join();
+  return r;
+}
+
+}  // namespace
+
+Render render_reference(const Material& m, const Scene& s, int width, int height, int threads) {
+  return render(&m, s, width, height, threads);
+}
+
+Render render_reference(const Scene& s, int width, int height, int threads) {
+  return render(nullptr, s, width, height, threads);
+}
+
+}  // namespace facet

@@ -1,0 +1,535 @@
+// OpenGL renderer: EGL surfaceless on Mesa (llvmpipe without a GPU), as
+// shared/notes/opengl.md recommends. The fragment shader is facet's generated
+// GLSL 3.30 (library + light loop) under codegen/renderers/harness/raycast.glsl.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <map>
+
+#include <dlfcn.h>
+#include <link.h>
+
+#include <epoxy/egl.h>
+#include <epoxy/gl.h>
+#include <fmt/format.h>
+
+#include "catalog/program.h"
+#include "core/io.h"
+#include "reference/raycaster.h"
+#include "renderers/harness.h"
+#include "renderers/renderers.h"
+#include "targets/targets.h"
+
+namespace facet {
+
+namespace {
+
+const char* kVertexShader = R"(#version 330 core
+// One triangle covering the viewport; the fragment shader casts the rays.
+void main()
+{
+    vec2 p = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2));
+    gl_Position = vec4(p * 2.0 - 1.0, 0.0, 1.0);
+}
+)";
+
+// The shadow-ray offset: the reference's (render.h). Self-shadowing is excluded
+// by object (convex) and by triangle, so float hit points need no more room.
+const double kGlShadowOffset = kShadowRayOffset;
+const int kMaxLights = 8, kMaxObjects = 16;
+
+std::string shader_log(GLuint id, bool program) {
+  GLint len = 0;
+  program ? glGetProgramiv(id, GL_INFO_LOG_LENGTH, &len) : glGetShaderiv(id, GL_INFO_LOG_LENGTH, &len);
+  std::string log(size_t(std::max(len, 1)), '\0');
+  program ? glGetProgramInfoLog(id, len, nullptr, log.data()) : glGetShaderInfoLog(id, len, nullptr, log.data());
+  return log.c_str();
+}
+
+// A program of the shared vertex shader and `source`; 0 with `error` set when
+// it does not compile or link (`what` names the code in the message).
+GLuint fragment_program(GLuint vertex, const std::string& source, const std::string& what, std::string& error) {
+  GLuint fragment = glCreateShader(GL_FRAGMENT_SHADER);
+  const char* src = source.c_str();
+  glShaderSource(fragment, 1, &src, nullptr);
+  glCompileShader(fragment);
+  GLint status = 0;
+  glGetShaderiv(fragment, GL_COMPILE_STATUS, &status);
+  if (!status) {
+    error = what + " did not compile: " + shader_log(fragment, false);
+    glDeleteShader(fragment);
+    return 0;
+  }
+  GLuint prog = glCreateProgram();
+  glAttachShader(prog, vertex);
+  glAttachShader(prog, fragment);
+  glLinkProgram(prog);
+  glDeleteShader(fragment);
+  glGetProgramiv(prog, GL_LINK_STATUS, &status);
+  if (!status) {
+    error = what + " did not link: " + shader_log(prog, true);
+    glDeleteProgram(prog);
+    return 0;
+  }
+  return prog;
+}
+
+// LeakSanitizer looks for leaks at exit, after EGL has unloaded Mesa's driver:
+// memory that only the driver's globals still point to then looks leaked (from
+// "<unknown module>"), since an unloaded library's data is no longer scanned.
+// In leak-checked builds every library loaded once the context exists is
+// pinned (never unloaded), so such memory stays reachable and what LeakSanitizer
+// reports is facet's own.
+void pin_loaded_libraries() {
+#ifdef FACET_LEAK_CHECKED
+  dl_iterate_phdr(
+      [](dl_phdr_info* info, size_t, void*) {
+        if (info->dlpi_name && *info->dlpi_name) dlopen(info->dlpi_name, RTLD_NOW | RTLD_NOLOAD | RTLD_NODELETE);
+        return 0;
+      },
+      nullptr);
+#endif
+}
+
+// GL rows run bottom-up; facet images top-down. Colours add up (a render's
+// passes), coverage is the largest alpha.
+void add_bottom_up(const std::vector<float>& px, RenderOutcome& out) {
+  const int w = out.image.width, h = out.image.height;
+  for (int y = 0; y < h; ++y) {
+    const float* row = &px[size_t(h - 1 - y) * size_t(w) * 4];
+    for (int x = 0; x < w; ++x) {
+      float* dst = out.image.at(x, y);
+      for (int c = 0; c < 3; ++c) dst[c] += row[x * 4 + c];
+      float& a = out.alpha[size_t(y) * size_t(w) + size_t(x)];
+      a = std::max(a, row[x * 4 + 3]);
+    }
+  }
+}
+
+// An RGBA32F framebuffer, bound while it lives: every draw renders into one.
+class FloatFramebuffer {
+ public:
+  FloatFramebuffer(int width, int height) : width_(width), height_(height) {
+    glGenFramebuffers(1, &fbo_);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
+    glGenRenderbuffers(1, &rbo_);
+    glBindRenderbuffer(GL_RENDERBUFFER, rbo_);
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA32F, width, height);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, rbo_);
+    glViewport(0, 0, width, height);
+  }
+  ~FloatFramebuffer() {
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glDeleteRenderbuffers(1, &rbo_);
+    glDeleteFramebuffers(1, &fbo_);
+  }
+  FloatFramebuffer(const FloatFramebuffer&) = delete;
+  FloatFramebuffer& operator=(const FloatFramebuffer&) = delete;
+  bool complete() const { return glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE; }
+  // RGBA, rows bottom-up as GL stores them.
+  std::vector<float> read() const {
+    std::vector<float> px(size_t(width_) * size_t(height_) * 4);
+    glReadPixels(0, 0, width_, height_, GL_RGBA, GL_FLOAT, px.data());
+    return px;
+  }
+
+ private:
+  int width_, height_;
+  GLuint fbo_ = 0, rbo_ = 0;
+};
+
+}  // namespace
+
+struct GlRenderer::State {
+  EGLDisplay display = EGL_NO_DISPLAY;
+  EGLContext context = EGL_NO_CONTEXT;
+  GLuint vao = 0, vertex = 0;
+};
+
+GlRenderer::GlRenderer() : state_(new State) {
+  const char* ext = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
+  if (!ext) {
+    error_ = "EGL: no client extensions (is libegl1 with Mesa's vendor library installed?)";
+    return;
+  }
+  if (std::strstr(ext, "EGL_MESA_platform_surfaceless")) {
+    state_->display = eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+  } else if (std::strstr(ext, "EGL_EXT_platform_device")) {
+    EGLDeviceEXT devices[8];
+    EGLint count = 0;
+    if (eglQueryDevicesEXT(8, devices, &count) && count > 0)
+      state_->display = eglGetPlatformDisplayEXT(EGL_PLATFORM_DEVICE_EXT, devices[0], nullptr);
+  }
+  if (state_->display == EGL_NO_DISPLAY) {
+    error_ = "EGL: no surfaceless or device display";
+    return;
+  }
+  EGLint major = 0, minor = 0;
+  if (!eglInitialize(state_->display, &major, &minor)) {
+    error_ = fmt::format("EGL: eglInitialize failed (0x{:x})", eglGetError());
+    return;
+  }
+  if (!eglBindAPI(EGL_OPENGL_API)) {
+    error_ = "EGL: no desktop OpenGL";
+    return;
+  }
+  const EGLint attributes[] = {EGL_CONTEXT_MAJOR_VERSION, 3, EGL_CONTEXT_MINOR_VERSION, 3,
+                               EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
+  state_->context = eglCreateContext(state_->display, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, attributes);
+  if (state_->context == EGL_NO_CONTEXT) {
+    error_ = fmt::format("EGL: cannot create an OpenGL 3.3 core context (0x{:x})", eglGetError());
+    return;
+  }
+  if (!eglMakeCurrent(state_->display, EGL_NO_SURFACE, EGL_NO_SURFACE, state_->context)) {
+    error_ = "EGL: eglMakeCurrent failed";
+    return;
+  }
+  pin_loaded_libraries();
+  description_ = fmt::format("{}, {}", reinterpret_cast<const char*>(glGetString(GL_RENDERER)),
+                             reinterpret_cast<const char*>(glGetString(GL_VERSION)));
+  glGenVertexArrays(1, &state_->vao);
+  state_->vertex = glCreateShader(GL_VERTEX_SHADER);
+  glShaderSource(state_->vertex, 1, &kVertexShader, nullptr);
+  glCompileShader(state_->vertex);
+}
+
+GlRenderer::~GlRenderer() {
+  if (state_->display != EGL_NO_DISPLAY) {
+    if (state_->context != EGL_NO_CONTEXT) {
+      if (state_->vao) glDeleteVertexArrays(1, &state_->vao);
+      if (state_->vertex) glDeleteShader(state_->vertex);
+      eglMakeCurrent(state_->display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+      eglDestroyContext(state_->display, state_->context);
+    }
+    eglTerminate(state_->display);
+  }
+  delete state_;
+}
+
+RenderOutcome GlRenderer::sweep(const std::string& source, int grid) {
+  RenderOutcome out;
+  if (!ok()) {
+    out.error = error_;
+    return out;
+  }
+  GLuint prog = fragment_program(state_->vertex, source, "the sweep's GLSL", out.error);
+  if (!prog) return out;
+  glUseProgram(prog);
+  glUniform2f(glGetUniformLocation(prog, "facet_resolution"), float(grid), float(grid));
+  GLenum e;
+  {
+    FloatFramebuffer fb(grid, grid);
+    glBindVertexArray(state_->vao);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    std::vector<float> px = fb.read();
+    out.image = Image(grid, grid);
+    for (size_t i = 0; i < size_t(grid) * size_t(grid); ++i)
+      for (int c = 0; c < 3; ++c) out.image.rgb[i * 3 + size_t(c)] = px[i * 4 + size_t(c)];
+    e = glGetError();
+  }
+  glDeleteProgram(prog);
+  if (e != GL_NO_ERROR) out.error = fmt::format("OpenGL error 0x{:x}", e);
+  else out.ok = true;
+  return out;
+}
+
+std::string GlRenderer::fragment_source(const Material& m) {
+  GlslParts parts = glsl_parts(compile(m), Target::Glsl, m.source);
+  return "#version 330 core\n" + parts.header + parts.library + parts.lights + render_harness("raycast.glsl");
+}
+
+namespace {
+
+// Every mesh's BVH and triangles, concatenated: 2 RGBA32F texels a node, 6 a
+// triangle (in BVH order), as codegen/renderers/harness/raycast.glsl reads them.
+struct MeshBuffers {
+  std::vector<float> nodes, triangles;
+  std::vector<int> first_node;  // per object (meshes only)
+};
+
+MeshBuffers mesh_buffers(const Scene& s) {
+  MeshBuffers b;
+  auto push = [](std::vector<float>& v, const Vec3& x, double w) {
+    v.insert(v.end(), {float(x.x), float(x.y), float(x.z), float(w)});
+  };
+  for (const auto& o : s.objects) {
+    b.first_node.push_back(int(b.nodes.size() / 8));
+    if (o.type != Object::Type::Mesh) continue;
+    const Mesh& m = *o.mesh;
+    int node0 = int(b.nodes.size() / 8), tri0 = int(b.triangles.size() / 24);
+    for (const auto& n : m.nodes) {
+      push(b.nodes, n.lo, n.count > 0 ? double(tri0 + int(n.start)) : double(node0 + n.right));
+      push(b.nodes, n.hi, double(n.count));
+    }
+    for (uint32_t t : m.order) {
+      const auto& k = m.triangles[t];
+      for (int c = 0; c < 3; ++c) push(b.triangles, m.positions[k[size_t(c)]], 0);
+      for (int c = 0; c < 3; ++c) push(b.triangles, m.normals[k[size_t(c)]], 0);
+    }
+  }
+  // Texture buffers may not be empty.
+  if (b.nodes.empty()) b.nodes.assign(8, 0);
+  if (b.triangles.empty()) b.triangles.assign(24, 0);
+  return b;
+}
+
+GLuint texture_buffer(const std::vector<float>& data, GLuint& buffer) {
+  glGenBuffers(1, &buffer);
+  glBindBuffer(GL_TEXTURE_BUFFER, buffer);
+  glBufferData(GL_TEXTURE_BUFFER, GLsizeiptr(data.size() * sizeof(float)), data.data(), GL_STATIC_DRAW);
+  GLuint tex = 0;
+  glGenTextures(1, &tex);
+  glBindTexture(GL_TEXTURE_BUFFER, tex);
+  glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32F, buffer);
+  return tex;
+}
+
+}  // namespace
+
+RenderOutcome GlRenderer::render(const RenderJob& job) {
+  RenderOutcome out;
+  if (!ok()) {
+    out.error = error_;
+    return out;
+  }
+  const Scene& s = job.scene;
+  if (s.lights.size() > size_t(kMaxLights) || s.objects.size() > size_t(kMaxObjects)) {
+    out.error = fmt::format("the GLSL renderer takes at most {} lights and {} objects", kMaxLights, kMaxObjects);
+    return out;
+  }
+  auto start = std::chrono::steady_clock::now();
+  const Material* fallback = job.material ? &*job.material : nullptr;
+  // The distinct materials, in object order: one pass each.
+  std::vector<const Material*> passes;
+  std::vector<size_t> pass_of(s.objects.size());
+  try {
+    for (size_t i = 0; i < s.objects.size(); ++i) {
+      const Material* m = &s.material_of(i, fallback);
+      auto it = std::find(passes.begin(), passes.end(), m);
+      pass_of[i] = size_t(it - passes.begin());
+      if (it == passes.end()) passes.push_back(m);
+    }
+  } catch (const std::exception& e) {
+    out.error = e.what();
+    return out;
+  }
+  if (!job.code_override.empty() && passes.size() != 1) {
+    out.error = "code_override needs a scene with one material";
+    return out;
+  }
+
+  MeshBuffers meshes = mesh_buffers(s);
+  GLuint buffers[2] = {0, 0};
+  GLuint textures[2] = {texture_buffer(meshes.nodes, buffers[0]), texture_buffer(meshes.triangles, buffers[1])};
+  FloatFramebuffer fb(job.width, job.height);
+  auto cleanup = [&] {
+    glDeleteTextures(2, textures);
+    glDeleteBuffers(2, buffers);
+  };
+  if (!fb.complete()) {
+    out.error = "no RGBA32F framebuffer";
+    cleanup();
+    return out;
+  }
+
+  out.image = Image(job.width, job.height);
+  out.alpha.assign(size_t(job.width) * size_t(job.height), 0);
+  for (size_t k = 0; k < passes.size(); ++k) {
+    std::string source = !job.code_override.empty() ? job.code_override : fragment_source(*passes[k]);
+    if (!job.workdir.empty()) {
+      std::filesystem::create_directories(job.workdir);
+      std::string base = (fallback ? identifier(fallback->name) + "_" : std::string()) + identifier(s.name);
+      if (passes.size() > 1) base += "_" + identifier(passes[k]->name);
+      write_file_atomic((std::filesystem::path(job.workdir) / (base + ".frag")).string(), source);
+    }
+    GLuint prog = fragment_program(state_->vertex, source, "the GLSL of \"" + passes[k]->name + "\"", out.error);
+    if (!prog) {
+      cleanup();
+      return out;
+    }
+    glUseProgram(prog);
+    auto loc = [&](const std::string& name) { return glGetUniformLocation(prog, name.c_str()); };
+    auto vec3 = [&](const std::string& name, const Vec3& v) {
+      glUniform3f(loc(name), float(v.x), float(v.y), float(v.z));
+    };
+    auto vec4 = [&](const std::string& name, double x, double y, double z, double w) {
+      glUniform4f(loc(name), float(x), float(y), float(z), float(w));
+    };
+
+    Camera::Basis b = s.camera.basis();
+    glUniform2f(loc("facet_resolution"), float(job.width), float(job.height));
+    vec3("facet_camera_position", s.camera.position);
+    vec3("facet_camera_forward", b.forward);
+    vec3("facet_camera_right", b.right);
+    vec3("facet_camera_up", b.up);
+    glUniform2f(loc("facet_camera_tan"), float(b.tan_half * job.width / job.height), float(b.tan_half));
+    glUniform3f(loc("facet_ambient"), float(s.ambient[0]), float(s.ambient[1]), float(s.ambient[2]));
+    glUniform1i(loc("facet_light_count"), int(s.lights.size()));
+    for (size_t i = 0; i < s.lights.size(); ++i) {
+      const Light& l = s.lights[i];
+      std::string at = fmt::format("facet_lights[{}].", i);
+      if (l.type == Light::Type::Directional) vec4(at + "position", l.direction.x, l.direction.y, l.direction.z, 1);
+      else vec4(at + "position", l.position.x, l.position.y, l.position.z, l.type == Light::Type::Spot ? 2 : 0);
+      vec4(at + "color", l.color[0], l.color[1], l.color[2], l.exponent);
+      vec4(at + "spot", l.direction.x, l.direction.y, l.direction.z, std::cos(l.cutoff * M_PI / 180.0));
+      const Attenuation& a = l.attenuation;
+      double law = a.law == Attenuation::Law::None ? 0 : a.law == Attenuation::Law::InverseSquare ? 1 : 2;
+      vec4(at + "attenuation", a.constant, a.linear, a.quadratic, law);
+    }
+    double scale = length(s.camera.position);
+    glUniform1i(loc("facet_object_count"), int(s.objects.size()));
+    for (size_t i = 0; i < s.objects.size(); ++i) {
+      const Object& o = s.objects[i];
+      std::string at = fmt::format("[{}]", i);
+      Vec3 c;
+      double r;
+      o.bounds(c, r);
+      scale = std::max(scale, length(c) + r);
+      glUniform1i(loc("facet_object_shaded" + at), pass_of[i] == k ? 1 : 0);
+      if (o.type == Object::Type::Sphere) {
+        vec4("facet_object_shape" + at, o.center.x, o.center.y, o.center.z, o.radius);
+        vec4("facet_object_normal" + at, 0, 0, 0, 0);
+      } else if (o.type == Object::Type::Plane) {
+        Vec3 u, v;
+        o.plane_axes(u, v);
+        vec4("facet_object_shape" + at, o.point.x, o.point.y, o.point.z, o.size);
+        vec4("facet_object_normal" + at, o.normal.x, o.normal.y, o.normal.z, 1);
+        vec4("facet_object_axis" + at, u.x, u.y, u.z, 0);
+      } else {
+        vec4("facet_object_shape" + at, meshes.first_node[i], 0, 0, 0);
+        vec4("facet_object_normal" + at, 0, 0, 0, 2);
+      }
+    }
+    glUniform1f(loc("facet_shadow_offset"), float(kGlShadowOffset * std::max(scale, 1.0)));
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_BUFFER, textures[0]);
+    glUniform1i(loc("facet_bvh"), 0);
+    glActiveTexture(GL_TEXTURE1);
+    glBindTexture(GL_TEXTURE_BUFFER, textures[1]);
+    glUniform1i(loc("facet_triangles"), 1);
+
+    glClearColor(0, 0, 0, 0);
+    glClear(GL_COLOR_BUFFER_BIT);
+    glBindVertexArray(state_->vao);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    std::vector<float> px = fb.read();
+    glDeleteProgram(prog);
+    if (GLenum e = glGetError(); e != GL_NO_ERROR) {
+      out.error = fmt::format("OpenGL error 0x{:x}", e);
+      cleanup();
+      return out;
+    }
+    add_bottom_up(px, out);
+  }
+  cleanup();
+  out.ok = true;
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+namespace {
+
+// The program's active uniforms: name → (location, type). Arrays answer to
+// "name" and "name[0]" alike.
+std::map<std::string, std::pair<GLint, GLenum>> active_uniforms(GLuint prog) {
+  std::map<std::string, std::pair<GLint, GLenum>> out;
+  GLint count = 0;
+  glGetProgramiv(prog, GL_ACTIVE_UNIFORMS, &count);
+  for (GLint i = 0; i < count; ++i) {
+    char name[256];
+    GLint size = 0;
+    GLenum type = 0;
+    glGetActiveUniform(prog, GLuint(i), sizeof name, nullptr, &size, &type, name);
+    std::string n = name;
+    GLint loc = glGetUniformLocation(prog, name);
+    out[n] = {loc, type};
+    if (n.size() > 3 && n.compare(n.size() - 3, 3, "[0]") == 0) out[n.substr(0, n.size() - 3)] = {loc, type};
+  }
+  return out;
+}
+
+// Sets `values` on the uniform by its declared type; an unused name is ignored,
+// a mismatched arity is an error.
+std::string set_uniform(const std::map<std::string, std::pair<GLint, GLenum>>& active, const std::string& name,
+                        const std::vector<double>& v) {
+  auto it = active.find(name);
+  if (it == active.end()) return "";
+  auto [loc, type] = it->second;
+  auto need = [&](size_t n) {
+    return v.size() == n ? std::string() : fmt::format("uniform {} takes {} values, given {}", name, n, v.size());
+  };
+  auto f = [&](size_t i) { return GLfloat(v[i]); };
+  std::string error;
+  switch (type) {
+    case GL_FLOAT: if ((error = need(1)).empty()) glUniform1f(loc, f(0)); break;
+    case GL_FLOAT_VEC2: if ((error = need(2)).empty()) glUniform2f(loc, f(0), f(1)); break;
+    case GL_FLOAT_VEC3: if ((error = need(3)).empty()) glUniform3f(loc, f(0), f(1), f(2)); break;
+    case GL_FLOAT_VEC4: if ((error = need(4)).empty()) glUniform4f(loc, f(0), f(1), f(2), f(3)); break;
+    case GL_INT:
+    case GL_BOOL: if ((error = need(1)).empty()) glUniform1i(loc, GLint(v[0])); break;
+    default: error = fmt::format("uniform {} has a type (0x{:x}) the harness does not set", name, type);
+  }
+  return error;
+}
+
+}  // namespace
+
+std::vector<RenderOutcome> GlRenderer::draw(const std::vector<ShaderDraw>& shaders, int width, int height,
+                                            const std::function<void(size_t, bool)>& around) {
+  std::vector<RenderOutcome> out(shaders.size());
+  if (!ok()) {
+    for (auto& o : out) o.error = error_;
+    return out;
+  }
+  FloatFramebuffer fb(width, height);
+  glBindVertexArray(state_->vao);
+  std::vector<GLuint> programs(shaders.size(), 0);
+  auto use = [&](size_t i) {
+    glUseProgram(programs[i]);
+    glClearColor(0, 0, 0, 0);
+    glClear(GL_COLOR_BUFFER_BIT);
+  };
+  // Compile and link all, each with its uniforms set (a program keeps them), then
+  // the first draw of each: the JIT, not measured.
+  for (size_t i = 0; i < shaders.size(); ++i) {
+    programs[i] = fragment_program(state_->vertex, shaders[i].fragment_source, "the GLSL of \"" + shaders[i].name + "\"",
+                                   out[i].error);
+    if (!programs[i]) continue;
+    glUseProgram(programs[i]);
+    auto active = active_uniforms(programs[i]);
+    for (const auto& [name, values] : shaders[i].uniforms)
+      if (std::string e = set_uniform(active, name, values); !e.empty()) out[i].error = e;
+  }
+  for (size_t i = 0; i < shaders.size(); ++i) {
+    if (!programs[i] || !out[i].error.empty()) continue;
+    use(i);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glFinish();
+  }
+  for (size_t i = 0; i < shaders.size(); ++i) {
+    if (!programs[i] || !out[i].error.empty()) continue;
+    use(i);
+    // Once more untimed, so the measured draw finds the state as its own last
+    // draw left it, whatever program ran before.
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glFinish();
+    auto start = std::chrono::steady_clock::now();
+    if (around) around(i, true);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glFinish();
+    if (around) around(i, false);
+    out[i].seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    out[i].image = Image(width, height);
+    out[i].alpha.assign(size_t(width) * size_t(height), 0);
+    add_bottom_up(fb.read(), out[i]);
+    if (GLenum e = glGetError(); e != GL_NO_ERROR) out[i].error = fmt::format("OpenGL error 0x{:x}", e);
+    out[i].ok = out[i].error.empty();
+  }
+  for (GLuint p : programs)
+    if (p) glDeleteProgram(p);
+  return out;
+}
+
+}  // namespace facet

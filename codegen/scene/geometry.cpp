@@ -1,0 +1,206 @@
+// Ray intersection for facet's objects: analytic spheres and squares, and
+// triangle meshes through a bounding volume hierarchy.
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <stdexcept>
+
+#include "scene/scene.h"
+
+namespace facet {
+
+namespace {
+
+Vec3 vmin(const Vec3& a, const Vec3& b) { return {std::min(a.x, b.x), std::min(a.y, b.y), std::min(a.z, b.z)}; }
+Vec3 vmax(const Vec3& a, const Vec3& b) { return {std::max(a.x, b.x), std::max(a.y, b.y), std::max(a.z, b.z)}; }
+
+// Möller & Trumbore 1997, "Fast, Minimum Storage Ray/Triangle Intersection"; two-sided.
+bool ray_triangle(const Vec3& o, const Vec3& d, const Vec3& p0, const Vec3& p1, const Vec3& p2, double& t, double& u,
+                  double& v) {
+  Vec3 e1 = p1 - p0, e2 = p2 - p0;
+  Vec3 pv = cross(d, e2);
+  double det = dot(e1, pv);
+  if (det == 0) return false;
+  double inv = 1.0 / det;
+  Vec3 tv = o - p0;
+  u = dot(tv, pv) * inv;
+  if (u < 0 || u > 1) return false;
+  Vec3 qv = cross(tv, e1);
+  v = dot(d, qv) * inv;
+  if (v < 0 || u + v > 1) return false;
+  t = dot(e2, qv) * inv;
+  return true;
+}
+
+// Slab test: does the ray enter the box before `t_max`?
+bool ray_box(const Vec3& o, const Vec3& inv_d, const Vec3& lo, const Vec3& hi, double t_max) {
+  double t0 = 0, t1 = t_max;
+  for (int a = 0; a < 3; ++a) {
+    double near = (lo[a] - o[a]) * inv_d[a], far = (hi[a] - o[a]) * inv_d[a];
+    if (near > far) std::swap(near, far);
+    if (std::isnan(near)) near = -INFINITY;  // 0 · ∞ on a slab plane
+    if (std::isnan(far)) far = INFINITY;
+    t0 = std::max(t0, near);
+    t1 = std::min(t1, far);
+    if (t0 > t1) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+void Mesh::build_bvh() {
+  nodes.clear();
+  order.resize(triangles.size());
+  std::iota(order.begin(), order.end(), 0u);
+  std::vector<Vec3> centroid(triangles.size());
+  for (size_t i = 0; i < triangles.size(); ++i) {
+    const auto& tri = triangles[i];
+    centroid[i] = (positions[tri[0]] + positions[tri[1]] + positions[tri[2]]) / 3.0;
+  }
+  // Median split on the longest axis of the centroids, leaves of up to 4 triangles.
+  std::function<void(uint32_t, uint32_t)> build = [&](uint32_t start, uint32_t end) {
+    size_t id = nodes.size();
+    nodes.push_back({});
+    Vec3 lo(INFINITY, INFINITY, INFINITY), hi(-INFINITY, -INFINITY, -INFINITY);
+    Vec3 clo = lo, chi = hi;
+    for (uint32_t i = start; i < end; ++i) {
+      for (uint32_t k : triangles[order[i]]) {
+        lo = vmin(lo, positions[k]);
+        hi = vmax(hi, positions[k]);
+      }
+      clo = vmin(clo, centroid[order[i]]);
+      chi = vmax(chi, centroid[order[i]]);
+    }
+    nodes[id].lo = lo;
+    nodes[id].hi = hi;
+    if (end - start <= 4) {
+      nodes[id].start = start;
+      nodes[id].count = end - start;
+      return;
+    }
+    Vec3 ext = chi - clo;
+    int axis = ext.x >= ext.y && ext.x >= ext.z ? 0 : ext.y >= ext.z ? 1 : 2;
+    uint32_t mid = start + (end - start) / 2;
+    std::nth_element(order.begin() + start, order.begin() + mid, order.begin() + end,
+                     [&](uint32_t a, uint32_t b) { return centroid[a][axis] < centroid[b][axis]; });
+    build(start, mid);
+    nodes[id].right = int32_t(nodes.size());
+    build(mid, end);
+  };
+  if (!triangles.empty()) build(0, uint32_t(triangles.size()));
+}
+
+void Mesh::candidates(const Vec3& o, const Vec3& d, double t_max, double margin,
+                      const std::function<void(int)>& visit) const {
+  if (nodes.empty()) return;
+  Vec3 inv(1 / d.x, 1 / d.y, 1 / d.z);
+  int stack[64], top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const Node& n = nodes[size_t(stack[--top])];
+    Vec3 grow = (n.hi - n.lo) * margin + Vec3(1e-12, 1e-12, 1e-12);
+    if (!ray_box(o, inv, n.lo - grow, n.hi + grow, t_max)) continue;
+    if (n.count > 0) {
+      for (uint32_t i = n.start; i < n.start + n.count; ++i) visit(int(order[i]));
+    } else {
+      stack[top++] = n.right;
+      stack[top++] = int(&n - nodes.data()) + 1;
+      if (top >= 63) throw std::logic_error("facet: mesh hierarchy deeper than 63");
+    }
+  }
+}
+
+Vec3 Mesh::normal(int t, double u, double v) const {
+  const auto& tri = triangles[size_t(t)];
+  return normalize(normals[tri[0]] * (1 - u - v) + normals[tri[1]] * u + normals[tri[2]] * v);
+}
+
+Hit Object::hit(const Vec3& o, const Vec3& d, double t_min, int skip) const {
+  Hit h;
+  if (type == Type::Sphere) {
+    Vec3 oc = o - center;
+    double b = dot(oc, d);
+    double c = dot(oc, oc) - radius * radius;
+    double disc = b * b - c;
+    if (disc < 0) return h;
+    double s = std::sqrt(disc);
+    // The nearer root, computed without cancellation.
+    double q = b > 0 ? -(b + s) : -(b - s);
+    double t0 = q, t1 = c / q;
+    if (t0 > t1) std::swap(t0, t1);
+    if (t0 > t_min) h.t = t0;
+    else if (t1 > t_min) h.t = t1;
+    return h;
+  }
+  if (type == Type::Plane) {
+    double den = dot(d, normal);
+    if (den == 0) return h;
+    double t = dot(point - o, normal) / den;
+    if (!(t > t_min)) return h;
+    Vec3 p = o + d * t - point, u, v;
+    plane_axes(u, v);
+    if (std::fabs(dot(p, u)) > size || std::fabs(dot(p, v)) > size) return h;
+    h.t = t;
+    return h;
+  }
+  const Mesh& m = *mesh;
+  if (m.nodes.empty()) return h;
+  Vec3 inv(1 / d.x, 1 / d.y, 1 / d.z);
+  double best = INFINITY;
+  int stack[64], top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const Mesh::Node& n = m.nodes[size_t(stack[--top])];
+    if (!ray_box(o, inv, n.lo, n.hi, best)) continue;
+    if (n.count > 0) {
+      for (uint32_t i = n.start; i < n.start + n.count; ++i) {
+        int tri = int(m.order[i]);
+        if (tri == skip) continue;
+        const auto& k = m.triangles[size_t(tri)];
+        double t, u, v;
+        if (ray_triangle(o, d, m.positions[k[0]], m.positions[k[1]], m.positions[k[2]], t, u, v) && t > t_min &&
+            t < best) {
+          best = t;
+          h = {t, tri, u, v};
+        }
+      }
+    } else {
+      int self = int(&n - m.nodes.data());
+      stack[top++] = n.right;
+      stack[top++] = self + 1;
+      if (top >= 63) throw std::logic_error("facet: mesh hierarchy deeper than 63");
+    }
+  }
+  return h;
+}
+
+Vec3 Object::normal_at(const Vec3& p, const Hit& h) const {
+  switch (type) {
+    case Type::Sphere: return normalize(p - center);
+    case Type::Plane: return normal;
+    case Type::Mesh: return mesh->normal(h.triangle, h.u, h.v);
+  }
+  return normal;
+}
+
+void Object::bounds(Vec3& c, double& r) const {
+  switch (type) {
+    case Type::Sphere:
+      c = center;
+      r = radius;
+      return;
+    case Type::Plane:
+      c = point;
+      r = size * std::sqrt(2.0);
+      return;
+    case Type::Mesh: {
+      Vec3 lo = mesh->nodes.empty() ? Vec3() : mesh->nodes[0].lo, hi = mesh->nodes.empty() ? Vec3() : mesh->nodes[0].hi;
+      c = (lo + hi) * 0.5;
+      r = length(hi - lo) * 0.5;
+      return;
+    }
+  }
+}
+
+}  // namespace facet

@@ -1,0 +1,50 @@
+// facet — glTF 2.0 in and out, through tinygltf.
+//
+// Import: meshes (world space, node transforms applied), the first perspective
+// camera, KHR_lights_punctual lights, and materials. A material with facet's
+// vendor extension FACET_material is read exactly; otherwise glTF's
+// metallic–roughness maps onto the catalog (glTF 2.0 specification, Appendix B):
+//   specular: GGX, α = roughness², separable Smith G, Schlick F with
+//             f0 = mix(0.04, baseColor, metallic)           — exact
+//   diffuse:  Lambert, k_d = baseColor · (1 − metallic)      — exact for metals;
+//             glTF weights a dielectric's diffuse by (1 − F), the catalog does not.
+// Lights: C = colour · intensity / π with inverse-square attenuation (candela and
+// lux against facet's "white Lambert at distance 1 shows C") — exact for point
+// and directional lights; spot cones are hard in facet (exact when inner = outer),
+// and a light's `range` window is not modelled.
+//
+// Export: a valid glTF 2.0 file whose materials carry the full facet description
+// (FACET_material) beside the nearest metallic–roughness fallback; analytic
+// spheres and planes become meshes plus FACET_object (their exact definition),
+// lights carry FACET_light beside KHR_lights_punctual, the scene's ambient colour
+// FACET_scene. None of the extensions is required: other viewers use the fallback.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "catalog/material.h"
+#include "scene/scene.h"
+
+namespace facet {
+
+struct GltfImportOptions {
+  // Shades primitives that have no material; without it they are an error.
+  std::optional<Material> default_material;
+};
+
+// Throws InputError naming the file and the glTF path of the problem. `notes`
+// receives what was approximate or ignored (textures, alpha modes, spot cones…).
+Scene import_gltf(const std::string& path, const GltfImportOptions& options, std::vector<std::string>& notes);
+// The same from the file's bytes (`binary`: .glb). External buffers are read from
+// `folder`; with an empty `folder` none is read (an error names it), so bytes
+// from anywhere (the fuzzer's, say) touch no file. `path` names the input in errors.
+Scene import_gltf_data(const std::string& data, bool binary, const std::string& path, const std::string& folder,
+                       const GltfImportOptions& options, std::vector<std::string>& notes);
+
+// Writes `s` (objects without a material use `fallback`) as .gltf (one file,
+// buffer embedded) or .glb, by the path's extension. Written whole or not at all.
+void export_gltf(const Scene& s, const Material* fallback, const std::string& path, std::vector<std::string>& notes);
+
+}  // namespace facet

@@ -1,0 +1,399 @@
+#include "scene/scene.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <limits>
+
+#include "catalog/checker.h"
+
+namespace facet {
+
+// ---------------------------------------------------------------- geometry
+
+Camera::Basis Camera::basis() const {
+  Basis b;
+  b.forward = normalize(look_at - position);
+  b.right = normalize(cross(b.forward, up));
+  b.up = cross(b.right, b.forward);
+  b.tan_half = std::tan(fov * M_PI / 360.0);
+  return b;
+}
+
+Vec3 Camera::ray(int i, int j, int w, int h) const {
+  // Pixel centres, as POV-Ray, Cycles (sample 0) and gl_FragCoord place them.
+  Basis b = basis();
+  double aspect = double(w) / double(h);
+  double x = (2.0 * (i + 0.5) / w - 1.0) * b.tan_half * aspect;
+  double y = (1.0 - 2.0 * (j + 0.5) / h) * b.tan_half;
+  return normalize(b.forward + b.right * x + b.up * y);
+}
+
+void Light::toward(const Vec3& p, Vec3& l, double& distance) const {
+  if (type == Type::Directional) {
+    l = -direction;
+    distance = std::numeric_limits<double>::infinity();
+    return;
+  }
+  Vec3 d = position - p;
+  distance = length(d);
+  l = d / distance;
+}
+
+void Object::plane_axes(Vec3& u, Vec3& v) const {
+  Vec3 c = cross(normal, Vec3(1, 0, 0));
+  if (length(c) < 1e-6) c = cross(normal, Vec3(0, 0, 1));
+  u = normalize(c);
+  v = cross(normal, u);
+}
+
+bool Scene::has_own_materials() const {
+  return !objects.empty() &&
+         std::all_of(objects.begin(), objects.end(), [](const Object& o) { return !o.material.empty(); });
+}
+
+const Material& Scene::material_of(size_t i, const Material* fallback) const {
+  const std::string& name = objects.at(i).material;
+  if (!name.empty()) return materials.at(name);
+  if (!fallback) throw std::invalid_argument("object \"" + objects[i].name + "\" has no material and none was given");
+  return *fallback;
+}
+
+// ---------------------------------------------------------------- parsing
+
+namespace {
+
+const std::vector<std::string> kSceneKeys = {"$schema", "name", "camera", "ambient", "materials", "objects", "lights"};
+
+// A scene's material: inline, or a file named relative to the scene file.
+// Diagnostics name the scene file and the key path materials.NAME.….
+void parse_materials(const json& doc, const std::string& file, Scene& s, DiagnosticSink& sink) {
+  auto it = doc.find("materials");
+  if (it == doc.end()) return;
+  if (!it->is_object()) {
+    sink.error("materials", "expected an object of named materials, found " + json_type_name(*it) +
+                                "; allowed: {\"name\": a material object or a material file's path}");
+    return;
+  }
+  for (const auto& [name, val] : it->items()) {
+    std::string path = join_path("materials", name);
+    try {
+      if (val.is_string()) {
+        std::filesystem::path f = val.get<std::string>();
+        if (f.is_relative()) f = std::filesystem::path(file).parent_path() / f;
+        Material m = load_material(f.string());
+        if (m.name.empty()) m.name = name;
+        s.materials[name] = m;
+      } else if (val.is_object()) {
+        Material m = parse_material(val, file);
+        m.name = val.contains("name") ? m.name : name;
+        s.materials[name] = m;
+      } else {
+        sink.error(path, "expected a material object or a material file's path, found " + json_type_name(val));
+      }
+    } catch (const InputError& e) {
+      for (const auto& d : e.diagnostics()) {
+        if (d.file == file) sink.error(d.path.empty() ? path : join_path(path, d.path), d.message);
+        else sink.error(path, d.format());  // a problem inside the referenced file
+      }
+    }
+  }
+}
+
+// The mesh of an object spec: the vertex arrays, checked against each other.
+std::shared_ptr<Mesh> mesh_of(const ModelSpec& o, const std::string& path, DiagnosticSink& sink) {
+  auto m = std::make_shared<Mesh>();
+  for (const auto& p : o.at("positions").points) m->positions.push_back(Vec3(p));
+  for (const auto& n : o.at("normals").points) m->normals.push_back(normalize(Vec3(n)));
+  if (m->normals.size() != m->positions.size())
+    sink.error(join_path(path, "normals"), fmt::format("has {} normals for {} positions; allowed: one per position",
+                                                       m->normals.size(), m->positions.size()));
+  const auto& tris = o.at("triangles").points;
+  for (size_t i = 0; i < tris.size(); ++i) {
+    std::array<uint32_t, 3> t{};
+    bool ok = true;
+    for (int k = 0; k < 3; ++k) {
+      if (tris[i][k] >= double(m->positions.size())) ok = false;
+      else t[k] = uint32_t(tris[i][k]);
+    }
+    if (!ok) {
+      sink.error(index_path(join_path(path, "triangles"), i),
+                 fmt::format("an index is out of range; allowed: 0 to {}", m->positions.size() - 1));
+      break;
+    }
+    m->triangles.push_back(t);
+  }
+  if (m->triangles.empty()) sink.error(join_path(path, "triangles"), "empty; a mesh needs a triangle");
+  m->build_bvh();
+  return m;
+}
+
+Vec3 vec(const ModelSpec& s, const char* key) { return Vec3(s.at(key).rgb); }
+
+Attenuation attenuation_of(const ModelSpec& light) {
+  Attenuation a;
+  const ModelSpec& m = *light.at("attenuation").model;
+  if (m.def->name == "inverse_square") a.law = Attenuation::Law::InverseSquare;
+  if (m.def->name == "polynomial") {
+    a.law = Attenuation::Law::Polynomial;
+    a.constant = m.at("constant").number;
+    a.linear = m.at("linear").number;
+    a.quadratic = m.at("quadratic").number;
+  }
+  return a;
+}
+
+template <class F>
+void each(const json& doc, const char* key, DiagnosticSink& sink, F fn) {
+  auto it = doc.find(key);
+  if (it == doc.end()) return;
+  if (!it->is_array()) {
+    sink.error(key, "expected an array, found " + json_type_name(*it));
+    return;
+  }
+  for (size_t i = 0; i < it->size(); ++i) fn((*it)[i], index_path(key, i));
+}
+
+}  // namespace
+
+Scene parse_scene(const json& doc, const std::string& file) {
+  DiagnosticSink sink(file);
+  Checker check(sink);
+  Scene s;
+  s.source = file;
+  s.name = std::filesystem::path(file).stem().string();
+  if (!doc.is_object()) {
+    sink.error("", "expected a scene object, found " + json_type_name(doc) + "; allowed: an object with keys " +
+                       quoted_list(kSceneKeys));
+    sink.throw_if_any();
+  }
+  for (const auto& [key, val] : doc.items()) {
+    if (std::find(kSceneKeys.begin(), kSceneKeys.end(), key) == kSceneKeys.end()) {
+      std::string hint = suggest(key, kSceneKeys);
+      sink.error(key, fmt::format("unknown key{}; allowed keys: {}",
+                                  hint.empty() ? "" : " (did you mean \"" + hint + "\"?)", quoted_list(kSceneKeys)));
+    }
+  }
+  if (auto it = doc.find("name"); it != doc.end()) {
+    if (it->is_string() && !it->get<std::string>().empty()) s.name = it->get<std::string>();
+    else sink.error("name", "expected a non-empty string, found " + json_type_name(*it));
+  }
+  if (auto it = doc.find("camera"); it != doc.end()) {
+    if (auto c = check.model(*it, "camera", "camera", find_model("camera", "perspective"))) {
+      s.camera.position = vec(*c, "position");
+      s.camera.look_at = vec(*c, "look_at");
+      s.camera.up = vec(*c, "up");
+      s.camera.fov = c->at("fov").number;
+      Vec3 f = s.camera.look_at - s.camera.position;
+      if (length(f) == 0) sink.error("camera.look_at", "equals camera.position; the camera needs a direction");
+      else if (length(cross(normalize(f), normalize(s.camera.up))) < 1e-6)
+        sink.error("camera.up", "is parallel to the viewing direction; allowed: any other direction");
+    }
+  } else {
+    sink.error("camera", "missing; allowed: an object with keys \"position\", \"look_at\", \"up\", \"fov\"");
+  }
+  parse_materials(doc, file, s, sink);
+  if (auto it = doc.find("ambient"); it != doc.end()) {
+    ParamDef p;
+    p.kind = ParamKind::Color;
+    p.range = Range::non_negative();
+    if (auto c = check.color(*it, "ambient", p)) s.ambient = *c;
+  }
+  each(doc, "objects", sink, [&](const json& j, const std::string& path) {
+    auto o = check.model(j, path, "object", nullptr, "type");
+    if (!o) return;
+    Object obj;
+    obj.name = o->at("name").choice;
+    if (obj.name.empty()) obj.name = fmt::format("{}{}", o->def->name, s.objects.size());
+    obj.material = o->at("material").choice;
+    if (!obj.material.empty() && !s.materials.count(obj.material)) {
+      std::vector<std::string> names;
+      for (const auto& [k, v] : s.materials) names.push_back(k);
+      sink.error(join_path(path, "material"),
+                 fmt::format("unknown material \"{}\"; allowed: a key of \"materials\"{}", obj.material,
+                             names.empty() ? " (the scene has none)" : ": " + quoted_list(names)));
+    }
+    if (o->def->name == "sphere") {
+      obj.type = Object::Type::Sphere;
+      obj.center = vec(*o, "center");
+      obj.radius = o->at("radius").number;
+    } else if (o->def->name == "plane") {
+      obj.type = Object::Type::Plane;
+      obj.point = vec(*o, "point");
+      obj.normal = normalize(vec(*o, "normal"));
+      obj.size = o->at("size").number;
+    } else {
+      obj.type = Object::Type::Mesh;
+      obj.mesh = mesh_of(*o, path, sink);
+    }
+    s.objects.push_back(obj);
+  });
+  if (!doc.contains("objects")) sink.error("objects", "missing; allowed: an array of spheres and planes");
+  else if (doc["objects"].is_array() && doc["objects"].empty()) sink.error("objects", "empty; a scene needs an object");
+  each(doc, "lights", sink, [&](const json& j, const std::string& path) {
+    auto l = check.model(j, path, "light", nullptr, "type");
+    if (!l) return;
+    Light light;
+    light.color = l->at("color").rgb;
+    const std::string& t = l->def->name;
+    if (t == "point" || t == "spot") light.position = vec(*l, "position");
+    if (t == "directional" || t == "spot") light.direction = normalize(vec(*l, "direction"));
+    if (t == "point" || t == "spot") light.attenuation = attenuation_of(*l);
+    light.type = t == "point" ? Light::Type::Point : t == "spot" ? Light::Type::Spot : Light::Type::Directional;
+    if (t == "spot") {
+      light.cutoff = l->at("cutoff").number;
+      light.exponent = l->at("exponent").number;
+    }
+    const Attenuation& a = light.attenuation;
+    if (a.law == Attenuation::Law::Polynomial && a.constant + a.linear + a.quadratic <= 0)
+      sink.error(join_path(path, "attenuation"), "constant, linear and quadratic are all 0; one must be positive");
+    s.lights.push_back(light);
+  });
+  sink.throw_if_any();
+  return s;
+}
+
+// ---------------------------------------------------------------- built-in scenes
+
+namespace {
+
+// `single`: the validation scene of the issue — one unit sphere, one point light.
+// `shadows`: the sphere on a square, a point light with OpenGL attenuation and a
+// directional light; a small sphere outside the view casts a shadow on the sphere.
+const char* kSingle = R"({
+  "name": "single",
+  "camera": {"position": [0, 0, 4], "look_at": [0, 0, 0], "up": [0, 1, 0], "fov": 40},
+  "ambient": [0.05, 0.05, 0.05],
+  "objects": [{"type": "sphere", "name": "sphere", "center": [0, 0, 0], "radius": 1}],
+  "lights": [{"type": "point", "position": [-3, 4, 5], "color": [1, 1, 1]}]
+})";
+
+const char* kShadows = R"({
+  "name": "shadows",
+  "camera": {"position": [0, 1.2, 4.5], "look_at": [0, -0.2, 0], "up": [0, 1, 0], "fov": 45},
+  "ambient": [0.04, 0.04, 0.05],
+  "objects": [
+    {"type": "sphere", "name": "sphere", "center": [0, 0, 0], "radius": 1},
+    {"type": "plane", "name": "floor", "point": [0, -1, 0], "normal": [0, 1, 0], "size": 2.5},
+    {"type": "sphere", "name": "occluder", "center": [-1.41, 1.87, 2.49], "radius": 0.25}
+  ],
+  "lights": [
+    {"type": "point", "position": [-3, 4, 5], "color": [1.1, 1.0, 0.9],
+     "attenuation": {"constant": 1, "quadratic": 0.02}},
+    {"type": "directional", "direction": [0.6, -1, -0.4], "color": [0.3, 0.32, 0.4]}
+  ]
+})";
+
+}  // namespace
+
+const std::vector<std::string>& builtin_scene_names() {
+  static const std::vector<std::string> names = {"single", "shadows"};
+  return names;
+}
+
+json builtin_scene_json(const std::string& name) {
+  if (name == "single") return json::parse(kSingle);
+  if (name == "shadows") return json::parse(kShadows);
+  throw std::invalid_argument("no built-in scene " + name);
+}
+
+Scene load_scene(const std::string& name_or_path) {
+  const auto& names = builtin_scene_names();
+  if (std::find(names.begin(), names.end(), name_or_path) != names.end()) {
+    Scene s = parse_scene(builtin_scene_json(name_or_path), name_or_path);
+    s.source = "built-in";
+    return s;
+  }
+  return parse_scene(read_json_file(name_or_path), name_or_path);
+}
+
+// Parsed once: OSL and POV-Ray generation ask for it on every material, and
+// parsing and checking it took a quarter of generate()'s time.
+Scene default_scene() {
+  static const Scene single = load_scene("single");
+  return single;
+}
+
+json to_json(const Scene& s) {
+  json j;
+  j["name"] = s.name;
+  j["camera"] = {{"position", s.camera.position.array()},
+                 {"look_at", s.camera.look_at.array()},
+                 {"up", s.camera.up.array()},
+                 {"fov", s.camera.fov}};
+  j["ambient"] = s.ambient;
+  if (!s.materials.empty()) {
+    j["materials"] = json::object();
+    for (const auto& [name, m] : s.materials) j["materials"][name] = to_json(m);
+  }
+  j["objects"] = json::array();
+  for (const auto& o : s.objects) {
+    json oj;
+    if (o.type == Object::Type::Sphere) {
+      oj = {{"type", "sphere"}, {"name", o.name}, {"center", o.center.array()}, {"radius", o.radius}};
+    } else if (o.type == Object::Type::Plane) {
+      oj = {{"type", "plane"}, {"name", o.name}, {"point", o.point.array()}, {"normal", o.normal.array()},
+            {"size", o.size}};
+    } else {
+      json pos = json::array(), nor = json::array(), tri = json::array();
+      for (const auto& p : o.mesh->positions) pos.push_back(p.array());
+      for (const auto& n : o.mesh->normals) nor.push_back(n.array());
+      for (const auto& t : o.mesh->triangles) tri.push_back(t);
+      oj = {{"type", "mesh"}, {"name", o.name}, {"positions", pos}, {"normals", nor}, {"triangles", tri}};
+    }
+    if (!o.material.empty()) oj["material"] = o.material;
+    j["objects"].push_back(oj);
+  }
+  j["lights"] = json::array();
+  for (const auto& l : s.lights) {
+    json lj;
+    if (l.type == Light::Type::Point) lj = {{"type", "point"}, {"position", l.position.array()}};
+    if (l.type == Light::Type::Directional) lj = {{"type", "directional"}, {"direction", l.direction.array()}};
+    if (l.type == Light::Type::Spot)
+      lj = {{"type", "spot"}, {"position", l.position.array()}, {"direction", l.direction.array()},
+            {"cutoff", l.cutoff}, {"exponent", l.exponent}};
+    lj["color"] = l.color;
+    if (l.type != Light::Type::Directional) {
+      const Attenuation& a = l.attenuation;
+      if (a.law == Attenuation::Law::None) lj["attenuation"] = "none";
+      if (a.law == Attenuation::Law::InverseSquare) lj["attenuation"] = "inverse_square";
+      if (a.law == Attenuation::Law::Polynomial)
+        lj["attenuation"] = {{"constant", a.constant}, {"linear", a.linear}, {"quadratic", a.quadratic}};
+    }
+    j["lights"].push_back(lj);
+  }
+  return j;
+}
+
+json scene_schema() {
+  auto alternatives = [](const char* sec) {
+    json alts = json::array();
+    for (const auto* m : section(sec)) alts.push_back(model_schema(*m, "type"));
+    return alts;
+  };
+  ParamDef ambient;
+  ambient.kind = ParamKind::Color;
+  ambient.range = Range::non_negative();
+  ambient.doc = "the scene's ambient colour A";
+  json props = {{"$schema", {{"type", "string"}}},
+                {"name", {{"type", "string"}, {"minLength", 1}}},
+                {"camera", model_schema(*find_model("camera", "perspective"), "")},
+                {"ambient", param_schema(ambient)},
+                {"materials", {{"type", "object"},
+                               {"description", "named materials the objects refer to: material objects, or paths of "
+                                               "material files relative to the scene file"},
+                               {"additionalProperties", {{"oneOf", json::array({{{"type", "string"}},
+                                                                                material_schema()})}}}}},
+                {"objects", {{"type", "array"}, {"minItems", 1}, {"items", {{"oneOf", alternatives("object")}}}}},
+                {"lights", {{"type", "array"}, {"items", {{"oneOf", alternatives("light")}}}}}};
+  return {{"$schema", "https://json-schema.org/draft/2020-12/schema"},
+          {"$id", "https://facet.invalid/schemas/scene.schema.json"},
+          {"title", "facet scene"},
+          {"description", "A scene for facet's renderers: right-handed, +y up. Generated by `facet schema --scene`."},
+          {"type", "object"},
+          {"properties", props},
+          {"required", {"camera", "objects"}},
+          {"additionalProperties", false}};
+}
+
+}  // namespace facet

@@ -1,0 +1,147 @@
+// facet — scenes: a camera, analytic objects, lights and an ambient colour.
+//
+// World space is right-handed with +y up (as OpenGL and glTF). Targets with
+// other conventions convert: POV-Ray mirrors z (left-handed), Blender swaps to
+// +z up.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "catalog/material.h"
+#include "core/vec.h"
+
+namespace facet {
+
+struct Camera {
+  Vec3 position{0, 0, 4};
+  Vec3 look_at{0, 0, 0};
+  Vec3 up{0, 1, 0};
+  double fov = 40;  // vertical field of view, degrees
+
+  // The ray through pixel centre (i + 0.5, j + 0.5) of a w×h image, rows from the top.
+  struct Basis {
+    Vec3 forward, right, up;
+    double tan_half;  // tan(fov/2)
+  };
+  Basis basis() const;
+  Vec3 ray(int i, int j, int w, int h) const;
+};
+
+struct Attenuation {
+  enum class Law { None, InverseSquare, Polynomial };
+  Law law = Law::None;
+  double constant = 1, linear = 0, quadratic = 0;
+};
+
+struct Light {
+  enum class Type { Point, Directional, Spot };
+  Type type = Type::Point;
+  Vec3 position;
+  Vec3 direction{0, -1, 0};  // unit: the way the light travels (directional), the cone axis (spot)
+  RGB color{1, 1, 1};
+  double cutoff = 30;        // degrees (spot)
+  double exponent = 0;       // spot
+  Attenuation attenuation;
+
+  // From a surface point: the unit direction to the light and its distance
+  // (infinite for directional lights). Attenuation and the spot cone are
+  // catalog functions (terms::attenuation_*, terms::spot_cone).
+  void toward(const Vec3& p, Vec3& l, double& distance) const;
+};
+
+// A triangle mesh with a normal per vertex. Shading is smooth: the normal at a
+// point is the normalized barycentric blend of its triangle's vertex normals.
+struct Mesh {
+  std::vector<Vec3> positions, normals;
+  std::vector<std::array<uint32_t, 3>> triangles;
+  // A bounding volume hierarchy, nodes in depth-first order: an inner node's
+  // left child follows it, `right` indexes the other; a leaf holds `count`
+  // triangles from `start` in `order`.
+  struct Node {
+    Vec3 lo, hi;
+    uint32_t start = 0, count = 0;
+    int32_t right = -1;
+  };
+  std::vector<Node> nodes;
+  std::vector<uint32_t> order;
+  void build_bvh();
+  // Calls visit(triangle) for every triangle whose box, grown by `margin`
+  // (relative), the ray origin + t·dir enters for t < t_max.
+  void candidates(const Vec3& origin, const Vec3& dir, double t_max, double margin,
+                  const std::function<void(int)>& visit) const;
+  // The smooth normal of triangle `t` at barycentrics (u, v) of its vertices 1 and 2.
+  Vec3 normal(int t, double u, double v) const;
+};
+
+// Where a ray meets an object: distance, and for meshes the triangle and the
+// barycentrics (u, v) of its second and third vertices.
+struct Hit {
+  double t = -1;
+  int triangle = -1;
+  double u = 0, v = 0;
+  bool ok() const { return t > 0; }
+};
+
+struct Object {
+  enum class Type { Sphere, Plane, Mesh };
+  Type type = Type::Sphere;
+  std::string name;
+  std::string material;  // a key of Scene::materials; "" shades with the material under test
+  // sphere
+  Vec3 center;
+  double radius = 1;
+  // plane: a square of half-side `size` through `point`, facing `normal`
+  Vec3 point;
+  Vec3 normal{0, 1, 0};
+  double size = 10;
+  // mesh
+  std::shared_ptr<const Mesh> mesh;
+
+  // The square's in-plane axes (unit, with normal forming a right-handed frame).
+  void plane_axes(Vec3& u, Vec3& v) const;
+  // Nearest hit along origin + t·dir with t > t_min, ignoring triangle `skip` of a mesh.
+  Hit hit(const Vec3& origin, const Vec3& dir, double t_min = 0, int skip = -1) const;
+  double intersect(const Vec3& origin, const Vec3& dir, double t_min = 0) const { return hit(origin, dir, t_min).t; }
+  Vec3 normal_at(const Vec3& p, const Hit& h) const;
+  // Spheres and squares are convex: they never shadow themselves where n·l > 0.
+  bool convex() const { return type != Type::Mesh; }
+  // A sphere around the object (for culling and scene scale).
+  void bounds(Vec3& center, double& radius) const;
+};
+
+struct Scene {
+  std::string name;
+  std::string source;  // the file, or "built-in"
+  Camera camera;
+  RGB ambient{0, 0, 0};
+  std::map<std::string, Material> materials;  // named materials objects refer to
+  std::vector<Object> objects;
+  std::vector<Light> lights;
+  // Every object names its own material: the scene renders without one given.
+  bool has_own_materials() const;
+  // The material of object i: its own, else `fallback` (the material under test).
+  const Material& material_of(size_t i, const Material* fallback) const;
+};
+
+Scene parse_scene(const nlohmann::json& doc, const std::string& file);
+// A file path, or the name of a built-in scene ("single", "shadows").
+Scene load_scene(const std::string& name_or_path);
+const std::vector<std::string>& builtin_scene_names();
+nlohmann::json builtin_scene_json(const std::string& name);
+// The canonical JSON form; materials are written inline.
+nlohmann::json to_json(const Scene& s);
+nlohmann::json scene_schema();
+
+// The default validation scene: one unit sphere, a camera and one point light.
+Scene default_scene();
+
+}  // namespace facet

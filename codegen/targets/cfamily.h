@@ -1,0 +1,52 @@
+// facet — printing IR as C-like shading code (GLSL and OSL share this).
+#pragma once
+
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "core/ir.h"
+
+namespace facet::targets {
+
+struct CDialect {
+  std::string float_type = "float";
+  std::string color_type = "vec3";
+  std::string color_ctor = "vec3";
+  std::string atan2_name = "atan";
+  std::string pi_name = "PI";
+  // OSL has no global constants: a function receives the material constants
+  // it reads (directly or through its callees) as trailing parameters.
+  bool constants_as_params = false;
+};
+
+class CPrinter {
+ public:
+  explicit CPrinter(CDialect d) : d_(std::move(d)) {}
+
+  std::string type(ir::Type t) const { return t == ir::Type::Float ? d_.float_type : d_.color_type; }
+  std::string literal(double v) const;
+  std::string color_literal(const std::array<double, 3>& rgb) const;
+  std::string expr(const ir::NodePtr& n) const;
+  // The same, appended to `out`.
+  void literal_to(std::string& out, double v) const;
+  void color_literal_to(std::string& out, const std::array<double, 3>& rgb) const;
+  void expr_to(std::string& out, const ir::NodePtr& n, int context) const;
+  // The whole definition: signature, citation on the first line, lets, return.
+  std::string function(const ir::FunctionPtr& f) const;
+  // The material constants `f` reads, itself or through callees (first-use order).
+  const std::vector<ir::NodePtr>& free_constants(const ir::FunctionPtr& f) const;
+
+ private:
+  std::string as(const ir::NodePtr& n, ir::Type wanted) const;  // promotes float → color where asked
+  void as_to(std::string& out, const ir::NodePtr& n, ir::Type wanted) const;
+  void call_args_to(std::string& out, const ir::NodePtr& n) const;
+  CDialect d_;
+  mutable std::map<const ir::Function*, std::vector<ir::NodePtr>> free_cache_;
+};
+
+// "// text" lines, one per line of `text`, with `indent` before each.
+std::string comment_lines(const std::string& text, const std::string& indent, const std::string& marker = "//");
+
+}  // namespace facet::targets

@@ -1,0 +1,136 @@
+// GLSL: a fragment shader in three dialects, or the functions alone.
+#include <fmt/format.h>
+
+#include "targets/cfamily.h"
+#include "targets/sweep_grid.h"
+#include "targets/targets.h"
+#include "targets/targets_internal.h"
+#include "targets/templates.h"
+
+namespace facet {
+
+namespace {
+
+const char* dialect_what(Target t, bool library) {
+  if (library) return "GLSL library (include it in a fragment shader)";
+  switch (t) {
+    case Target::Glsl: return "GLSL 3.30 core fragment shader";
+    case Target::Glsl450: return "GLSL 4.50 fragment shader for Vulkan (SPIR-V)";
+    case Target::Essl: return "OpenGL ES 3.00 fragment shader";
+    default: return "?";
+  }
+}
+
+std::string version_line(Target t) {
+  switch (t) {
+    case Target::Glsl: return "#version 330 core\n";
+    case Target::Glsl450: return "#version 450\n";
+    case Target::Essl: return "#version 300 es\nprecision highp float;\nprecision highp int;\n";
+    default: return "";
+  }
+}
+
+std::string light_uniforms(Target t) {
+  if (t == Target::Glsl450) {
+    return "layout(std140, set = 0, binding = 0) uniform FacetScene {\n"
+           "    vec4 facet_camera_position;  // xyz: the eye, world space\n"
+           "    vec4 facet_ambient;          // rgb: the scene's ambient colour A\n"
+           "    int facet_light_count;\n"
+           "    FacetLight facet_lights[FACET_MAX_LIGHTS];\n"
+           "};";
+  }
+  return "uniform vec3 facet_camera_position;  // the eye, world space\n"
+         "uniform vec3 facet_ambient;          // the scene's ambient colour A\n"
+         "uniform int facet_light_count;\n"
+         "uniform FacetLight facet_lights[FACET_MAX_LIGHTS];";
+}
+
+std::string main_inputs(Target t) {
+  if (t == Target::Glsl450) {
+    return "layout(location = 0) in vec3 facet_position;  // world space\n"
+           "layout(location = 1) in vec3 facet_normal;    // world space\n"
+           "#ifdef FACET_VERTEX_TANGENT\n"
+           "layout(location = 2) in vec3 facet_vertex_tangent;\n"
+           "#endif\n"
+           "layout(location = 0) out vec4 facet_color;\n";
+  }
+  return "in vec3 facet_position;  // world space\n"
+         "in vec3 facet_normal;    // world space\n"
+         "#ifdef FACET_VERTEX_TANGENT\n"
+         "in vec3 facet_vertex_tangent;\n"
+         "#endif\n"
+         "out vec4 facet_color;\n";
+}
+
+}  // namespace
+
+GlslParts glsl_parts(const MaterialProgram& p, Target dialect, const std::string& source) {
+  targets::CPrinter printer({});
+  GlslParts parts;
+  const Material& m = p.material;
+
+  std::string constants;
+  auto add_constant = [&](const std::string& type, const std::string& name, const std::string& value) {
+    constants += fmt::format("const {} {} = {};\n", type, name, value);
+  };
+  add_constant("vec3", "material_ambient", printer.color_literal(m.ambient));
+  add_constant("vec3", "material_emission", printer.color_literal(m.emission));
+  add_constant("vec3", "tangent_axis", printer.color_literal(normalize(Vec3(m.tangent_axis)).array()));
+  for (const auto& c : p.constants()) {
+    add_constant(printer.type(c->type), c->name,
+                 c->type == ir::Type::Color ? printer.color_literal(c->value) : printer.literal(c->value[0]));
+  }
+
+  std::string functions;
+  for (const auto& f : p.functions()) functions += printer.function(f) + "\n";
+
+  std::string inputs, arguments;
+  if (p.uses_bitangent()) inputs += "    vec3 b = cross(n, t);\n";
+  if (p.uses_half_vector())
+    inputs += fmt::format("    // catalog.h, Input: h = (l + v) / max(|l + v|, ε)\n"
+                          "    vec3 h = (l + v) * inversesqrt(max(dot(l + v, l + v), {}));\n",
+                          printer.literal(kEpsilon * kEpsilon));
+  for (const auto& in : p.inputs) {
+    // NoL → dot(n, l): the two letters either side of "o" name the vectors.
+    std::string a(1, char(std::tolower(in[0]))), b(1, char(std::tolower(in[2])));
+    inputs += fmt::format("    float {} = dot({}, {});\n", in, a, b);
+    arguments += (arguments.empty() ? "" : ", ") + in;
+  }
+
+  parts.header = render_template("glsl/header.glsl", {{"name", m.name},
+                                                       {"what", dialect_what(dialect, false)},
+                                                       {"version", FACET_VERSION},
+                                                       {"source", source},
+                                                       {"description", describe_material(m, "//")}});
+  parts.library = render_template("glsl/library.glsl", {{"constants", constants},
+                                                        {"functions", functions},
+                                                        {"inputs", inputs},
+                                                        {"arguments", arguments}});
+  parts.lights = render_template("glsl/lights.glsl", {{"uniforms", light_uniforms(dialect)}});
+  parts.main = render_template("glsl/main.glsl", {{"inputs", main_inputs(dialect)}});
+  return parts;
+}
+
+std::string glsl_sweep_source(const Material& m) {
+  GlslParts parts = glsl_parts(compile(m), Target::Glsl, m.source);
+  targets::CPrinter printer({});
+  std::string grid;
+  for (const auto& f : ir::dependencies(sweep_grid())) grid += printer.function(f) + "\n";
+  return "#version 330 core\n" + parts.header + parts.library + "\n" + grid + render_template("glsl/sweep.glsl", {});
+}
+
+std::string generate_glsl(const Material& m, const GenerateOptions& o) {
+  MaterialProgram p = compile(m);
+  GlslParts parts = glsl_parts(p, o.target, o.source);
+  if (o.library) {
+    std::string header = render_template("glsl/header.glsl", {{"name", m.name},
+                                                              {"what", dialect_what(o.target, true)},
+                                                              {"version", FACET_VERSION},
+                                                              {"source", o.source},
+                                                              {"description", describe_material(m, "//")}});
+    return header + "\n" + parts.library;
+  }
+  return version_line(o.target) + "\n" + parts.header + "\n" + parts.library + "\n" + parts.lights + parts.main;
+}
+
+}  // namespace facet

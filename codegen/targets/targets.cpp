@@ -1,0 +1,89 @@
+#include "targets/targets.h"
+
+#include <fmt/compile.h>
+#include <fmt/format.h>
+
+#include "targets/targets_internal.h"
+
+namespace facet {
+
+std::optional<Target> parse_target(const std::string& name) {
+  for (Target t : all_targets())
+    if (name == target_name(t)) return t;
+  return std::nullopt;
+}
+
+const char* target_name(Target t) {
+  switch (t) {
+    case Target::Glsl: return "glsl";
+    case Target::Glsl450: return "glsl450";
+    case Target::Essl: return "essl";
+    case Target::Osl: return "osl";
+    case Target::Pov: return "pov";
+  }
+  return "?";
+}
+
+const std::vector<Target>& all_targets() {
+  static const std::vector<Target> all = {Target::Glsl, Target::Glsl450, Target::Essl, Target::Osl, Target::Pov};
+  return all;
+}
+
+namespace {
+void number_to(std::string& out, double v) { fmt::format_to(std::back_inserter(out), FMT_COMPILE("{}"), v); }
+}  // namespace
+
+std::string describe_lobe(const ModelSpec& s) {
+  std::string params;
+  for (const auto& p : s.def->params) {
+    auto it = s.values.find(p.name);
+    if (it == s.values.end()) continue;  // an absent optional object (toon)
+    const Value& v = it->second;
+    if (p.kind == ParamKind::Object && !v.model) continue;
+    const size_t before = params.size();
+    params.append(params.empty() ? "" : ", ").append(p.name).append(" ");
+    switch (p.kind) {
+      case ParamKind::Number: number_to(params, v.number); break;
+      case ParamKind::Bool: params += v.flag ? "true" : "false"; break;
+      case ParamKind::Enum: params += v.choice; break;
+      case ParamKind::Color:
+        if (v.rgb[0] == v.rgb[1] && v.rgb[1] == v.rgb[2]) {
+          number_to(params, v.rgb[0]);
+        } else {
+          params += '[';
+          for (int c = 0; c < 3; ++c) {
+            if (c) params += ", ";
+            number_to(params, v.rgb[size_t(c)]);
+          }
+          params += ']';
+        }
+        break;
+      case ParamKind::Model: params += describe_lobe(*v.model); break;
+      case ParamKind::Object: params.append("{").append(describe_lobe(*v.model)).append("}"); break;
+      default: params.resize(before);  // not described
+    }
+  }
+  return params.empty() ? s.def->name : s.def->name + " (" + params + ")";
+}
+
+std::string describe_material(const Material& m, const std::string& marker) {
+  std::string s;
+  if (m.diffuse)
+    s.append(marker).append(" Diffuse:  ").append(describe_lobe(*m.diffuse)).append(" — ").append(m.diffuse->def->citation).append("\n");
+  if (m.specular)
+    s.append(marker).append(" Specular: ").append(describe_lobe(*m.specular)).append(" — ").append(m.specular->def->citation).append("\n");
+  return s;
+}
+
+std::string generate(const Material& m, const GenerateOptions& o) {
+  switch (o.target) {
+    case Target::Glsl:
+    case Target::Glsl450:
+    case Target::Essl: return generate_glsl(m, o);
+    case Target::Osl: return generate_osl(m, o);
+    case Target::Pov: return generate_pov(m, o);
+  }
+  return {};
+}
+
+}  // namespace facet
