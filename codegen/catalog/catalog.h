@@ -78,6 +78,7 @@ struct ParamDef {
   std::string fixed;                 // Object: the model whose parameters the object holds;
                                      // Model: the model an object without "model" means
   bool nonzero = false;              // Vector: a direction, so not the zero vector
+  bool every_lobe = false;           // one of the parameters every diffuse and specular lobe takes (color, toon)
   std::string allowed() const;       // what the error messages say is allowed
 };
 

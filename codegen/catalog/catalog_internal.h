@@ -150,6 +150,7 @@ inline void add_lobe_params(ModelDef& m) {
                         Range::non_negative(), {1, 1, 1}));
   m.params.push_back(object("toon", "Toon modifier: ρ' = smoothstep(cutoff − width/2, cutoff + width/2, ρ)",
                             "modifier", "toon"));
+  m.params.front().every_lobe = m.params.back().every_lobe = true;
 }
 
 }  // namespace facet::catalog_detail

@@ -62,7 +62,7 @@ int run_models(bool as_json) {
     fmt::print("  {:<18} {}\n", m.name, m.formula);
     if (!m.citation.empty()) fmt::print("  {:<18} {}\n", "", m.citation);
     for (const auto& p : m.params) {
-      if (p.name == "color" || p.name == "toon") continue;
+      if (p.every_lobe) continue;  // said once, below
       std::string dflt;
       if (p.kind == ParamKind::Number) dflt = fmt::format(", default {}", p.fallback.number);
       if (p.kind == ParamKind::Enum) dflt = fmt::format(", default \"{}\"", p.fallback.choice);
