@@ -21,6 +21,7 @@ struct GenerateArgs {
   std::string scene;
   std::string output;
   bool library = false;
+  bool json = false;  // --json: print what was generated as one JSON object
 };
 
 int run_generate(const GenerateArgs& a) {
@@ -43,7 +44,20 @@ int run_generate(const GenerateArgs& a) {
   } else {
     code = generate_pov_scene(*scene, nullptr, a.scene);
   }
-  if (a.output.empty() || a.output == "-") {
+  bool to_stdout = a.output.empty() || a.output == "-";
+  if (a.json) {
+    using ojson = nlohmann::ordered_json;  // keys in the documented order
+    ojson j = {{"target", a.target}, {"output", to_stdout ? ojson() : ojson(a.output)}};
+    if (whole_scene) {  // the scene generate() renders: --scene's, else default_scene()
+      PovPlan p = m ? pov_plan(*m, scene ? *scene : default_scene()) : pov_plan(*scene, nullptr);
+      j["pov"] = {{"passes", p.passes}, {"native", p.native}, {"reason", p.reason}};
+    }
+    if (to_stdout) j["code"] = code;
+    else write_file_atomic(a.output, code);
+    std::cout << j.dump() << "\n";
+    return 0;
+  }
+  if (to_stdout) {
     std::cout << code;
     return 0;
   }
@@ -71,6 +85,9 @@ Command generate_command(CLI::App& app) {
   g->add_flag("--library", gen.library,
               "Only the functions, for an engine (GLSL, OSL), or an include file declaring the texture (POV-Ray)");
   g->add_option("-o,--output", gen.output, "Output file; standard output without it. Written whole or not at all");
+  g->add_flag("--json", gen.json,
+              "Print one JSON object describing what was generated: target, output, and for POV-Ray scenes the "
+              "passes to render (\"pov\": {passes, native, reason}); without -o the code is its \"code\"");
   g->footer(
       "Examples:\n"
       "  facet generate mat.json --target glsl450 -o mat.frag && glslangValidator -V mat.frag\n"

@@ -117,6 +117,39 @@ TEST(Cli, GenerateWritesTheFile) {
   EXPECT_NE(code.find("rho_lambert"), std::string::npos);
 }
 
+// --json describes what was generated; tools (the Blender add-on) read POV-Ray's pass count from it.
+TEST(Cli, GenerateJsonDescribesTheOutput) {
+  fs::path out = scratch("three_meshes.pov");
+  fs::remove(out);
+  ProcessResult r = facet({"generate", "--target", "pov", "--scene",
+                           (kSource / "examples/scenes/three_meshes.json").string(), "-o", out.string(), "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  json j = json::parse(r.output);
+  EXPECT_EQ(j["target"], "pov");
+  EXPECT_EQ(j["output"], out.string());
+  EXPECT_FALSE(j.contains("code"));
+  EXPECT_EQ(j["pov"]["native"], false);  // meshes: function pigments, a pass per light
+  EXPECT_FALSE(j["pov"]["reason"].get<std::string>().empty());
+  std::string pov = read_file(out.string());
+  std::string declared = "#declare Facet_Passes = " + std::to_string(j["pov"]["passes"].get<int>()) + ";";
+  EXPECT_NE(pov.find(declared), std::string::npos) << "the JSON and the scene agree on " << declared;
+
+  const std::string lambert = (kSource / "examples/materials/lambert.json").string();
+  ProcessResult plain = facet({"generate", lambert});
+  r = facet({"generate", lambert, "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  j = json::parse(r.output);
+  EXPECT_EQ(j["target"], "glsl");
+  EXPECT_TRUE(j["output"].is_null());
+  EXPECT_EQ(j["code"], plain.output) << "without -o the code is in the JSON";
+  EXPECT_FALSE(j.contains("pov"));
+  r = facet({"generate", lambert, "--target", "pov", "--json"});
+  j = json::parse(r.output);
+  EXPECT_EQ(j["pov"], json({{"passes", 1}, {"native", true}, {"reason", ""}})) << "Lambert is POV-Ray's own finish";
+  r = facet({"generate", lambert, "--target", "pov", "--library", "--json"});
+  EXPECT_FALSE(json::parse(r.output).contains("pov")) << "an include file has no passes";
+}
+
 TEST(Cli, EvalLambertIsKdCosine) {
   fs::path in = scratch("eval_in.json");
   // n·l = cos 60°, so Lambert gives k_d / 2; the second set is below the horizon.

@@ -12,7 +12,9 @@ Blender without OSL) are listed as not applicable in the other, never passed sil
 
 The tests check results against facet itself (its catalog from `facet models --json`,
 its reference renderer) and against Blender (Cycles renders, Blender's own camera
-projection), not against the add-on's own code.
+projection), not against the add-on's own code. These are the tests that need Blender;
+core/, which does not, has plain pytest tests in tests/core/ (python -m pytest
+exporters/blender/tests/core --facet build/bin/facet).
 """
 
 import array
@@ -864,54 +866,6 @@ def test_convert_refuses_other_nodes():
     expect_error("convert_material", empty, ["no Diffuse, Glossy or Principled BSDF feeds the Material Output"])
 
 
-@test()
-def test_convert_core_without_blender():
-    """The mapping on plain data (no bpy): the table's rows and its refusals."""
-    from facet_blender.core import UserError
-    from facet_blender.core.convert import map_surface
-    diffuse = {"type": "BSDF_DIFFUSE", "name": "D", "inputs": {"Color": [0.5, 0.4, 0.3, 1], "Roughness": 0.0}}
-    glossy = {"type": "BSDF_GLOSSY", "name": "G", "distribution": "BECKMANN",
-              "inputs": {"Color": [1, 1, 1, 1], "Roughness": 0.5}}
-    r = map_surface({"type": "ADD_SHADER", "shaders": [diffuse, glossy]})
-    check_equal(r.diffuse, {"model": "lambert", "color": [0.5, 0.4, 0.3]}, "Add Shader diffuse")
-    check_equal(r.specular["model"], "beckmann", "Beckmann glossy")
-    check_close(r.specular["m"], 0.25, "Beckmann m = roughness²")
-    r = map_surface(dict(diffuse, linked=["Color"]))
-    check(not r.exact, "a linked colour makes the mapping approximate")
-    for tree, words in ((None, "no Diffuse, Glossy or Principled"),
-                        ({"type": "ADD_SHADER", "shaders": [diffuse, diffuse]}, "more than one diffuse"),
-                        (dict(glossy, distribution="ASHIKHMIN_SHIRLEY"), "Ashikhmin")):
-        try:
-            map_surface(tree)
-            raise Failure(f"map_surface should refuse {tree}")
-        except UserError as e:
-            check(words in str(e), f"refusal should mention {words!r}: {e}")
-
-
-CORE_PROBE = """
-import sys
-sys.modules["bpy"] = None           # any `import bpy` now raises ImportError
-sys.modules["mathutils"] = None
-sys.path.insert(0, sys.argv[1])
-from facet_blender.core import catalog, cli, convert, coords, gltf, pov, props, scene
-cat = catalog.load(sys.argv[2])
-plan = props.material_group(cat)
-data = props.material_to_json(cat, plan, props.default_values(plan), "probe")
-print("CORE", sorted(data), len(props.groups_in_registration_order(plan)))
-"""
-
-
-@test()
-def test_core_is_blender_free():
-    """core/ imports and works in a Python where bpy and mathutils cannot be imported."""
-    python = shutil.which("python3") if "blender" in os.path.basename(sys.executable) else sys.executable
-    proc = subprocess.run([python, "-c", CORE_PROBE, ADDON_ROOT, OPTS.facet], stdout=subprocess.PIPE,
-                          stderr=subprocess.STDOUT, text=True)
-    line = [l for l in proc.stdout.splitlines() if l.startswith("CORE")]
-    check(proc.returncode == 0 and line, f"core without bpy failed:\n{proc.stdout}")
-    check(line[0].startswith("CORE ['ambient', 'diffuse', 'emission', 'name', 'tangent_axis']"), line[0])
-
-
 # ============================================================================ tests: scenes
 
 @test()
@@ -959,7 +913,6 @@ def test_camera_matches_blender_projection():
 def test_scene_export_lights_world_meshes():
     """Lights (units, axes), World ambient and meshes (split normals, windings) as exported."""
     from facet_blender.blender import scene_data
-    from facet_blender.core import scene as core_scene
     set_world((0.2, 0.1, 0.05), 2.0)
     add_light("POINT", (1.0, 2.0, 3.0), 100.0, (1.0, 0.5, 0.25))
     add_light("SUN", (0.0, 0.0, 5.0), 3.0, rotation=(math.radians(30), 0.0, 0.0))
@@ -1019,12 +972,6 @@ def test_scene_export_lights_world_meshes():
     centre = to_facet([0.0, 0.0, 1.0])
     for p, n in zip(ball["positions"], ball["normals"]):
         check(sum((p[k] - centre[k]) * n[k] for k in range(3)) > 0, "sphere normals point outwards")
-    # The core on its own: a non-uniform scale transforms normals by the inverse transpose.
-    m = [[2.0, 0, 0, 0], [0, 1.0, 0, 0], [0, 0, 1.0, 0], [0, 0, 0, 1]]
-    nrm = [0.6, 0.8, 0.0]
-    (obj,) = core_scene.mesh_objects("t", m, [(0, 0, 0), (1, 0, 0), (0, 1, 0)], [(0, 1, 2)], [(nrm, nrm, nrm)], ["x"])
-    check_close(obj["normals"][0], to_facet([0.3 / math.hypot(0.3, 0.8), 0.8 / math.hypot(0.3, 0.8), 0.0]),
-                "inverse-transpose normal")
 
 
 def lit_plane_case(kind):
@@ -1578,69 +1525,6 @@ def test_gltf_scene_osl_matches_reference():
     compare(got, ref, ids, "glTF scene, Cycles OSL vs reference of the exported scene")
     original = facet_reference(None, gltf_original_scene(), w, h, "gltf_original")
     compare(got, original, ids, "glTF scene, Cycles OSL vs reference of the glTF file (facet import-gltf)")
-
-
-@test()
-def test_gltf_light_units_core():
-    """core/gltf.py's FACET_light -> Blender light is the inverse of the export's units
-    (core/scene.py): on plain data, for point, spot and directional lights."""
-    from facet_blender.core import UserError, gltf as core_gltf, scene as core_scene
-    identity = [[1.0, 0, 0, 0], [0, 1.0, 0, 0], [0, 0, 1.0, 0], [0, 0, 0, 1.0]]
-    exponent = 1.0 if BLENDER < (3, 5, 0) else 0.0
-    cases = [{"type": "point", "color": [18.0, 17.0, 16.0], "attenuation": "inverse_square"},
-             {"type": "directional", "color": [0.35, 0.36, 0.42]},
-             {"type": "spot", "color": [2.0, 0.5, 0.0], "attenuation": "inverse_square", "cutoff": 30.0,
-              "exponent": exponent}]
-    for facet_light in cases:
-        settings, notes = core_gltf.blender_light(facet_light, BLENDER)
-        check(not notes, f"unexpected notes {notes}")
-        desc = dict(settings, name="probe", matrix=identity, use_nodes=False)
-        light, _ = core_scene.light(desc, BLENDER)
-        check_close(light["color"], facet_light["color"], f"{facet_light['type']}: colour round trip", 1e-12)
-        if facet_light["type"] == "spot":
-            check_close(light["cutoff"], 30.0, "spot cutoff round trip", 1e-12)
-    _, notes = core_gltf.blender_light({"type": "point", "color": [1, 1, 1]}, BLENDER)
-    check(notes and "attenuation" in notes[0], f"a point light without inverse_square must be reported: {notes}")
-    for bad in ({"FACET_material": {"material": 3}}, {"FACET_material": []}):
-        try:
-            core_gltf.material_of(bad, "glTF material 'x'")
-            raise Failure(f"material_of should refuse {bad}")
-        except UserError as e:
-            check("glTF material 'x'" in str(e), f"the refusal should name the material: {e}")
-    check(core_gltf.material_of({"KHR_materials_unlit": {}}, "m") is None, "no FACET_material -> None")
-
-
-@test()
-def test_pov_passes_core():
-    """core/pov.py: the pass count from facet's header, 16-bit PPM in, passes added and
-    clipped, 16-bit PNG out (read back by this file's own PNG reader)."""
-    from facet_blender.core import UserError, pov
-    check_equal(pov.passes("#version 3.7;\n#declare Facet_Passes = 3;  // renders with Facet_Light = 0 … 2\n"), 3,
-                "passes from the declaration")
-    check_equal(pov.passes("#version 3.7;\n#declare Facet_Passes = 1;  // …\n"), 1, "one run")
-    try:
-        pov.passes("#version 3.7;\nglobal_settings { assumed_gamma 1.0 }\n")
-        check(False, "a scene without Facet_Passes should be refused")
-    except UserError as e:
-        check("Facet_Passes" in str(e), f"the refusal should name Facet_Passes: {e}")
-    w, h = 3, 2
-    a = [0, 1, 2, 65535, 40000, 3, 7, 8, 9, 100, 200, 300, 65000, 1000, 0, 5, 6, 7]
-    b = [1, 1, 1, 1, 30000, 0, 0, 0, 0, 1, 2, 3, 1000, 0, 0, 0, 0, 65535]
-    images = []
-    for k, samples in enumerate((a, b)):
-        path = work(f"pass{k}.ppm")
-        with open(path, "wb") as f:
-            f.write(b"P6\n# Software: POV-Ray\n3 2\n65535\n" + struct.pack(">18H", *samples))
-        got_w, got_h, got = pov.read_ppm16(path)
-        check_equal((got_w, got_h, list(got)), (w, h, samples), f"PPM {k} read back")
-        images.append(got)
-    total = pov.add_clipped(images)
-    check_equal(list(total), [min(x + y, 65535) for x, y in zip(a, b)], "passes added, clipped at 65535")
-    with open(work("sum.png"), "wb") as f:
-        f.write(pov.png16(w, h, total))
-    _, _, rows = read_png16(work("sum.png"))
-    flat = [round(v * 65535) for row in reversed(rows) for px in row for v in px]
-    check_equal(flat, list(total), "16-bit PNG read back")
 
 
 # ============================================================================ tests: Blender materials, render_povray vs facet

@@ -25,13 +25,11 @@ importer's log (shown after the import in Blender 4.x) and, for scripts and test
 to LAST_IMPORT [(level, message), ...] of the latest import.
 """
 
-import os
-import tempfile
 import traceback
 
 import bpy
 
-from ..core import UserError, cli, gltf as core_gltf
+from ..core import UserError, gltf as core_gltf
 from . import material as material_mod, preferences, state
 
 LAST_IMPORT = []
@@ -95,14 +93,7 @@ class ImportHooks:
         exe = self._facet(gltf)
         if exe is None:
             return
-        with tempfile.TemporaryDirectory(prefix="facet-gltf-") as tmp:
-            path = os.path.join(tmp, "material.json")
-            cli.write_atomic(path, cli.dump_json(data))
-            try:
-                cli.validate_material(exe, path, {path: f"{where} ({core_gltf.MATERIAL_EXTENSION})"})
-            except cli.FacetError as e:
-                raise UserError(f"facet rejected the facet material of {where}; material "
-                                f"'{blender_material.name}' keeps only the glTF fallback:\n{e}")
+        core_gltf.check_material(exe, data, where, blender_material.name)
         material_mod.from_json(blender_material, data)
         _log(gltf, "INFO", f"material '{blender_material.name}': facet settings from {where} "
                            f"({core_gltf.MATERIAL_EXTENSION})")

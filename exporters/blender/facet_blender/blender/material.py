@@ -34,16 +34,4 @@ def from_json(material, data):
 def set_lobes(material, result):
     """Sets the facet settings from a core.convert.Result (Blender BSDF mapping)."""
     catalog, plan = state.require()
-    values = {plan_mod.USE_FACET: True}
-    for section in ("diffuse", "specular"):
-        lobe = getattr(result, section)
-        if lobe is None:
-            values[f"{section}_model"] = plan_mod.NONE
-            continue
-        values[f"{section}_model"] = lobe["model"]
-        group = plan.field(f"{section}_{lobe['model']}").group
-        values[f"{section}_{lobe['model']}"] = plan_mod.lobe_from_json(group, lobe)
-    emission = next((k for k in catalog.material_keys if k.name == "emission"), None)
-    if emission:
-        values["emission"] = list(result.emission) if result.emission else [0.0, 0.0, 0.0]
-    properties.write(material.facet, plan, values)
+    properties.write(material.facet, plan, plan_mod.conversion_values(catalog, plan, result))

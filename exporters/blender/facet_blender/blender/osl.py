@@ -4,18 +4,16 @@ Compiling headless: `bpy.ops.node.shader_script_update` needs a node editor in B
 4.5 (its poll fails in background mode), so the add-on calls Cycles' own driver,
 `cycles.osl.update_script_node(node, report)`, which is what that operator runs. That
 driver imports `oslquery`, which the pip `bpy` wheel keeps in Blender's bundled
-site-packages, not on sys.path; `enable_oslquery` appends it.
+site-packages, not on sys.path; `enable_oslquery` appends it. What needs no bpy (the
+compiler's output captured, the folder of `oslquery` found) is in core/osl.py.
 """
 
-import ctypes
-import glob
-import os
 import sys
 import tempfile
 
 import bpy
 
-from ..core import UserError
+from ..core import UserError, osl as core_osl
 
 NODE_NAME = "facet OSL"
 
@@ -40,52 +38,13 @@ def enable_oslquery():
         return
     except ImportError:
         pass
-    root = bpy.utils.system_resource("PYTHON")
-    for folder in sorted(glob.glob(os.path.join(root, "lib", "python*", "site-packages"))):
-        if os.path.isdir(os.path.join(folder, "oslquery")) and folder not in sys.path:
+    for folder in core_osl.site_packages_with(bpy.utils.system_resource("PYTHON"), "oslquery"):
+        if folder not in sys.path:
             sys.path.append(folder)
     try:
         import oslquery  # noqa: F401,F811
     except ImportError as e:
         raise UserError(f"Blender's OSL query module is missing ({e}); cannot compile OSL")
-
-
-class _CaptureNative:
-    """Captures what native code (the OSL compiler) prints on fds 1 and 2."""
-
-    def __enter__(self):
-        self.text = ""
-        try:
-            self._flush()
-            self._file = tempfile.TemporaryFile()
-            self._saved = [os.dup(1), os.dup(2)]
-            os.dup2(self._file.fileno(), 1)
-            os.dup2(self._file.fileno(), 2)
-        except OSError:
-            self._file = None
-        return self
-
-    def __exit__(self, *exc):
-        if self._file is None:
-            return False
-        self._flush()
-        os.dup2(self._saved[0], 1)
-        os.dup2(self._saved[1], 2)
-        for fd in self._saved:
-            os.close(fd)
-        self._file.seek(0)
-        self.text = self._file.read().decode("utf-8", "replace")
-        self._file.close()
-        return False
-
-    @staticmethod
-    def _flush():
-        sys.stdout.flush()
-        sys.stderr.flush()
-        try:
-            ctypes.CDLL(None).fflush(None)
-        except (OSError, AttributeError):
-            pass
 
 
 def _output_node(tree):
@@ -115,14 +74,13 @@ def _compile(tree, text):
         with tempfile.TemporaryDirectory(prefix="facet-osl-") as work:
             tempfile.tempdir = work
             try:
-                with _CaptureNative() as capture:
+                with core_osl.CaptureNative() as capture:
                     script.script = text
                     ok = cycles.osl.update_script_node(script, lambda kind, msg: reports.append(msg))
             finally:
                 tempfile.tempdir = saved_tempdir
         if not (ok and script.bytecode and "Out" in script.outputs):
-            words = [line for line in (capture.text if capture else "").splitlines() if "error" in line.lower()]
-            words += [m for m in reports if m and "succeeded" not in m]
+            words = core_osl.compiler_errors(capture.text if capture else "", reports)
             raise UserError("the OSL compiler rejected the generated shader:\n"
                             + "\n".join(words or ["no bytecode, or no output named Out"]))
     except BaseException:

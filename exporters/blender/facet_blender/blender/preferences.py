@@ -1,11 +1,9 @@
 """Add-on preferences: where the facet and POV-Ray executables are."""
 
-import shutil
-
 import bpy
 from bpy.props import StringProperty
 
-from ..core import UserError, cli
+from ..core import cli, povray
 
 # The add-on's own module name: "facet_blender" as a legacy add-on,
 # "bl_ext.<repository>.facet" as an extension. This module is <root>.blender.preferences.
@@ -34,7 +32,7 @@ class FACET_AP_preferences(bpy.types.AddonPreferences):
         description="Path of POV-Ray 3.7 (povray), used to render exported POV-Ray scenes. "
                     "Default: povray on PATH",
         subtype="FILE_PATH",
-        default=shutil.which("povray") or "",
+        default=povray.default_povray_path(),
     )
 
     def draw(self, context):
@@ -72,13 +70,9 @@ def facet_exe(context=None):
 
 
 def povray_exe(context=None):
+    """The POV-Ray executable to run (raises a UserError that says where to set it)."""
     prefs = get(context)
-    path = (prefs.povray_path if prefs else "") or shutil.which("povray") or ""
-    found = shutil.which(path) if path else None
-    if not found:
-        raise UserError(f"POV-Ray not found{f' at {path!r}' if path else ''}: install POV-Ray 3.7 or set "
-                        f"its path in Edit > Preferences > Add-ons > facet > POV-Ray executable")
-    return found
+    return povray.find_povray(prefs.povray_path if prefs else "")
 
 
 classes = (FACET_AP_preferences,)

@@ -18,8 +18,7 @@ def _rows(matrix):
 
 def render_size(scene):
     r = scene.render
-    return (max(1, r.resolution_x * r.resolution_percentage // 100),
-            max(1, r.resolution_y * r.resolution_percentage // 100))
+    return core_scene.render_size(r.resolution_x, r.resolution_y, r.resolution_percentage)
 
 
 def camera_json(scene):
@@ -128,15 +127,7 @@ def _mesh_data(obj, mesh):
     face_normal = [0.0] * (3 * len(mesh.polygons))
     mesh.polygons.foreach_get("normal", face_normal)
 
-    triangles, normals = [], []
-    for t in range(count):
-        triangles.append(tuple(verts[3 * t:3 * t + 3]))
-        p = polys[t]
-        if smooth[p]:
-            normals.append(tuple(tuple(corner[3 * l:3 * l + 3]) for l in loops[3 * t:3 * t + 3]))
-        else:
-            n = tuple(face_normal[3 * p:3 * p + 3])
-            normals.append((n, n, n))
+    triangles, normals = core_scene.triangle_corners(verts, loops, polys, corner, smooth, face_normal)
     return positions, triangles, normals, slots
 
 
@@ -207,6 +198,6 @@ def lights_scene(context, catalog):
     try:
         camera, _ = camera_json(scene)
     except UserError:
-        camera = {p.name: p.default for p in catalog.model("camera", "perspective").params}
+        camera = core_scene.default_camera(catalog)
     return core_scene.scene(scene.name, camera, ambient, lights,
                             [dict(core_scene.OSL_PLACEHOLDER_OBJECT)]), notes

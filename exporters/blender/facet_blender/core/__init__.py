@@ -7,11 +7,19 @@ the results back. This is the split of glTF-Blender-IO (`io/` vs `blender/`).
 
 Modules:
     cli       find and run the facet executable; its errors; atomic file writes
+    generate  what the operators ask of facet: material files checked, written, read;
+              GLSL/OSL generated (temporary files, messages that name the material)
     catalog   the model catalog, parsed from `facet models --json` and `facet schema`
     props     the property plan built from the catalog, and material JSON <-> values
     coords    Blender (+Z up) <-> facet (+Y up) coordinates, float formatting
     scene     cameras, lights, meshes and the scene JSON
     convert   Blender BSDF nodes -> facet lobes (the mapping table)
+    gltf      facet's glTF extensions -> Blender light settings; FACET_material checked
+    pov       POV-Ray scenes: generated with facet's Plan (passes), 16-bit PPM and PNG
+    povray    finding and running POV-Ray: one run, or one per pass, added
+    osl       compiling OSL in Blender's process: the compiler's output, oslquery's folder
+
+Its tests are plain pytest (exporters/blender/tests/core/), run without Blender.
 """
 
 

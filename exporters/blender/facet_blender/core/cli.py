@@ -101,14 +101,17 @@ def run(exe, args, timeout=TIMEOUT_GENERATE, replace=None, stdout=True):
     return proc.stdout if stdout else ""
 
 
-def run_json(exe, args):
-    """Runs a facet command that prints JSON, returns the parsed object."""
-    text = run(exe, args, timeout=TIMEOUT_QUICK)
+def _parse_json(text, exe, args):
     try:
         return json.loads(text)
     except ValueError as e:
-        raise FacetError([f"error: '{exe} {' '.join(args)}' printed no valid JSON ({e}); "
+        raise FacetError([f"error: '{exe} {' '.join(str(a) for a in args)}' printed no valid JSON ({e}); "
                           f"is '{exe}' really facet?"])
+
+
+def run_json(exe, args):
+    """Runs a facet command that prints JSON, returns the parsed object."""
+    return _parse_json(run(exe, args, timeout=TIMEOUT_QUICK), exe, args)
 
 
 def models(exe):
@@ -197,22 +200,37 @@ def write_atomic(path, data):
             os.remove(tmp)
 
 
-def generate_to(exe, path, args, replace=None):
+def generate_to(exe, path, args, replace=None, describe=None):
     """Runs `facet generate ... -o TMP` and moves TMP onto `path` when facet succeeds.
 
     facet itself writes whole-or-nothing; the temporary file beside `path` also keeps
-    a previous `path` intact when facet fails."""
+    a previous `path` intact when facet fails.
+
+    With `describe` (a function of one argument), facet is also asked what it
+    generated (`facet generate --json`: {"target", "output", "pov": {...}}) and
+    `describe(that object)` runs before TMP is moved: when it raises, `path` stays as
+    it was. Its result is returned."""
     folder = os.path.dirname(os.path.abspath(path))
     if not os.path.isdir(folder):
         raise UserError(f"cannot write '{path}': folder '{folder}' does not exist")
     tmp = temp_path_beside(path)
+    command = ["generate"] + list(args) + (["--json"] if describe else []) + ["-o", tmp]
     try:
-        run(exe, ["generate"] + list(args) + ["-o", tmp], replace=replace, stdout=False)
+        try:
+            out = run(exe, command, replace=replace, stdout=describe is not None)
+        except FacetError as e:
+            # CLI11's words for an option it does not know: "... argument was not expected: --json"
+            if describe and any("not expected" in line and "--json" in line for line in e.lines):
+                raise FacetError([f"error: this facet ('{exe}') has no 'generate --json', which the add-on "
+                                  f"needs: it is older than the add-on; update facet"], e.command)
+            raise
+        result = describe(_parse_json(out, exe, command)) if describe else None
         _give_ordinary_permissions(tmp)
         os.replace(tmp, path)
     finally:
         if os.path.exists(tmp):
             os.remove(tmp)
+    return result
 
 
 def _is_scalar(v):

@@ -63,6 +63,11 @@ class Result:
             data["emission"] = self.emission
         return data
 
+    def headline(self):
+        """What was found, e.g. "diffuse lambert + specular ggx (approximate)"."""
+        lobes = " + ".join(f"{s} {getattr(self, s)['model']}" for s in ("diffuse", "specular") if getattr(self, s))
+        return f"{lobes} ({'exact' if self.exact else 'approximate'})"
+
     def summary(self):
         """One line per note, exact ones first."""
         order = {EXACT: 0, APPROXIMATE: 1, IGNORED: 2}

@@ -22,7 +22,7 @@ glTF importer's own units depend on its Lighting Mode option (Standard divides b
 
 import math
 
-from . import UserError
+from . import UserError, cli, generate
 
 MATERIAL_EXTENSION = "FACET_material"
 LIGHT_EXTENSION = "FACET_light"
@@ -50,6 +50,17 @@ def material_of(extensions, where):
         raise UserError(f"{where}: extensions.{MATERIAL_EXTENSION} must be an object with a "
                         f"\"material\" object (a facet material)")
     return ext["material"]
+
+
+def check_material(exe, data, where, material_name):
+    """Lets facet check a FACET_material's material (`data`) of the glTF material
+    `where`; when facet refuses it, a UserError with facet's lines saying that the
+    Blender material `material_name` keeps only the glTF fallback."""
+    try:
+        generate.check_material(exe, data, f"{where} ({MATERIAL_EXTENSION})")
+    except cli.FacetError as e:
+        raise UserError(f"facet rejected the facet material of {where}; material "
+                        f"'{material_name}' keeps only the glTF fallback:\n{e}")
 
 
 def ambient_of(extensions, where):

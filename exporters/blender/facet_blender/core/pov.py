@@ -1,42 +1,74 @@
-"""Rendering facet's POV-Ray scenes exactly: passes, 16-bit PPM in, 16-bit PNG out.
+"""facet's POV-Ray scenes: how many runs make the exact image, 16-bit PPM in, 16-bit PNG out.
 
 facet shades meshes (and every non-native model) with function pigments, and a
 function pigment holds one light. facet's scene therefore declares `Facet_Light`:
 rendered once per light with `Declare=Facet_Light=i` (i = 0 .. passes−1: the lights,
 then the emission and ambient term) the images add up to the exact image, which is how
-`facet validate` renders it. Every generated scene declares how many runs that takes:
+`facet validate` renders it. How many runs that takes is facet's to say, and it says
+it when it writes the scene (`facet generate --target pov --json`):
 
-    #declare Facet_Passes = 3;  // renders with Facet_Light = 0 … 2 sum to the exact image
+    {"target": "pov", "output": "scene.pov",
+     "pov": {"passes": 3, "native": false, "reason": "meshes are shaded by function pigments ..."}}
 
-1 means one plain run is exact (POV-Ray's own finish, or one light).
+`generate_scene` asks for that and returns it as a `Plan`, which povray.render takes.
+passes 1 means one plain run is exact (POV-Ray's own finish, or one light). The .pov
+also declares `#declare Facet_Passes = N;` for people who render it by hand; the
+add-on does not read it back.
+
 Each pass is written as a 16-bit binary PPM (trivial to read without any library),
 the passes are added in integers and the sum, clipped at 1 as a PNG is, is written as
 a linear 16-bit PNG (POV-Ray's own format for single runs).
 """
 
 import array
-import re
+import json
+import os
 import struct
 import sys
+import tempfile
 import zlib
+from dataclasses import dataclass
 
-from . import UserError
-
-PASSES_LINE = re.compile(r"^#declare Facet_Passes = (\d+);", re.MULTILINE)
-HEADER_BYTES = 65536
+from . import UserError, cli
 
 
-def passes(header_text):
-    """How many runs (Declare=Facet_Light=i) make the exact image; 1 means one plain run."""
-    match = PASSES_LINE.search(header_text)
-    if not match:
-        raise UserError("the POV-Ray scene declares no Facet_Passes: was it written by this version of facet?")
-    return int(match.group(1))
+@dataclass(frozen=True)
+class Plan:
+    """How facet's POV-Ray scene renders exactly (facet's PovPlan, from `--json`)."""
+    passes: int       # runs with Declare=Facet_Light=i, i < passes, that add up; 1: one plain run
+    native: bool      # POV-Ray's own finish is the model
+    reason: str = ""  # why not, when not
 
 
-def read_header(path):
-    with open(path, encoding="utf-8", errors="replace") as f:
-        return f.read(HEADER_BYTES)
+def plan_of(description):
+    """The Plan in `facet generate --target pov --json`'s object (its "pov" member)."""
+    p = description.get("pov") if isinstance(description, dict) else None
+    passes = p.get("passes") if isinstance(p, dict) else None
+    if (not isinstance(passes, int) or isinstance(passes, bool) or passes < 1
+            or not isinstance(p.get("native"), bool)):
+        shown = json.dumps(description)
+        raise UserError("facet did not say how to render its POV-Ray scene ('facet generate --json' printed "
+                        f"{shown[:200] + ('…' if len(shown) > 200 else '')}, with no \"pov\" object of passes "
+                        "≥ 1 and native); is facet older than the add-on?")
+    return Plan(passes, p["native"], str(p.get("reason", "")))
+
+
+def require_scene_support(exe):
+    """A UserError unless facet reads scenes with per-object materials and meshes."""
+    has_materials, has_meshes = cli.scene_support(cli.scene_schema(exe))
+    if not (has_materials and has_meshes):
+        raise UserError("facet lacks scene materials/meshes: this facet executable cannot read a scene "
+                        "with per-object materials and meshes yet (facet schema --scene); update facet")
+
+
+def generate_scene(exe, scene, scene_name, pov_path):
+    """Writes the POV-Ray scene of a facet scene (JSON data whose objects carry their own
+    materials) to `pov_path`; returns its Plan. Nothing is written when facet refuses."""
+    with tempfile.TemporaryDirectory(prefix="facet-") as tmp:
+        scene_path = os.path.join(tmp, "scene.json")
+        cli.write_atomic(scene_path, cli.dump_json(scene))
+        return cli.generate_to(exe, pov_path, ["--target", "pov", "--scene", scene_path],
+                               {scene_path: f"scene '{scene_name}'"}, describe=plan_of)
 
 
 def read_ppm16(path):

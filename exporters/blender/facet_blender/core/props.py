@@ -337,6 +337,24 @@ def material_from_json(catalog, plan, data):
     return values
 
 
+def conversion_values(catalog, plan, result):
+    """Values to write into FACET_PG_material from a convert.Result (the mapping of
+    Blender's BSDF nodes): facet on, the lobes found ("none" for a section without
+    one) and, when the catalog has it, the emission (black when none was found)."""
+    values = {USE_FACET: True}
+    for section in LOBE_SECTIONS:
+        lobe = getattr(result, section)
+        if lobe is None:
+            values[f"{section}_model"] = NONE
+            continue
+        values[f"{section}_model"] = lobe["model"]
+        group = plan.field(f"{section}_{lobe['model']}").group
+        values[f"{section}_{lobe['model']}"] = lobe_from_json(group, lobe)
+    if any(k.name == "emission" for k in catalog.material_keys):
+        values["emission"] = list(result.emission) if result.emission else [0.0, 0.0, 0.0]
+    return values
+
+
 def normalize_material(catalog, plan, data):
     """A material JSON with every default written out (what exporting it gives)."""
     return material_to_json(catalog, plan, material_from_json(catalog, plan, data),

@@ -39,6 +39,16 @@ SPOT_MAX_CUTOFF = 89.999        # facet's cutoff is < 90 degrees
 
 # ----------------------------------------------------------------------------- camera
 
+def render_size(resolution_x, resolution_y, percentage):
+    """The render's size in pixels (Blender's resolution × percentage, at least 1×1)."""
+    return (max(1, resolution_x * percentage // 100), max(1, resolution_y * percentage // 100))
+
+
+def default_camera(catalog):
+    """facet's default perspective camera: the catalog's defaults of camera/perspective."""
+    return {p.name: p.default for p in catalog.model("camera", "perspective").params}
+
+
 def vertical_fov(lens, sensor_width, sensor_height, sensor_fit, width, height,
                  pixel_aspect_x=1.0, pixel_aspect_y=1.0):
     """The vertical field of view (degrees) of a Blender perspective camera.
@@ -153,6 +163,27 @@ def _triangle_normal(a, b, c):
         return normalize(n)
     except ValueError:
         return [0.0, 0.0, 1.0]
+
+
+def triangle_corners(vertices, loops, polygons, corner_normals, smooth, face_normals):
+    """(triangles, normals) of a Blender mesh's loop triangles, from flat arrays as
+    `foreach_get` fills them: per triangle its three vertex indices, and per corner
+    the corner's (split) normal on a smooth face, the face's normal on a flat one.
+
+    vertices, loops:  3 per triangle (loop_triangles' "vertices", "loops")
+    polygons:         1 per triangle, the face it is part of ("polygon_index")
+    corner_normals:   3 floats per loop (corner_normals / split normals)
+    smooth:           1 per face ("use_smooth");  face_normals: 3 floats per face"""
+    triangles, normals = [], []
+    for t in range(len(polygons)):
+        triangles.append(tuple(vertices[3 * t:3 * t + 3]))
+        p = polygons[t]
+        if smooth[p]:
+            normals.append(tuple(tuple(corner_normals[3 * l:3 * l + 3]) for l in loops[3 * t:3 * t + 3]))
+        else:
+            n = tuple(face_normals[3 * p:3 * p + 3])
+            normals.append((n, n, n))
+    return triangles, normals
 
 
 def mesh_objects(name, matrix, positions, triangles, corner_normals, materials):

@@ -1,0 +1,86 @@
+"""What the operators ask of facet, on plain data: material files checked and written,
+shaders generated.
+
+Each function takes the facet executable and a material as its JSON (a dict, from
+`props.material_to_json`) with the name the user knows it by. facet reads files, so
+the material goes to a temporary folder first; facet's messages name the material,
+never the temporary file (cli.error_lines' `replace`). Nothing is written to the
+user's path unless facet accepted the material (cli.write_atomic, cli.generate_to).
+"""
+
+import json
+import os
+import re
+import tempfile
+
+from . import UserError, cli
+
+
+def safe_name(name):
+    """A file name from a Blender name: anything but letters, digits, `_`, `.`, `-`
+    becomes `_`; "material" when nothing is left."""
+    return re.sub(r"[^A-Za-z0-9_.-]+", "_", name).strip("._") or "material"
+
+
+def osl_text_name(name):
+    """The name of the Text that holds a material's generated OSL."""
+    return f"facet_{safe_name(name)}.osl"
+
+
+def write_material_temp(folder, data, name):
+    """The material's JSON as `folder`/<safe name>.json; returns (path, replace map for
+    facet's messages)."""
+    path = os.path.join(folder, safe_name(name) + ".json")
+    cli.write_atomic(path, cli.dump_json(data))
+    return path, {path: f"material '{name}'"}
+
+
+def check_material(exe, data, label):
+    """Lets facet check a material given as data; `label` stands for its file in
+    facet's messages. Raises cli.FacetError with facet's own lines."""
+    with tempfile.TemporaryDirectory(prefix="facet-") as tmp:
+        path = os.path.join(tmp, "material.json")
+        cli.write_atomic(path, cli.dump_json(data))
+        cli.validate_material(exe, path, {path: label})
+
+
+def export_material(exe, data, name, path):
+    """Writes the material file `path` once facet accepted `data`."""
+    with tempfile.TemporaryDirectory(prefix="facet-") as tmp:
+        temp, replace = write_material_temp(tmp, data, name)
+        cli.validate_material(exe, temp, replace)
+    cli.write_atomic(path, cli.dump_json(data))
+
+
+def read_material(exe, path):
+    """The JSON of the material file `path` once facet accepted it (facet's own
+    `error:` lines when it does not)."""
+    if not os.path.isfile(path):
+        raise UserError(f"no such file: {path}")
+    cli.validate_material(exe, path)
+    try:
+        with open(path, encoding="utf-8") as f:
+            return json.load(f)
+    except (OSError, ValueError) as e:
+        raise UserError(f"cannot read {path}: {e}")
+
+
+def code_to(exe, data, name, path, target, library=False):
+    """`facet generate --target TARGET [--library]` of the material into `path`."""
+    with tempfile.TemporaryDirectory(prefix="facet-") as tmp:
+        temp, replace = write_material_temp(tmp, data, name)
+        cli.generate_to(exe, path, [temp, "--target", target] + (["--library"] if library else []), replace)
+
+
+def osl_shader(exe, data, name, scene, scene_name):
+    """The OSL shader (text) of the material lit by `scene`'s lights and ambient colour
+    (`facet generate --target osl --scene`)."""
+    with tempfile.TemporaryDirectory(prefix="facet-") as tmp:
+        temp, replace = write_material_temp(tmp, data, name)
+        scene_path = os.path.join(tmp, "scene.json")
+        replace[scene_path] = f"scene '{scene_name}'"
+        cli.write_atomic(scene_path, cli.dump_json(scene))
+        osl_path = os.path.join(tmp, "material.osl")
+        cli.generate_to(exe, osl_path, [temp, "--target", "osl", "--scene", scene_path], replace)
+        with open(osl_path, encoding="utf-8") as f:
+            return f.read()
