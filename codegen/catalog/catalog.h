@@ -3,9 +3,11 @@
 // Every reflection model, Fresnel term, geometry term, modifier, light and
 // attenuation law of MODELS.md is one `ModelDef`: its parameters (type, range,
 // default, documentation), its citation, its formula as documentation, how
-// exactly Cycles and POV-Ray can express it natively, and — for the lobes — the
-// function that builds its formula in the IR. Printers and the C++ reference
-// only ever see that IR, so adding a model means adding one ModelDef.
+// exactly Cycles and POV-Ray can express it natively, what the scene layer reads
+// of it (the kind of an object, light or attenuation law; a lobe's glTF
+// equivalent), and — for the lobes — the function that builds its formula in the
+// IR. Printers and the C++ reference only ever see that IR, so adding a model
+// means adding one ModelDef.
 #pragma once
 
 #include <array>
@@ -92,6 +94,14 @@ const char* level_name(Equivalence::Level l);
 
 class LobeContext;
 
+// The scene vocabulary's kinds, as the catalog states them: the scene layer builds
+// an object, a light or an attenuation law from the kind its model has (scene.h's
+// Object::Type, Light::Type and Attenuation::Law are these enums), never from the
+// model's name.
+enum class ObjectType { Sphere, Plane, Mesh };
+enum class LightType { Point, Directional, Spot };
+enum class AttenuationLaw { None, InverseSquare, Polynomial };
+
 struct ModelDef {
   std::string section;   // diffuse, specular, fresnel, geometry, distribution, modifier, light, attenuation, term
   std::string name;      // the key used in material files
@@ -111,6 +121,23 @@ struct ModelDef {
   std::function<ir::Expr(LobeContext&)> build;
 
   const ParamDef* param(const std::string& name) const;
+
+  // ---- What the scene layer reads of a model (scene/scene.cpp, scene/gltf.cpp),
+  // so that it never compares a model's name: adding a model touches its entry only.
+  // Objects, lights, attenuation laws: the kind of the model (set for the models of
+  // that section, empty for every other model).
+  std::optional<ObjectType> object_type;
+  std::optional<LightType> light_type;
+  std::optional<AttenuationLaw> attenuation_law;
+  // Specular lobes: the GGX roughness α whose highlight is nearest this lobe's with
+  // the given values, for the metallic–roughness fallback of a glTF export
+  // (roughnessFactor = √α). Null: no equivalent; the export takes α = 1.
+  std::function<double(const ModelSpec& lobe)> ggx_alpha;
+  // Fresnel terms: the reflectance at normal incidence F(0) as a colour, where the
+  // term states it. glTF's metallic workflow takes it as a conductor's base colour:
+  // a specular-only material whose Fresnel term has it exports as a metal.
+  // Null: the term states none (the material exports as a dielectric).
+  std::function<std::array<double, 3>(const ModelSpec& fresnel)> normal_reflectance;
 };
 
 // A model chosen in a material, with every parameter's value (defaults applied).

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -149,98 +150,19 @@ class Checker {
     return out;
   }
 
+  // The value of parameter `p` given as `j`, else a diagnostic.
   std::optional<Value> value(const json& j, const std::string& path, const ParamDef& p) {
-    Value out;
-    out.kind = p.kind;
     switch (p.kind) {
-      case ParamKind::Number: {
-        auto v = ranged(j, path, p);
-        if (!v) return std::nullopt;
-        out.number = *v;
-        return out;
-      }
-      case ParamKind::String:
-        if (!j.is_string() || j.get<std::string>().empty()) {
-          sink_.error(path, fmt::format("expected a non-empty string, found {}",
-                                        j.is_string() ? "an empty string" : json_type_name(j)));
-          return std::nullopt;
-        }
-        out.choice = j.get<std::string>();
-        return out;
+      case ParamKind::Number: return wrap(p, ranged(j, path, p), &Value::number);
+      case ParamKind::String: return string_value(j, path, p);
       case ParamKind::Points:
-      case ParamKind::Triangles:
-        return list(j, path, p);
-      case ParamKind::Bool:
-        if (!j.is_boolean()) {
-          sink_.error(path, fmt::format("expected a boolean, found {}; allowed: true or false", json_type_name(j)));
-          return std::nullopt;
-        }
-        out.flag = j.get<bool>();
-        return out;
-      case ParamKind::Enum: {
-        if (!j.is_string()) {
-          sink_.error(path, fmt::format("expected a string, found {}; allowed: {}", json_type_name(j), p.allowed()));
-          return std::nullopt;
-        }
-        std::string s = j.get<std::string>();
-        if (std::find(p.choices.begin(), p.choices.end(), s) == p.choices.end()) {
-          std::string hint = suggest(s, p.choices);
-          sink_.error(path, fmt::format("\"{}\" is not allowed{}; allowed: {}", s,
-                                        hint.empty() ? "" : " (did you mean \"" + hint + "\"?)", p.allowed()));
-          return std::nullopt;
-        }
-        out.choice = s;
-        return out;
-      }
-      case ParamKind::Color: {
-        auto c = color(j, path, p);
-        if (!c) return std::nullopt;
-        out.rgb = *c;
-        return out;
-      }
-      case ParamKind::Vector: {
-        auto v = vector(j, path, p);
-        if (!v) return std::nullopt;
-        out.rgb = *v;
-        return out;
-      }
-      case ParamKind::Model: {
-        // Shorthands: a string names a model that needs no parameters; an
-        // object without "model" holds the parameters of `fixed`.
-        if (j.is_string()) {
-          const ModelDef* def = find_model(p.section, j.get<std::string>());
-          if (def && std::none_of(def->params.begin(), def->params.end(), [](const ParamDef& q) { return q.required; })) {
-            ModelSpec spec;
-            spec.def = def;
-            for (const auto& q : def->params) spec.values[q.name] = q.fallback;
-            out.choice = def->name;
-            out.model = std::make_shared<ModelSpec>(spec);
-            return out;
-          }
-        }
-        if (j.is_object() && !j.contains("model") && !p.fixed.empty()) {
-          auto spec = model(j, path, p.section, find_model(p.section, p.fixed));
-          if (!spec) return std::nullopt;
-          out.choice = spec->def->name;
-          out.model = std::make_shared<ModelSpec>(*spec);
-          return out;
-        }
-        if (j.is_string()) {
-          sink_.error(path, fmt::format("\"{}\" is not allowed; allowed: {}", j.get<std::string>(), p.allowed()));
-          return std::nullopt;
-        }
-        auto spec = model(j, path, p.section, nullptr);
-        if (!spec) return std::nullopt;
-        out.choice = spec->def->name;
-        out.model = std::make_shared<ModelSpec>(*spec);
-        return out;
-      }
-      case ParamKind::Object: {
-        auto spec = model(j, path, p.section, find_model(p.section, p.fixed));
-        if (!spec) return std::nullopt;
-        out.model = std::make_shared<ModelSpec>(*spec);
-        return out;
-      }
+      case ParamKind::Triangles: return list(j, path, p);
+      case ParamKind::Bool: return bool_value(j, path, p);
+      case ParamKind::Enum: return enum_value(j, path, p);
+      case ParamKind::Color: return wrap(p, color(j, path, p), &Value::rgb);
+      case ParamKind::Vector: return wrap(p, vector(j, path, p), &Value::rgb);
+      case ParamKind::Model: return model_value(j, path, p);
+      case ParamKind::Object: return object_value(j, path, p);
     }
     return std::nullopt;
   }
@@ -317,6 +239,93 @@ class Checker {
   }
 
  private:
+  // A Value of p's kind holding `v` in `field`, or nothing where `v` is nothing.
+  template <class T, class Field>
+  static std::optional<Value> wrap(const ParamDef& p, const std::optional<T>& v, Field Value::*field) {
+    if (!v) return std::nullopt;
+    Value out;
+    out.kind = p.kind;
+    out.*field = *v;
+    return out;
+  }
+
+  std::optional<Value> string_value(const json& j, const std::string& path, const ParamDef& p) {
+    if (!j.is_string() || j.get<std::string>().empty()) {
+      sink_.error(path, fmt::format("expected a non-empty string, found {}",
+                                    j.is_string() ? "an empty string" : json_type_name(j)));
+      return std::nullopt;
+    }
+    return wrap(p, std::optional<std::string>(j.get<std::string>()), &Value::choice);
+  }
+
+  std::optional<Value> bool_value(const json& j, const std::string& path, const ParamDef& p) {
+    if (!j.is_boolean()) {
+      sink_.error(path, fmt::format("expected a boolean, found {}; allowed: true or false", json_type_name(j)));
+      return std::nullopt;
+    }
+    return wrap(p, std::optional<bool>(j.get<bool>()), &Value::flag);
+  }
+
+  std::optional<Value> enum_value(const json& j, const std::string& path, const ParamDef& p) {
+    if (!j.is_string()) {
+      sink_.error(path, fmt::format("expected a string, found {}; allowed: {}", json_type_name(j), p.allowed()));
+      return std::nullopt;
+    }
+    std::string s = j.get<std::string>();
+    if (std::find(p.choices.begin(), p.choices.end(), s) == p.choices.end()) {
+      std::string hint = suggest(s, p.choices);
+      sink_.error(path, fmt::format("\"{}\" is not allowed{}; allowed: {}", s,
+                                    hint.empty() ? "" : " (did you mean \"" + hint + "\"?)", p.allowed()));
+      return std::nullopt;
+    }
+    return wrap(p, std::optional<std::string>(s), &Value::choice);
+  }
+
+  // The model `spec` as the value of a Model-kind parameter (`choice` names it).
+  static Value model_of(const ParamDef& p, const ModelSpec& spec) {
+    Value out;
+    out.kind = p.kind;
+    out.choice = spec.def->name;
+    out.model = std::make_shared<ModelSpec>(spec);
+    return out;
+  }
+
+  // {"model": …, …}, or the shorthands: a string names a model that needs no
+  // parameters; an object without "model" holds the parameters of `fixed`.
+  std::optional<Value> model_value(const json& j, const std::string& path, const ParamDef& p) {
+    if (j.is_string()) {
+      const ModelDef* def = find_model(p.section, j.get<std::string>());
+      if (def && std::none_of(def->params.begin(), def->params.end(), [](const ParamDef& q) { return q.required; })) {
+        ModelSpec spec;
+        spec.def = def;
+        for (const auto& q : def->params) spec.values[q.name] = q.fallback;
+        return model_of(p, spec);
+      }
+    }
+    if (j.is_object() && !j.contains("model") && !p.fixed.empty()) {
+      auto spec = model(j, path, p.section, find_model(p.section, p.fixed));
+      if (!spec) return std::nullopt;
+      return model_of(p, *spec);
+    }
+    if (j.is_string()) {
+      sink_.error(path, fmt::format("\"{}\" is not allowed; allowed: {}", j.get<std::string>(), p.allowed()));
+      return std::nullopt;
+    }
+    auto spec = model(j, path, p.section, nullptr);
+    if (!spec) return std::nullopt;
+    return model_of(p, *spec);
+  }
+
+  // The parameters of the fixed model p.section/p.fixed.
+  std::optional<Value> object_value(const json& j, const std::string& path, const ParamDef& p) {
+    auto spec = model(j, path, p.section, find_model(p.section, p.fixed));
+    if (!spec) return std::nullopt;
+    Value out;
+    out.kind = p.kind;
+    out.model = std::make_shared<ModelSpec>(*spec);
+    return out;
+  }
+
   DiagnosticSink& sink_;
 };
 

@@ -1,5 +1,7 @@
 // Specular models (ρ_s) of MODELS.md: the classic lobes, the microfacet
 // family, Blinn's Trowbridge–Reitz model and Ward's anisotropic model.
+#include <cmath>
+
 #include "catalog/catalog_internal.h"
 
 namespace facet::catalog_detail {
@@ -43,6 +45,15 @@ ir::Expr microfacet(LobeContext& c, const ir::Expr& D, const ir::Expr& alpha) {
 
 const char* kMicrofacetPov = "function pigment";
 
+// The glTF equivalent of a lobe whose parameter `param` is a GGX-like roughness α.
+std::function<double(const ModelSpec&)> alpha_is(std::string param) {
+  return [param = std::move(param)](const ModelSpec& s) { return s.at(param).number; };
+}
+
+// The roughness α whose highlight is about as wide as Blinn–Phong's of exponent n,
+// α = √(2 / (n + 2)): the relation Walter et al. 2007 give for Beckmann's m.
+double blinn_phong_alpha(double n) { return std::sqrt(2 / (n + 2)); }
+
 }  // namespace
 
 void add_specular(std::vector<ModelDef>& all) {
@@ -68,6 +79,8 @@ void add_specular(std::vector<ModelDef>& all) {
       return ir::call(terms::phong(), {NoL, NoV, LoV, c.number("n")});
     };
     m.physics_note = "ρ = [r·v]^n makes f = ρ/(π n·l) asymmetric; an unnormalized lobe, not a BRDF";
+    // Phong's exponent n looks about like Blinn–Phong's 4n.
+    m.ggx_alpha = [](const ModelSpec& s) { return blinn_phong_alpha(4 * s.at("n").number); };
     add_lobe_params(m);
     all.push_back(m);
   }
@@ -89,6 +102,7 @@ void add_specular(std::vector<ModelDef>& all) {
       return power(c, terms::blinn_phong(), {NoH, c.number("n")}, NoH);
     };
     m.physics_note = "ρ = [n·h]^n makes f = ρ/(π n·l) asymmetric; an unnormalized lobe, not a BRDF";
+    m.ggx_alpha = [](const ModelSpec& s) { return blinn_phong_alpha(s.at("n").number); };
     add_lobe_params(m);
     all.push_back(m);
   }
@@ -105,6 +119,7 @@ void add_specular(std::vector<ModelDef>& all) {
     m.pov = none("function pigment");
     m.build = [](LobeContext& c) { return ir::call(terms::gaussian(), {c.NoH(), c.number("m")}); };
     m.physics_note = "ρ itself is symmetric, so f = ρ/(π n·l) is not; an unnormalized lobe, not a BRDF";
+    m.ggx_alpha = [](const ModelSpec& s) { return 1 / std::sqrt(s.at("m").number); };
     add_lobe_params(m);
     all.push_back(m);
   }
@@ -125,6 +140,7 @@ void add_specular(std::vector<ModelDef>& all) {
       return ir::call(terms::heidrich_seidel(), {c.input(Input::LoT), c.input(Input::VoT), c.number("n")});
     };
     m.physics_note = "Phong along fibres: ρ symmetric, f = ρ/(π n·l) not; unnormalized";
+    m.ggx_alpha = [](const ModelSpec& s) { return blinn_phong_alpha(4 * s.at("n").number); };  // as phong's
     add_lobe_params(m);
     all.push_back(m);
   }
@@ -148,6 +164,7 @@ void add_specular(std::vector<ModelDef>& all) {
     m.reciprocal = true;
     m.physics_note = "D F/(4 (n·l)(n·v)) is symmetric; without G nothing bounds the albedo as n·l → 0 (add "
                      "`geometry` for Cook–Torrance)";
+    m.ggx_alpha = alpha_is("m");
     add_lobe_params(m);
     all.push_back(m);
   }
@@ -173,6 +190,7 @@ void add_specular(std::vector<ModelDef>& all) {
     m.physics_note = "symmetric; the V-cavity masking function is exact for its microsurface (Heitz 2014, "
                      "\"Understanding the Masking-Shadowing Function in Microfacet-Based BRDFs\") and G ≤ G1(l), "
                      "so with F ≤ 1 the albedo is ≤ 1";
+    m.ggx_alpha = alpha_is("m");
     add_lobe_params(m);
     all.push_back(m);
   }
@@ -197,6 +215,7 @@ void add_specular(std::vector<ModelDef>& all) {
     m.energy_conserving = true;
     m.physics_note = "symmetric; Smith G1 is exact for GGX facets and G = G1(l) G1(v) ≤ G1(l), so with F ≤ 1 the "
                      "albedo is ≤ 1 (Walter et al. 2007; Heitz 2014); energy of multiple scattering is lost";
+    m.ggx_alpha = alpha_is("alpha");
     add_lobe_params(m);
     all.push_back(m);
   }
@@ -221,6 +240,7 @@ void add_specular(std::vector<ModelDef>& all) {
     };
     m.reciprocal = true;
     m.physics_note = "D G F/(π (n·l)(n·v)) is symmetric; D is not normalized (its peak is 1), so no bound is claimed";
+    m.ggx_alpha = alpha_is("c");
     add_lobe_params(m);
     all.push_back(m);
   }
@@ -250,6 +270,9 @@ void add_specular(std::vector<ModelDef>& all) {
                             : "symmetric in l and v; Ward's normalization is approximate: narrow lobes lose energy "
                               "as cos θ_i (Dür 2006, \"An Improved Normalization for the Ward Reflectance Model\"), "
                               "and 1/√(n·l) makes the albedo grow without bound at grazing incidence";
+    m.ggx_alpha = [](const ModelSpec& s) {
+      return std::sqrt(s.at("alpha_x").number * s.at("alpha_y").number);
+    };
     add_lobe_params(m);
     all.push_back(m);
   }

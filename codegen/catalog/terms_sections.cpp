@@ -29,6 +29,7 @@ void add_terms(std::vector<ModelDef>& all) {
                    "F = f0 + (1 − f0)(1 − v·h)^5",
                    "Reflectance at normal incidence f0 (RGB for metals), rising to 1 at grazing angles.");
     m.params = {color("f0", "reflectance at normal incidence", Range::closed(0, 1), {0.04, 0.04, 0.04}, true)};
+    m.normal_reflectance = [](const ModelSpec& f) { return f.at("f0").rgb; };
     all.push_back(m);
   }
   {
@@ -91,6 +92,7 @@ void add_lights(std::vector<ModelDef>& all) {
                    "Light from a point, attenuated by the light's attenuation law.");
     m.params = {vector("position", "world position", {0, 0, 0}, true),
                 color("color", "colour C", Range::non_negative(), {1, 1, 1}), attenuation_param()};
+    m.light_type = LightType::Point;
     all.push_back(m);
   }
   {
@@ -98,6 +100,7 @@ void add_lights(std::vector<ModelDef>& all) {
                    "Light from infinitely far away; never attenuated.");
     m.params = {vector("direction", "the way the light travels", {0, -1, 0}, true, true),
                 color("color", "colour C", Range::non_negative(), {1, 1, 1})};
+    m.light_type = LightType::Directional;
     all.push_back(m);
   }
   {
@@ -110,13 +113,19 @@ void add_lights(std::vector<ModelDef>& all) {
                 number("exponent", "concentration towards the axis", Range::non_negative(), 0, false),
                 color("color", "colour C", Range::non_negative(), {1, 1, 1}), attenuation_param()};
     m.pov = exact("spotlight with radius = falloff = cutoff and tightness = exponent");
+    m.light_type = LightType::Spot;
     all.push_back(m);
   }
-  all.push_back(entry("attenuation", "none", "No attenuation", "", "att(d) = 1", "The default."));
+  {
+    auto m = entry("attenuation", "none", "No attenuation", "", "att(d) = 1", "The default.");
+    m.attenuation_law = AttenuationLaw::None;
+    all.push_back(m);
+  }
   {
     auto m = entry("attenuation", "inverse_square", "Inverse square", "", "att(d) = 1/d²",
                    "The physical falloff of a point source.");
     m.pov = exact("fade_distance 0 fade_power 2 (POV-Ray then multiplies by d^−2)");
+    m.attenuation_law = AttenuationLaw::InverseSquare;
     all.push_back(m);
   }
   {
@@ -129,6 +138,7 @@ void add_lights(std::vector<ModelDef>& all) {
                 number("linear", "c2", Range::non_negative(), 0, false),
                 number("quadratic", "c3", Range::non_negative(), 0, false)};
     m.pov = approximate("exact through fade when c1 ≥ 1 and one of c2, c3 is 0; otherwise in the pigment");
+    m.attenuation_law = AttenuationLaw::Polynomial;
     all.push_back(m);
   }
 }
@@ -148,6 +158,7 @@ void add_scene_vocabulary(std::vector<ModelDef>& all) {
     auto m = entry("object", "sphere", "Sphere", "", "|p − center| = radius", "An analytic sphere.");
     m.params = {text("name", "a name for reports"), text("material", "a key of the scene's \"materials\""),
                 vector("center", "centre", {0, 0, 0}, true), number("radius", "radius", Range::positive(), 1)};
+    m.object_type = ObjectType::Sphere;
     all.push_back(m);
   }
   {
@@ -158,6 +169,7 @@ void add_scene_vocabulary(std::vector<ModelDef>& all) {
                 vector("point", "centre of the square", {0, 0, 0}, true),
                 vector("normal", "the side the square faces", {0, 1, 0}, true, true),
                 number("size", "half the side of the square", Range::positive(), 10, false)};
+    m.object_type = ObjectType::Plane;
     all.push_back(m);
   }
   {
@@ -170,6 +182,7 @@ void add_scene_vocabulary(std::vector<ModelDef>& all) {
                 list("normals", "a normal per vertex, world space", ParamKind::Points, true),
                 list("triangles", "vertex indices, counter-clockwise seen from the normals' side",
                      ParamKind::Triangles)};
+    m.object_type = ObjectType::Mesh;
     all.push_back(m);
   }
 }

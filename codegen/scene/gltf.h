@@ -14,10 +14,12 @@
 // and a light's `range` window is not modelled.
 //
 // Export: a valid glTF 2.0 file whose materials carry the full facet description
-// (FACET_material) beside the nearest metallic–roughness fallback; analytic
-// spheres and planes become meshes plus FACET_object (their exact definition),
-// lights carry FACET_light beside KHR_lights_punctual, the scene's ambient colour
-// FACET_scene. None of the extensions is required: other viewers use the fallback.
+// (FACET_material) beside the nearest metallic–roughness fallback (as the catalog
+// states it: each specular lobe's ModelDef::ggx_alpha, and a Fresnel term's
+// normal_reflectance as a conductor's base colour); analytic spheres and planes
+// become meshes plus FACET_object (their exact definition), lights carry
+// FACET_light beside KHR_lights_punctual, the scene's ambient colour FACET_scene.
+// None of the extensions is required: other viewers use the fallback.
 #pragma once
 
 #include <optional>

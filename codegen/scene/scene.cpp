@@ -133,9 +133,8 @@ Vec3 vec(const ModelSpec& s, const char* key) { return Vec3(s.at(key).rgb); }
 Attenuation attenuation_of(const ModelSpec& light) {
   Attenuation a;
   const ModelSpec& m = *light.at("attenuation").model;
-  if (m.def->name == "inverse_square") a.law = Attenuation::Law::InverseSquare;
-  if (m.def->name == "polynomial") {
-    a.law = Attenuation::Law::Polynomial;
+  a.law = m.def->attenuation_law.value();
+  if (a.law == Attenuation::Law::Polynomial) {
     a.constant = m.at("constant").number;
     a.linear = m.at("linear").number;
     a.quadratic = m.at("quadratic").number;
@@ -154,11 +153,122 @@ void each(const json& doc, const char* key, DiagnosticSink& sink, F fn) {
   for (size_t i = 0; i < it->size(); ++i) fn((*it)[i], index_path(key, i));
 }
 
+void check_keys(const json& doc, DiagnosticSink& sink) {
+  for (const auto& [key, val] : doc.items()) {
+    if (std::find(kSceneKeys.begin(), kSceneKeys.end(), key) == kSceneKeys.end()) {
+      std::string hint = suggest(key, kSceneKeys);
+      sink.error(key, fmt::format("unknown key{}; allowed keys: {}",
+                                  hint.empty() ? "" : " (did you mean \"" + hint + "\"?)", quoted_list(kSceneKeys)));
+    }
+  }
+}
+
+void parse_name(const json& doc, Scene& s, DiagnosticSink& sink) {
+  auto it = doc.find("name");
+  if (it == doc.end()) return;
+  if (it->is_string() && !it->get<std::string>().empty()) s.name = it->get<std::string>();
+  else sink.error("name", "expected a non-empty string, found " + json_type_name(*it));
+}
+
+void parse_camera(const json& doc, Scene& s, DiagnosticSink& sink) {
+  auto it = doc.find("camera");
+  if (it == doc.end()) {
+    sink.error("camera", "missing; allowed: an object with keys \"position\", \"look_at\", \"up\", \"fov\"");
+    return;
+  }
+  Checker check(sink);
+  auto c = check.model(*it, "camera", "camera", find_model("camera", "perspective"));
+  if (!c) return;
+  s.camera.position = vec(*c, "position");
+  s.camera.look_at = vec(*c, "look_at");
+  s.camera.up = vec(*c, "up");
+  s.camera.fov = c->at("fov").number;
+  Vec3 f = s.camera.look_at - s.camera.position;
+  if (length(f) == 0) sink.error("camera.look_at", "equals camera.position; the camera needs a direction");
+  else if (length(cross(normalize(f), normalize(s.camera.up))) < 1e-6)
+    sink.error("camera.up", "is parallel to the viewing direction; allowed: any other direction");
+}
+
+void parse_ambient(const json& doc, Scene& s, DiagnosticSink& sink) {
+  auto it = doc.find("ambient");
+  if (it == doc.end()) return;
+  ParamDef p;
+  p.kind = ParamKind::Color;
+  p.range = Range::non_negative();
+  Checker check(sink);
+  if (auto c = check.color(*it, "ambient", p)) s.ambient = *c;
+}
+
+// The checked object `o` at `path`, to be the scene's next: unnamed, it is named
+// after its type and index. Its material must be a key of the scene's materials.
+Object object_of(const ModelSpec& o, const std::string& path, const Scene& s, DiagnosticSink& sink) {
+  Object obj;
+  obj.name = o.at("name").choice;
+  if (obj.name.empty()) obj.name = fmt::format("{}{}", o.def->name, s.objects.size());
+  obj.material = o.at("material").choice;
+  if (!obj.material.empty() && !s.materials.count(obj.material)) {
+    std::vector<std::string> names;
+    for (const auto& [k, v] : s.materials) names.push_back(k);
+    sink.error(join_path(path, "material"),
+               fmt::format("unknown material \"{}\"; allowed: a key of \"materials\"{}", obj.material,
+                           names.empty() ? " (the scene has none)" : ": " + quoted_list(names)));
+  }
+  obj.type = o.def->object_type.value();
+  switch (obj.type) {
+    case Object::Type::Sphere:
+      obj.center = vec(o, "center");
+      obj.radius = o.at("radius").number;
+      break;
+    case Object::Type::Plane:
+      obj.point = vec(o, "point");
+      obj.normal = normalize(vec(o, "normal"));
+      obj.size = o.at("size").number;
+      break;
+    case Object::Type::Mesh:
+      obj.mesh = mesh_of(o, path, sink);
+      break;
+  }
+  return obj;
+}
+
+void parse_objects(const json& doc, Scene& s, DiagnosticSink& sink) {
+  Checker check(sink);
+  each(doc, "objects", sink, [&](const json& j, const std::string& path) {
+    if (auto o = check.model(j, path, "object", nullptr, "type")) s.objects.push_back(object_of(*o, path, s, sink));
+  });
+  if (!doc.contains("objects")) sink.error("objects", "missing; allowed: an array of spheres and planes");
+  else if (doc["objects"].is_array() && doc["objects"].empty()) sink.error("objects", "empty; a scene needs an object");
+}
+
+Light light_of(const ModelSpec& l, const std::string& path, DiagnosticSink& sink) {
+  Light light;
+  light.color = l.at("color").rgb;
+  light.type = l.def->light_type.value();
+  const bool positioned = light.type != Light::Type::Directional;  // point and spot lights
+  if (positioned) light.position = vec(l, "position");
+  if (light.type != Light::Type::Point) light.direction = normalize(vec(l, "direction"));
+  if (positioned) light.attenuation = attenuation_of(l);
+  if (light.type == Light::Type::Spot) {
+    light.cutoff = l.at("cutoff").number;
+    light.exponent = l.at("exponent").number;
+  }
+  const Attenuation& a = light.attenuation;
+  if (a.law == Attenuation::Law::Polynomial && a.constant + a.linear + a.quadratic <= 0)
+    sink.error(join_path(path, "attenuation"), "constant, linear and quadratic are all 0; one must be positive");
+  return light;
+}
+
+void parse_lights(const json& doc, Scene& s, DiagnosticSink& sink) {
+  Checker check(sink);
+  each(doc, "lights", sink, [&](const json& j, const std::string& path) {
+    if (auto l = check.model(j, path, "light", nullptr, "type")) s.lights.push_back(light_of(*l, path, sink));
+  });
+}
+
 }  // namespace
 
 Scene parse_scene(const json& doc, const std::string& file) {
   DiagnosticSink sink(file);
-  Checker check(sink);
   Scene s;
   s.source = file;
   s.name = std::filesystem::path(file).stem().string();
@@ -167,88 +277,13 @@ Scene parse_scene(const json& doc, const std::string& file) {
                        quoted_list(kSceneKeys));
     sink.throw_if_any();
   }
-  for (const auto& [key, val] : doc.items()) {
-    if (std::find(kSceneKeys.begin(), kSceneKeys.end(), key) == kSceneKeys.end()) {
-      std::string hint = suggest(key, kSceneKeys);
-      sink.error(key, fmt::format("unknown key{}; allowed keys: {}",
-                                  hint.empty() ? "" : " (did you mean \"" + hint + "\"?)", quoted_list(kSceneKeys)));
-    }
-  }
-  if (auto it = doc.find("name"); it != doc.end()) {
-    if (it->is_string() && !it->get<std::string>().empty()) s.name = it->get<std::string>();
-    else sink.error("name", "expected a non-empty string, found " + json_type_name(*it));
-  }
-  if (auto it = doc.find("camera"); it != doc.end()) {
-    if (auto c = check.model(*it, "camera", "camera", find_model("camera", "perspective"))) {
-      s.camera.position = vec(*c, "position");
-      s.camera.look_at = vec(*c, "look_at");
-      s.camera.up = vec(*c, "up");
-      s.camera.fov = c->at("fov").number;
-      Vec3 f = s.camera.look_at - s.camera.position;
-      if (length(f) == 0) sink.error("camera.look_at", "equals camera.position; the camera needs a direction");
-      else if (length(cross(normalize(f), normalize(s.camera.up))) < 1e-6)
-        sink.error("camera.up", "is parallel to the viewing direction; allowed: any other direction");
-    }
-  } else {
-    sink.error("camera", "missing; allowed: an object with keys \"position\", \"look_at\", \"up\", \"fov\"");
-  }
+  check_keys(doc, sink);
+  parse_name(doc, s, sink);
+  parse_camera(doc, s, sink);
   parse_materials(doc, file, s, sink);
-  if (auto it = doc.find("ambient"); it != doc.end()) {
-    ParamDef p;
-    p.kind = ParamKind::Color;
-    p.range = Range::non_negative();
-    if (auto c = check.color(*it, "ambient", p)) s.ambient = *c;
-  }
-  each(doc, "objects", sink, [&](const json& j, const std::string& path) {
-    auto o = check.model(j, path, "object", nullptr, "type");
-    if (!o) return;
-    Object obj;
-    obj.name = o->at("name").choice;
-    if (obj.name.empty()) obj.name = fmt::format("{}{}", o->def->name, s.objects.size());
-    obj.material = o->at("material").choice;
-    if (!obj.material.empty() && !s.materials.count(obj.material)) {
-      std::vector<std::string> names;
-      for (const auto& [k, v] : s.materials) names.push_back(k);
-      sink.error(join_path(path, "material"),
-                 fmt::format("unknown material \"{}\"; allowed: a key of \"materials\"{}", obj.material,
-                             names.empty() ? " (the scene has none)" : ": " + quoted_list(names)));
-    }
-    if (o->def->name == "sphere") {
-      obj.type = Object::Type::Sphere;
-      obj.center = vec(*o, "center");
-      obj.radius = o->at("radius").number;
-    } else if (o->def->name == "plane") {
-      obj.type = Object::Type::Plane;
-      obj.point = vec(*o, "point");
-      obj.normal = normalize(vec(*o, "normal"));
-      obj.size = o->at("size").number;
-    } else {
-      obj.type = Object::Type::Mesh;
-      obj.mesh = mesh_of(*o, path, sink);
-    }
-    s.objects.push_back(obj);
-  });
-  if (!doc.contains("objects")) sink.error("objects", "missing; allowed: an array of spheres and planes");
-  else if (doc["objects"].is_array() && doc["objects"].empty()) sink.error("objects", "empty; a scene needs an object");
-  each(doc, "lights", sink, [&](const json& j, const std::string& path) {
-    auto l = check.model(j, path, "light", nullptr, "type");
-    if (!l) return;
-    Light light;
-    light.color = l->at("color").rgb;
-    const std::string& t = l->def->name;
-    if (t == "point" || t == "spot") light.position = vec(*l, "position");
-    if (t == "directional" || t == "spot") light.direction = normalize(vec(*l, "direction"));
-    if (t == "point" || t == "spot") light.attenuation = attenuation_of(*l);
-    light.type = t == "point" ? Light::Type::Point : t == "spot" ? Light::Type::Spot : Light::Type::Directional;
-    if (t == "spot") {
-      light.cutoff = l->at("cutoff").number;
-      light.exponent = l->at("exponent").number;
-    }
-    const Attenuation& a = light.attenuation;
-    if (a.law == Attenuation::Law::Polynomial && a.constant + a.linear + a.quadratic <= 0)
-      sink.error(join_path(path, "attenuation"), "constant, linear and quadratic are all 0; one must be positive");
-    s.lights.push_back(light);
-  });
+  parse_ambient(doc, s, sink);
+  parse_objects(doc, s, sink);
+  parse_lights(doc, s, sink);
   sink.throw_if_any();
   return s;
 }

@@ -16,6 +16,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "catalog/catalog.h"
 #include "catalog/material.h"
 #include "core/vec.h"
 
@@ -37,13 +38,13 @@ struct Camera {
 };
 
 struct Attenuation {
-  enum class Law { None, InverseSquare, Polynomial };
+  using Law = AttenuationLaw;  // the catalog's: each attenuation model states its law
   Law law = Law::None;
   double constant = 1, linear = 0, quadratic = 0;
 };
 
 struct Light {
-  enum class Type { Point, Directional, Spot };
+  using Type = LightType;  // the catalog's: each light model states its type
   Type type = Type::Point;
   Vec3 position;
   Vec3 direction{0, -1, 0};  // unit: the way the light travels (directional), the cone axis (spot)
@@ -92,7 +93,7 @@ struct Hit {
 };
 
 struct Object {
-  enum class Type { Sphere, Plane, Mesh };
+  using Type = ObjectType;  // the catalog's: each object model states its type
   Type type = Type::Sphere;
   std::string name;
   std::string material;  // a key of Scene::materials; "" shades with the material under test

@@ -1,5 +1,6 @@
 // The catalog's structure, and the model × target coverage matrix: every
 // example material generates for every target.
+#include <cmath>
 #include <filesystem>
 #include <set>
 
@@ -62,6 +63,49 @@ TEST(Catalog, ParameterDefaultsAreInRange) {
       }
     }
   }
+}
+
+TEST(Catalog, SceneModelsStateTheirKind) {
+  // The scene layer builds objects, lights and attenuation laws from the kind the
+  // catalog states, never from a model's name: each model of those sections has
+  // one, every kind belongs to one model, and no other model has one.
+  std::set<int> objects, lights, laws;
+  for (const auto& m : catalog()) {
+    EXPECT_EQ(m.object_type.has_value(), m.section == "object") << m.name;
+    EXPECT_EQ(m.light_type.has_value(), m.section == "light") << m.name;
+    EXPECT_EQ(m.attenuation_law.has_value(), m.section == "attenuation") << m.name;
+    if (m.object_type) {
+      EXPECT_TRUE(objects.insert(int(*m.object_type)).second) << m.name;
+    }
+    if (m.light_type) {
+      EXPECT_TRUE(lights.insert(int(*m.light_type)).second) << m.name;
+    }
+    if (m.attenuation_law) {
+      EXPECT_TRUE(laws.insert(int(*m.attenuation_law)).second) << m.name;
+    }
+  }
+  EXPECT_EQ(objects.size(), 3u);
+  EXPECT_EQ(lights.size(), 3u);
+  EXPECT_EQ(laws.size(), 3u);
+}
+
+TEST(Catalog, EverySpecularLobeHasAGltfRoughness) {
+  // The glTF export's metallic–roughness fallback reads these; a lobe without
+  // one would export as fully rough.
+  for (const auto& m : catalog()) {
+    EXPECT_EQ(bool(m.ggx_alpha), m.section == "specular") << m.name;
+    if (m.ggx_alpha) {
+      double alpha = m.ggx_alpha(default_spec(m));
+      EXPECT_TRUE(std::isfinite(alpha) && alpha > 0) << m.name << ": α = " << alpha;
+    }
+    if (m.normal_reflectance) {
+      EXPECT_EQ(m.section, "fresnel") << m.name;
+    }
+  }
+  const ModelDef* schlick = find_model("fresnel", "schlick");
+  ASSERT_TRUE(schlick && schlick->normal_reflectance);
+  EXPECT_EQ(schlick->normal_reflectance(default_spec(*schlick)), (RGB{0.04, 0.04, 0.04}));
+  EXPECT_DOUBLE_EQ(find_model("specular", "ggx")->ggx_alpha(default_spec(*find_model("specular", "ggx"))), 0.2);
 }
 
 TEST(Examples, OnePerModelAtLeast) {

@@ -152,6 +152,26 @@ TEST(Gltf, MetallicRoughnessMapsOntoGgx) {
   EXPECT_TRUE(told) << "the approximate dielectric diffuse is reported";
 }
 
+TEST(Gltf, ExportFallbackIsTheNearestMetallicRoughness) {
+  // What viewers without FACET_material show. A conductor (no diffuse, a Fresnel
+  // term that states f0) is a metal of base colour f0; roughness is √α.
+  auto fallback = [](const char* material) {
+    Material m = load_material((kSource / "examples/materials" / material).string());
+    std::string path = scratch(std::string(material) + ".gltf").string();
+    std::vector<std::string> notes;
+    export_gltf(load_scene("single"), &m, path, notes);
+    return json::parse(read_file(path)).at("materials").at(0).at("pbrMetallicRoughness");
+  };
+  json copper = fallback("ggx_conductor.json");  // ggx α 0.3, Schlick f0 (0.95, 0.64, 0.54)
+  EXPECT_EQ(copper.value("metallicFactor", 1.0), 1.0);
+  EXPECT_EQ(copper.at("baseColorFactor"), json::array({0.95, 0.64, 0.54, 1.0}));
+  EXPECT_DOUBLE_EQ(copper.value("roughnessFactor", 1.0), std::sqrt(0.3));
+  json plastic = fallback("blinn_phong.json");  // Lambert (0.8, 0.5, 0.3), Blinn–Phong n 50
+  EXPECT_EQ(plastic.value("metallicFactor", 1.0), 0.0);
+  EXPECT_EQ(plastic.at("baseColorFactor"), json::array({0.8, 0.5, 0.3, 1.0}));
+  EXPECT_DOUBLE_EQ(plastic.value("roughnessFactor", 1.0), std::sqrt(std::sqrt(2 / 52.0)));  // α = √(2/(n+2))
+}
+
 struct Bad {
   const char* file;
   const char* path;
