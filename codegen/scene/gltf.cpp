@@ -493,7 +493,10 @@ class Importer {
   // and the checker names the type.
   static void place_light(json& lj, const Mat4& world) {
     std::optional<LightType> type;
-    if (const ModelDef* def = find_model("light", lj.value("type", ""))) type = def->light_type;
+    const ModelDef* def = lj.contains("type") && lj["type"].is_string()
+                              ? find_model("light", lj["type"].get<std::string>())
+                              : nullptr;
+    if (def) type = def->light_type;
     if (type != LightType::Directional) lj["position"] = world.point(Vec3(0, 0, 0)).array();
     if (type != LightType::Point) lj["direction"] = normalize(world.direction(Vec3(0, 0, -1))).array();
   }
