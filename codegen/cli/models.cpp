@@ -62,7 +62,8 @@ int run_models(bool as_json) {
     fmt::print("  {:<18} {}\n", m.name, m.formula);
     if (!m.citation.empty()) fmt::print("  {:<18} {}\n", "", m.citation);
     for (const auto& p : m.params) {
-      if (p.name == "color" || p.name == "toon") continue;
+      // What every lobe takes (said once, below): its colour and the modifier object (toon).
+      if (p.name == "color" || (p.kind == ParamKind::Object && p.section == "modifier")) continue;
       std::string dflt;
       if (p.kind == ParamKind::Number) dflt = fmt::format(", default {}", p.fallback.number);
       if (p.kind == ParamKind::Enum) dflt = fmt::format(", default \"{}\"", p.fallback.choice);
