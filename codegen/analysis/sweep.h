@@ -13,6 +13,8 @@
 //   within a tile: cos θ_l and cos θ_v each run over 1 (normal incidence), 1e-7,
 //                  1e-4, 0 (the horizon), −1e-7 and −0.3 (below it), then densely
 //                  over [0, 1].
+// Each renderer of the registry runs its own harness (Renderer::sweep); the
+// direction sets and the counting are renderers/sweep.h's.
 #pragma once
 
 #include <functional>
