@@ -14,13 +14,13 @@
 #include <optional>
 #include <regex>
 #include <sstream>
-#include <thread>
 
 #include <fmt/format.h>
 #include <valgrind/callgrind.h>
 
 #include "catalog/program.h"
 #include "core/io.h"
+#include "core/parallel.h"
 #include "renderers/harness.h"
 #include "renderers/process.h"
 #include "scene/scene.h"
@@ -277,11 +277,9 @@ std::vector<CallgrindCount> callgrind_draws(const std::vector<ShaderDraw>& shade
   const size_t jobs = std::max<size_t>(1, std::min<size_t>(size_t(std::max(options.jobs, 1)), shaders.size()));
   std::vector<std::vector<size_t>> chunks(jobs);
   for (size_t i = 0; i < shaders.size(); ++i) chunks[i % jobs].push_back(i);
-  std::vector<std::thread> threads;
-  for (size_t k = 0; k < jobs; ++k)
-    threads.emplace_back(callgrind_chunk, std::cref(shaders), std::cref(chunks[k]), width, height, std::cref(facet),
-                         std::cref(dir), int(k), std::ref(out));
-  for (auto& t : threads) t.join();
+  parallel_for(jobs, unsigned(jobs), [&](size_t k) {
+    callgrind_chunk(shaders, chunks[k], width, height, facet, dir, int(k), out);
+  });
   return out;
 }
 
@@ -289,6 +287,12 @@ std::vector<CallgrindCount> callgrind_draws(const std::vector<ShaderDraw>& shade
 // ---------------------------------------------------------------- Cycles (OSL)
 
 namespace {
+
+struct OslCost {
+  std::string error;
+  int instructions = 0;
+  double ns_per_pixel = 0;  // per pixel and sample; 0 when not timed
+};
 
 struct OslFigures {
   std::vector<OslCost> rows;
@@ -354,6 +358,13 @@ OslFigures cycles_costs(const std::vector<Material>& ms, const CostOptions& o, c
 
 // ---------------------------------------------------------------- POV-Ray
 
+struct PovCost {
+  std::string error;
+  bool native = false;      // POV-Ray's own finish, no functions
+  int functions = 0;        // #declare … = function in the generated scene
+  double ns_per_pixel = 0;  // 0 when not timed
+};
+
 int count_pov_functions(const std::string& scene) {
   static const std::regex declaration(R"(#declare\s+\w+\s*=\s*function\b)");
   return int(std::distance(std::sregex_iterator(scene.begin(), scene.end(), declaration), std::sregex_iterator()));
@@ -405,104 +416,7 @@ void pov_timings(const std::vector<Material>& ms, const CostOptions& o, const fs
     if (out[i].error.empty()) out[i].ns_per_pixel = best[i] / (double(o.pov_size) * o.pov_size) * 1e9;
 }
 
-// ---------------------------------------------------------------- the table
-
-bool is_baseline(const Material& m) {
-  return m.name == "lambert" && m.diffuse && !m.specular && m.diffuse->def->name == "lambert";
-}
-
-double ratio(double x, double base) { return base > 0 && x > 0 ? x / base : 0; }
-
-}  // namespace
-
-std::vector<CostRow> measure_costs(const std::vector<Material>& materials, const CostOptions& options,
-                                   const CostProgress& progress, CostBaselines* baselines) {
-  auto say = [&](const std::string& s) {
-    if (progress) progress(s);
-  };
-  std::vector<Material> ms = materials;
-  if (std::none_of(ms.begin(), ms.end(), is_baseline))
-    ms.insert(ms.begin(), lobe_material(default_spec(*find_model("diffuse", "lambert")), "lambert"));
-  const fs::path dir = fs::absolute(options.workdir.empty() ? (fs::temp_directory_path() / "facet-cost").string()
-                                                            : options.workdir);
-  fs::create_directories(dir);
-
-  std::vector<CostRow> rows(ms.size());
-  for (size_t i = 0; i < ms.size(); ++i) {
-    rows[i].name = ms[i].name;
-    rows[i].material = ms[i].source.empty() ? ms[i].name : ms[i].source;
-    if (ms[i].diffuse) rows[i].diffuse = ms[i].diffuse->def->name;
-    if (ms[i].specular) rows[i].specular = ms[i].specular->def->name;
-  }
-  CostBaselines base;
-
-  // The counts: compilers only, seconds.
-  say(fmt::format("GLSL: SPIR-V of {} shaders (glslangValidator, spirv-opt -O)", ms.size() + 1));
-  std::vector<ShaderDraw> draws;
-  const auto uniforms = cost_frame_uniforms(options.callgrind_size, options.callgrind_size);
-  for (size_t i = 0; i < ms.size(); ++i) {
-    ShaderDraw d{ms[i].name, cost_fragment_source(ms[i]), uniforms};
-    SpirvCount s = spirv_instructions(d.fragment_source, (dir / "glsl").string(), fmt::format("{}_{:03}", ms[i].name, i));
-    rows[i].glsl.spirv = s.instructions;
-    rows[i].glsl.error = s.error;
-    draws.push_back(d);
-  }
-  draws.push_back({"(empty frame)", cost_frame_source(kEmptyLibrary), uniforms});
-  base.spirv_empty = spirv_instructions(draws.back().fragment_source, (dir / "glsl").string(), "empty").instructions;
-  std::vector<PovCost> pov(ms.size());
-  pov_counts(ms, dir / "pov", pov);
-
-  // callgrind on every core, then the timings, one per core.
-  if (options.callgrind) {
-    say(fmt::format("GLSL: llvmpipe draws of {} shaders under callgrind, {} valgrind processes",
-                    draws.size(), options.jobs));
-    std::vector<CallgrindCount> counts =
-        callgrind_draws(draws, options.callgrind_size, options.callgrind_size, options, (dir / "callgrind").string());
-    for (size_t i = 0; i < ms.size(); ++i) {
-      if (!counts[i].error.empty() && rows[i].glsl.error.empty()) rows[i].glsl.error = counts[i].error;
-      rows[i].glsl.callgrind_per_pixel = counts[i].per_pixel;
-    }
-    base.callgrind_empty_per_pixel = counts.back().per_pixel;
-  }
-  // The timings one at a time: Cycles renders on one thread while Blender's
-  // caller busy-waits on the other core, and a third process would slow either.
-  if (options.timings) {
-    say("POV-Ray: tracing every scene");
-    pov_timings(ms, options, dir / "pov", pov);
-  }
-  say(options.timings ? "OSL: Blender compiles and times every shader in Cycles" : "OSL: Blender compiles every shader");
-  OslFigures osl = cycles_costs(ms, options, dir / "osl");
-
-  base.cycles_emission_ns_per_pixel = osl.emission_ns_per_pixel;
-  base.blender = osl.blender;
-  base.osl = osl.osl;
-  for (size_t i = 0; i < ms.size(); ++i) {
-    rows[i].osl = osl.rows[i];
-    rows[i].pov = pov[i];
-  }
-  // Relative to Lambert.
-  const CostRow& lambert = rows[size_t(std::find_if(ms.begin(), ms.end(), is_baseline) - ms.begin())];
-  const double cg = lambert.glsl.callgrind_per_pixel, cy = lambert.osl.ns_per_pixel, pv = lambert.pov.ns_per_pixel;
-  for (auto& r : rows) {
-    r.glsl.callgrind_relative = ratio(r.glsl.callgrind_per_pixel, cg);
-    r.osl.relative = ratio(r.osl.ns_per_pixel, cy);
-    r.pov.relative = ratio(r.pov.ns_per_pixel, pv);
-  }
-  if (baselines) {
-    base.povray = tool_version({"povray", "--version"}, "POV-Ray");
-    base.glslang = tool_version({"glslangValidator", "--version"}, "Glslang");
-    base.spirv_tools = tool_version({"spirv-opt", "--version"}, "SPIRV-Tools");
-    if (options.callgrind) base.valgrind = tool_version({"valgrind", "--version"}, "valgrind");
-    GlRenderer gl;
-    base.gl_renderer = gl.ok() ? gl.description() : gl.error();
-    *baselines = base;
-  }
-  return rows;
-}
-
-// ---------------------------------------------------------------- output
-
-namespace {
+// ---------------------------------------------------------------- the targets
 
 json or_null(double x) { return x > 0 ? json(x) : json(nullptr); }
 
@@ -514,6 +428,154 @@ std::optional<double> shading(double x, double frame) {
   return std::nullopt;
 }
 json or_null(const std::optional<double>& x) { return x ? json(*x) : json(nullptr); }
+
+// What one target's measurement works on; it fills that target's cell of every row.
+struct CostRun {
+  const std::vector<Material>& ms;
+  const CostOptions& options;
+  const fs::path& dir;
+  const std::function<void(const std::string&)>& say;
+};
+
+// GLSL: the SPIR-V counts (compilers only, seconds), then llvmpipe's draws under callgrind on every core.
+void measure_glsl(const CostRun& run, std::vector<CostRow>& rows, CostBaselines& base) {
+  const auto& ms = run.ms;
+  const CostOptions& options = run.options;
+  run.say(fmt::format("GLSL: SPIR-V of {} shaders (glslangValidator, spirv-opt -O)", ms.size() + 1));
+  std::vector<ShaderDraw> draws;
+  const auto uniforms = cost_frame_uniforms(options.callgrind_size, options.callgrind_size);
+  for (size_t i = 0; i < ms.size(); ++i) {
+    ShaderDraw d{ms[i].name, cost_fragment_source(ms[i]), uniforms};
+    SpirvCount s = spirv_instructions(d.fragment_source, (run.dir / "glsl").string(), fmt::format("{}_{:03}", ms[i].name, i));
+    rows[i].cell("glsl").figures["spirv"] = s.instructions;
+    rows[i].cell("glsl").error = s.error;
+    draws.push_back(d);
+  }
+  draws.push_back({"(empty frame)", cost_frame_source(kEmptyLibrary), uniforms});
+  base.spirv_empty = spirv_instructions(draws.back().fragment_source, (run.dir / "glsl").string(), "empty").instructions;
+  std::vector<CallgrindCount> counts(draws.size());
+  if (options.callgrind) {
+    run.say(fmt::format("GLSL: llvmpipe draws of {} shaders under callgrind, {} valgrind processes", draws.size(),
+                        options.jobs));
+    counts = callgrind_draws(draws, options.callgrind_size, options.callgrind_size, options, (run.dir / "callgrind").string());
+    base.callgrind_empty_per_pixel = counts.back().per_pixel;
+  }
+  for (size_t i = 0; i < ms.size(); ++i) {
+    CostCell& c = rows[i].cell("glsl");
+    if (!counts[i].error.empty() && c.error.empty()) c.error = counts[i].error;
+    c.figures["callgrind_per_pixel"] = or_null(counts[i].per_pixel);
+    c.figures["callgrind_shading_per_pixel"] = or_null(shading(counts[i].per_pixel, base.callgrind_empty_per_pixel));
+  }
+  base.glslang = tool_version({"glslangValidator", "--version"}, "Glslang");
+  base.spirv_tools = tool_version({"spirv-opt", "--version"}, "SPIRV-Tools");
+  if (options.callgrind) base.valgrind = tool_version({"valgrind", "--version"}, "valgrind");
+  GlRenderer gl;
+  base.gl_renderer = gl.ok() ? gl.description() : gl.error();
+}
+
+// OSL: one Blender process compiles (and, with timings, times) every shader and the emission baseline.
+void measure_osl(const CostRun& run, std::vector<CostRow>& rows, CostBaselines& base) {
+  run.say(run.options.timings ? "OSL: Blender compiles and times every shader in Cycles"
+                              : "OSL: Blender compiles every shader");
+  OslFigures osl = cycles_costs(run.ms, run.options, run.dir / "osl");
+  base.cycles_emission_ns_per_pixel = osl.emission_ns_per_pixel;
+  base.blender = osl.blender;
+  base.osl = osl.osl;
+  for (size_t i = 0; i < run.ms.size(); ++i) {
+    CostCell& c = rows[i].cell("osl");
+    const OslCost& o = osl.rows[i];
+    c.error = o.error;
+    c.figures["instructions"] = o.instructions;
+    c.figures["ns_per_pixel"] = or_null(o.ns_per_pixel);
+    c.figures["shading_ns_per_pixel"] = or_null(shading(o.ns_per_pixel, base.cycles_emission_ns_per_pixel));
+  }
+}
+
+// POV-Ray: the generated scenes' function counts, then (with timings) their traces, one at a time.
+void measure_pov(const CostRun& run, std::vector<CostRow>& rows, CostBaselines& base) {
+  std::vector<PovCost> pov(run.ms.size());
+  pov_counts(run.ms, run.dir / "pov", pov);
+  if (run.options.timings) {
+    run.say("POV-Ray: tracing every scene");
+    pov_timings(run.ms, run.options, run.dir / "pov", pov);
+  }
+  for (size_t i = 0; i < run.ms.size(); ++i) {
+    CostCell& c = rows[i].cell("pov");
+    c.error = pov[i].error;
+    c.figures["native"] = pov[i].native;
+    c.figures["functions"] = pov[i].native ? json(nullptr) : json(pov[i].functions);
+    c.figures["ns_per_pixel"] = or_null(pov[i].ns_per_pixel);
+  }
+  base.povray = tool_version({"povray", "--version"}, "POV-Ray");
+}
+
+using CostMeasure = void (*)(const CostRun&, std::vector<CostRow>&, CostBaselines&);
+
+// How each target of cost_format() is measured, by its renderer's name.
+CostMeasure cost_measure(const std::string& target) {
+  static const std::map<std::string, CostMeasure> measures = {
+      {"glsl", measure_glsl}, {"osl", measure_osl}, {"pov", measure_pov}};
+  auto it = measures.find(target);
+  return it == measures.end() ? nullptr : it->second;
+}
+
+// ---------------------------------------------------------------- the table
+
+// The baseline: the baseline model's lobe alone, in a material named after it.
+bool is_baseline(const Material& m) {
+  const ModelDef& base = cost_baseline_model();
+  return m.diffuse && !m.specular && m.diffuse->def == &base && m.name == base.name;
+}
+
+double ratio(double x, double base) { return base > 0 && x > 0 ? x / base : 0; }
+
+std::vector<CostRow> named_rows(const std::vector<Material>& ms) {
+  std::vector<CostRow> rows(ms.size());
+  for (size_t i = 0; i < ms.size(); ++i) {
+    rows[i].name = ms[i].name;
+    rows[i].material = ms[i].source.empty() ? ms[i].name : ms[i].source;
+    if (ms[i].diffuse) rows[i].diffuse = ms[i].diffuse->def->name;
+    if (ms[i].specular) rows[i].specular = ms[i].specular->def->name;
+  }
+  return rows;
+}
+
+}  // namespace
+
+std::vector<CostRow> measure_costs(const std::vector<Material>& materials, const CostOptions& options,
+                                   const CostProgress& progress, CostBaselines* baselines) {
+  const std::function<void(const std::string&)> say = [&](const std::string& s) {
+    if (progress) progress(s);
+  };
+  std::vector<Material> ms = materials;
+  if (std::none_of(ms.begin(), ms.end(), is_baseline)) {
+    const ModelDef& base = cost_baseline_model();
+    ms.insert(ms.begin(), lobe_material(default_spec(base), base.name));
+  }
+  const fs::path dir = fs::absolute(options.workdir.empty() ? (fs::temp_directory_path() / "facet-cost").string()
+                                                            : options.workdir);
+  fs::create_directories(dir);
+  std::vector<CostRow> rows = named_rows(ms);
+  CostBaselines base;
+  // The targets one after another: the timings must not share the cores.
+  const CostRun run{ms, options, dir, say};
+  for (const auto& format : cost_format())
+    if (CostMeasure measure = cost_measure(format.target)) measure(run, rows, base);
+  // Relative to the baseline.
+  const CostRow& baseline = rows[size_t(std::find_if(ms.begin(), ms.end(), is_baseline) - ms.begin())];
+  for (const auto& format : cost_format()) {
+    const double b = baseline.cell(format.target).number(format.timed);
+    for (auto& r : rows)
+      r.cell(format.target).figures[format.relative] = or_null(ratio(r.cell(format.target).number(format.timed), b));
+  }
+  if (baselines) *baselines = base;
+  return rows;
+}
+
+// ---------------------------------------------------------------- output
+
+namespace {
+
 std::string signed_number(const std::optional<double>& x, int decimals) {
   return x ? fmt::format("{:.{}f}", *x, decimals) : "–";
 }
@@ -526,70 +588,37 @@ std::string lobes(const CostRow& r) {
 std::string number(double x, int decimals) { return x > 0 ? fmt::format("{:.{}f}", x, decimals) : "–"; }
 std::string times(double x) { return x > 0 ? fmt::format("{:.2f}", x) : "–"; }
 std::string ns(double x) { return x > 0 ? fmt::format("{:.{}f}", x, x >= 100 ? 0 : 1) : "–"; }
+std::string count(const CostCell& c, const char* key) { return fmt::format("{}", (long long)c.number(key)); }
 
-std::string pov_kind(const PovCost& p) {
+std::string pov_kind(const CostCell& p) {
   if (!p.error.empty()) return "error";
-  return p.native ? "native" : fmt::format("{} functions", p.functions);
+  return p.flag("native") ? "native" : fmt::format("{} functions", count(p, "functions"));
 }
 
 }  // namespace
-
-json costs_json(const std::vector<CostRow>& rows, const CostBaselines& b) {
-  json out = {{"baseline", "lambert"}, {"rows", json::array()}};
-  for (const auto& r : rows) {
-    json row = {{"name", r.name},
-                {"material", r.material},
-                {"diffuse", r.diffuse.empty() ? json(nullptr) : json(r.diffuse)},
-                {"specular", r.specular.empty() ? json(nullptr) : json(r.specular)}};
-    if (!r.glsl.error.empty()) row["glsl"] = {{"error", r.glsl.error}};
-    else
-      row["glsl"] = {{"spirv", r.glsl.spirv},
-                     {"callgrind_per_pixel", or_null(r.glsl.callgrind_per_pixel)},
-                     {"callgrind_relative", or_null(r.glsl.callgrind_relative)},
-                     {"callgrind_shading_per_pixel", or_null(shading(r.glsl.callgrind_per_pixel, b.callgrind_empty_per_pixel))}};
-    if (!r.osl.error.empty()) row["osl"] = {{"error", r.osl.error}};
-    else
-      row["osl"] = {{"instructions", r.osl.instructions},
-                    {"ns_per_pixel", or_null(r.osl.ns_per_pixel)},
-                    {"relative", or_null(r.osl.relative)},
-                    {"shading_ns_per_pixel", or_null(shading(r.osl.ns_per_pixel, b.cycles_emission_ns_per_pixel))}};
-    if (!r.pov.error.empty()) row["pov"] = {{"error", r.pov.error}};
-    else
-      row["pov"] = {{"native", r.pov.native},
-                    {"functions", r.pov.native ? json(nullptr) : json(r.pov.functions)},
-                    {"ns_per_pixel", or_null(r.pov.ns_per_pixel)},
-                    {"relative", or_null(r.pov.relative)}};
-    out["rows"].push_back(row);
-  }
-  out["frame"] = {{"glsl_spirv", b.spirv_empty},
-                  {"glsl_callgrind_per_pixel", or_null(b.callgrind_empty_per_pixel)},
-                  {"osl_emission_ns_per_pixel", or_null(b.cycles_emission_ns_per_pixel)}};
-  out["tools"] = {{"gl_renderer", b.gl_renderer}, {"blender", b.blender},     {"osl", b.osl},
-                  {"povray", b.povray},           {"glslang", b.glslang},     {"spirv_tools", b.spirv_tools},
-                  {"valgrind", b.valgrind}};
-  return out;
-}
 
 std::string costs_table(const std::vector<CostRow>& rows, const CostBaselines& b) {
   std::string s = fmt::format("{:<20} {:<16} {:>6} {:>10} {:>6} {:>7} {:>9} {:>6} {:>14} {:>9} {:>6}\n", "material",
                               "lobe", "SPIR-V", "llvmpipe/px", "×", "OSL ops", "Cycles ns", "×", "POV-Ray",
                               "POV ns/px", "×");
   for (const auto& r : rows) {
-    std::string glsl = r.glsl.error.empty()
-                           ? fmt::format("{:>6} {:>10} {:>6}", r.glsl.spirv, number(r.glsl.callgrind_per_pixel, 1),
-                                         times(r.glsl.callgrind_relative))
-                           : fmt::format("{:<24}", "error");
-    std::string osl = r.osl.error.empty() ? fmt::format("{:>7} {:>9} {:>6}", r.osl.instructions, ns(r.osl.ns_per_pixel),
-                                                        times(r.osl.relative))
-                                          : fmt::format("{:<24}", "error");
-    std::string pov = fmt::format("{:>14} {:>9} {:>6}", pov_kind(r.pov), ns(r.pov.ns_per_pixel), times(r.pov.relative));
+    const CostCell &g = r.cell("glsl"), &o = r.cell("osl"), &p = r.cell("pov");
+    std::string glsl = g.error.empty() ? fmt::format("{:>6} {:>10} {:>6}", count(g, "spirv"),
+                                                     number(g.number("callgrind_per_pixel"), 1),
+                                                     times(g.number("callgrind_relative")))
+                                       : fmt::format("{:<24}", "error");
+    std::string osl = o.error.empty() ? fmt::format("{:>7} {:>9} {:>6}", count(o, "instructions"),
+                                                    ns(o.number("ns_per_pixel")), times(o.number("relative")))
+                                      : fmt::format("{:<24}", "error");
+    std::string pov = fmt::format("{:>14} {:>9} {:>6}", pov_kind(p), ns(p.number("ns_per_pixel")), times(p.number("relative")));
     s += fmt::format("{:<20} {:<16} {} {} {}\n", r.name, lobes(r), glsl, osl, pov);
   }
   s += fmt::format("the frame alone: SPIR-V {}, llvmpipe {} instr/px; Cycles, a constant-emission shader: {} ns/px\n",
                    b.spirv_empty, number(b.callgrind_empty_per_pixel, 1), ns(b.cycles_emission_ns_per_pixel));
   for (const auto& r : rows)
-    for (const auto* e : {&r.glsl.error, &r.osl.error, &r.pov.error})
-      if (!e->empty()) s += fmt::format("error: {}: {}\n", r.name, first_line(*e));
+    for (const auto& format : cost_format())
+      if (const std::string& e = r.cell(format.target).error; !e.empty())
+        s += fmt::format("error: {}: {}\n", r.name, first_line(e));
   return s;
 }
 
@@ -608,6 +637,23 @@ std::string machine() {
 
 const char* kMarkdownHeader = "| material | lobe | SPIR-V | llvmpipe instr/px | × Lambert | shading instr/px | OSL ops | "
                               "Cycles ns/px | × Lambert | shading ns/px | POV-Ray | POV-Ray ns/px | × Lambert |";
+
+// One row of the Markdown table, its cells in kMarkdownHeader's order.
+std::string markdown_row(const CostRow& r, const CostBaselines& b) {
+  const CostCell &g = r.cell("glsl"), &o = r.cell("osl"), &p = r.cell("pov");
+  const double callgrind = g.number("callgrind_per_pixel"), cycles = o.number("ns_per_pixel");
+  std::string glsl = g.error.empty()
+                         ? fmt::format("{} | {} | {} | {}", count(g, "spirv"), number(callgrind, 1),
+                                       times(g.number("callgrind_relative")),
+                                       signed_number(shading(callgrind, b.callgrind_empty_per_pixel), 1))
+                         : "error | | |";
+  std::string osl = o.error.empty()
+                        ? fmt::format("{} | {} | {} | {}", count(o, "instructions"), ns(cycles), times(o.number("relative")),
+                                      signed_number(shading(cycles, b.cycles_emission_ns_per_pixel), 0))
+                        : "error | | |";
+  return fmt::format("| `{}` | {} | {} | {} | {} | {} | {} |\n", r.name, lobes(r), glsl, osl, pov_kind(p),
+                     ns(p.number("ns_per_pixel")), times(p.number("relative")));
+}
 
 }  // namespace
 
@@ -668,19 +714,7 @@ std::string costs_markdown(const std::vector<CostRow>& rows, const CostBaselines
       "least of {1} interleaved rounds.\n\n",
       o.pov_size, o.repeats);
   s += std::string(kMarkdownHeader) + "\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
-  for (const auto& r : rows) {
-    std::string glsl = r.glsl.error.empty()
-                           ? fmt::format("{} | {} | {} | {}", r.glsl.spirv, number(r.glsl.callgrind_per_pixel, 1),
-                                         times(r.glsl.callgrind_relative),
-                                         signed_number(shading(r.glsl.callgrind_per_pixel, b.callgrind_empty_per_pixel), 1))
-                           : "error | | |";
-    std::string osl = r.osl.error.empty()
-                          ? fmt::format("{} | {} | {} | {}", r.osl.instructions, ns(r.osl.ns_per_pixel), times(r.osl.relative),
-                                        signed_number(shading(r.osl.ns_per_pixel, b.cycles_emission_ns_per_pixel), 0))
-                          : "error | | |";
-    s += fmt::format("| `{}` | {} | {} | {} | {} | {} | {} |\n", r.name, lobes(r), glsl, osl, pov_kind(r.pov),
-                     ns(r.pov.ns_per_pixel), times(r.pov.relative));
-  }
+  for (const auto& r : rows) s += markdown_row(r, b);
   s += fmt::format("\nThe command, to regenerate it: `facet cost --markdown docs/cost.md` (all of it, {:.0f} s here); "
                    "`facet cost --json` prints the same figures for tools.\n",
                    wall_seconds);
@@ -727,12 +761,13 @@ std::vector<std::string> stale_costs(const std::string& markdown, const std::vec
     auto check = [&](const char* what, const std::string& was, const std::string& now) {
       if (was != now) out.push_back(fmt::format("{}: {} is {} in the file, {} measured", r.name, what, was, now));
     };
-    if (r.glsl.error.empty()) {
-      check("SPIR-V", c[2], std::to_string(r.glsl.spirv));
-      if (r.glsl.callgrind_per_pixel > 0) check("llvmpipe instr/px", c[3], number(r.glsl.callgrind_per_pixel, 1));
+    const CostCell &g = r.cell("glsl"), &o = r.cell("osl");
+    if (g.error.empty()) {
+      check("SPIR-V", c[2], count(g, "spirv"));
+      if (g.number("callgrind_per_pixel") > 0) check("llvmpipe instr/px", c[3], number(g.number("callgrind_per_pixel"), 1));
     }
-    if (r.osl.error.empty()) check("OSL ops", c[6], std::to_string(r.osl.instructions));
-    check("POV-Ray", c[10], pov_kind(r.pov));
+    if (o.error.empty()) check("OSL ops", c[6], count(o, "instructions"));
+    check("POV-Ray", c[10], pov_kind(r.cell("pov")));
   }
   return out;
 }

@@ -20,6 +20,7 @@
 #pragma once
 
 #include <functional>
+#include <map>
 #include <optional>
 #include <string>
 #include <utility>
@@ -28,41 +29,46 @@
 #include <nlohmann/json.hpp>
 
 #include "catalog/material.h"
-#include "renderers/renderers.h"
+#include "renderers/opengl.h"
 
 namespace facet {
 
-struct GlslCost {
-  std::string error;  // why the GLSL figures are missing, when they are
-  int spirv = 0;
-  double callgrind_per_pixel = 0;  // 0 when not measured (CostOptions::callgrind off)
-  double callgrind_relative = 0;
-};
+// ---- The rows: one per material, a cell per target (`facet cost --json` prints them and `facet docs` reads them).
 
-struct OslCost {
-  std::string error;
-  int instructions = 0;
-  double ns_per_pixel = 0;  // per pixel and sample; 0 when not timed
-  double relative = 0;
-};
-
-struct PovCost {
-  std::string error;
-  bool native = false;    // POV-Ray's own finish, no functions
-  int functions = 0;      // #declare … = function in the generated scene
-  double ns_per_pixel = 0;  // 0 when not timed
-  double relative = 0;
+// One target's figures, under the keys `facet cost --json` prints: a number, a
+// boolean, or null where not measured (timings with --no-timings); a figure the
+// format does not name is kept as it is.
+struct CostCell {
+  std::string error;  // why the target was not measured; empty when it was
+  nlohmann::json figures = nlohmann::json::object();
+  double number(const std::string& key) const;  // 0 when absent or null
+  bool flag(const std::string& key) const;      // false when absent
 };
 
 struct CostRow {
   std::string name;      // the material's name
   std::string material;  // its file, or the model's name for model_materials()
   std::string diffuse, specular;  // model names, "" for none
-  GlslCost glsl;
-  OslCost osl;
-  PovCost pov;
-  bool ok() const { return glsl.error.empty() && osl.error.empty() && pov.error.empty(); }
+  std::map<std::string, CostCell> cells;  // by target: a renderer's name ("glsl"), see cost_format()
+  CostCell& cell(const std::string& target) { return cells[target]; }
+  const CostCell& cell(const std::string& target) const;  // an empty cell when the row has none
+  bool ok() const;
 };
+
+// The figures the agreed format names for a target, each with how the pages print it.
+enum class CostFigureKind { Count, Number, Ratio, Flag, CountOrNull };
+struct CostFigureDef {
+  std::string key;    // as in the file, e.g. "ns_per_pixel"
+  std::string label;  // as the pages print it, e.g. "ns / pixel"
+  CostFigureKind kind;
+};
+struct CostTargetFormat {
+  std::string target;                 // the renderer whose target it measures
+  std::vector<CostFigureDef> figures;  // every cell has these (or an error), in the order shown
+  std::string timed, relative;        // the figure given relative to the baseline, and that ratio's key
+};
+// glsl, osl, pov: the registry's renderers that have a cost, in the registry's order.
+const std::vector<CostTargetFormat>& cost_format();
 
 // What the whole table shares: the per-pixel costs of a frame that shades
 // nothing, and the tools that measured.
@@ -97,18 +103,37 @@ struct CostOptions {
 
 using CostProgress = std::function<void(const std::string&)>;
 
-// Every figure of every material. The baseline is the first material named
-// "lambert"; without one, the catalog's Lambert lobe is measured first as row
-// "lambert". A tool that cannot run leaves its error in every row it concerns.
+// Every figure of every material, target after target in the registry's order.
+// The baseline is the first material that is cost_baseline_model()'s lobe alone,
+// named after it ("lambert"); without one, that lobe at its defaults is measured
+// first as such a row. A tool that cannot run leaves its error in every row it concerns.
 std::vector<CostRow> measure_costs(const std::vector<Material>& materials, const CostOptions& options,
                                    const CostProgress& progress = {}, CostBaselines* baselines = nullptr);
 
-// {"baseline": "lambert", "rows": [...]} (the format `facet cost --json` prints
-// and `facet docs` reads), and the same rows as a plain-text and a Markdown table.
+// {"baseline": "lambert", "rows": [...], "frame": {…}, "tools": {…}} (the format
+// `facet cost --json` prints and `facet docs` reads), and the same rows as a
+// plain-text and a Markdown table.
 nlohmann::json costs_json(const std::vector<CostRow>& rows, const CostBaselines& baselines);
 std::string costs_table(const std::vector<CostRow>& rows, const CostBaselines& baselines);
 std::string costs_markdown(const std::vector<CostRow>& rows, const CostBaselines& baselines,
                            const CostOptions& options, double wall_seconds);
+// The rows as `facet docs` shows them, read from `facet cost --json`'s output or
+// made from a measurement; "frame" (what the measuring frame alone costs) and
+// "tools" (their versions) are shown as they are.
+struct CostTable {
+  std::string source;  // the file (or what measured), for the pages
+  std::string baseline;
+  std::vector<CostRow> rows;
+  nlohmann::json frame = nlohmann::json::object(), tools = nlohmann::json::object();
+  const CostRow* find(const std::string& name) const;
+};
+CostTable cost_table(const std::vector<CostRow>& rows, const CostBaselines& baselines, const std::string& source);
+// Checks `doc` (what `facet cost --json` prints); every problem names `file` and
+// the key path. Throws InputError. Figures the agreed format does not name are
+// kept, so a newer cost command still documents.
+CostTable parse_cost_rows(const nlohmann::json& doc, const std::string& file);
+CostTable load_cost_rows(const std::string& path);
+
 // The deterministic figures of docs/cost.md (SPIR-V, callgrind, OSL ops, POV-Ray
 // functions) against `rows`: one line per difference, empty when current.
 std::vector<std::string> stale_costs(const std::string& markdown, const std::vector<CostRow>& rows);

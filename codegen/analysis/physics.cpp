@@ -1,16 +1,15 @@
 #include "analysis/physics.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <map>
 #include <memory>
 #include <random>
-#include <thread>
 
 #include <fmt/format.h>
 
 #include "catalog/material.h"
+#include "core/parallel.h"
 #include "core/vec.h"
 #include "reference/interpreter.h"
 
@@ -289,27 +288,28 @@ std::vector<PhysicsRow> measure_physics(const PhysicsOptions& o) {
           tasks.push_back({r, &v, theta, phi, false, tasks.size()});
     }
   }
+  // One reference per parameter set, shared by its estimates (reflectance() is const and thread-safe).
+  std::vector<const Variant*> variant_list;
+  for (const auto& v : vs)
+    for (const auto& x : v) variant_list.push_back(&x);
+  std::vector<std::unique_ptr<Reference>> refs(variant_list.size());
+  const unsigned threads = unsigned(std::max(1, o.threads));
+  parallel_for(refs.size(), threads, [&](size_t i) { refs[i] = std::make_unique<Reference>(variant_list[i]->material); });
+  std::map<const Variant*, const Reference*> ref_of;
+  for (size_t i = 0; i < refs.size(); ++i) ref_of[variant_list[i]] = refs[i].get();
   std::vector<AlbedoEstimate> estimates(tasks.size());
   std::vector<double> asym(tasks.size(), 0);
-  std::atomic<size_t> next{0};
-  auto work = [&] {
-    std::map<const Variant*, std::unique_ptr<Reference>> refs;
-    for (size_t i; (i = next++) < tasks.size();) {
-      const Task& t = tasks[i];
-      auto& ref = refs[t.variant];
-      if (!ref) ref = std::make_unique<Reference>(t.variant->material);
-      Rng rng(o.seed, t.id, 0xf00d);
-      if (t.reciprocity) {
-        asym[i] = asymmetry(*ref, o.reciprocity_pairs, rng);
-      } else {
-        estimates[i] = estimate_albedo(*ref, t.theta, t.phi, o.albedo_samples, rng);
-        estimates[i].params = t.variant->label;
-      }
+  parallel_for(tasks.size(), threads, [&](size_t i) {
+    const Task& t = tasks[i];
+    const Reference& ref = *ref_of.at(t.variant);
+    Rng rng(o.seed, t.id, 0xf00d);
+    if (t.reciprocity) {
+      asym[i] = asymmetry(ref, o.reciprocity_pairs, rng);
+    } else {
+      estimates[i] = estimate_albedo(ref, t.theta, t.phi, o.albedo_samples, rng);
+      estimates[i].params = t.variant->label;
     }
-  };
-  std::vector<std::thread> pool;
-  for (int k = 0; k < std::max(1, o.threads); ++k) pool.emplace_back(work);
-  for (auto& th : pool) th.join();
+  });
   for (size_t i = 0; i < tasks.size(); ++i) {
     PhysicsRow& row = rows[tasks[i].row];
     if (tasks[i].reciprocity) row.asymmetry = std::max(row.asymmetry, asym[i]);

@@ -1,22 +1,21 @@
 #include "analysis/validate.h"
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
-#include <mutex>
+#include <memory>
 #include <optional>
-#include <thread>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
 
+#include "core/diagnostics.h"
 #include "core/html.h"
 #include "core/io.h"
 #include "reference/raycaster.h"
-#include "renderers/renderers.h"
+#include "renderers/renderer.h"
 
 namespace facet {
 
@@ -84,7 +83,7 @@ std::string image_name(const Case& c, const std::string& renderer, const char* s
 // A renderer's image beside the reference: its preview and |Δ| × 16.
 void write_images(const fs::path& out, const Case& c, const std::string& renderer, const Image& img) {
   write_png_preview((out / image_name(c, renderer)).string(), img);
-  if (renderer == "reference") return;
+  if (renderer == reference_renderer().name) return;
   Image diff(img.width, img.height);
   for (size_t i = 0; i < diff.rgb.size(); ++i) diff.rgb[i] = std::fabs(img.rgb[i] - c.reference.image.rgb[i]);
   write_png_preview((out / image_name(c, renderer, "_diff")).string(), diff, 16.0f, false);
@@ -126,12 +125,7 @@ std::string figures(const ComparisonRow& r) {
       100 * r.coverage_mismatch, m.nan, m.pixels);
 }
 
-void write_report(const fs::path& out, const ValidateOptions& o, const std::vector<Case>& cases,
-                  const ValidateResult& result) {
-  std::vector<std::string> targets;
-  for (const auto& r : o.renderers)
-    if (r != "reference") targets.push_back(r);
-  std::string html = R"(<!doctype html>
+const char* kReportHead = R"(<!doctype html>
 <html lang=en><head><meta charset=utf-8><title>facet validate</title>
 <style>
 body { font: 14px/1.4 system-ui, sans-serif; margin: 24px; color: #222; background: #fafafa; }
@@ -149,10 +143,19 @@ img { width: 160px; height: auto; image-rendering: pixelated; display: block; ba
 </style></head><body>
 <h1>facet validate</h1>
 )";
-  html += fmt::format("<p class=\"summary {}\">{}</p>\n", result.pass ? "pass" : "fail", html_escape(result.summary));
-  // Per renderer: worst figures and wall time.
-  html += "<table><tr><th>renderer</th><th>comparisons passed</th><th>worst max |Δ|</th><th>worst |Δ|/max(1,|ref|)"
-          "</th><th>where</th><th>wall time</th></tr>\n";
+
+// The renderers under test among `names`, in their order: all but the reference.
+std::vector<std::string> under_test(const std::vector<std::string>& names) {
+  std::vector<std::string> out;
+  for (const auto& r : names)
+    if (!find_renderer(r)->reference) out.push_back(r);
+  return out;
+}
+
+// Per renderer: comparisons passed, the worst figures and the wall time.
+std::string renderer_table(const std::vector<std::string>& targets, const ValidateResult& result) {
+  std::string html = "<table><tr><th>renderer</th><th>comparisons passed</th><th>worst max |Δ|</th><th>worst "
+                     "|Δ|/max(1,|ref|)</th><th>where</th><th>wall time</th></tr>\n";
   for (const auto& t : targets) {
     size_t n = 0, ok = 0;
     const ComparisonRow* worst = nullptr;
@@ -168,7 +171,37 @@ img { width: 160px; height: auto; image-rendering: pixelated; display: block; ba
                         worst ? html_escape(worst->material + " on " + worst->scene) : "–",
                         result.wall.count(t) ? result.wall.at(t) : 0.0);
   }
-  html += "</table>\n";
+  return html + "</table>\n";
+}
+
+// One case's row: its name, the reference, and each renderer's image, difference and figures.
+std::string case_row(const Case& c, bool failed, const std::vector<std::string>& targets, const ValidateResult& result) {
+  std::string html =
+      fmt::format("<tr class={}><td><div class=name>{}</div><div class=muted>{}<br>scene {}<br>{}</div></td>",
+                  failed ? "fail" : "pass", html_escape(c.label()),
+                  html_escape(!c.material ? c.scene.source : c.material->source.empty() ? "(built in)" : c.key + ".json"),
+                  html_escape(c.scene.name), html_escape(c.models()));
+  html += fmt::format("<td><img src=\"{}\" alt=\"reference\"></td>", image_name(c, reference_renderer().name));
+  for (const auto& t : targets) {
+    const ComparisonRow* row = nullptr;
+    for (const auto& r : result.rows)
+      if (r.key == c.key && r.scene == c.scene.name && r.renderer == t) row = &r;
+    if (!row) continue;
+    html += fmt::format("<td class=\"{}\">", row->pass ? "" : "bad");
+    if (row->error.empty())
+      html += fmt::format("<div class=pair><img src=\"{}\" alt=\"{}\"><img src=\"{}\" alt=\"difference\"></div>",
+                          image_name(c, t), t, image_name(c, t, "_diff"));
+    html += figures(*row) + "</td>";
+  }
+  return html + "</tr>\n";
+}
+
+void write_report(const fs::path& out, const ValidateOptions& o, const std::vector<Case>& cases,
+                  const ValidateResult& result) {
+  const std::vector<std::string> targets = under_test(o.renderers);
+  std::string html = kReportHead;
+  html += fmt::format("<p class=\"summary {}\">{}</p>\n", result.pass ? "pass" : "fail", html_escape(result.summary));
+  html += renderer_table(targets, result);
   html += fmt::format(
       "<p class=muted>{}×{} pixels, one sample at each pixel centre. A comparison passes when |renderer − reference| ≤ "
       "{:g} · max(1, |reference|) per channel on every interior pixel (the reference hit the same object at the pixel "
@@ -189,26 +222,7 @@ img { width: 160px; height: auto; image-rendering: pixelated; display: block; ba
   html += "<table><tr><th>material</th><th>reference</th>";
   for (const auto& t : targets) html += "<th>" + t + " · |Δ| × 16</th>";
   html += "</tr>\n";
-  for (size_t i : order) {
-    const Case& c = cases[i];
-    html += fmt::format("<tr class={}><td><div class=name>{}</div><div class=muted>{}<br>scene {}<br>{}</div></td>",
-                        failed(i) ? "fail" : "pass", html_escape(c.label()),
-                        html_escape(!c.material ? c.scene.source : c.material->source.empty() ? "(built in)" : c.key + ".json"), html_escape(c.scene.name),
-                        html_escape(c.models()));
-    html += fmt::format("<td><img src=\"{}\" alt=\"reference\"></td>", image_name(c, "reference"));
-    for (const auto& t : targets) {
-      const ComparisonRow* row = nullptr;
-      for (const auto& r : result.rows)
-        if (r.key == c.key && r.scene == c.scene.name && r.renderer == t) row = &r;
-      if (!row) continue;
-      html += fmt::format("<td class=\"{}\">", row->pass ? "" : "bad");
-      if (row->error.empty())
-        html += fmt::format("<div class=pair><img src=\"{}\" alt=\"{}\"><img src=\"{}\" alt=\"difference\"></div>",
-                            image_name(c, t), t, image_name(c, t, "_diff"));
-      html += figures(*row) + "</td>";
-    }
-    html += "</tr>\n";
-  }
+  for (size_t i : order) html += case_row(cases[i], failed(i), targets, result);
   html += "</table>\n</body></html>\n";
   write_file_atomic((out / "report.html").string(), html);
 }
@@ -243,160 +257,140 @@ ComparisonRow judge(const Render& reference, const RenderOutcome& outcome, bool 
   return row;
 }
 
-ValidateResult validate(const ValidateOptions& options, std::ostream& progress) {
-  ValidateOptions o = options;
-  if (o.scenes.empty()) o.scenes = builtin_scene_names();
-  if (o.python.empty()) o.python = default_python();
-  fs::path out = o.out;
-  fs::create_directories(out / "images");
-  fs::create_directories(out / "work");
-  ValidateResult result;
-  auto has = [&](const char* r) { return std::find(o.renderers.begin(), o.renderers.end(), r) != o.renderers.end(); };
+namespace {
 
-  // Inputs first: a bad material or scene stops the run before any rendering.
+// What is validated, read before anything renders: a bad material or scene stops the run.
+struct Inputs {
   std::vector<Scene> scenes;
-  for (const auto& s : o.scenes) scenes.push_back(load_scene(s));
+  std::vector<Material> materials;
+  std::vector<std::string> keys;  // per material: names its images
+  bool need_materials = false;    // a scene without materials of its own
+};
+
+Inputs load_inputs(ValidateOptions& o) {
+  for (const auto& r : o.renderers)
+    if (!find_renderer(r))
+      throw InputError({{"validate", "renderers", fmt::format("unknown renderer \"{}\"; allowed: {}", r,
+                                                              fmt::join(renderer_names(), ", ")), 0, 0}});
+  Inputs in;
+  for (const auto& s : o.scenes) in.scenes.push_back(load_scene(s));
   // Scenes with their own materials render once; the others with every material
   // (by default the example catalog).
-  bool need_materials = std::any_of(scenes.begin(), scenes.end(), [](const Scene& s) { return !s.has_own_materials(); });
-  if (o.materials.empty() && o.given.empty() && need_materials) o.materials = example_materials();
-  std::vector<Material> materials;
-  std::vector<std::string> keys;  // names the images
+  in.need_materials =
+      std::any_of(in.scenes.begin(), in.scenes.end(), [](const Scene& s) { return !s.has_own_materials(); });
+  if (o.materials.empty() && o.given.empty() && in.need_materials) o.materials = example_materials();
   for (const auto& f : o.materials) {
-    materials.push_back(load_material(f));
-    keys.push_back(fs::path(f).stem().string());
+    in.materials.push_back(load_material(f));
+    in.keys.push_back(fs::path(f).stem().string());
   }
   for (const auto& m : o.given) {
-    materials.push_back(m);
-    keys.push_back(identifier(m.name));
+    in.materials.push_back(m);
+    in.keys.push_back(identifier(m.name));
   }
+  return in;
+}
 
-  // Counters update in place on a terminal; a log gets a line per step.
-  auto tick = [&](const std::string& what, size_t i, size_t n) {
-    if (o.interactive) progress << fmt::format("\r  {} {}/{}", what, i, n) << std::flush;
-    else progress << fmt::format("  {} {}/{}\n", what, i, n);
-  };
+// Counters update in place on a terminal; a log gets a line per step.
+struct Progress {
+  std::ostream& out;
+  bool interactive;
+  void tick(const std::string& what, size_t i, size_t n) const {
+    if (interactive) out << fmt::format("\r  {} {}/{}", what, i, n) << std::flush;
+    else out << fmt::format("  {} {}/{}\n", what, i, n);
+  }
+  void step(const std::string& what) const {
+    out << fmt::format("{}  {}{}", interactive ? "\r" : "", what, interactive ? "" : "\n") << std::flush;
+  }
+};
+
+// Every material on every scene (a scene with its own materials once), each with its reference image.
+std::vector<Case> reference_cases(const Inputs& in, const ValidateOptions& o, const fs::path& out, const Progress& p) {
   std::vector<Case> cases;
-  auto t0 = Clock::now();
   size_t total = 0;
-  for (const auto& s : scenes) total += s.has_own_materials() ? 1 : materials.size();
-  progress << fmt::format("facet validate: {} images ({} scenes) at {}×{} through {}\n", total, scenes.size(),
-                          o.width, o.height, fmt::join(o.renderers, ", "));
+  for (const auto& s : in.scenes) total += s.has_own_materials() ? 1 : in.materials.size();
+  p.out << fmt::format("facet validate: {} images ({} scenes) at {}×{} through {}\n", total, in.scenes.size(), o.width,
+                       o.height, fmt::join(o.renderers, ", "));
   auto add = [&](Case c) {
     c.reference = c.material ? render_reference(*c.material, c.scene, o.width, o.height)
                              : render_reference(c.scene, o.width, o.height);
-    write_images(out, c, "reference", c.reference.image);
+    write_images(out, c, reference_renderer().name, c.reference.image);
     cases.push_back(std::move(c));
-    tick("reference " + cases.back().key + " on " + cases.back().scene.name, cases.size(), total);
+    p.tick("reference " + cases.back().key + " on " + cases.back().scene.name, cases.size(), total);
   };
-  for (const auto& s : scenes) {
+  for (const auto& s : in.scenes) {
     if (s.has_own_materials()) {
       add(Case{std::nullopt, identifier(s.name), s, {}});
       continue;
     }
-    for (size_t i = 0; i < materials.size(); ++i) add(Case{materials[i], keys[i], s, {}});
+    for (size_t i = 0; i < in.materials.size(); ++i) add(Case{in.materials[i], in.keys[i], s, {}});
   }
-  result.wall["reference"] = since(t0);
-  progress << fmt::format("\r  reference: {} images in {:.1f} s\n", cases.size(), result.wall["reference"]);
+  return cases;
+}
 
-  auto job_for = [&](const Case& c, const std::string& renderer) {
-    RenderJob j;
-    j.material = c.material;
-    j.scene = c.scene;
-    j.width = o.width;
-    j.height = o.height;
-    j.workdir = (out / "work" / renderer / identifier(c.scene.name)).string();
-    j.max_value = 0;
-    for (float v : c.reference.image.rgb) j.max_value = std::max<double>(j.max_value, v);
-    return j;
-  };
-  auto record = [&](const Case& c, const std::string& renderer, const RenderOutcome& r) {
+RenderJob job_for(const Case& c, const std::string& renderer, const ValidateOptions& o, const fs::path& out) {
+  RenderJob j;
+  j.material = c.material;
+  j.scene = c.scene;
+  j.width = o.width;
+  j.height = o.height;
+  j.workdir = (out / "work" / renderer / identifier(c.scene.name)).string();
+  j.max_value = 0;
+  for (float v : c.reference.image.rgb) j.max_value = std::max<double>(j.max_value, v);
+  return j;
+}
+
+// The renderer's rows (from `start` on): how many pass, and why each failure failed.
+void report_phase(const std::string& renderer, const ValidateResult& result, size_t start, const Progress& p) {
+  size_t n = 0, ok = 0;
+  for (size_t i = start; i < result.rows.size(); ++i, ++n) ok += result.rows[i].pass;
+  p.out << fmt::format("\r  {}: {} of {} pass in {:.1f} s\n", renderer, ok, n, result.wall.at(renderer));
+  for (size_t i = start; i < result.rows.size(); ++i) {
+    const auto& r = result.rows[i];
+    if (!r.pass)
+      p.out << fmt::format("    FAIL {} on {}: {}\n", r.material, r.scene,
+                           r.error.empty() ? fmt::format("max |Δ|/max(1,|ref|) {:.3g}, {} pixels over, coverage "
+                                                         "{:.3f} %, NaN/Inf {}",
+                                                         r.metrics.max_excess, r.metrics.over,
+                                                         100 * r.coverage_mismatch, r.metrics.nan)
+                                           : r.error.substr(0, r.error.find('\n')));
+  }
+}
+
+// Every case through one renderer, each judged against its reference.
+void run_renderer(const RendererEntry& entry, const std::vector<Case>& cases, const ValidateOptions& o,
+                  const fs::path& out, const Progress& p, ValidateResult& result) {
+  const std::string& name = entry.info.name;
+  const size_t start = result.rows.size();
+  auto t = Clock::now();
+  std::unique_ptr<Renderer> renderer = entry.make(entry.info, RendererSettings{o.python});
+  std::vector<RenderJob> jobs;
+  for (const auto& c : cases) jobs.push_back(job_for(c, name, o, out));
+  size_t done = 0;
+  RenderProgress progress;
+  progress.finished = [&](size_t i) { p.tick(name + " " + cases[i].key + " on " + cases[i].scene.name, ++done, cases.size()); };
+  progress.step = [&](const std::string& what) { p.step(name + ": " + what); };
+  std::vector<RenderOutcome> outcomes = renderer->render(jobs, progress);
+  for (size_t i = 0; i < cases.size(); ++i) {
+    const Case& c = cases[i];
+    const RenderOutcome& r = outcomes.at(i);
     ComparisonRow row = judge(c.reference, r, c.hard_toon(), o);
-    if (r.ok) write_images(out, c, renderer, r.image);
+    if (r.ok) write_images(out, c, name, r.image);
     row.material = c.label();
     row.key = c.key;
-    row.renderer = renderer;
+    row.renderer = name;
     row.scene = c.scene.name;
     row.seconds = r.seconds;
     result.rows.push_back(row);
-    return row.pass;
-  };
-  auto report_phase = [&](const std::string& renderer, size_t start) {
-    size_t n = 0, ok = 0;
-    for (size_t i = start; i < result.rows.size(); ++i, ++n) ok += result.rows[i].pass;
-    progress << fmt::format("\r  {}: {} of {} pass in {:.1f} s\n", renderer, ok, n, result.wall[renderer]);
-    for (size_t i = start; i < result.rows.size(); ++i) {
-      const auto& r = result.rows[i];
-      if (!r.pass)
-        progress << fmt::format("    FAIL {} on {}: {}\n", r.material, r.scene,
-                                r.error.empty() ? fmt::format("max |Δ|/max(1,|ref|) {:.3g}, {} pixels over, coverage "
-                                                              "{:.3f} %, NaN/Inf {}",
-                                                              r.metrics.max_excess, r.metrics.over,
-                                                              100 * r.coverage_mismatch, r.metrics.nan)
-                                                : r.error.substr(0, r.error.find('\n')));
-    }
-  };
+  }
+  result.wall[name] = since(t);
+  report_phase(name, result, start, p);
+}
 
-  if (has("glsl")) {
-    size_t start = result.rows.size();
-    auto t = Clock::now();
-    GlRenderer gl;
-    for (size_t i = 0; i < cases.size(); ++i) {
-      record(cases[i], "glsl", gl.render(job_for(cases[i], "glsl")));
-      tick("glsl " + cases[i].key + " on " + cases[i].scene.name, i + 1, cases.size());
-    }
-    result.wall["glsl"] = since(t);
-    report_phase("glsl", start);
-  }
-  if (has("osl")) {
-    size_t start = result.rows.size();
-    auto t = Clock::now();
-    for (const auto& s : scenes) {
-      std::vector<RenderJob> jobs;
-      std::vector<const Case*> batch;
-      for (const auto& c : cases)
-        if (c.scene.name == s.name) {
-          jobs.push_back(job_for(c, "osl"));
-          batch.push_back(&c);
-        }
-      progress << fmt::format("{}  osl: Blender renders {} materials on {}{}", o.interactive ? "\r" : "", jobs.size(),
-                              s.name, o.interactive ? "" : "\n")
-               << std::flush;
-      std::string log;
-      std::vector<RenderOutcome> outcomes = render_osl(jobs, o.python, log);
-      for (size_t i = 0; i < batch.size(); ++i) record(*batch[i], "osl", outcomes[i]);
-    }
-    result.wall["osl"] = since(t);
-    report_phase("osl", start);
-  }
-  if (has("pov")) {
-    size_t start = result.rows.size();
-    auto t = Clock::now();
-    // POV-Ray's start-up is single-threaded: run two at a time.
-    std::vector<RenderOutcome> outcomes(cases.size());
-    std::atomic<size_t> next{0}, done{0};
-    std::mutex mutex;
-    auto worker = [&] {
-      for (size_t i; (i = next++) < cases.size();) {
-        outcomes[i] = render_pov(job_for(cases[i], "pov"));
-        std::lock_guard<std::mutex> lock(mutex);
-        tick("pov " + cases[i].key + " on " + cases[i].scene.name, ++done, cases.size());
-      }
-    };
-    std::thread a(worker), b(worker);
-    a.join();
-    b.join();
-    for (size_t i = 0; i < cases.size(); ++i) record(cases[i], "pov", outcomes[i]);
-    result.wall["pov"] = since(t);
-    report_phase("pov", start);
-  }
-
-  size_t ok = 0;
-  for (const auto& r : result.rows) ok += r.pass;
-  result.pass = ok == result.rows.size() && !result.rows.empty();
+// The one-line verdict: comparisons passed, worst errors and wall times.
+std::string summary(const ValidateOptions& o, const Inputs& in, const ValidateResult& result, size_t ok) {
   std::string worst;
-  for (const auto& renderer : o.renderers) {
-    if (renderer == "reference") continue;
+  const std::vector<std::string> targets = under_test(o.renderers);
+  for (const auto& renderer : targets) {
     double w = -1;
     for (const auto& r : result.rows)
       if (r.renderer == renderer && r.error.empty()) w = std::max(w, r.metrics.max_excess);
@@ -404,14 +398,42 @@ ValidateResult validate(const ValidateOptions& options, std::ostream& progress) 
   }
   std::string times;
   for (const auto& [r, s] : result.wall) times += fmt::format("{}{} {:.1f} s", times.empty() ? "" : ", ", r, s);
-  std::string what = need_materials ? fmt::format("{} materials × {} scenes", materials.size(), scenes.size())
-                                    : fmt::format("{} scenes with their own materials", scenes.size());
-  result.summary = fmt::format(
+  std::string what = in.need_materials
+                         ? fmt::format("{} materials × {} scenes", in.materials.size(), in.scenes.size())
+                         : fmt::format("{} scenes with their own materials", in.scenes.size());
+  return fmt::format(
       "{} of {} comparisons pass ({} × {} renderers at {}×{}); worst |Δ|/max(1,|ref|): {} (tolerance {:g}); wall "
       "time: {}",
-      ok, result.rows.size(), what, o.renderers.size() - has("reference"), o.width, o.height, worst, o.tolerance,
-      times);
+      ok, result.rows.size(), what, targets.size(), o.width, o.height, worst, o.tolerance, times);
+}
 
+}  // namespace
+
+ValidateResult validate(const ValidateOptions& options, std::ostream& progress) {
+  ValidateOptions o = options;
+  if (o.scenes.empty()) o.scenes = builtin_scene_names();
+  if (o.python.empty()) o.python = default_python();
+  Inputs in = load_inputs(o);
+  fs::path out = o.out;
+  fs::create_directories(out / "images");
+  fs::create_directories(out / "work");
+  const Progress p{progress, o.interactive};
+  ValidateResult result;
+
+  auto t0 = Clock::now();
+  std::vector<Case> cases = reference_cases(in, o, out, p);
+  const std::string& reference = reference_renderer().name;
+  result.wall[reference] = since(t0);
+  progress << fmt::format("\r  {}: {} images in {:.1f} s\n", reference, cases.size(), result.wall[reference]);
+  // The renderers under test, in the registry's order; the reference rendered every case above.
+  for (const auto& entry : renderer_registry())
+    if (!entry.info.reference && std::count(o.renderers.begin(), o.renderers.end(), entry.info.name))
+      run_renderer(entry, cases, o, out, p, result);
+
+  size_t ok = 0;
+  for (const auto& r : result.rows) ok += r.pass;
+  result.pass = ok == result.rows.size() && !result.rows.empty();
+  result.summary = summary(o, in, result, ok);
   json metrics = json::array();
   for (const auto& r : result.rows) metrics.push_back(row_json(r, o.width, o.height));
   write_file_atomic((out / "metrics.json").string(), metrics.dump(2) + "\n");

@@ -1,5 +1,6 @@
 // facet — cross-renderer validation: the same materials and scenes through the
-// C++ reference, OpenGL, Cycles (OSL) and POV-Ray, compared pixel by pixel.
+// C++ reference and every renderer of the registry (renderers/renderer.h),
+// compared pixel by pixel.
 #pragma once
 
 #include <map>
@@ -9,7 +10,7 @@
 
 #include "catalog/material.h"
 #include "renderers/compare.h"
-#include "renderers/renderers.h"
+#include "renderers/renderer.h"
 #include "scene/scene.h"
 
 namespace facet {
@@ -20,7 +21,7 @@ struct ValidateOptions {
                                        // their images are named after identifier(name)
   std::vector<std::string> scenes;     // built-in names or files; empty: single and shadows
   int width = 256, height = 256;
-  std::vector<std::string> renderers = {"reference", "glsl", "osl", "pov"};
+  std::vector<std::string> renderers = renderer_names();  // the reference renders every case whatever this says
   std::string out = "out/validate";
   std::string python;                  // bpy's Python; empty: default_python()
   double tolerance = 2e-3;             // |Δ| ≤ tolerance · max(1, |reference|)

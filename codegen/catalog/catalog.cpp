@@ -255,4 +255,6 @@ std::vector<const ModelDef*> section(const std::string& name) {
   return out;
 }
 
+const ModelDef& cost_baseline_model() { return *find_model("diffuse", "lambert"); }
+
 }  // namespace facet

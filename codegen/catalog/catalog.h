@@ -203,6 +203,8 @@ const ModelDef* find_model(const std::string& section, const std::string& name);
 // `def` with every parameter at its default (optional objects such as toon absent).
 ModelSpec default_spec(const ModelDef& def);
 std::vector<const ModelDef*> section(const std::string& name);
+// The lobe `facet cost` gives every figure relative to (analysis/cost.h): Lambert's.
+const ModelDef& cost_baseline_model();
 
 // The term functions of the catalog, one per term, each built once. Models
 // compose them; tests and the docs reach them here.

@@ -46,5 +46,10 @@ bool parse_size(const std::string& s, int& w, int& h);
 std::vector<std::string> split_commas(const std::string& s);
 // The renderers of a comma-separated list, each checked against the registry's names.
 std::vector<std::string> renderer_list(const std::string& option, const std::string& names);
+// The registry's names, for help texts: "reference, glsl, osl, pov"; as an option's
+// default: "reference,glsl,osl,pov"; and one line each, "  glsl       the generated GLSL …\n".
+std::string renderer_choices();
+std::string all_renderers();
+std::string renderer_help();
 
 }  // namespace facet::cli

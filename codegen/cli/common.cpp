@@ -2,6 +2,9 @@
 #include "cli/command.h"
 
 #include "core/diagnostics.h"
+#include "renderers/renderer.h"
+
+#include <fmt/format.h>
 
 #include <sstream>
 #include <string>
@@ -37,11 +40,29 @@ std::vector<std::string> split_commas(const std::string& s) {
   return out;
 }
 
+std::string renderer_choices() {
+  std::string out;
+  for (const auto& name : renderer_names()) out += (out.empty() ? "" : ", ") + name;
+  return out;
+}
+
+std::string all_renderers() {
+  std::string out;
+  for (const auto& name : renderer_names()) out += (out.empty() ? "" : ",") + name;
+  return out;
+}
+
+std::string renderer_help() {
+  std::string out;
+  for (const auto& e : renderer_registry()) out += fmt::format("  {:<10} {}\n", e.info.name, e.info.summary);
+  return out;
+}
+
 std::vector<std::string> renderer_list(const std::string& option, const std::string& names) {
   std::vector<std::string> out;
   for (const auto& r : split_commas(names)) {
-    if (r != "reference" && r != "glsl" && r != "osl" && r != "pov")
-      throw InputError({{"command line", option, "unknown renderer \"" + r + "\"; allowed: reference, glsl, osl, pov", 0, 0}});
+    if (!find_renderer(r))
+      throw InputError({{"command line", option, "unknown renderer \"" + r + "\"; allowed: " + renderer_choices(), 0, 0}});
     out.push_back(r);
   }
   return out;

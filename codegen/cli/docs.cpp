@@ -25,7 +25,7 @@ struct DocsArgs {
   std::string cost;
   bool no_cost = false;
   std::string models;
-  std::string renderers = "reference,glsl,osl,pov";
+  std::string renderers = all_renderers();
 };
 
 int run_docs(DocsArgs& a) {
@@ -56,7 +56,7 @@ Command docs_command(CLI::App& app) {
   dc->add_flag("--no-cost", da.no_cost, "Leave the cost out (the pages say it was not measured)");
   dc->add_option("--size", da.options.size, "The spheres' side in pixels")->capture_default_str()->check(CLI::Range(8, 2048));
   dc->add_option("--models", da.models, "Comma-separated lobe models (default: every diffuse and specular model)");
-  dc->add_option("--renderers", da.renderers, "Comma-separated: reference, glsl, osl, pov")->capture_default_str();
+  dc->add_option("--renderers", da.renderers, "Comma-separated: " + renderer_choices())->capture_default_str();
   dc->add_option("--python", da.options.python, "The Python with bpy 4.5 for Cycles (default: FACET_PYTHON, then the "
                                                "build's .venv)");
   dc->footer(

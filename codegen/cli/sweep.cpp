@@ -1,9 +1,8 @@
 // facet sweep: check for NaN, Inf and negative values over dense direction sets.
 #include <algorithm>
-#include <atomic>
 #include <cstdio>
 #include <filesystem>
-#include <thread>
+#include <map>
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
@@ -12,7 +11,7 @@
 #include "analysis/sweep.h"
 #include "catalog/material.h"
 #include "cli/command.h"
-#include "renderers/renderers.h"
+#include "renderers/renderer.h"
 
 using nlohmann::json;
 
@@ -22,54 +21,15 @@ namespace {
 struct SweepArgs {
   std::vector<std::string> materials;
   bool extremes = false;
-  std::string renderers = "reference,glsl,osl,pov";
+  std::string renderers = all_renderers();
   int grid = 1024;
   size_t random = 800000;
   std::string workdir;
   std::string python;
 };
 
-int run_sweep(const SweepArgs& a) {
-  std::vector<Material> ms;
-  std::vector<std::string> files = a.materials;
-  if (files.empty()) {
-    for (const auto& e : std::filesystem::directory_iterator(std::filesystem::path(FACET_SOURCE_DIR) / "examples/materials"))
-      files.push_back(e.path().string());
-    std::sort(files.begin(), files.end());
-  }
-  for (const auto& f : files) ms.push_back(load_material(f));
-  if (a.extremes)
-    for (auto& m : extreme_materials()) ms.push_back(m);
-  std::string workdir = a.workdir.empty() ? (std::filesystem::temp_directory_path() / "facet-sweep").string() : a.workdir;
-  auto has = [&](const char* r) { return a.renderers.find(r) != std::string::npos; };
-  std::vector<std::vector<SweepCount>> rows(ms.size());
-  // Targets run one after another; the reference on both cores.
-  if (has("reference")) {
-    std::vector<SweepCount> counts(ms.size());
-    std::atomic<size_t> next{0};
-    auto work = [&] {
-      for (size_t i; (i = next++) < ms.size();) counts[i] = sweep_reference(ms[i], 512, a.random);
-    };
-    std::thread t1(work), t2(work);
-    t1.join();
-    t2.join();
-    for (size_t i = 0; i < ms.size(); ++i) rows[i].push_back(counts[i]);
-    fmt::print(stderr, "reference: {} materials swept\n", ms.size());
-  }
-  if (has("glsl")) {
-    GlRenderer gl;
-    for (size_t i = 0; i < ms.size(); ++i) rows[i].push_back(sweep_glsl(gl, ms[i], a.grid));
-    fmt::print(stderr, "glsl: {} materials swept\n", ms.size());
-  }
-  if (has("osl")) {
-    auto counts = sweep_osl(ms, std::min(a.grid, 512), a.python.empty() ? default_python() : a.python, workdir + "/osl");
-    for (size_t i = 0; i < ms.size(); ++i) rows[i].push_back(counts[i]);
-    fmt::print(stderr, "osl: {} materials swept\n", ms.size());
-  }
-  if (has("pov")) {
-    for (size_t i = 0; i < ms.size(); ++i) rows[i].push_back(sweep_pov(ms[i], std::min(a.grid, 256), workdir + "/pov"));
-    fmt::print(stderr, "pov: {} materials swept\n", ms.size());
-  }
+// The table, one row per material and renderer; how many rows are bad.
+size_t print_counts(const std::vector<Material>& ms, const std::vector<std::vector<SweepCount>>& rows) {
   std::map<std::string, size_t> samples;
   size_t bad_rows = 0;
   fmt::print("{:<34} {:<10} {:>10} {:>6} {:>6} {:>9}\n", "material", "target", "samples", "NaN", "Inf", "negative");
@@ -89,7 +49,31 @@ int run_sweep(const SweepArgs& a) {
   for (const auto& [t, n] : samples) totals += fmt::format("{}{} {}", totals.empty() ? "" : ", ", t, n);
   fmt::print("sweep: {} materials; direction sets checked: {}; {} with NaN, Inf or negative values or errors\n", ms.size(),
              totals, bad_rows);
-  return bad_rows ? 1 : 0;
+  return bad_rows;
+}
+
+int run_sweep(const SweepArgs& a) {
+  const std::vector<std::string> renderers = renderer_list("--renderers", a.renderers);
+  std::vector<Material> ms;
+  std::vector<std::string> files = a.materials;
+  if (files.empty()) {
+    for (const auto& e : std::filesystem::directory_iterator(std::filesystem::path(FACET_SOURCE_DIR) / "examples/materials"))
+      files.push_back(e.path().string());
+    std::sort(files.begin(), files.end());
+  }
+  for (const auto& f : files) ms.push_back(load_material(f));
+  if (a.extremes)
+    for (auto& m : extreme_materials()) ms.push_back(m);
+  SweepOptions o;
+  o.settings.grid = a.grid;
+  o.settings.random = a.random;
+  o.settings.workdir = a.workdir.empty() ? (std::filesystem::temp_directory_path() / "facet-sweep").string() : a.workdir;
+  o.renderer.python = a.python;
+  std::vector<std::vector<SweepCount>> rows =
+      sweep_materials(ms, renderers, o, [&](const std::string& renderer) {
+        fmt::print(stderr, "{}: {} materials swept\n", renderer, ms.size());
+      });
+  return print_counts(ms, rows) ? 1 : 0;
 }
 
 SweepArgs sw;
@@ -100,7 +84,7 @@ Command sweep_command(CLI::App& app) {
   auto* swc = app.add_subcommand("sweep", "Check for NaN, Inf and negative values over dense direction sets");
   swc->add_option("materials", sw.materials, "Material files (default: every examples/materials/*.json)");
   swc->add_flag("--extremes", sw.extremes, "Also every model at the ends of its parameter ranges");
-  swc->add_option("--renderers", sw.renderers, "Comma-separated: reference, glsl, osl, pov")->capture_default_str();
+  swc->add_option("--renderers", sw.renderers, "Comma-separated: " + renderer_choices())->capture_default_str();
   swc->add_option("--grid", sw.grid, "Direction-set grid side for OpenGL (OSL takes at most 512, POV-Ray 256)")
       ->capture_default_str();
   swc->add_option("--random", sw.random, "Random direction sets on the C++ reference, besides its 512² grid")

@@ -18,7 +18,7 @@ namespace facet::cli {
 namespace {
 
 ValidateOptions va;
-std::string va_size = "256x256", va_renderers = "reference,glsl,osl,pov";
+std::string va_size = "256x256", va_renderers = all_renderers();
 
 int run_validate() {
   int w, h;
@@ -41,7 +41,7 @@ Command validate_command(CLI::App& app) {
   v->add_option("--scene", va.scenes, "A built-in scene (single, shadows) or a scene file; repeat for several "
                                       "(default: single and shadows)");
   v->add_option("--size", va_size, "Image size WIDTHxHEIGHT")->capture_default_str();
-  v->add_option("--renderers", va_renderers, "Comma-separated: reference, glsl, osl, pov")->capture_default_str();
+  v->add_option("--renderers", va_renderers, "Comma-separated: " + renderer_choices())->capture_default_str();
   v->add_option("--out", va.out, "Where metrics.json, report.html and the images go")->capture_default_str();
   v->add_option("--python", va.python, "The Python with bpy 4.5 for Cycles (default: FACET_PYTHON, then the "
                                        "build's .venv)");
@@ -49,11 +49,7 @@ Command validate_command(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
   v->footer(
-      "Each renderer draws the same scene, one sample at each pixel centre, linear and unclamped:\n"
-      "  reference  facet's C++ ray caster shading with the C++ reference (double)\n"
-      "  glsl       the generated GLSL in headless OpenGL (EGL; Mesa llvmpipe without a GPU), RGBA32F\n"
-      "  osl        the generated OSL in Blender 4.5's Cycles (CPU, OSL), one Blender process per scene\n"
-      "  pov        the generated POV-Ray scene, 16-bit linear PNG, antialiasing off\n"
+      "Each renderer draws the same scene, one sample at each pixel centre, linear and unclamped:\n" + renderer_help() +
       "Writes OUT/metrics.json (one row per material × scene × renderer), OUT/report.html (images side by side,\n"
       "|Δ| × 16, failures first) and exits 1 when any comparison fails; a renderer that cannot run fails.\n"
       "Examples:\n"

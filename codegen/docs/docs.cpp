@@ -13,73 +13,35 @@
 #include "catalog/checker.h"
 #include "catalog/material.h"
 #include "catalog/program.h"
+#include "core/diagnostics.h"
 #include "core/html.h"
 #include "core/io.h"
 #include "docs/plot.h"
-#include "renderers/renderers.h"
+#include "renderers/renderer.h"
 
 namespace facet {
 
 namespace fs = std::filesystem;
 
-// ---------------------------------------------------------------- cost rows
-
-const CostFigure* CostCell::find(const std::string& key) const {
-  for (const auto& f : figures)
-    if (f.key == key) return &f;
-  return nullptr;
-}
-
-const CostCell& CostPageRow::cell(const std::string& target) const {
-  return target == "glsl" ? glsl : target == "osl" ? osl : pov;
-}
-
-CostCell& CostPageRow::cell(const std::string& target) {
-  return const_cast<CostCell&>(static_cast<const CostPageRow&>(*this).cell(target));
-}
-
-const CostPageRow* CostTable::find(const std::string& name) const {
-  for (const auto& r : rows)
-    if (r.name == name) return &r;
-  return nullptr;
-}
+// ---------------------------------------------------------------- cost cells
 
 namespace {
 
-// The targets a cost row and a page's verdicts have, in the order shown.
-const std::vector<std::string> kTargets = {"glsl", "osl", "pov"};
+using nlohmann::json;
 
-// The figures the agreed format names, per target: key, label, kind.
-enum class FigureKind { Count, Number, Ratio, Flag, CountOrNull };
-struct FigureDef {
-  const char* key;
-  const char* label;
-  FigureKind kind;
-};
-const std::map<std::string, std::vector<FigureDef>>& figure_defs() {
-  static const std::map<std::string, std::vector<FigureDef>> defs = {
-      {"glsl",
-       {{"spirv", "SPIR-V instructions", FigureKind::Count},
-        {"callgrind_per_pixel", "instructions / pixel (callgrind)", FigureKind::Number},
-        {"callgrind_relative", "relative to the baseline", FigureKind::Ratio}}},
-      {"osl",
-       {{"instructions", "OSL instructions", FigureKind::Count},
-        {"ns_per_pixel", "ns / pixel", FigureKind::Number},
-        {"relative", "relative to the baseline", FigureKind::Ratio}}},
-      {"pov",
-       {{"native", "POV-Ray's own finish", FigureKind::Flag},
-        {"functions", "function pigments", FigureKind::CountOrNull},
-        {"ns_per_pixel", "ns / pixel", FigureKind::Number},
-        {"relative", "relative to the baseline", FigureKind::Ratio}}},
-  };
-  return defs;
+// The renderers a page's verdicts have (all but the reference), in the registry's order.
+std::vector<std::string> targets() {
+  std::vector<std::string> out;
+  for (const auto& e : renderer_registry())
+    if (!e.info.reference) out.push_back(e.info.name);
+  return out;
 }
 
-std::string figure_text(const json& j, FigureKind kind) {
+std::string figure_text(const json& j, CostFigureKind kind) {
   if (j.is_null()) return "–";
-  if (kind == FigureKind::Flag) return j.get<bool>() ? "yes" : "no";
+  if (kind == CostFigureKind::Flag) return j.get<bool>() ? "yes" : "no";
   double v = j.get<double>();
-  if (kind == FigureKind::Ratio) return fmt::format("{:.2f}×", v);
+  if (kind == CostFigureKind::Ratio) return fmt::format("{:.2f}×", v);
   if (j.is_number_integer()) return fmt::format("{}", j.get<long long>());
   return fmt::format("{:.3g}", v);
 }
@@ -92,141 +54,20 @@ std::string shown(const json& v) {
   return v.dump();
 }
 
-// One target's object: {"error": why} or its figures.
-CostCell parse_cell(const json& j, const std::string& target, const std::string& path, DiagnosticSink& sink) {
-  CostCell cell;
-  if (!j.is_object()) {
-    sink.error(path, fmt::format("expected an object (the figures, or {{\"error\": \"why\"}}), found {}", json_type_name(j)));
-    return cell;
+// A cell's figures as the pages list them, label and text: the format's, then any others as they are.
+std::vector<std::pair<std::string, std::string>> cell_figures(const CostCell& c, const CostTargetFormat& format) {
+  std::vector<std::pair<std::string, std::string>> out;
+  for (const auto& d : format.figures)
+    if (auto it = c.figures.find(d.key); it != c.figures.end()) out.push_back({d.label, figure_text(*it, d.kind)});
+  for (const auto& [key, v] : c.figures.items()) {
+    const auto& defs = format.figures;
+    if (std::none_of(defs.begin(), defs.end(), [&](const CostFigureDef& d) { return d.key == key; }))
+      out.push_back({key, shown(v)});
   }
-  if (j.contains("error")) {
-    if (!j["error"].is_string() || j["error"].get<std::string>().empty())
-      sink.error(join_path(path, "error"), "expected a non-empty string: why the target was not measured");
-    else cell.error = j["error"].get<std::string>();
-    return cell;
-  }
-  Checker check(sink);
-  for (const FigureDef& d : figure_defs().at(target)) {
-    std::string p = join_path(path, d.key);
-    if (!j.contains(d.key)) {
-      sink.error(p, "missing; the cost format names it");
-      continue;
-    }
-    const json& v = j[d.key];
-    bool ok = true;
-    if (d.kind == FigureKind::Flag) {
-      ok = v.is_boolean();
-      if (!ok) sink.error(p, fmt::format("expected a boolean, found {}", json_type_name(v)));
-    } else if (!(d.kind != FigureKind::Count && v.is_null())) {  // null: not measured (e.g. facet cost --no-timings)
-      bool count = d.kind == FigureKind::Count || d.kind == FigureKind::CountOrNull;
-      const char* allowed = d.kind == FigureKind::CountOrNull ? "null or a whole number ≥ 0"
-                            : count                             ? "a whole number ≥ 0"
-                                                                : "a number ≥ 0, or null (not measured)";
-      auto x = check.number(v, p, allowed);
-      ok = x && *x >= 0 && (!count || v.is_number_integer());
-      if (x && !ok) sink.error(p, fmt::format("{} is not allowed; allowed: {}", v.dump(), allowed));
-    }
-    if (ok) cell.figures.push_back({d.key, d.label, figure_text(v, d.kind)});
-  }
-  // Figures a newer cost command adds are shown as they are.
-  for (const auto& item : j.items()) {
-    const std::string& key = item.key();
-    const json& v = item.value();
-    const auto& defs = figure_defs().at(target);
-    if (std::any_of(defs.begin(), defs.end(), [&](const FigureDef& d) { return key == d.key; })) continue;
-    if (v.is_number() || v.is_boolean() || v.is_string() || v.is_null())
-      cell.figures.push_back({key, key, shown(v)});
-    else sink.error(join_path(path, key), fmt::format("expected a number, boolean, string or null, found {}", json_type_name(v)));
-  }
-  return cell;
-}
-
-std::string string_or_null(const json& row, const char* key, const std::string& path, DiagnosticSink& sink,
-                           bool nullable) {
-  if (!row.contains(key)) {
-    sink.error(join_path(path, key), nullable ? "missing; allowed: a model name or null" : "missing; allowed: a string");
-    return "";
-  }
-  const json& v = row[key];
-  if (nullable && v.is_null()) return "";
-  if (!v.is_string() || v.get<std::string>().empty()) {
-    sink.error(join_path(path, key), fmt::format("expected a non-empty string{}, found {}", nullable ? " or null" : "",
-                                                 json_type_name(v)));
-    return "";
-  }
-  return v.get<std::string>();
-}
-
-CostPageRow parse_row(const json& row, const std::string& path, DiagnosticSink& sink) {
-  static const std::vector<std::string> keys = {"name", "material", "diffuse", "specular", "glsl", "osl", "pov"};
-  CostPageRow r;
-  if (!row.is_object()) {
-    sink.error(path, fmt::format("expected an object (one row), found {}", json_type_name(row)));
-    return r;
-  }
-  for (const auto& [key, v] : row.items())
-    if (std::find(keys.begin(), keys.end(), key) == keys.end()) {
-      std::string hint = suggest(key, keys);
-      sink.error(join_path(path, key), fmt::format("unknown key{}; allowed keys: {}",
-                                                   hint.empty() ? "" : " (did you mean \"" + hint + "\"?)", quoted_list(keys)));
-    }
-  r.name = string_or_null(row, "name", path, sink, false);
-  r.material = string_or_null(row, "material", path, sink, false);
-  r.diffuse = string_or_null(row, "diffuse", path, sink, true);
-  r.specular = string_or_null(row, "specular", path, sink, true);
-  for (const auto& t : kTargets) {
-    if (!row.contains(t)) {
-      sink.error(join_path(path, t), "missing; allowed: the target's figures or {\"error\": \"why\"}");
-      continue;
-    }
-    r.cell(t) = parse_cell(row[t], t, join_path(path, t), sink);
-  }
-  return r;
+  return out;
 }
 
 }  // namespace
-
-CostTable parse_cost_rows(const json& doc, const std::string& file) {
-  DiagnosticSink sink(file);
-  CostTable table;
-  table.source = file;
-  if (!doc.is_object()) {
-    sink.error("", fmt::format("expected an object {{\"baseline\", \"rows\"}} (facet cost --json), found {}", json_type_name(doc)));
-    sink.throw_if_any();
-  }
-  static const std::vector<std::string> keys = {"baseline", "rows", "frame", "tools"};
-  for (const auto& [key, v] : doc.items())
-    if (std::find(keys.begin(), keys.end(), key) == keys.end())
-      sink.error(key, "unknown key; allowed keys: " + quoted_list(keys));
-  // The frame's cost and the tools' versions: shown as they are.
-  for (auto [key, list] : {std::pair{"frame", &table.frame}, std::pair{"tools", &table.tools}}) {
-    if (!doc.contains(key)) continue;
-    if (!doc[key].is_object()) {
-      sink.error(key, fmt::format("expected an object, found {}", json_type_name(doc[key])));
-      continue;
-    }
-    for (const auto& [k, v] : doc[key].items()) list->push_back({k, shown(v)});
-  }
-  table.baseline = string_or_null(doc, "baseline", "", sink, false);
-  if (!doc.contains("rows")) {
-    sink.error("rows", "missing; allowed: an array of rows");
-  } else if (!doc["rows"].is_array()) {
-    sink.error("rows", fmt::format("expected an array of rows, found {}", json_type_name(doc["rows"])));
-  } else {
-    std::map<std::string, size_t> seen;
-    for (size_t i = 0; i < doc["rows"].size(); ++i) {
-      std::string path = index_path("rows", i);
-      CostPageRow r = parse_row(doc["rows"][i], path, sink);
-      if (!r.name.empty() && !seen.emplace(r.name, i).second)
-        sink.error(join_path(path, "name"), fmt::format("\"{}\" is also rows[{}]; allowed: one row per name", r.name, seen[r.name]));
-      table.rows.push_back(std::move(r));
-    }
-  }
-  sink.throw_if_any();
-  return table;
-}
-
-CostTable load_cost_rows(const std::string& path) { return parse_cost_rows(read_json_file(path), path); }
 
 // ---------------------------------------------------------------- the pages
 
@@ -237,12 +78,7 @@ using Clock = std::chrono::steady_clock;
 // A model_materials() material's one lobe: the model its pages document.
 const ModelDef& lobe_def(const Material& m) { return *(m.diffuse ? m.diffuse : m.specular)->def; }
 
-const char* renderer_title(const std::string& r) {
-  if (r == "reference") return "C++ reference (double)";
-  if (r == "glsl") return "OpenGL: generated GLSL (EGL)";
-  if (r == "osl") return "Cycles: generated OSL (Blender 4.5)";
-  return "POV-Ray 3.7: generated scene";
-}
+const std::string& renderer_title(const std::string& r) { return find_renderer(r)->title; }
 
 const char* kStyle = R"(body { font: 15px/1.5 "DejaVu Sans", system-ui, sans-serif; margin: 0; color: #222; background: #fafafa; }
 main { max-width: 1180px; margin: 0 auto; padding: 20px 28px 60px; }
@@ -381,11 +217,11 @@ std::string figures_html(const ComparisonRow& r) {
 
 std::string spheres_html(const std::string& key, const Verdicts& v) {
   std::string h = "<div class=spheres>\n";
-  std::string ref = "../validate/" + validate_image(key, "single", "reference");
-  h += fmt::format("<div class=sphere><b>reference</b><br><span class=muted>{}</span><img src=\"{}\" alt=\"reference\">"
-                   "<div class=figs>the image the others are compared with</div></div>\n",
-                   renderer_title("reference"), ref);
-  for (const auto& t : kTargets) {
+  const RendererInfo& reference = reference_renderer();
+  h += fmt::format("<div class=sphere><b>{0}</b><br><span class=muted>{1}</span><img src=\"../validate/{2}\" "
+                   "alt=\"{0}\"><div class=figs>the image the others are compared with</div></div>\n",
+                   reference.name, reference.title, validate_image(key, "single", reference.name));
+  for (const auto& t : targets()) {
     h += fmt::format("<div class=sphere><b>{}</b><br><span class=muted>{}</span>", t, renderer_title(t));
     const ComparisonRow* r = v.row(key, t);
     if (!v.ran(t)) {
@@ -420,30 +256,38 @@ std::string not_measured(const DocsOptions& o, const std::string& name) {
                      html_escape(name));
 }
 
-std::string cell_html(const CostCell& c) {
+std::string cell_html(const CostCell& c, const CostTargetFormat& format) {
   if (!c.error.empty()) return "<span class=fail>not measured</span>: " + html_escape(c.error);
   std::string h;
-  for (const auto& f : c.figures) h += fmt::format("{}{}: <b>{}</b>", h.empty() ? "" : "<br>", html_escape(f.label), html_escape(f.text));
+  for (const auto& [label, text] : cell_figures(c, format))
+    h += fmt::format("{}{}: <b>{}</b>", h.empty() ? "" : "<br>", html_escape(label), html_escape(text));
   return h;
 }
 
-std::string cost_row_html(const CostPageRow& r, const std::string& baseline) {
-  std::string h = "<table><tr><th>OpenGL (GLSL)</th><th>Cycles (OSL)</th><th>POV-Ray</th></tr><tr>";
-  for (const auto& t : kTargets) h += "<td>" + cell_html(r.cell(t)) + "</td>";
+// The cost targets' headings: "<th>OpenGL (GLSL)</th>…".
+std::string cost_headings() {
+  std::string h;
+  for (const auto& format : cost_format()) h += "<th>" + find_renderer(format.target)->label + "</th>";
+  return h;
+}
+
+std::string cost_row_html(const CostRow& r, const std::string& baseline) {
+  std::string h = "<table><tr>" + cost_headings() + "</tr><tr>";
+  for (const auto& format : cost_format()) h += "<td>" + cell_html(r.cell(format.target), format) + "</td>";
   return h + fmt::format("</tr></table>\n<p class=muted>Relative figures are to the baseline, <code>{}</code>; the "
                          "material measured: <code>{}</code>.</p>\n",
                          html_escape(baseline), html_escape(r.material));
 }
 
-std::string relative_summary(const CostPageRow& r) {
+std::string relative_summary(const CostRow& r) {
   std::string s;
-  for (const auto& [t, key] : {std::pair<std::string, const char*>{"glsl", "callgrind_relative"}, {"osl", "relative"}, {"pov", "relative"}}) {
-    const CostCell& c = r.cell(t);
-    const CostFigure* f = c.find(key);
+  for (const auto& format : cost_format()) {
+    const CostCell& c = r.cell(format.target);
+    auto f = c.figures.find(format.relative);
     std::string what = !c.error.empty() ? fmt::format("<span class=fail title=\"{}\">not measured</span>", html_escape(c.error))
-                       : f              ? html_escape(f->text)
-                                        : "–";
-    s += fmt::format("{}{} {}", s.empty() ? "" : "<br>", t, what);
+                       : f != c.figures.end() ? html_escape(figure_text(*f, CostFigureKind::Ratio))
+                                              : "–";
+    s += fmt::format("{}{} {}", s.empty() ? "" : "<br>", format.target, what);
   }
   return s;
 }
@@ -466,7 +310,7 @@ std::string model_page(const Material& m, const DocsOptions& o, const Verdicts& 
   b += "<h2>Cycles and POV-Ray equivalents</h2>\n" + equivalence_html(def);
   b += "<h2>Physics</h2>\n" + physics_html(def);
   b += "<h2>Cost</h2>\n";
-  const CostPageRow* row = o.cost ? o.cost->find(def.name) : nullptr;
+  const CostRow* row = o.cost ? o.cost->find(def.name) : nullptr;
   b += row ? cost_row_html(*row, o.cost->baseline) : not_measured(o, def.name);
   return page(def.title + " — facet", b, true);
 }
@@ -481,7 +325,9 @@ std::string index_page(const std::vector<Material>& ms, const DocsOptions& o, co
     b += "<p class=skip>Cost not measured (<code>--no-cost</code>): <code>facet docs -o DIR</code> measures it, or "
          "reads <code>--cost COST.json</code>, the output of <code>facet cost --json</code>.</p>\n";
   b += "<table><tr><th>model</th><th>lobe</th><th>formula</th><th>sphere</th><th>θ_l = " +
-       fmt::format("{:g}", o.light_angles.back()) + "°</th><th>glsl</th><th>osl</th><th>pov</th><th>cost (× baseline)</th></tr>\n";
+       fmt::format("{:g}", o.light_angles.back()) + "°</th>";
+  for (const auto& t : targets()) b += "<th>" + t + "</th>";
+  b += "<th>cost (× baseline)</th></tr>\n";
   for (const auto& m : ms) {
     const ModelDef& def = lobe_def(m);
     std::string key = identifier(m.name);
@@ -489,9 +335,9 @@ std::string index_page(const std::vector<Material>& ms, const DocsOptions& o, co
                      "{2}\">{2}</span></td><td><code>{3}</code></td><td><img class=thumb src=\"validate/{4}\" alt=\"\"></td>"
                      "<td><img class=plot src=\"{5}\" alt=\"\"></td>",
                      html_escape(def.name), html_escape(def.title), def.section, html_escape(def.formula),
-                     validate_image(key, "single", "reference"), plot_file(def.name, "polar", o.light_angles.back()));
-    for (const auto& t : kTargets) b += verdict_cell(key, t, v);
-    const CostPageRow* row = o.cost ? o.cost->find(def.name) : nullptr;
+                     validate_image(key, "single", reference_renderer().name), plot_file(def.name, "polar", o.light_angles.back()));
+    for (const auto& t : targets()) b += verdict_cell(key, t, v);
+    const CostRow* row = o.cost ? o.cost->find(def.name) : nullptr;
     b += "<td>" + (row ? relative_summary(*row) : std::string("<span class=skip>not measured</span>")) + "</td></tr>\n";
   }
   b += "</table>\n";
@@ -518,12 +364,12 @@ std::string cost_page(const DocsOptions& o) {
   if (!o.cost) return page("facet — cost", b + not_measured(o, ""), false);
   b += fmt::format("<p>From <code>{}</code>; relative figures are to the baseline, <code>{}</code>.</p>\n",
                    html_escape(o.cost->source), html_escape(o.cost->baseline));
-  b += "<table><tr><th>row</th><th>diffuse</th><th>specular</th><th>OpenGL (GLSL)</th><th>Cycles (OSL)</th><th>POV-Ray</th></tr>\n";
+  b += "<table><tr><th>row</th><th>diffuse</th><th>specular</th>" + cost_headings() + "</tr>\n";
   for (const auto& r : o.cost->rows) {
     b += fmt::format("<tr><td><b>{}</b><br><code>{}</code></td><td>{}</td><td>{}</td>", html_escape(r.name),
                      html_escape(r.material), html_escape(r.diffuse.empty() ? "–" : r.diffuse),
                      html_escape(r.specular.empty() ? "–" : r.specular));
-    for (const auto& t : kTargets) b += "<td>" + cell_html(r.cell(t)) + "</td>";
+    for (const auto& format : cost_format()) b += "<td>" + cell_html(r.cell(format.target), format) + "</td>";
     b += "</tr>\n";
   }
   b += "</table>\n";
@@ -531,7 +377,8 @@ std::string cost_page(const DocsOptions& o) {
                                     std::pair{"Measured with", &o.cost->tools}}) {
     if (list->empty()) continue;
     b += "<h2>" + std::string(title) + "</h2>\n<table>\n";
-    for (const auto& [k, v] : *list) b += fmt::format("<tr><td><code>{}</code></td><td>{}</td></tr>\n", html_escape(k), html_escape(v));
+    for (const auto& [k, v] : list->items())
+      b += fmt::format("<tr><td><code>{}</code></td><td>{}</td></tr>\n", html_escape(k), html_escape(shown(v)));
     b += "</table>\n";
   }
   return page("facet — cost", b, false);
@@ -591,12 +438,11 @@ DocsResult write_docs(const DocsOptions& options, std::ostream& progress) {
   make_folder(out / "plots");
   progress << fmt::format("facet docs: {} lobe models into {}\n", ms.size(), out.string());
   if (!o.cost && o.measure_cost) {
-    // The rows read back through the JSON `facet cost --json` prints: one reader.
     CostOptions co;
     co.python = o.python;
     CostBaselines baselines;
     auto rows = measure_costs(ms, co, [&](const std::string& what) { progress << "  cost: " << what << "\n"; }, &baselines);
-    o.cost = parse_cost_rows(costs_json(rows, baselines), "facet cost (measured for these pages)");
+    o.cost = cost_table(rows, baselines, "facet cost (measured for these pages)");
   }
 
   std::vector<bool> anisotropic;
@@ -615,8 +461,9 @@ DocsResult write_docs(const DocsOptions& options, std::ostream& progress) {
   vo.scenes = {"single"};
   vo.width = vo.height = o.size;
   vo.renderers = o.renderers;
-  if (std::find(vo.renderers.begin(), vo.renderers.end(), "reference") == vo.renderers.end())
-    vo.renderers.insert(vo.renderers.begin(), "reference");  // every page shows the reference sphere
+  const std::string& reference = reference_renderer().name;  // every page shows the reference sphere
+  if (std::find(vo.renderers.begin(), vo.renderers.end(), reference) == vo.renderers.end())
+    vo.renderers.insert(vo.renderers.begin(), reference);
   o.renderers = vo.renderers;
   vo.out = (out / "validate").string();
   vo.python = o.python;

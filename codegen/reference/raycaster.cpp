@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
-#include <thread>
 
+#include "core/parallel.h"
 #include "reference/interpreter.h"
 
 namespace facet {
@@ -99,6 +99,40 @@ double scene_scale(const Scene& s) {
   return std::max(r, 1.0);
 }
 
+// One pixel: the nearest object at its centre, shaded by every light that reaches it.
+void shade_pixel(const Scene& s, const std::vector<const Reference*>& shading, double offset, double close, int x,
+                 int y, Render& r) {
+  const int width = r.image.width, height = r.image.height;
+  Vec3 dir = s.camera.ray(x, y, width, height);
+  SceneHit h = nearest(s, s.camera.position, dir);
+  if (h.object < 0) return;
+  size_t idx = size_t(y) * size_t(width) + size_t(x);
+  r.object[idx] = h.object;
+  const Object& obj = s.objects[size_t(h.object)];
+  const Reference& ref = *shading[size_t(h.object)];
+  const Material& m = ref.material();
+  Vec3 p = s.camera.position + dir * h.hit.t;
+  Vec3 n = obj.normal_at(p, h.hit);
+  Vec3 v = -dir;
+  Vec3 t = tangent_rule(n, Vec3(m.tangent_axis));
+  RGB L;
+  for (int c = 0; c < 3; ++c) L[c] = m.ambient[c] * s.ambient[c] + m.emission[c];
+  bool grazing = false;
+  for (const auto& light : s.lights) {
+    Vec3 l;
+    double d;
+    light.toward(p, l, d);
+    double factor = ref.light_factor(light, l, d);
+    if (!(factor > 0) || dot(n, l) <= 0) continue;
+    if (blocked(s, h.object, h.hit.triangle, p, l, d, offset, close, grazing)) continue;
+    RGB f = ref.reflectance(n, l, v, t);
+    for (int c = 0; c < 3; ++c) L[c] += factor * light.color[c] * f[c];
+  }
+  r.grazing[idx] = grazing;
+  float* px = r.image.at(x, y);
+  for (int c = 0; c < 3; ++c) px[c] = float(L[c]);
+}
+
 Render render(const Material* fallback, const Scene& s, int width, int height, int threads) {
   // One reference per distinct material; object i uses shading[i].
   std::vector<std::unique_ptr<Reference>> refs;
@@ -118,46 +152,10 @@ Render render(const Material* fallback, const Scene& s, int width, int height, i
   r.grazing.assign(size_t(width) * size_t(height), 0);
   const double offset = kShadowRayOffset * scene_scale(s);
   const double close = std::max(kCloseBlock, kGrazing * scene_scale(s));
-
-  auto shade_rows = [&](int y0, int y1) {
-    for (int y = y0; y < y1; ++y) {
-      for (int x = 0; x < width; ++x) {
-        Vec3 dir = s.camera.ray(x, y, width, height);
-        SceneHit h = nearest(s, s.camera.position, dir);
-        if (h.object < 0) continue;
-        size_t idx = size_t(y) * size_t(width) + size_t(x);
-        r.object[idx] = h.object;
-        const Object& obj = s.objects[size_t(h.object)];
-        const Reference& ref = *shading[size_t(h.object)];
-        const Material& m = ref.material();
-        Vec3 p = s.camera.position + dir * h.hit.t;
-        Vec3 n = obj.normal_at(p, h.hit);
-        Vec3 v = -dir;
-        Vec3 t = tangent_rule(n, Vec3(m.tangent_axis));
-        RGB L;
-        for (int c = 0; c < 3; ++c) L[c] = m.ambient[c] * s.ambient[c] + m.emission[c];
-        bool grazing = false;
-        for (const auto& light : s.lights) {
-          Vec3 l;
-          double d;
-          light.toward(p, l, d);
-          double factor = ref.light_factor(light, l, d);
-          if (!(factor > 0) || dot(n, l) <= 0) continue;
-          if (blocked(s, h.object, h.hit.triangle, p, l, d, offset, close, grazing)) continue;
-          RGB f = ref.reflectance(n, l, v, t);
-          for (int c = 0; c < 3; ++c) L[c] += factor * light.color[c] * f[c];
-        }
-        r.grazing[idx] = grazing;
-        float* px = r.image.at(x, y);
-        for (int c = 0; c < 3; ++c) px[c] = float(L[c]);
-      }
-    }
-  };
-  int n = threads > 0 ? threads : int(std::max(1u, std::thread::hardware_concurrency()));
-  n = std::min(n, height);
-  std::vector<std::thread> pool;
-  for (int i = 0; i < n; ++i) pool.emplace_back(shade_rows, height * i / n, height * (i + 1) / n);
-  for (auto& t : pool) t.join();
+  // Rows on every core (or `threads`): each pixel is its own, so any split gives the same image.
+  parallel_for(size_t(std::max(height, 0)), unsigned(std::max(threads, 0)), [&](size_t y) {
+    for (int x = 0; x < width; ++x) shade_pixel(s, shading, offset, close, x, int(y), r);
+  });
   return r;
 }
 

@@ -18,8 +18,11 @@
 #include "catalog/program.h"
 #include "core/io.h"
 #include "reference/raycaster.h"
+#include "renderers/backends.h"
 #include "renderers/harness.h"
-#include "renderers/renderers.h"
+#include "renderers/opengl.h"
+#include "renderers/sweep.h"
+#include "targets/glsl_lights.h"
 #include "targets/targets.h"
 
 namespace facet {
@@ -39,6 +42,8 @@ void main()
 // by object (convex) and by triangle, so float hit points need no more room.
 const double kGlShadowOffset = kShadowRayOffset;
 const int kMaxLights = 8, kMaxObjects = 16;
+// facet_object_normal[i].w in harness/raycast.glsl (its {{sphere}} … placeholders): the object's kind.
+const int kSphere = 0, kSquare = 1, kMesh = 2;
 
 std::string shader_log(GLuint id, bool program) {
   GLint len = 0;
@@ -208,7 +213,13 @@ GlRenderer::~GlRenderer() {
   delete state_;
 }
 
-RenderOutcome GlRenderer::sweep(const std::string& source, int grid) {
+const RendererInfo& GlRenderer::info() const { return *find_renderer("glsl"); }
+
+std::unique_ptr<Renderer> make_opengl_renderer(const RendererInfo&, const RendererSettings&) {
+  return std::make_unique<GlRenderer>();
+}
+
+RenderOutcome GlRenderer::sweep_draw(const std::string& source, int grid) {
   RenderOutcome out;
   if (!ok()) {
     out.error = error_;
@@ -235,9 +246,29 @@ RenderOutcome GlRenderer::sweep(const std::string& source, int grid) {
   return out;
 }
 
+std::vector<SweepCount> GlRenderer::sweep(const std::vector<SweepJob>& jobs, const SweepSettings& settings) {
+  std::vector<SweepCount> out(jobs.size());
+  for (size_t i = 0; i < jobs.size(); ++i) {
+    SweepCount& c = out[i];
+    c.target = info().name;
+    const SweepJob& j = jobs[i];
+    RenderOutcome r = sweep_draw(j.source.empty() ? glsl_sweep_source(j.material) : j.source, settings.grid);
+    if (!r.ok) {
+      c.error = r.error;
+      continue;
+    }
+    for (size_t k = 0; k < r.image.rgb.size(); k += 3)
+      count_sweep_value(c, {r.image.rgb[k], r.image.rgb[k + 1], r.image.rgb[k + 2]});
+  }
+  return out;
+}
+
 std::string GlRenderer::fragment_source(const Material& m) {
   GlslParts parts = glsl_parts(compile(m), Target::Glsl, m.source);
-  return "#version 330 core\n" + parts.header + parts.library + parts.lights + render_harness("raycast.glsl");
+  return "#version 330 core\n" + parts.header + parts.library + parts.lights +
+         render_harness("raycast.glsl", {{"sphere", std::to_string(kSphere)},
+                                         {"square", std::to_string(kSquare)},
+                                         {"mesh", std::to_string(kMesh)}});
 }
 
 namespace {
@@ -286,7 +317,125 @@ GLuint texture_buffer(const std::vector<float>& data, GLuint& buffer) {
   return tex;
 }
 
+// The meshes' texture buffers, bound while they live.
+class MeshTextures {
+ public:
+  explicit MeshTextures(const MeshBuffers& m)
+      : textures_{texture_buffer(m.nodes, buffers_[0]), texture_buffer(m.triangles, buffers_[1])} {}
+  ~MeshTextures() {
+    glDeleteTextures(2, textures_);
+    glDeleteBuffers(2, buffers_);
+  }
+  MeshTextures(const MeshTextures&) = delete;
+  MeshTextures& operator=(const MeshTextures&) = delete;
+  // On texture units 0 and 1, as raycast.glsl's facet_bvh and facet_triangles.
+  void bind(GLuint prog) const {
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_BUFFER, textures_[0]);
+    glUniform1i(glGetUniformLocation(prog, "facet_bvh"), 0);
+    glActiveTexture(GL_TEXTURE1);
+    glBindTexture(GL_TEXTURE_BUFFER, textures_[1]);
+    glUniform1i(glGetUniformLocation(prog, "facet_triangles"), 1);
+  }
+
+ private:
+  GLuint buffers_[2] = {0, 0};
+  GLuint textures_[2];
+};
+
+// Setting a program's uniforms by name.
+struct Uniforms {
+  GLuint prog;
+  GLint loc(const std::string& name) const { return glGetUniformLocation(prog, name.c_str()); }
+  void vec3(const std::string& name, const Vec3& v) const { glUniform3f(loc(name), float(v.x), float(v.y), float(v.z)); }
+  void vec4(const std::string& name, double x, double y, double z, double w) const {
+    glUniform4f(loc(name), float(x), float(y), float(z), float(w));
+  }
+};
+
+void set_camera(const Uniforms& u, const Scene& s, int width, int height) {
+  Camera::Basis b = s.camera.basis();
+  glUniform2f(u.loc("facet_resolution"), float(width), float(height));
+  u.vec3("facet_camera_position", s.camera.position);
+  u.vec3("facet_camera_forward", b.forward);
+  u.vec3("facet_camera_right", b.right);
+  u.vec3("facet_camera_up", b.up);
+  glUniform2f(u.loc("facet_camera_tan"), float(b.tan_half * width / height), float(b.tan_half));
+  glUniform3f(u.loc("facet_ambient"), float(s.ambient[0]), float(s.ambient[1]), float(s.ambient[2]));
+}
+
+// The generated GLSL's facet_lights[], encoded as targets/glsl_lights.h says.
+void set_lights(const Uniforms& u, const Scene& s) {
+  glUniform1i(u.loc("facet_light_count"), int(s.lights.size()));
+  for (size_t i = 0; i < s.lights.size(); ++i) {
+    const Light& l = s.lights[i];
+    std::string at = fmt::format("facet_lights[{}].", i);
+    const Vec3& where = l.type == Light::Type::Directional ? l.direction : l.position;
+    u.vec4(at + "position", where.x, where.y, where.z, glsl_light::type_code(l.type));
+    u.vec4(at + "color", l.color[0], l.color[1], l.color[2], l.exponent);
+    u.vec4(at + "spot", l.direction.x, l.direction.y, l.direction.z, std::cos(l.cutoff * M_PI / 180.0));
+    const Attenuation& a = l.attenuation;
+    u.vec4(at + "attenuation", a.constant, a.linear, a.quadratic, glsl_light::law_code(a.law));
+  }
+}
+
+// The objects, those of pass `pass` shaded; the shadow rays' offset, relative to the scene's size.
+void set_objects(const Uniforms& u, const Scene& s, const MeshBuffers& meshes, const std::vector<size_t>& pass_of,
+                 size_t pass) {
+  double scale = length(s.camera.position);
+  glUniform1i(u.loc("facet_object_count"), int(s.objects.size()));
+  for (size_t i = 0; i < s.objects.size(); ++i) {
+    const Object& o = s.objects[i];
+    std::string at = fmt::format("[{}]", i);
+    Vec3 c;
+    double r;
+    o.bounds(c, r);
+    scale = std::max(scale, length(c) + r);
+    glUniform1i(u.loc("facet_object_shaded" + at), pass_of[i] == pass ? 1 : 0);
+    if (o.type == Object::Type::Sphere) {
+      u.vec4("facet_object_shape" + at, o.center.x, o.center.y, o.center.z, o.radius);
+      u.vec4("facet_object_normal" + at, 0, 0, 0, kSphere);
+    } else if (o.type == Object::Type::Plane) {
+      Vec3 a, b;
+      o.plane_axes(a, b);
+      u.vec4("facet_object_shape" + at, o.point.x, o.point.y, o.point.z, o.size);
+      u.vec4("facet_object_normal" + at, o.normal.x, o.normal.y, o.normal.z, kSquare);
+      u.vec4("facet_object_axis" + at, a.x, a.y, a.z, 0);
+    } else {
+      u.vec4("facet_object_shape" + at, meshes.first_node[i], 0, 0, 0);
+      u.vec4("facet_object_normal" + at, 0, 0, 0, kMesh);
+    }
+  }
+  glUniform1f(u.loc("facet_shadow_offset"), float(kGlShadowOffset * std::max(scale, 1.0)));
+}
+
+// The distinct materials of the scene, in object order (one pass each), and each object's pass.
+std::string material_passes(const Scene& s, const Material* fallback, std::vector<const Material*>& passes,
+                            std::vector<size_t>& pass_of) {
+  pass_of.assign(s.objects.size(), 0);
+  try {
+    for (size_t i = 0; i < s.objects.size(); ++i) {
+      const Material* m = &s.material_of(i, fallback);
+      auto it = std::find(passes.begin(), passes.end(), m);
+      pass_of[i] = size_t(it - passes.begin());
+      if (it == passes.end()) passes.push_back(m);
+    }
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  return "";
+}
+
 }  // namespace
+
+std::vector<RenderOutcome> GlRenderer::render(const std::vector<RenderJob>& jobs, const RenderProgress& progress) {
+  std::vector<RenderOutcome> out;
+  for (size_t i = 0; i < jobs.size(); ++i) {
+    out.push_back(render(jobs[i]));
+    if (progress.finished) progress.finished(i);
+  }
+  return out;
+}
 
 RenderOutcome GlRenderer::render(const RenderJob& job) {
   RenderOutcome out;
@@ -300,40 +449,32 @@ RenderOutcome GlRenderer::render(const RenderJob& job) {
     return out;
   }
   auto start = std::chrono::steady_clock::now();
-  const Material* fallback = job.material ? &*job.material : nullptr;
-  // The distinct materials, in object order: one pass each.
   std::vector<const Material*> passes;
-  std::vector<size_t> pass_of(s.objects.size());
-  try {
-    for (size_t i = 0; i < s.objects.size(); ++i) {
-      const Material* m = &s.material_of(i, fallback);
-      auto it = std::find(passes.begin(), passes.end(), m);
-      pass_of[i] = size_t(it - passes.begin());
-      if (it == passes.end()) passes.push_back(m);
-    }
-  } catch (const std::exception& e) {
-    out.error = e.what();
-    return out;
-  }
+  std::vector<size_t> pass_of;
+  out.error = material_passes(s, job.material ? &*job.material : nullptr, passes, pass_of);
+  if (!out.error.empty()) return out;
   if (!job.code_override.empty() && passes.size() != 1) {
     out.error = "code_override needs a scene with one material";
     return out;
   }
+  out = render_passes(job, passes, pass_of);
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
 
+// Each pass draws the scene with one material's program, its objects shaded and the others black; the passes add up.
+RenderOutcome GlRenderer::render_passes(const RenderJob& job, const std::vector<const Material*>& passes,
+                                        const std::vector<size_t>& pass_of) {
+  RenderOutcome out;
+  const Scene& s = job.scene;
+  const Material* fallback = job.material ? &*job.material : nullptr;
   MeshBuffers meshes = mesh_buffers(s);
-  GLuint buffers[2] = {0, 0};
-  GLuint textures[2] = {texture_buffer(meshes.nodes, buffers[0]), texture_buffer(meshes.triangles, buffers[1])};
+  MeshTextures textures(meshes);
   FloatFramebuffer fb(job.width, job.height);
-  auto cleanup = [&] {
-    glDeleteTextures(2, textures);
-    glDeleteBuffers(2, buffers);
-  };
   if (!fb.complete()) {
     out.error = "no RGBA32F framebuffer";
-    cleanup();
     return out;
   }
-
   out.image = Image(job.width, job.height);
   out.alpha.assign(size_t(job.width) * size_t(job.height), 0);
   for (size_t k = 0; k < passes.size(); ++k) {
@@ -345,71 +486,13 @@ RenderOutcome GlRenderer::render(const RenderJob& job) {
       write_file_atomic((std::filesystem::path(job.workdir) / (base + ".frag")).string(), source);
     }
     GLuint prog = fragment_program(state_->vertex, source, "the GLSL of \"" + passes[k]->name + "\"", out.error);
-    if (!prog) {
-      cleanup();
-      return out;
-    }
+    if (!prog) return out;
     glUseProgram(prog);
-    auto loc = [&](const std::string& name) { return glGetUniformLocation(prog, name.c_str()); };
-    auto vec3 = [&](const std::string& name, const Vec3& v) {
-      glUniform3f(loc(name), float(v.x), float(v.y), float(v.z));
-    };
-    auto vec4 = [&](const std::string& name, double x, double y, double z, double w) {
-      glUniform4f(loc(name), float(x), float(y), float(z), float(w));
-    };
-
-    Camera::Basis b = s.camera.basis();
-    glUniform2f(loc("facet_resolution"), float(job.width), float(job.height));
-    vec3("facet_camera_position", s.camera.position);
-    vec3("facet_camera_forward", b.forward);
-    vec3("facet_camera_right", b.right);
-    vec3("facet_camera_up", b.up);
-    glUniform2f(loc("facet_camera_tan"), float(b.tan_half * job.width / job.height), float(b.tan_half));
-    glUniform3f(loc("facet_ambient"), float(s.ambient[0]), float(s.ambient[1]), float(s.ambient[2]));
-    glUniform1i(loc("facet_light_count"), int(s.lights.size()));
-    for (size_t i = 0; i < s.lights.size(); ++i) {
-      const Light& l = s.lights[i];
-      std::string at = fmt::format("facet_lights[{}].", i);
-      if (l.type == Light::Type::Directional) vec4(at + "position", l.direction.x, l.direction.y, l.direction.z, 1);
-      else vec4(at + "position", l.position.x, l.position.y, l.position.z, l.type == Light::Type::Spot ? 2 : 0);
-      vec4(at + "color", l.color[0], l.color[1], l.color[2], l.exponent);
-      vec4(at + "spot", l.direction.x, l.direction.y, l.direction.z, std::cos(l.cutoff * M_PI / 180.0));
-      const Attenuation& a = l.attenuation;
-      double law = a.law == Attenuation::Law::None ? 0 : a.law == Attenuation::Law::InverseSquare ? 1 : 2;
-      vec4(at + "attenuation", a.constant, a.linear, a.quadratic, law);
-    }
-    double scale = length(s.camera.position);
-    glUniform1i(loc("facet_object_count"), int(s.objects.size()));
-    for (size_t i = 0; i < s.objects.size(); ++i) {
-      const Object& o = s.objects[i];
-      std::string at = fmt::format("[{}]", i);
-      Vec3 c;
-      double r;
-      o.bounds(c, r);
-      scale = std::max(scale, length(c) + r);
-      glUniform1i(loc("facet_object_shaded" + at), pass_of[i] == k ? 1 : 0);
-      if (o.type == Object::Type::Sphere) {
-        vec4("facet_object_shape" + at, o.center.x, o.center.y, o.center.z, o.radius);
-        vec4("facet_object_normal" + at, 0, 0, 0, 0);
-      } else if (o.type == Object::Type::Plane) {
-        Vec3 u, v;
-        o.plane_axes(u, v);
-        vec4("facet_object_shape" + at, o.point.x, o.point.y, o.point.z, o.size);
-        vec4("facet_object_normal" + at, o.normal.x, o.normal.y, o.normal.z, 1);
-        vec4("facet_object_axis" + at, u.x, u.y, u.z, 0);
-      } else {
-        vec4("facet_object_shape" + at, meshes.first_node[i], 0, 0, 0);
-        vec4("facet_object_normal" + at, 0, 0, 0, 2);
-      }
-    }
-    glUniform1f(loc("facet_shadow_offset"), float(kGlShadowOffset * std::max(scale, 1.0)));
-    glActiveTexture(GL_TEXTURE0);
-    glBindTexture(GL_TEXTURE_BUFFER, textures[0]);
-    glUniform1i(loc("facet_bvh"), 0);
-    glActiveTexture(GL_TEXTURE1);
-    glBindTexture(GL_TEXTURE_BUFFER, textures[1]);
-    glUniform1i(loc("facet_triangles"), 1);
-
+    const Uniforms u{prog};
+    set_camera(u, s, job.width, job.height);
+    set_lights(u, s);
+    set_objects(u, s, meshes, pass_of, k);
+    textures.bind(prog);
     glClearColor(0, 0, 0, 0);
     glClear(GL_COLOR_BUFFER_BIT);
     glBindVertexArray(state_->vao);
@@ -418,14 +501,11 @@ RenderOutcome GlRenderer::render(const RenderJob& job) {
     glDeleteProgram(prog);
     if (GLenum e = glGetError(); e != GL_NO_ERROR) {
       out.error = fmt::format("OpenGL error 0x{:x}", e);
-      cleanup();
       return out;
     }
     add_bottom_up(px, out);
   }
-  cleanup();
   out.ok = true;
-  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
 }
 

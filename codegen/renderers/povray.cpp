@@ -1,14 +1,20 @@
+// POV-Ray 3.7 ("pov" in the registry): the generated scene, one frame per pass
+// (see pov_plan) and exposure, each a linear 16-bit PNG with antialiasing off,
+// rendered as one animation; the passes are summed and divided by their exposure.
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <map>
+#include <mutex>
 #include <sstream>
 
 #include <fmt/format.h>
 
 #include "core/io.h"
+#include "core/parallel.h"
+#include "renderers/backends.h"
 #include "renderers/process.h"
-#include "renderers/renderers.h"
+#include "renderers/sweep.h"
 #include "targets/targets.h"
 
 namespace facet {
@@ -16,93 +22,72 @@ namespace facet {
 namespace fs = std::filesystem;
 
 namespace {
+
 // A 16-bit PNG value at or above this may have clipped.
 const double kClip = 0.98;
-}  // namespace
+// The sweep's grid side at most: POV-Ray's function pigments are slow.
+const int kMaxSweepGrid = 256;
+// POV-Ray's start-up is single-threaded: two renders at a time.
+const unsigned kProcesses = 2;
 
-std::string job_name(const RenderJob& job) {
-  return (job.material ? identifier(job.material->name) + "_" : std::string()) + identifier(job.scene.name);
-}
-
-RenderOutcome render_pov(const RenderJob& job) {
-  RenderOutcome out;
-  fs::create_directories(job.workdir);
-  const Material* fallback = job.material ? &*job.material : nullptr;
-  const std::string base = job_name(job);
-  try {
-    write_file_atomic((fs::path(job.workdir) / (base + ".pov")).string(),
-                      job.code_override.empty()
-                          ? generate_pov_scene(job.scene, fallback, fallback ? fallback->source : job.scene.source)
-                          : job.code_override);
-  } catch (const std::invalid_argument& e) {  // an object without a material, and none given
-    out.error = e.what();
-    return out;
-  }
-  PovPlan plan = pov_plan(job.scene, fallback);
-
-  // Exposures are powers of two, exact to undo. The last keeps the brightest pixel below clipping.
-  // Bracketing starts at 16, so dim passes (an emission pass, a faint light) keep
-  // their precision too, and halves down to the exposure that keeps the brightest below 1.
-  std::vector<double> exposures;
+// Exposures are powers of two, exact to undo. The last keeps the brightest pixel below clipping.
+// Bracketing starts at 16, so dim passes (an emission pass, a faint light) keep
+// their precision too, and halves down to the exposure that keeps the brightest below 1.
+std::vector<double> exposures(const RenderJob& job) {
+  std::vector<double> out;
   double e = job.bracket ? 16 : 1;
-  if (job.bracket) exposures.push_back(e);
+  if (job.bracket) out.push_back(e);
   while (job.max_value * e >= kClip) {
     e /= 2;
-    if (job.bracket) exposures.push_back(e);
+    if (job.bracket) out.push_back(e);
   }
-  if (!job.bracket) exposures.push_back(e);
+  if (!job.bracket) out.push_back(e);
+  return out;
+}
 
-  // Frame f renders light pass f % passes at exposure f / passes.
-  const int passes = job.one_run ? 1 : plan.passes, frames = passes * int(exposures.size());
-  std::string exposure_table;
-  for (size_t k = 0; k < exposures.size(); ++k) exposure_table += fmt::format("{}{}", k ? ", " : "", exposures[k]);
-  std::string wrapper = fmt::format(
+// The harness that includes BASE.pov: frame f renders light pass f % passes at exposure f / passes.
+std::string harness(const std::string& base, int passes, const std::vector<double>& exposures) {
+  std::string table;
+  for (size_t k = 0; k < exposures.size(); ++k) table += fmt::format("{}{}", k ? ", " : "", exposures[k]);
+  return fmt::format(
       "// facet's POV-Ray harness: frame f renders light pass f mod {0} at the (f div {0})-th exposure.\n"
       "#declare Facet_Exposures = array[{1}] {{ {2} }};\n"
       "#declare Facet_Light = {3};\n"
       "#declare Facet_Exposure = Facet_Exposures[div(frame_number, {0})];\n"
       "#include \"{4}.pov\"\n",
-      passes, exposures.size(), exposure_table, passes > 1 ? fmt::format("mod(frame_number, {})", passes) : "-1",  // -1: every light at once
+      passes, exposures.size(), table, passes > 1 ? fmt::format("mod(frame_number, {})", passes) : "-1",  // -1: every light at once
       base);
-  write_file_atomic((fs::path(job.workdir) / (base + "_harness.pov")).string(), wrapper);
-  for (const auto& entry : fs::directory_iterator(job.workdir)) {
-    std::string name = entry.path().filename().string();
-    if (name.rfind(base + "_frame", 0) == 0) fs::remove(entry.path());
-  }
+}
 
-  std::vector<std::string> argv = {"povray", "+I" + base + "_harness.pov", "+O" + base + "_frame.png",
-                                   fmt::format("+W{}", job.width), fmt::format("+H{}", job.height), "-A", "+FN16", "+UA",
-                                   "File_Gamma=1.0", "-D", "+KFI0", fmt::format("+KFF{}", frames - 1)};
-  ProcessResult r = run_process(argv, job.workdir);
-  out.seconds = r.seconds;
-  out.log = r.output;
-  if (r.exit_code != 0) {
-    // Lead with POV-Ray's own error lines ("File 'x.pov' line 12: Parse Error: …").
-    std::string errors;
-    std::istringstream lines(r.output);
-    for (std::string line; std::getline(lines, line);)
-      if (line.find("Error") != std::string::npos || line.find("error") != std::string::npos) errors += line + " ";
-    out.error = r.exit_code < 0 ? r.output
-                                : fmt::format("povray exited with {}: {}\n{}", r.exit_code, errors, r.output);
-    return out;
-  }
-  // POV-Ray numbers frames with as many digits as the last one needs.
+// POV-Ray's failure: its own error lines first ("File 'x.pov' line 12: Parse Error: …").
+std::string povray_error(const ProcessResult& r) {
+  if (r.exit_code < 0) return r.output;
+  std::string errors;
+  std::istringstream lines(r.output);
+  for (std::string line; std::getline(lines, line);)
+    if (line.find("Error") != std::string::npos || line.find("error") != std::string::npos) errors += line + " ";
+  return fmt::format("povray exited with {}: {}\n{}", r.exit_code, errors, r.output);
+}
+
+// The frames BASE_frameN.png by N: POV-Ray numbers them with as many digits as the last one needs.
+std::map<int, std::string> frame_files(const std::string& dir, const std::string& base, int frames) {
   std::map<int, std::string> files;
-  for (const auto& entry : fs::directory_iterator(job.workdir)) {
+  const std::string prefix = base + "_frame";
+  for (const auto& entry : fs::directory_iterator(dir)) {
     std::string name = entry.path().filename().string();
-    std::string prefix = base + "_frame";
     if (name.rfind(prefix, 0) != 0 || entry.path().extension() != ".png") continue;
     std::string digits = name.substr(prefix.size(), name.size() - prefix.size() - 4);
     if (!digits.empty() && std::all_of(digits.begin(), digits.end(), ::isdigit))
       files[std::stoi(digits)] = entry.path().string();
   }
-  if (frames == 1 && files.empty() && fs::exists(fs::path(job.workdir) / (base + "_frame.png")))
-    files[0] = (fs::path(job.workdir) / (base + "_frame.png")).string();
-  if (int(files.size()) != frames) {
-    out.error = fmt::format("povray wrote {} of {} frames:\n{}", files.size(), frames, r.output);
-    return out;
-  }
+  if (frames == 1 && files.empty() && fs::exists(fs::path(dir) / (prefix + ".png")))
+    files[0] = (fs::path(dir) / (prefix + ".png")).string();
+  return files;
+}
 
+// Each pass's brightest exposure that did not clip, undone, summed over the passes.
+void combine_frames(const RenderJob& job, std::map<int, std::string>& files, int passes,
+                    const std::vector<double>& exposures, RenderOutcome& out) {
   out.image = Image(job.width, job.height);
   out.alpha = read_png_alpha(files[0]);  // coverage (+UA); the same in every frame
   for (int pass = 0; pass < passes; ++pass) {
@@ -111,18 +96,120 @@ RenderOutcome render_pov(const RenderJob& job) {
       frames_of_pass.push_back(read_png(files[int(k) * passes + pass]));
       if (frames_of_pass.back().width != job.width || frames_of_pass.back().height != job.height) {
         out.error = "povray wrote an image of the wrong size";
-        return out;
+        return;
       }
     }
     for (size_t i = 0; i < out.image.rgb.size(); ++i) {
-      // The brightest exposure that did not clip.
       size_t k = 0;
       while (k + 1 < exposures.size() && frames_of_pass[k].rgb[i] >= kClip) ++k;
       out.image.rgb[i] += float(frames_of_pass[k].rgb[i] / exposures[k]);
     }
   }
   out.ok = true;
+}
+
+RenderOutcome render_pov(const RenderJob& job) {
+  RenderOutcome out;
+  const std::string dir = job.folder();
+  fs::create_directories(dir);
+  const Material* fallback = job.material ? &*job.material : nullptr;
+  const std::string base = job_name(job);
+  try {
+    write_file_atomic((fs::path(dir) / (base + ".pov")).string(),
+                      job.code_override.empty()
+                          ? generate_pov_scene(job.scene, fallback, fallback ? fallback->source : job.scene.source)
+                          : job.code_override);
+  } catch (const std::invalid_argument& e) {  // an object without a material, and none given
+    out.error = e.what();
+    return out;
+  }
+  const std::vector<double> exposure = exposures(job);
+  const int passes = job.one_run ? 1 : pov_plan(job.scene, fallback).passes, frames = passes * int(exposure.size());
+  write_file_atomic((fs::path(dir) / (base + "_harness.pov")).string(), harness(base, passes, exposure));
+  for (const auto& entry : fs::directory_iterator(dir))
+    if (entry.path().filename().string().rfind(base + "_frame", 0) == 0) fs::remove(entry.path());
+
+  ProcessResult r = run_process({"povray", "+I" + base + "_harness.pov", "+O" + base + "_frame.png",
+                                 fmt::format("+W{}", job.width), fmt::format("+H{}", job.height), "-A", "+FN16", "+UA",
+                                 "File_Gamma=1.0", "-D", "+KFI0", fmt::format("+KFF{}", frames - 1)},
+                                dir);
+  out.seconds = r.seconds;
+  out.log = r.output;
+  if (r.exit_code != 0) {
+    out.error = povray_error(r);
+    return out;
+  }
+  std::map<int, std::string> files = frame_files(dir, base, frames);
+  if (int(files.size()) != frames) {
+    out.error = fmt::format("povray wrote {} of {} frames:\n{}", files.size(), frames, r.output);
+    return out;
+  }
+  combine_frames(job, files, passes, exposure, out);
   return out;
+}
+
+// The pigment shows whether each channel is finite and ≥ 0 (POV-Ray renders
+// NaN black, so the test is made inside the function).
+SweepCount sweep_pov(const std::string& target, const SweepJob& job, int grid, const std::string& workdir) {
+  SweepCount c;
+  c.target = target;
+  fs::create_directories(workdir);
+  std::string base = identifier(job.material.name) + "_sweep";
+  write_file_atomic((fs::path(workdir) / (base + ".pov")).string(),
+                    job.source.empty() ? generate_pov_sweep(job.material) : job.source);
+  ProcessResult r = run_process({"povray", "+I" + base + ".pov", "+O" + base + ".png", fmt::format("+W{}", grid),
+                                 fmt::format("+H{}", grid), "-A", "+FN16", "File_Gamma=1.0", "-D"},
+                                workdir);
+  if (r.exit_code != 0) {
+    c.error = fmt::format("povray exited with {}:\n{}", r.exit_code, r.output);
+    return c;
+  }
+  Image img = read_png((fs::path(workdir) / (base + ".png")).string());
+  // Each channel shows 1 where the value was finite and ≥ 0; the function cannot
+  // tell NaN from Inf from negative, so a failure counts as NaN.
+  for (size_t i = 0; i < img.rgb.size(); i += 3) {
+    ++c.samples;
+    for (int k = 0; k < 3; ++k)
+      if (img.rgb[i + size_t(k)] < 0.5f) ++c.nan;
+  }
+  return c;
+}
+
+class PovRenderer : public Renderer {
+ public:
+  explicit PovRenderer(const RendererInfo& info) : info_(info) {}
+  const RendererInfo& info() const override { return info_; }
+  std::string unavailable() const override {
+    return find_program("povray").empty() ? "povray: not found on PATH" : "";
+  }
+
+  std::vector<RenderOutcome> render(const std::vector<RenderJob>& jobs, const RenderProgress& progress) override {
+    if (std::string why = unavailable(); !why.empty()) return failed_renders(jobs.size(), why);
+    std::vector<RenderOutcome> out(jobs.size());
+    std::mutex mutex;
+    parallel_for(jobs.size(), kProcesses, [&](size_t i) {
+      out[i] = render_pov(jobs[i]);
+      std::lock_guard<std::mutex> lock(mutex);
+      if (progress.finished) progress.finished(i);
+    });
+    return out;
+  }
+
+  std::vector<SweepCount> sweep(const std::vector<SweepJob>& jobs, const SweepSettings& settings) override {
+    if (std::string why = unavailable(); !why.empty()) return failed_sweeps(jobs.size(), info_.name, why);
+    std::vector<SweepCount> out;
+    for (const auto& j : jobs) out.push_back(sweep_pov(info_.name, j, std::min(settings.grid, kMaxSweepGrid), settings.workdir));
+    return out;
+  }
+
+ private:
+  const RendererInfo& info_;
+};
+
+}  // namespace
+
+std::unique_ptr<Renderer> make_povray_renderer(const RendererInfo& info, const RendererSettings&) {
+  return std::make_unique<PovRenderer>(info);
 }
 
 }  // namespace facet

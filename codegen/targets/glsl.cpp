@@ -2,6 +2,7 @@
 #include <fmt/format.h>
 
 #include "targets/cfamily.h"
+#include "targets/glsl_lights.h"
 #include "targets/sweep_grid.h"
 #include "targets/targets.h"
 #include "targets/targets_internal.h"
@@ -106,7 +107,9 @@ GlslParts glsl_parts(const MaterialProgram& p, Target dialect, const std::string
                                                         {"functions", functions},
                                                         {"inputs", inputs},
                                                         {"arguments", arguments}});
-  parts.lights = render_template("glsl/lights.glsl", {{"uniforms", light_uniforms(dialect)}});
+  std::map<std::string, std::string> lights = glsl_light::template_values();  // the light encoding's numbers
+  lights["uniforms"] = light_uniforms(dialect);
+  parts.lights = render_template("glsl/lights.glsl", lights);
   parts.main = render_template("glsl/main.glsl", {{"inputs", main_inputs(dialect)}});
   return parts;
 }

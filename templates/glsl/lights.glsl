@@ -2,10 +2,10 @@
 #define FACET_MAX_LIGHTS 8
 struct FacetLight {
     vec4 position;     // xyz: position (point, spot), or the direction the light travels (directional)
-                       // w: type, 0 point, 1 directional, 2 spot
+                       // w: type, {{point}} point, {{directional}} directional, {{spot}} spot
     vec4 color;        // rgb: colour C; a: spot exponent
     vec4 spot;         // xyz: unit cone axis s; w: cos(cutoff)
-    vec4 attenuation;  // xyz: c1, c2, c3; w: law, 0 none, 1 inverse square, 2 polynomial
+    vec4 attenuation;  // xyz: c1, c2, c3; w: law, {{no_attenuation}} none, {{inverse_square}} inverse square, {{polynomial}} polynomial
 };
 {{uniforms}}
 
@@ -23,18 +23,18 @@ vec3 facet_shade(vec3 p, vec3 n, vec3 v, vec3 t)
         vec3 l;
         float d = 1e30;  // directional lights have no distance
         float factor = 1.0;
-        if (light.position.w == 1.0) {
+        if (light.position.w == {{directional}}.0) {
             l = -normalize(light.position.xyz);
         } else {
             vec3 to_light = light.position.xyz - p;
             d = length(to_light);
             l = to_light / d;
-            if (light.attenuation.w == 1.0) {
+            if (light.attenuation.w == {{inverse_square}}.0) {
                 factor = attenuation_inverse_square(d);
-            } else if (light.attenuation.w == 2.0) {
+            } else if (light.attenuation.w == {{polynomial}}.0) {
                 factor = attenuation_polynomial(d, light.attenuation.x, light.attenuation.y, light.attenuation.z);
             }
-            if (light.position.w == 2.0) factor *= spot_cone(-dot(l, light.spot.xyz), light.spot.w, light.color.a);
+            if (light.position.w == {{spot}}.0) factor *= spot_cone(-dot(l, light.spot.xyz), light.spot.w, light.color.a);
         }
         // Below the horizon reflectance() is 0: skip the visibility query there.
         if (factor > 0.0 && dot(n, l) > 0.0)

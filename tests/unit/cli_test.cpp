@@ -8,6 +8,7 @@
 
 #include "core/io.h"
 #include "renderers/process.h"
+#include "renderers/renderer.h"
 #include "test_support.h"
 
 namespace facet {
@@ -206,6 +207,34 @@ TEST(Cli, HelpTeachesWithExamples) {
       EXPECT_NE(r.output.find("xample"), std::string::npos) << cmd << r.output;
     }
   }
+}
+
+// `facet render` with every renderer of the registry: an image, and for all but
+// the reference its comparison with the reference, within the check's tolerance.
+TEST(Cli, RenderWithEveryRenderer) {
+  for (const auto& name : renderer_names()) {
+    fs::path out = scratch("render_" + name + ".pfm");
+    fs::remove(out);
+    ProcessResult r = facet({"render", (kSource / "examples/materials/ggx.json").string(), "-r", name, "--size", "48x40",
+                             "--check", "2e-3", "--workdir", scratch("render_" + name).string(), "-o", out.string()});
+    EXPECT_EQ(r.exit_code, 0) << name << ": " << r.output;
+    EXPECT_TRUE(fs::exists(out)) << name;
+    if (find_renderer(name)->reference) continue;
+    EXPECT_NE(r.output.find(name + " vs reference, ggx_plastic: "), std::string::npos) << name << ": " << r.output;
+    EXPECT_NE(r.output.find(" 0 of "), std::string::npos) << name << ": " << r.output;
+  }
+  ProcessResult r = facet({"render", (kSource / "examples/materials/ggx.json").string(), "-r", "vulkan"});
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.output.find("vulkan"), std::string::npos) << r.output;
+}
+
+// A renderer that cannot run says why, and `facet render` fails.
+TEST(Cli, RenderWithARendererThatCannotRunSaysWhy) {
+  ProcessResult r = run_process({kFacet, "render", (kSource / "examples/materials/ggx.json").string(), "-r", "osl",
+                                 "--size", "16x16", "--workdir", scratch("render_no_python").string()},
+                                "", {"FACET_PYTHON=/nonexistent/python3"});
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("error: Cycles: cannot run /nonexistent/python3"), std::string::npos) << r.output;
 }
 
 TEST(Cli, UnknownTargetIsAUsageError) {

@@ -13,7 +13,9 @@
 #include "catalog/program.h"
 #include "reference/raycaster.h"
 #include "renderers/compare.h"
-#include "renderers/renderers.h"
+#include "renderers/opengl.h"
+#include "renderers/renderer.h"
+#include "renderers/sweep.h"
 #include "targets/targets.h"
 
 namespace facet {
@@ -53,6 +55,11 @@ std::string inject(const std::string& code, const std::string& from, const std::
   return code.substr(0, at) + to + code.substr(at + from.size());
 }
 
+// One job through the registry's renderer `name`.
+RenderOutcome render_one(const std::string& name, const RenderJob& job) {
+  return make_renderer(name)->render({job}).at(0);
+}
+
 ComparisonRow judged(const Fixture& f, const RenderOutcome& r) {
   EXPECT_TRUE(r.ok) << r.error;
   return judge(f.reference, r.image, r.alpha, false, ValidateOptions{});
@@ -87,9 +94,9 @@ TEST(Detection, PovMissingPiFails) {
   o.scene = f.scene;
   std::string good = generate(f.material, o);
   f.job.code_override = good;
-  EXPECT_TRUE(judged(f, render_pov(f.job)).pass);
+  EXPECT_TRUE(judged(f, render_one("pov", f.job)).pass);
   f.job.code_override = inject(good, "{ pi / 4 * D * G * F / NoV }", "{ 1 / 4 * D * G * F / NoV }");
-  ComparisonRow bad = judged(f, render_pov(f.job));
+  ComparisonRow bad = judged(f, render_one("pov", f.job));
   EXPECT_FALSE(bad.pass) << "max |Δ|/max(1,|ref|) " << bad.metrics.max_excess;
 }
 
@@ -99,7 +106,7 @@ TEST(Detection, PovExponentOffByOneFails) {
   o.target = Target::Pov;
   o.scene = f.scene;
   f.job.code_override = inject(generate(f.material, o), "roughness 0.02", "roughness 0.0196078431372549");
-  ComparisonRow bad = judged(f, render_pov(f.job));
+  ComparisonRow bad = judged(f, render_one("pov", f.job));
   EXPECT_FALSE(bad.pass) << "max |Δ|/max(1,|ref|) " << bad.metrics.max_excess;
 }
 
@@ -119,12 +126,11 @@ TEST(Detection, OslMissingPiAndExponentOffByOneFail) {
   jobs[1].material->name = "cook_torrance_without_pi";
   jobs[2].code_override = inject(bp_code, "pow(max(NoH, 0.0), n)", "pow(max(NoH, 0.0), n + 1.0)");
   jobs[2].material->name = "blinn_phong_exponent_plus_one";
-  std::string log;
-  std::vector<RenderOutcome> r = render_osl(jobs, default_python(), log);
+  std::vector<RenderOutcome> r = make_renderer("osl")->render(jobs);
   ASSERT_EQ(r.size(), 3u);
-  EXPECT_TRUE(judged(ct, r[0]).pass) << log;
-  EXPECT_FALSE(judged(ct, r[1]).pass) << log;
-  EXPECT_FALSE(judged(bp, r[2]).pass) << log;
+  EXPECT_TRUE(judged(ct, r[0]).pass);
+  EXPECT_FALSE(judged(ct, r[1]).pass);
+  EXPECT_FALSE(judged(bp, r[2]).pass);
 }
 
 // ---------------------------------------------------------------- POV-Ray in one run
@@ -142,7 +148,7 @@ TEST(PovOneRun, AgreesButOnShadowEdges) {
   f.job.max_value = 0;
   for (float v : f.reference.image.rgb) f.job.max_value = std::max<double>(f.job.max_value, v);
   f.job.one_run = true;
-  RenderOutcome r = render_pov(f.job);
+  RenderOutcome r = render_one("pov", f.job);
   ASSERT_TRUE(r.ok) << r.error;
   Metrics m = compare_images(f.reference, r.image, interior_mask(f.reference), 2e-3);
   EXPECT_GT(m.pixels, 1000u);
@@ -210,17 +216,17 @@ const int kSweepGrid = 256;
 Material sweep_material() { return load_material((kSource / "examples/materials/lambert.json").string()); }
 
 TEST(SweepDetection, GlslFaultAtTheHorizonIsCounted) {
-  GlRenderer gl;
-  ASSERT_TRUE(gl.ok()) << gl.error();
+  std::unique_ptr<Renderer> gl = make_renderer("glsl");
+  ASSERT_EQ(gl->unavailable(), "");
   Material m = sweep_material();
-  SweepCount good = sweep_glsl(gl, m, kSweepGrid);
+  SweepCount good = gl->sweep({{m, ""}}, {kSweepGrid, 0, ""}).at(0);
   EXPECT_TRUE(good.ok()) << good.error;
   std::string bad = inject(glsl_sweep_source(m), "facet_color = vec4(facet_reflect(n, l, v, facet_tangent(n)), 1.0);",
                            "facet_color = vec4(facet_reflect(n, l, v, facet_tangent(n)), 1.0);\n"
                            "    float z = dot(n, l);\n"
                            "    if (z == 0.0) facet_color.r = -1.0;\n"
                            "    facet_color.g += z / z - 1.0;  // NaN at z = 0\n");
-  SweepCount c = sweep_glsl(gl, m, kSweepGrid, bad);
+  SweepCount c = gl->sweep({{m, bad}}, {kSweepGrid, 0, ""}).at(0);
   ASSERT_TRUE(c.error.empty()) << c.error;
   size_t expected = horizon_cells(kSweepGrid);
   ASSERT_GT(expected, 0u);
@@ -236,7 +242,7 @@ TEST(SweepDetection, OslFaultAtTheHorizonIsCounted) {
                            "    if (dot(Nn, L) == 0) { r[0] = -1; r[1] = 1e38 * (10 + r[1]); }\n    color bad = 0;\n");
   std::string workdir = (fs::temp_directory_path() / ("facet-detection-" + std::to_string(::getpid())) / "osl-sweep")
                             .string();
-  std::vector<SweepCount> c = sweep_osl({m, faulty}, kSweepGrid, default_python(), workdir, {"", bad});
+  std::vector<SweepCount> c = make_renderer("osl")->sweep({{m, ""}, {faulty, bad}}, {kSweepGrid, 0, workdir});
   ASSERT_EQ(c.size(), 2u);
   EXPECT_TRUE(c[0].ok()) << c[0].error;
   ASSERT_TRUE(c[1].error.empty()) << c[1].error;
@@ -250,13 +256,14 @@ TEST(SweepDetection, PovFaultAtTheHorizonIsCounted) {
   Material m = sweep_material();
   std::string workdir = (fs::temp_directory_path() / ("facet-detection-" + std::to_string(::getpid())) / "pov-sweep")
                             .string();
-  SweepCount good = sweep_pov(m, kSweepGrid, workdir);
+  std::unique_ptr<Renderer> pov = make_renderer("pov");
+  SweepCount good = pov->sweep({{m, ""}}, {kSweepGrid, 0, workdir}).at(0);
   EXPECT_TRUE(good.ok()) << good.error;
   const std::string nl = "Sweep_n_x(x, y) * Sweep_l_x(x, y) + Sweep_n_y(x, y) * Sweep_l_y(x, y) + "
                          "Sweep_n_z(x, y) * Sweep_l_z(x, y)";
   std::string bad = inject(generate_pov_sweep(m), "[1 function { Facet_Ok(Facet_Reflect",
                            "[1 function { Facet_Ok(select(" + nl + ", 0, -1, 0) + Facet_Reflect");
-  SweepCount c = sweep_pov(m, kSweepGrid, workdir, bad);
+  SweepCount c = pov->sweep({{m, bad}}, {kSweepGrid, 0, workdir}).at(0);
   ASSERT_TRUE(c.error.empty()) << c.error;
   EXPECT_EQ(c.samples, size_t(kSweepGrid) * kSweepGrid);
   EXPECT_EQ(c.nan, horizon_cells(kSweepGrid));  // POV-Ray counts every bad channel as NaN

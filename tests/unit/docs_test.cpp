@@ -69,53 +69,61 @@ TEST(CostRows, TheAgreedFormatReadsBack) {
   CostTable t = load_cost_rows(kFixture);
   EXPECT_EQ(t.baseline, "lambert");
   ASSERT_EQ(t.rows.size(), 2u);
-  const CostPageRow* lambert = t.find("lambert");
+  const CostRow* lambert = t.find("lambert");
   ASSERT_TRUE(lambert);
   EXPECT_EQ(lambert->diffuse, "lambert");
   EXPECT_EQ(lambert->specular, "");
-  ASSERT_TRUE(lambert->glsl.find("spirv"));
-  EXPECT_EQ(lambert->glsl.find("spirv")->text, "33");
-  EXPECT_EQ(lambert->glsl.find("callgrind_per_pixel")->text, "43.6");
-  EXPECT_EQ(lambert->pov.find("native")->text, "yes");
-  EXPECT_EQ(lambert->pov.find("functions")->text, "–");
-  const CostPageRow* phong = t.find("phong");
+  const json& glsl = lambert->cell("glsl").figures;
+  ASSERT_TRUE(glsl.contains("spirv"));
+  EXPECT_EQ(glsl["spirv"], 33);
+  EXPECT_EQ(lambert->cell("glsl").number("callgrind_per_pixel"), 43.6);
+  EXPECT_TRUE(lambert->cell("pov").flag("native"));
+  EXPECT_TRUE(lambert->cell("pov").figures["functions"].is_null());
+  const CostRow* phong = t.find("phong");
   ASSERT_TRUE(phong);
-  EXPECT_EQ(phong->osl.error, "FIXTURE: the OSL timing run did not finish");
-  EXPECT_TRUE(phong->osl.figures.empty());
-  ASSERT_TRUE(phong->glsl.find("fixture_extra")) << "a figure the format does not name is kept";
-  EXPECT_EQ(phong->glsl.find("fixture_extra")->text, "7");
+  EXPECT_EQ(phong->cell("osl").error, "FIXTURE: the OSL timing run did not finish");
+  EXPECT_TRUE(phong->cell("osl").figures.empty());
+  ASSERT_TRUE(phong->cell("glsl").figures.contains("fixture_extra")) << "a figure the format does not name is kept";
+  EXPECT_EQ(phong->cell("glsl").figures["fixture_extra"], 7);
   EXPECT_EQ(t.find("ggx"), nullptr);
 }
 
 // What `facet cost --json` prints (costs_json) is what the docs read, whole:
-// the rows, the frame and the tools.
+// the rows, the frame and the tools; and the docs take a measurement's rows as
+// they are (cost_table), the same as read back.
 TEST(CostRows, WhatFacetCostPrintsReadsBack) {
   CostRow lambert;
   lambert.name = lambert.material = lambert.diffuse = "lambert";
-  lambert.glsl.spirv = 65;
-  lambert.glsl.callgrind_per_pixel = 122.25;
-  lambert.glsl.callgrind_relative = 1;
-  lambert.osl.instructions = 47;
-  lambert.pov.native = true;
+  lambert.cell("glsl").figures = {{"spirv", 65}, {"callgrind_per_pixel", 122.25}, {"callgrind_relative", 1.0}};
+  lambert.cell("osl").figures = {{"instructions", 47}, {"ns_per_pixel", nullptr}, {"relative", nullptr}};
+  lambert.cell("pov").figures = {{"native", true}, {"functions", nullptr}, {"ns_per_pixel", nullptr}, {"relative", nullptr}};
   CostRow ggx;
   ggx.name = ggx.material = ggx.specular = "ggx";
-  ggx.glsl.spirv = 99;
-  ggx.osl.error = "Blender did not start";
-  ggx.pov.functions = 25;
+  ggx.cell("glsl").figures = {{"spirv", 99}, {"callgrind_per_pixel", nullptr}, {"callgrind_relative", nullptr}};
+  ggx.cell("osl").error = "Blender did not start";
+  ggx.cell("osl").figures = {{"instructions", 0}};
+  ggx.cell("pov").figures = {{"native", false}, {"functions", 25}, {"ns_per_pixel", nullptr}, {"relative", nullptr}};
   CostBaselines b;
   b.spirv_empty = 61;
   b.valgrind = "valgrind-3.19.0";
   CostTable t = parse_cost_rows(costs_json({lambert, ggx}, b), "facet cost");
   EXPECT_EQ(t.baseline, "lambert");
   ASSERT_EQ(t.rows.size(), 2u);
-  EXPECT_EQ(t.find("lambert")->glsl.find("spirv")->text, "65");
-  EXPECT_EQ(t.find("ggx")->osl.error, "Blender did not start");
-  EXPECT_EQ(t.find("ggx")->pov.find("functions")->text, "25");
-  auto has = [](const std::vector<std::pair<std::string, std::string>>& list, const std::string& k, const std::string& v) {
-    return std::find(list.begin(), list.end(), std::pair{k, v}) != list.end();
-  };
-  EXPECT_TRUE(has(t.frame, "glsl_spirv", "61"));
-  EXPECT_TRUE(has(t.tools, "valgrind", "valgrind-3.19.0"));
+  EXPECT_EQ(t.find("lambert")->cell("glsl").figures["spirv"], 65);
+  EXPECT_EQ(t.find("ggx")->cell("osl").error, "Blender did not start");
+  EXPECT_EQ(t.find("ggx")->cell("pov").figures["functions"], 25);
+  EXPECT_EQ(t.frame["glsl_spirv"], 61);
+  EXPECT_EQ(t.tools["valgrind"], "valgrind-3.19.0");
+  CostTable measured = cost_table({lambert, ggx}, b, "facet cost");
+  ASSERT_EQ(measured.rows.size(), t.rows.size());
+  for (size_t i = 0; i < t.rows.size(); ++i)
+    for (const auto& format : cost_format()) {
+      EXPECT_EQ(measured.rows[i].cell(format.target).error, t.rows[i].cell(format.target).error);
+      EXPECT_EQ(measured.rows[i].cell(format.target).figures, t.rows[i].cell(format.target).figures);
+    }
+  EXPECT_EQ(measured.frame, t.frame);
+  EXPECT_EQ(measured.tools, t.tools);
+  EXPECT_EQ(measured.baseline, t.baseline);
 }
 
 // Each problem names the file and its key path.

@@ -12,7 +12,7 @@ uniform vec2 facet_camera_tan;                       // tan(fov/2) · (aspect, 1
 uniform int facet_object_count;
 uniform vec4 facet_object_shape[FACET_MAX_OBJECTS];  // sphere: centre, radius; square: centre, half-side;
                                                      // mesh: first BVH node, first triangle
-uniform vec4 facet_object_normal[FACET_MAX_OBJECTS]; // w: 0 sphere, 1 square (xyz its normal), 2 mesh
+uniform vec4 facet_object_normal[FACET_MAX_OBJECTS]; // w: {{sphere}} sphere, {{square}} square (xyz its normal), {{mesh}} mesh
 uniform vec4 facet_object_axis[FACET_MAX_OBJECTS];   // square: the in-plane axis u (v = normal × u)
 uniform int facet_object_shaded[FACET_MAX_OBJECTS];  // 1: shaded in this pass
 uniform samplerBuffer facet_bvh;        // 2 texels a node: (lo, right child or first triangle), (hi, count)
@@ -98,7 +98,7 @@ FacetHit facet_intersect(int i, vec3 origin, vec3 dir, float t_min, int skip)
     FacetHit none = FacetHit(-1.0, -1, vec2(0.0));
     vec4 s = facet_object_shape[i];
     float kind = facet_object_normal[i].w;
-    if (kind == 0.0) {
+    if (kind == {{sphere}}.0) {
         vec3 oc = origin - s.xyz;
         float b = dot(oc, dir);
         float c = dot(oc, oc) - s.w * s.w;
@@ -111,7 +111,7 @@ FacetHit facet_intersect(int i, vec3 origin, vec3 dir, float t_min, int skip)
         if (t1 > t_min) return FacetHit(t1, -1, vec2(0.0));
         return none;
     }
-    if (kind == 2.0) return facet_intersect_mesh(int(s.x), origin, dir, t_min, skip);
+    if (kind == {{mesh}}.0) return facet_intersect_mesh(int(s.x), origin, dir, t_min, skip);
     vec3 n = facet_object_normal[i].xyz;
     float den = dot(dir, n);
     if (den == 0.0) return none;
@@ -129,7 +129,7 @@ float facet_visibility(vec3 p, vec3 l, float d)
     for (int i = 0; i < FACET_MAX_OBJECTS; ++i) {
         if (i >= facet_object_count) break;
         bool own = i == facet_shaded_object;
-        if (own && facet_object_normal[i].w != 2.0) continue;
+        if (own && facet_object_normal[i].w != {{mesh}}.0) continue;
         FacetHit h = facet_intersect(i, p, l, facet_shadow_offset, own ? facet_shaded_triangle : -1);
         if (h.t > 0.0 && h.t < d) return 0.0;
     }
@@ -161,9 +161,9 @@ void main()
     facet_shaded_triangle = best.triangle;
     vec3 n;
     float kind = facet_object_normal[hit].w;
-    if (kind == 0.0) {
+    if (kind == {{sphere}}.0) {
         n = normalize(p - facet_object_shape[hit].xyz);
-    } else if (kind == 1.0) {
+    } else if (kind == {{square}}.0) {
         n = facet_object_normal[hit].xyz;
     } else {
         int t = best.triangle * 6;

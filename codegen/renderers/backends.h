@@ -1,0 +1,19 @@
+// facet — the registry's renderers, each made by its own file (renderers/renderer.cpp lists them).
+#pragma once
+
+#include <memory>
+
+#include "renderers/renderer.h"
+
+namespace facet {
+
+std::unique_ptr<Renderer> make_reference_renderer(const RendererInfo& info, const RendererSettings& settings);
+std::unique_ptr<Renderer> make_opengl_renderer(const RendererInfo& info, const RendererSettings& settings);
+std::unique_ptr<Renderer> make_cycles_renderer(const RendererInfo& info, const RendererSettings& settings);
+std::unique_ptr<Renderer> make_povray_renderer(const RendererInfo& info, const RendererSettings& settings);
+
+// Every job failed with `why`: what a renderer that cannot run returns.
+std::vector<RenderOutcome> failed_renders(size_t jobs, const std::string& why);
+std::vector<SweepCount> failed_sweeps(size_t jobs, const std::string& target, const std::string& why);
+
+}  // namespace facet

@@ -1,0 +1,48 @@
+// facet — how the generated GLSL's FacetLight (templates/glsl/lights.glsl) encodes
+// a light: an application fills facet_lights[] with these numbers (facet's own
+// OpenGL renderer does, renderers/opengl.cpp), and the template's numbers, its
+// comments included, are filled from them.
+#pragma once
+
+#include <map>
+#include <string>
+
+#include "scene/scene.h"
+
+namespace facet::glsl_light {
+
+// FacetLight.position.w: the light's type.
+inline constexpr int kPoint = 0, kDirectional = 1, kSpot = 2;
+// FacetLight.attenuation.w: its attenuation law.
+inline constexpr int kNoAttenuation = 0, kInverseSquare = 1, kPolynomial = 2;
+
+inline int type_code(Light::Type t) {
+  switch (t) {
+    case Light::Type::Directional: return kDirectional;
+    case Light::Type::Spot: return kSpot;
+    case Light::Type::Point: break;
+  }
+  return kPoint;
+}
+
+inline int law_code(Attenuation::Law law) {
+  switch (law) {
+    case Attenuation::Law::InverseSquare: return kInverseSquare;
+    case Attenuation::Law::Polynomial: return kPolynomial;
+    case Attenuation::Law::None: break;
+  }
+  return kNoAttenuation;
+}
+
+// The template's placeholders, {{point}} … {{polynomial}}: each code as an
+// integer ("1"; the template's code compares with "{{directional}}.0").
+inline std::map<std::string, std::string> template_values() {
+  return {{"point", std::to_string(kPoint)},
+          {"directional", std::to_string(kDirectional)},
+          {"spot", std::to_string(kSpot)},
+          {"no_attenuation", std::to_string(kNoAttenuation)},
+          {"inverse_square", std::to_string(kInverseSquare)},
+          {"polynomial", std::to_string(kPolynomial)}};
+}
+
+}  // namespace facet::glsl_light
