@@ -1,4 +1,4 @@
-// What the generated code costs (facet/cost.h): counts from the compilers,
+// What the generated code costs (analysis/cost.h): counts from the compilers,
 // callgrind's instruction counts of llvmpipe's draws, render times of Cycles and
 // POV-Ray. Each tool runs as few times as it can: one valgrind process per core
 // for all the shaders, one Blender process for all the OSL, and the timings

@@ -3,7 +3,7 @@
 //
 // Per material and target:
 //  * GLSL: the SPIR-V instruction count of the cost frame's fragment shader
-//    (templates/glsl/cost.glsl: one sphere, one point light, no loop) after
+//    (renderers/harness/cost.glsl: one sphere, one point light, no loop) after
 //    `glslangValidator -G --aml` and `spirv-opt -O`, and the x86 instructions
 //    per pixel llvmpipe executes for its draw, counted by callgrind
 //    (LP_NUM_THREADS=0 so the draw runs in the calling thread, collection on
@@ -140,7 +140,7 @@ std::vector<std::string> stale_costs(const std::string& markdown, const std::vec
 
 // ---- The pieces, for the benchmarks in tests/bench.
 
-// The cost frame (templates/glsl/cost_raycast.glsl and cost.glsl) under `library`:
+// The cost frame (renderers/harness/cost_raycast.glsl and cost.glsl) under `library`:
 // GLSL that defines material_ambient, material_emission, facet_tangent(n) and
 // facet_reflect(n, l, v, t).
 std::string cost_frame_source(const std::string& library);

@@ -1,4 +1,4 @@
-// Helpers for writing catalog entries; private to codegen/src/catalog.
+// Helpers for writing catalog entries; private to codegen/catalog/.
 #pragma once
 
 #include <string>

@@ -1,5 +1,5 @@
 // facet — checking JSON documents against catalog parameter definitions.
-// Private to codegen/src: material and scene files share it.
+// Shared by the material and scene parsers (catalog/, scene/).
 #pragma once
 
 #include <algorithm>

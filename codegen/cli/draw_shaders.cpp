@@ -11,7 +11,7 @@ using nlohmann::json;
 namespace facet::cli {
 namespace {
 
-// Hidden: what `facet cost` runs under valgrind (facet/cost.h, run_draw_job).
+// Hidden: what `facet cost` runs under valgrind (analysis/cost.h, run_draw_job).
 std::string draw_job;
 
 }  // namespace

@@ -78,7 +78,7 @@ Command physics_command(CLI::App& app) {
       ->check(CLI::Range(size_t(64), size_t(1) << 30));
   phc->footer(
       "f(l, v) = ρ/(π n·l) against f(v, l), and a(l) = ∫ f (n·v) dω by importance-sampled Monte Carlo, for every\n"
-      "diffuse and specular lobe over its parameters and incidence angles (see facet/physics.h). Exit 1 when a\n"
+      "diffuse and specular lobe over its parameters and incidence angles (see analysis/physics.h). Exit 1 when a\n"
       "measurement contradicts the catalog: reciprocity, or albedo above 1 for a lobe called energy-conserving.\n"
       "Examples:\n"
       "  facet physics -o docs/physics.md\n"

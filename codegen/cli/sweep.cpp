@@ -92,7 +92,7 @@ Command sweep_command(CLI::App& app) {
   swc->add_option("--workdir", sw.workdir, "Where the harnesses' files go");
   swc->add_option("--python", sw.python, "The Python with bpy 4.5 (default: FACET_PYTHON, then the build's .venv)");
   swc->footer(
-      "The grid (facet/sweep.h) holds the hard places: n·l and n·v at 1, 1e-7, 1e-4, 0, below the horizon;\n"
+      "The grid (analysis/sweep.h) holds the hard places: n·l and n·v at 1, 1e-7, 1e-4, 0, below the horizon;\n"
       "l = v; h = n; l = −v grazing; the normal along the tangent axis. The reference adds random sets near\n"
       "them. Exit 1 when any value is NaN, infinite or negative. Example:\n"
       "  facet sweep my.json --extremes --renderers reference,glsl");

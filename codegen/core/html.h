@@ -1,5 +1,5 @@
 // Escaping for the HTML and SVG facet writes (the validation report, the docs,
-// the diagrams); private to codegen/src.
+// the diagrams), shared by the layers above.
 #pragma once
 
 #include <string>

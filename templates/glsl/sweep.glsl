@@ -1,6 +1,6 @@
 
 // ---- facet's robustness sweep: each pixel centre is one direction set of the
-// grid (facet/sweep.h); the output is the raw reflectance, NaN and Inf included.
+// grid (targets/sweep_grid.h); the output is the raw reflectance, NaN and Inf included.
 uniform vec2 facet_resolution;
 out vec4 facet_color;
 

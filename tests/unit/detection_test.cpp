@@ -158,7 +158,7 @@ TEST(PovOneRun, AgreesButOnShadowEdges) {
 
 // ---------------------------------------------------------------- the sweeps
 
-// The sweep reaches every hard place of facet/sweep.h, on the grid alone and on
+// The sweep reaches every hard place of targets/sweep_grid.h, on the grid alone and on
 // the random sets alone: a function that goes negative only there is caught.
 TEST(SweepDetection, ReachesEveryHardPlace) {
   const Vec3 axis(0, 1, 0);

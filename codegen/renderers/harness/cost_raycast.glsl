@@ -1,5 +1,5 @@
 
-// ---- facet's cost frame (facet/cost.h): the built-in scene "single" drawn over the
+// ---- facet's cost frame (analysis/cost.h): the built-in scene "single" drawn over the
 // full-screen triangle, one ray per pixel centre (gl_FragCoord) against its sphere,
 // shaded by its one point light: no attenuation, no shadow test, no light loop.
 // llvmpipe executes every unrolled iteration and both sides of every branch, so a
