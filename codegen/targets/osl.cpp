@@ -62,7 +62,8 @@ std::string light_block(const targets::CPrinter& pr, const Light& l, size_t i, S
       params.add("float", id + "constant", pr.literal(a.constant), "attenuation c1");
       params.add("float", id + "linear", pr.literal(a.linear), "attenuation c2");
       params.add("float", id + "quadratic", pr.literal(a.quadratic), "attenuation c3");
-      body += fmt::format("        float factor = attenuation_polynomial(d, {0}constant, {0}linear, {0}quadratic);\n", id);
+      body += fmt::format(
+          "        float factor = attenuation_polynomial(d, {0}constant, {0}linear, {0}quadratic);\n", id);
     }
     if (l.type == Light::Type::Spot) {
       params.add("vector", id + "direction", triple(pr, "vector", to_blender(l.direction)), "the cone's axis");

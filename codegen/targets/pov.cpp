@@ -121,9 +121,8 @@ std::string emission_texture(const RGB& e, double weight, double t) {
   std::string color = t > 0 ? fmt::format("rgbt <{}, {}, {}, {}>", pov_number(weight * e[0]), pov_number(weight * e[1]),
                                           pov_number(weight * e[2]), pov_number(t))
                             : "rgb " + pov_rgb({weight * e[0], weight * e[1], weight * e[2]});
-  return fmt::format("texture {{\n  pigment {{ {} }}\n  finish {{ ambient 0 emission Facet_Exposure diffuse 0 specular 0 "
-                     "phong 0 }}\n}}\n",
-                     color);
+  return "texture {\n  pigment { " + color +
+         " }\n  finish { ambient 0 emission Facet_Exposure diffuse 0 specular 0 phong 0 }\n}\n";
 }
 
 namespace {
@@ -152,7 +151,8 @@ std::string native_texture(const Material& m, double weight) {
   finish += m.diffuse ? finish_terms(*m.diffuse, weight) : " diffuse 0";
   finish += m.specular ? finish_terms(*m.specular, weight) : " specular 0 phong 0";
   RGB pigment = {0, 0, 0};
-  if (m.diffuse && !m.diffuse->def->pov_finish.pigment.empty()) pigment = m.diffuse->at(m.diffuse->def->pov_finish.pigment).rgb;
+  const std::string pigment_param = m.diffuse ? m.diffuse->def->pov_finish.pigment : "";
+  if (!pigment_param.empty()) pigment = m.diffuse->at(pigment_param).rgb;
   return fmt::format("texture {{\n  pigment {{ rgb {} }}\n  finish {{ {} }}\n}}\n", pov_rgb(pigment), finish);
 }
 
@@ -333,7 +333,7 @@ std::string PovScene::object(size_t o, double shrink, const std::string& body, c
     w.line(fmt::format("5, {}, {}, {}, {}, {}", pov_vector(p0), pov_vector(p1), pov_vector(p2), pov_vector(p3),
                        pov_vector(p0)));
   } else {
-    return mesh(o, shrink, body + modifiers);
+    return mesh(o, shrink, body, modifiers);
   }
   w.text(body);
   w.text(modifiers);
@@ -341,8 +341,8 @@ std::string PovScene::object(size_t o, double shrink, const std::string& body, c
   return w.take();
 }
 
-// A mesh: `body` is its texture_list (each face uses its own texture) and modifiers.
-std::string PovScene::mesh(size_t o, double shrink, const std::string& body) {
+// A mesh: `body` is its texture_list (each face uses its own texture).
+std::string PovScene::mesh(size_t o, double shrink, const std::string& body, const std::string& modifiers) {
   const Object& obj = s_.objects[o];
   const Mesh& m = *obj.mesh;
   auto list = [this](const std::string& name, const std::vector<std::string>& items) {
@@ -356,8 +356,9 @@ std::string PovScene::mesh(size_t o, double shrink, const std::string& body) {
     const auto& t = m.triangles[i];
     faces.push_back(fmt::format("<{}, {}, {}>", t[0], t[1], t[2]) + (body.empty() ? "" : fmt::format(", {}", i)));
   }
-  return "mesh2 {  // " + obj.name + "\n  " + list("vertex_vectors", positions) + "  " + list("normal_vectors", normals) +
-         indented(body, 2) + "  " + list("face_indices", faces) + "}\n";
+  return "mesh2 {  // " + obj.name + "\n  " + list("vertex_vectors", positions) + "  " +
+         list("normal_vectors", normals) + indented(body, 2) + "  " + list("face_indices", faces) +
+         indented(modifiers, 2) + "}\n";
 }
 
 // ---------------------------------------------------------------- the native route

@@ -92,8 +92,10 @@ ir::FunctionPtr PovScene::reflect_function(PovShading& sh) {
 
   ir::FunctionBuilder fb("Facet_Reflect", "");
   N = params(fb, "Nx", "Ny", "Nz"), L = params(fb, "Lx", "Ly", "Lz"), V = params(fb, "Vx", "Vy", "Vz");
-  C = lets(fb, "Cx", "Cy", "Cz", cross3(constant(normalize(Vec3(sh.material->tangent_axis))), N));
-  Expr c_len = fb.let("Len", length3(C));
+  // |C| from the cross product itself, so one helper takes C and |C|.
+  const Triple axis_x_n = cross3(constant(normalize(Vec3(sh.material->tangent_axis))), N);
+  C = lets(fb, "Cx", "Cy", "Cz", axis_x_n);
+  Expr c_len = fb.let("Len", length3(axis_x_n));
   std::vector<Expr> fallback = args({N, L, V, {0.0, -N.z, N.y}}), own = args({N, L, V, C});
   fallback.push_back(ir::sqrt(N.z * N.z + N.y * N.y));
   own.push_back(c_len);
@@ -127,7 +129,8 @@ ir::FunctionPtr PovScene::light_function(PovShading& sh, size_t i) {
   if (a.law == Attenuation::Law::Polynomial)
     times(ir::call(terms::attenuation_polynomial(), {d, a.constant, a.linear, a.quadratic}));
   if (l.type == Light::Type::Spot)
-    times(ir::call(terms::spot_cone(), {-dot3(L / d, constant(l.direction)), std::cos(l.cutoff * kPi / 180), l.exponent}));
+    times(ir::call(terms::spot_cone(),
+                   {-dot3(L / d, constant(l.direction)), std::cos(l.cutoff * kPi / 180), l.exponent}));
   Expr reflected = ir::call(sh.reflect, args({N, L / d, V / dv}));
   ir::FunctionPtr f = fb.returns(factor ? *factor * reflected : reflected);
   sh.printer.add_own(f);
@@ -313,7 +316,8 @@ std::string PovScene::lit(size_t o, size_t i, double weight, double t, double sh
                     indented(pov_pigment(sh.printer, sh.dependent, p, width), 4) + "    " + kLitFinish + "  }\n#end\n";
   std::vector<std::string> items;
   for (size_t tr = 0; tr < s_.objects[o].mesh->triangles.size(); ++tr)
-    items.push_back(fmt::format("{0}(Facet_Object{1}_T{2}_X, Facet_Object{1}_T{2}_Y, Facet_Object{1}_T{2}_Z)", macro, o, tr));
+    items.push_back(
+        fmt::format("{0}(Facet_Object{1}_T{2}_X, Facet_Object{1}_T{2}_Y, Facet_Object{1}_T{2}_Z)", macro, o, tr));
   return out + object(o, shrink, texture_list(items), mods);
 }
 
@@ -348,7 +352,8 @@ std::string PovScene::passes() {
   if (items <= 1) return items == 1 ? pass(0) : "";
   std::string cases, copies;
   for (size_t i = 0; i < items; ++i)
-    cases += fmt::format("#case ({})  // {}\n", i, i < n ? fmt::format("light {}", i) : "emission") + pass(i) + "#break\n";
+    cases += fmt::format("#case ({})  // {}\n", i, i < n ? fmt::format("light {}", i) : "emission") + pass(i) +
+             "#break\n";
   // Copy k lets t_k = (items − k − 1)/(items − k) through to the copies inside it
   // and keeps 1 − t_k of its own pigment, so copy k is seen with weight
   // t_0 ⋯ t_(k−1) (1 − t_k) = 1/items: every pigment is scaled by items.

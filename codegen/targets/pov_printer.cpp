@@ -41,7 +41,8 @@ bool negative_number(const NodePtr& n) { return n->op == Op::Literal && n->value
 NodePtr negated(const NodePtr& n) {
   if (negative_number(n)) return literal(-n->value[0]);
   if (n->op == Op::Neg) return n->args[0];
-  if (n->op == Op::Mul && negative_number(n->args[0])) return node(Op::Mul, {literal(-n->args[0]->value[0]), n->args[1]});
+  if (n->op == Op::Mul && negative_number(n->args[0]))
+    return node(Op::Mul, {literal(-n->args[0]->value[0]), n->args[1]});
   return nullptr;
 }
 
@@ -80,6 +81,13 @@ NodePtr rewrite(const NodePtr& n, const std::set<std::string>& finite) {
   }
 }
 
+// `n` (its operands folded) rewritten at its root until no rewrite applies. A
+// rewrite builds new nodes only from folded operands, and those need none.
+NodePtr simplified(NodePtr n, const std::set<std::string>& finite) {
+  while (NodePtr r = rewrite(n, finite)) n = r;
+  return n;
+}
+
 }  // namespace
 
 std::string capital(const std::string& s) {
@@ -98,7 +106,9 @@ std::string pov_vector(const Vec3& v) {
   return fmt::format("<{}, {}, {}>", pov_number(v.x), pov_number(v.y), pov_number(v.z));
 }
 
-std::string pov_rgb(const std::array<double, 3>& c) { return fmt::format("<{}, {}, {}>", pov_number(c[0]), pov_number(c[1]), pov_number(c[2])); }
+std::string pov_rgb(const std::array<double, 3>& c) {
+  return fmt::format("<{}, {}, {}>", pov_number(c[0]), pov_number(c[1]), pov_number(c[2]));
+}
 
 bool is_scaffold(const ir::Function& f) { return f.name.rfind("Facet_", 0) == 0; }
 
@@ -136,8 +146,7 @@ NodePtr fold(const NodePtr& n, int ch, const std::set<std::string>& finite) {
     copy->args = std::move(args);
     out = copy;
   }
-  while (NodePtr r = rewrite(out, finite)) out = r->args.empty() || r == out ? r : fold(r, ch, finite);
-  return out;
+  return simplified(out, finite);
 }
 
 // ---------------------------------------------------------------- PovPrinter
@@ -161,9 +170,9 @@ std::string PovPrinter::name(const ir::FunctionPtr& f, int channel) const {
   return channel_dependent(f) ? n + "_" + kChannel[channel] : n;
 }
 
-std::string PovPrinter::constant_name(const NodePtr& c, int channel) const {
-  std::string n = prefix_ + capital(c->name);
-  return c->type == Type::Color && !grey(c->value) ? n + "_" + kChannel[channel] : n;
+std::string PovPrinter::constant_name(const Node& c, int channel) const {
+  std::string n = prefix_ + capital(c.name);
+  return c.type == Type::Color && !grey(c.value) ? n + "_" + kChannel[channel] : n;
 }
 
 std::string PovPrinter::constants(const std::vector<NodePtr>& cs) const {
@@ -171,7 +180,7 @@ std::string PovPrinter::constants(const std::vector<NodePtr>& cs) const {
   for (const auto& c : cs) {
     int channels = c->type == Type::Color && !grey(c->value) ? 3 : 1;
     for (int ch = 0; ch < channels; ++ch)
-      s += fmt::format("#declare {} = {};\n", constant_name(c, ch), pov_number(c->value[size_t(ch)]));
+      s += fmt::format("#declare {} = {};\n", constant_name(*c, ch), pov_number(c->value[size_t(ch)]));
   }
   return s;
 }
@@ -191,7 +200,7 @@ std::string PovPrinter::expr(const NodePtr& n, int ch, const std::set<std::strin
 
 void PovPrinter::leaf_to(std::string& out, const Node& n) const {
   if (n.op == Op::Literal) out += pov_number(n.value[size_t(ch_)]);
-  else if (n.op == Op::Constant) out += constant_name(std::make_shared<Node>(n), ch_);
+  else if (n.op == Op::Constant) out += constant_name(n, ch_);
   else out += local(n.name);
 }
 
@@ -229,14 +238,17 @@ void PovPrinter::spell_to(std::string& out, const NodePtr& n) const {
       out += '(' + print(n->args[1]) + " >= " + print(n->args[0]) + ')';
       return;
     }
-    case Op::Clamp: out += "min(max(" + print(n->args[0]) + ", " + print(n->args[1]) + "), " + print(n->args[2]) + ")"; return;
+    case Op::Clamp:
+      out += "min(max(" + print(n->args[0]) + ", " + print(n->args[1]) + "), " + print(n->args[2]) + ")";
+      return;
     case Op::Select: break;
     default: condition_to(out, n); return;
   }
   // select(A, B, C[, D]): A < 0 → B; A = 0 → C; A > 0 → D (or C).
   const NodePtr& c = n->args[0];
   std::string t = print(n->args[1]), f = print(n->args[2]);
-  std::string x = c->op == Op::And || c->op == Op::Or ? "" : print(fold(node(Op::Sub, {c->args[0], c->args[1]}), ch_, *finite_));
+  const bool compound = c->op == Op::And || c->op == Op::Or;
+  std::string x = compound ? "" : print(simplified(node(Op::Sub, {c->args[0], c->args[1]}), *finite_));
   switch (c->op) {
     case Op::Lt: out += fmt::format("select({}, {}, {})", x, t, f); break;
     case Op::Le: out += fmt::format("select({}, {}, {}, {})", x, t, t, f); break;

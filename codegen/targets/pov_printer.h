@@ -67,7 +67,7 @@ class PovPrinter : public ExprWriter {
   }
   bool channel_dependent(const ir::FunctionPtr& f) const;
   std::string name(const ir::FunctionPtr& f, int channel) const;
-  std::string constant_name(const ir::NodePtr& c, int channel) const;
+  std::string constant_name(const ir::Node& c, int channel) const;
   // #declare lines of the constants `cs`.
   std::string constants(const std::vector<ir::NodePtr>& cs) const;
   // `n`, channel `ch`, folded; `finite` as for fold().

@@ -54,7 +54,7 @@ class PovScene {
   std::string light_source(const Light& l, std::vector<std::string> extra = {}, double scale = 1,
                            const std::string& comment = "");
   std::string object(size_t o, double shrink, const std::string& body, const std::string& modifiers);
-  std::string mesh(size_t o, double shrink, const std::string& body);
+  std::string mesh(size_t o, double shrink, const std::string& body, const std::string& modifiers);
   std::string native_light(size_t i);
   std::string native();
   // pov_functions.cpp
