@@ -232,7 +232,8 @@ std::string pov_pigment(const PovPrinter& pr, bool dependent, const PovPigment& 
     if (t) return fmt::format("rgbt <{}, {}, {}, {}>", r, g, b, pov_number(p.transmit));
     return r == g && g == b ? "rgb " + r : fmt::format("rgb <{}, {}, {}>", r, g, b);
   };
-  // max(0, min(1, radiance · Π factors)), and the colour at 1: weight / Π factors.
+  // max(0, min(1, radiance · Π factors)), and the colour at 1: weight / Π factors. The
+  // scale is in the colour, not a factor of the pigment: that would scale transmit too.
   auto held = [&](int ch, const std::vector<Expr>& factors) {
     Expr product = p.radiance(ch);
     for (const auto& f : factors) product = product * f;
@@ -287,7 +288,6 @@ std::string PovScene::lit(size_t o, size_t i, double weight, double t, double sh
   PovPigment p;
   p.weight = weight;
   p.transmit = t;
-  // The scale applies to the colour only: a vector times a number would scale the transmit component too.
   p.factors = [&](int ch) -> std::vector<Expr> {
     double s = sh.dependent ? c[size_t(ch)] : 0;
     if (!sh.dependent)

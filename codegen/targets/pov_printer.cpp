@@ -354,26 +354,35 @@ std::string PovPrinter::channel_function(const ir::FunctionPtr& f, int ch) const
   const std::vector<std::vector<size_t>> sig = chain_signatures(*f, ends);
   const size_t P = f->params.size();
   auto name_of = [&](size_t i) { return local(i < P ? f->params[i].name : f->lets[i - P].name); };
-  auto step_name = [&](size_t k) { return k == 0 ? base : fmt::format("{}__{}", base, k); };
+  auto first_let = [&](size_t level) { return P + (level >= 2 ? ends[level - 2] : 0); };
+  // The steps: the function, then each level with a let that is read.
+  std::vector<size_t> steps = {0};
+  for (size_t k = 1; k <= ends.size(); ++k)
+    for (size_t i : sig[k])
+      if (i >= first_let(k) && i < P + ends[k - 1]) {
+        steps.push_back(k);
+        break;
+      }
+  auto step_name = [&](size_t j) { return j == 0 ? base : fmt::format("{}__{}", base, j); };
   std::string out;
   if (!f->citation.empty()) comment_to(out, f->citation, "", "//", kPovWidth);
   if (!f->doc.empty()) comment_to(out, f->doc, "", "//", kPovWidth);
   // Declared deepest first: POV-Ray functions are declared before they are called.
-  for (size_t k = ends.size() + 1; k-- > 0;) {
+  for (size_t j = steps.size(); j-- > 0;) {
     std::string params, body;
-    for (size_t i : sig[k]) params.append(params.empty() ? "" : ", ").append(name_of(i));
-    if (k == ends.size()) {
+    for (size_t i : sig[steps[j]]) params.append(params.empty() ? "" : ", ").append(name_of(i));
+    if (j + 1 == steps.size()) {
       body = expr(f->result.node(), ch, finite);
     } else {
-      const size_t lo = P + (k >= 1 ? ends[k - 1] : 0);
-      body = step_name(k + 1) + "(";
-      for (size_t j = 0; j < sig[k + 1].size(); ++j) {
-        const size_t i = sig[k + 1][j];
-        body.append(j ? ", " : "").append(i >= lo ? expr(f->lets[i - P].value.node(), ch, finite) : name_of(i));
+      const size_t next = steps[j + 1];
+      body = step_name(j + 1) + "(";
+      for (size_t a = 0; a < sig[next].size(); ++a) {
+        const size_t i = sig[next][a];
+        body.append(a ? ", " : "").append(i >= first_let(next) ? expr(f->lets[i - P].value.node(), ch, finite) : name_of(i));
       }
       body += ")";
     }
-    declare_function_to(out, step_name(k), params, body);
+    declare_function_to(out, step_name(j), params, body);
   }
   return out;
 }

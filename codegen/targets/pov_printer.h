@@ -39,18 +39,19 @@ ir::Expr var(const std::string& name);                            // a parameter
 ir::FunctionPtr declared(const std::string& name, size_t params);  // a function declared elsewhere
 
 // `n` with channel `ch` of its colour literals, rewritten where POV-Ray's
-// double arithmetic gives the same value (IEEE 754):
-//   x*1, 1*x, x/1 → x; -(-x) → x; x*-1 → -x; (-x)*(-y) → x*y; x - 0 → x;
-//   x + (-y) → x - y and x - (-y) → x + y (for -y a negative number, a minus,
-//   or a negative number times y: IEEE defines x - y as x + (-y));
-//   these the same but for the sign of a zero result: x + 0, 0 + x → x; 0 - x → -x;
-//   and 0*x, x*0 → 0 where x is a finite number, or a variable of `finite`
-//   (finite wherever POV-Ray shades: see pov_finite_variables()).
+// double arithmetic (IEEE 754) gives the same value:
+//   exactly: x*1, 1*x, x/1 → x; x - 0 → x; -(-x) → x; x*-1 → -x; (-x)*(-y) → x*y;
+//     x + (-y) → x - y and x - (-y) → x + y, for -y a negative number, a minus or
+//     a negative number times y (IEEE 754 defines x - y as x + (-y));
+//   the same but for the sign of a zero result: x + 0, 0 + x → x; 0 - x → -x;
+//     -(number) → the negated number (POV-Ray's numbers print ±0 as 0 anyway);
+//     0*x, x*0 → 0 where x is a finite number or a variable named in `finite`.
 ir::NodePtr fold(const ir::NodePtr& n, int ch, const std::set<std::string>& finite);
-// In the scaffolding: the hit point (x, y, z) and the unit vectors' components
-// n (Nx, Ny, Nz) and l (Lx, Ly, Lz). Where one is not finite (0/0 at a
-// degenerate mesh normal or at the light itself) all three are NaN, and so is
-// n·l, so the reflectance is NaN either way.
+// The variables fold() takes as finite in the scaffolding (functions named
+// Facet_…): the hit point x, y, z; the unit normal Nx, Ny, Nz; and Lx, Ly, Lz,
+// the unit l or the vector to a light. Each is finite wherever POV-Ray shades;
+// where a normal or l is not (0/0 at a degenerate mesh normal, or at the light
+// itself) all three components are NaN, and so is n·l and the reflectance.
 const std::set<std::string>& pov_finite_variables();
 
 class PovPrinter : public ExprWriter {
