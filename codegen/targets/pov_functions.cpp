@@ -196,17 +196,20 @@ std::string PovScene::mesh_normals(size_t o) {
     const auto& k = m.triangles[t];
     Vec3 p0 = m.positions[k[0]], e1 = m.positions[k[1]] - p0, e2 = m.positions[k[2]] - p0;
     Vec3 g = cross(e1, e2);
-    double g2 = dot(g, g);
+    const double g2 = dot(g, g);
+    const Vec3 n0 = m.normals[k[0]];
+    for (int j = 0; j < 3 && g2 == 0; ++j) {  // a degenerate triangle: its first normal
+      ir::FunctionBuilder fb(fmt::format("Facet_Object{}_T{}_{}", o, t, "XYZ"[j]), "");
+      params(fb, "x", "y", "z");
+      out += printer.function(fb.returns(n0[j]));
+    }
+    if (g2 == 0) continue;
     Vec3 a1 = cross(e2, g) / g2, a2 = cross(g, e1) / g2;
-    Vec3 n0 = m.normals[k[0]], d1 = m.normals[k[1]] - n0, d2 = m.normals[k[2]] - n0;
+    Vec3 d1 = m.normals[k[1]] - n0, d2 = m.normals[k[2]] - n0;
     double c1 = dot(p0, a1), c2 = dot(p0, a2);
     for (int j = 0; j < 3; ++j) {
       ir::FunctionBuilder fb(fmt::format("Facet_Object{}_T{}_{}", o, t, "XYZ"[j]), "");
       Triple P = params(fb, "x", "y", "z");
-      if (g2 == 0) {  // a degenerate triangle: its first normal
-        out += printer.function(fb.returns(n0[j]));
-        continue;
-      }
       double cx = a1.x * d1[j] + a2.x * d2[j], cy = a1.y * d1[j] + a2.y * d2[j], cz = a1.z * d1[j] + a2.z * d2[j];
       double c0 = n0[j] - c1 * d1[j] - c2 * d2[j];
       out += printer.function(fb.returns(cx * P.x + cy * P.y + cz * P.z + c0));
