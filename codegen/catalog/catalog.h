@@ -92,6 +92,42 @@ struct Equivalence {
 };
 const char* level_name(Equivalence::Level l);
 
+// ---- POV-Ray's native finish (read by targets/pov.cpp) -----------------------
+// Where POV-Ray's own finish is a lobe exactly (shared/notes/povray.md §2): the
+// finish keywords it sets, where each value comes from, and what the material
+// must hold for it. A lobe without terms is evaluated in function pigments.
+struct PovFinishTerm {
+  enum class From {
+    Weight,      // the lobe's weight in the texture: 1, or 2 under an emission layer
+    GreyColor,   // the colour parameter `param` (grey: POV-Ray's highlights are white) × the weight
+    Number,      // the number parameter `param`
+    Reciprocal,  // 1 / the number parameter `param`
+    Fixed,       // `value`
+  };
+  std::string keyword;  // e.g. "phong_size"
+  From from = From::Fixed;
+  std::string param;
+  double value = 0;
+};
+struct PovFinishRequirement {
+  enum class Kind {
+    Choice,  // the Enum parameter `param` holds `choice`
+    Absent,  // the Object parameter `param` is absent (toon)
+    Grey,    // the Color parameter `param` is grey
+  };
+  Kind kind = Kind::Choice;
+  std::string param;
+  std::string choice;
+  std::string why;  // why the lobe is no finish where the requirement fails
+};
+struct PovFinish {
+  std::vector<PovFinishTerm> terms;  // in the order printed; empty: not a finish
+  std::string pigment;               // the Color parameter that is the pigment (diffuse: "color", k_d), or ""
+  std::vector<PovFinishRequirement> requirements;  // checked in order
+  bool native() const { return !terms.empty(); }
+};
+// ---- end of POV-Ray's native finish
+
 class LobeContext;
 
 // The scene vocabulary's kinds, as the catalog states them: the scene layer builds
@@ -119,6 +155,10 @@ struct ModelDef {
   std::string physics_note;  // where the claim comes from, or why not
   // Lobes: build ρ in `ctx` from the material's values. Others: null.
   std::function<ir::Expr(LobeContext&)> build;
+
+  // ---- POV-Ray's native finish: how `pov` is printed where it is exact (targets/pov.cpp)
+  PovFinish pov_finish;
+  // ---- end of POV-Ray's native finish
 
   const ParamDef* param(const std::string& name) const;
 

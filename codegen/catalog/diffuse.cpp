@@ -16,6 +16,11 @@ void add_diffuse(std::vector<ModelDef>& all) {
             "surface facing a light of colour C shows C.";
     m.cycles = exact("diffuse(N) (the Diffuse BSDF, f = 1/π) is the same lobe");
     m.pov = exact("finish { diffuse 1 brilliance 1 } with pigment k_d (POV has no 1/π)");
+    m.pov_finish.terms = {{"diffuse", PovFinishTerm::From::Weight, "", 0},
+                          {"brilliance", PovFinishTerm::From::Fixed, "", 1}};
+    m.pov_finish.pigment = "color";
+    m.pov_finish.requirements = {
+        {PovFinishRequirement::Kind::Absent, "toon", "", "the toon modifier is not a POV-Ray finish"}};
     m.build = [](LobeContext& c) { return ir::call(terms::lambert(), {c.NoL()}); };
     m.reciprocal = true;
     m.energy_conserving = true;

@@ -54,6 +54,18 @@ std::function<double(const ModelSpec&)> alpha_is(std::string param) {
 // α = √(2 / (n + 2)): the relation Walter et al. 2007 give for Beckmann's m.
 double blinn_phong_alpha(double n) { return std::sqrt(2 / (n + 2)); }
 
+// A highlight POV-Ray's finish is exactly: `size` is how its keyword takes the
+// exponent n; k_s must be grey, and neither Schlick's approximation nor toon.
+PovFinish pov_highlight(const std::string& keyword, const std::string& size_keyword, PovFinishTerm::From size) {
+  using Kind = PovFinishRequirement::Kind;
+  PovFinish f;
+  f.terms = {{keyword, PovFinishTerm::From::GreyColor, "color", 0}, {size_keyword, size, "n", 0}};
+  f.requirements = {{Kind::Absent, "toon", "", "the toon modifier is not a POV-Ray finish"},
+                    {Kind::Choice, "approximation", "none", "Schlick's approximation is not a POV-Ray finish"},
+                    {Kind::Grey, "color", "", "POV-Ray highlights take a grey k_s only"}};
+  return f;
+}
+
 }  // namespace
 
 void add_specular(std::vector<ModelDef>& all) {
@@ -70,6 +82,7 @@ void add_specular(std::vector<ModelDef>& all) {
                 approximation_param()};
     m.cycles = none("Cycles registers no phong closure (phong_ramp is a different, ramped lobe)");
     m.pov = exact("finish { phong k_s phong_size n } for a grey k_s without approximation or toon");
+    m.pov_finish = pov_highlight("phong", "phong_size", PovFinishTerm::From::Number);
     m.build = [](LobeContext& c) {
       ir::Expr NoL = c.NoL(), NoV = c.NoV(), LoV = c.LoV();
       if (c.choice("approximation") == "schlick") {
@@ -97,6 +110,7 @@ void add_specular(std::vector<ModelDef>& all) {
                 approximation_param()};
     m.cycles = none("Cycles has no Blinn–Phong closure");
     m.pov = exact("finish { specular k_s roughness 1/n } for a grey k_s without approximation or toon");
+    m.pov_finish = pov_highlight("specular", "roughness", PovFinishTerm::From::Reciprocal);
     m.build = [](LobeContext& c) {
       ir::Expr NoH = c.NoH();
       return power(c, terms::blinn_phong(), {NoH, c.number("n")}, NoH);

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/ir.h"
+#include "targets/writer.h"
 
 namespace facet::targets {
 
@@ -21,7 +22,9 @@ struct CDialect {
   bool constants_as_params = false;
 };
 
-class CPrinter {
+// The shared writer (targets/writer.h) with C's leaves: "2.0" for 2 (ESSL has no
+// implicit int → float), colour constructors, float → colour promotion.
+class CPrinter : public ExprWriter {
  public:
   explicit CPrinter(CDialect d) : d_(std::move(d)) {}
 
@@ -32,16 +35,19 @@ class CPrinter {
   // The same, appended to `out`.
   void literal_to(std::string& out, double v) const;
   void color_literal_to(std::string& out, const std::array<double, 3>& rgb) const;
-  void expr_to(std::string& out, const ir::NodePtr& n, int context) const;
   // The whole definition: signature, citation on the first line, lets, return.
   std::string function(const ir::FunctionPtr& f) const;
   // The material constants `f` reads, itself or through callees (first-use order).
   const std::vector<ir::NodePtr>& free_constants(const ir::FunctionPtr& f) const;
 
+ protected:
+  void leaf_to(std::string& out, const ir::Node& n) const override;
+  const char* builtin(ir::Op op) const override;
+  void extra_args_to(std::string& out, const ir::Node& call) const override;
+  void operand_to(std::string& out, const ir::Node& parent, size_t i) const override;
+
  private:
-  std::string as(const ir::NodePtr& n, ir::Type wanted) const;  // promotes float → color where asked
-  void as_to(std::string& out, const ir::NodePtr& n, ir::Type wanted) const;
-  void call_args_to(std::string& out, const ir::NodePtr& n) const;
+  void as_to(std::string& out, const ir::NodePtr& n, ir::Type wanted) const;  // promotes float → color where asked
   CDialect d_;
   mutable std::map<const ir::Function*, std::vector<ir::NodePtr>> free_cache_;
 };

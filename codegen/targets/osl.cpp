@@ -30,6 +30,57 @@ std::string triple(const targets::CPrinter& pr, const char* type, const Vec3& v)
   return fmt::format("{}({}, {}, {})", type, pr.literal(v.x), pr.literal(v.y), pr.literal(v.z));
 }
 
+
+// The shader's parameters, one a line: "    type name = value,  // comment".
+struct ShaderParams {
+  std::string text;
+  void add(const std::string& type, const std::string& name, const std::string& value, const char* comment = "") {
+    text.append("    ").append(type).append(" ").append(name).append(" = ").append(value).append(",");
+    if (*comment) text.append("  // ").append(comment);
+    text += '\n';
+  }
+};
+
+// Light i's block of the shader, its parameters added to `params`.
+std::string light_block(const targets::CPrinter& pr, const Light& l, size_t i, ShaderParams& params,
+                        const std::string& constant_args) {
+  std::string id = fmt::format("light{}_", i);
+  params.add("color", id + "color", pr.color_literal(l.color));
+  std::string body;
+  if (l.type == Light::Type::Directional) {
+    params.add("vector", id + "direction", triple(pr, "vector", to_blender(l.direction)), "the way the light travels");
+    body += fmt::format("        vector L = -normalize({}direction);\n", id);
+    body += "        float d = 1e30;\n        float factor = 1.0;\n";
+  } else {
+    params.add("point", id + "position", triple(pr, "point", to_blender(l.position)));
+    body += fmt::format("        vector to_light = {}position - P;\n", id);
+    body += "        float d = length(to_light);\n        vector L = to_light / d;\n";
+    const Attenuation& a = l.attenuation;
+    if (a.law == Attenuation::Law::None) body += "        float factor = 1.0;\n";
+    if (a.law == Attenuation::Law::InverseSquare) body += "        float factor = attenuation_inverse_square(d);\n";
+    if (a.law == Attenuation::Law::Polynomial) {
+      params.add("float", id + "constant", pr.literal(a.constant), "attenuation c1");
+      params.add("float", id + "linear", pr.literal(a.linear), "attenuation c2");
+      params.add("float", id + "quadratic", pr.literal(a.quadratic), "attenuation c3");
+      body += fmt::format(
+          "        float factor = attenuation_polynomial(d, {0}constant, {0}linear, {0}quadratic);\n", id);
+    }
+    if (l.type == Light::Type::Spot) {
+      params.add("vector", id + "direction", triple(pr, "vector", to_blender(l.direction)), "the cone's axis");
+      params.add("float", id + "cutoff", pr.literal(l.cutoff), "degrees");
+      params.add("float", id + "exponent", pr.literal(l.exponent));
+      body += fmt::format(
+          "        factor *= spot_cone(-dot(L, normalize({0}direction)), cos(radians({0}cutoff)), {0}exponent);\n", id);
+    }
+  }
+  const char* kind = l.type == Light::Type::Point ? "point" : l.type == Light::Type::Spot ? "spot" : "directional";
+  std::string out = fmt::format("    {{   // light {}: {}\n{}", i, kind, body);
+  out += "        if (factor > 0 && dot(Nn, L) > 0 && !(shadows && trace(P, L, \"maxdist\", d)))\n";
+  out += fmt::format("            radiance += factor * {}color * facet_reflect(Nn, L, V, T{});\n    }}\n", id,
+                     constant_args);
+  return out;
+}
+
 }  // namespace
 
 std::string osl_sweep_source(const Material& m) {
@@ -93,61 +144,20 @@ std::string generate_osl(const Material& m, const GenerateOptions& o) {
 
   const Scene scene = o.scene ? *o.scene : default_scene();
   // Shader parameters: the material constants, then the scene's ambient and lights.
-  std::string params;
-  auto param = [&](const std::string& type, const std::string& name, const std::string& value,
-                   const char* comment = "") {
-    params.append("    ").append(type).append(" ").append(name).append(" = ").append(value).append(",");
-    if (*comment) params.append("  // ").append(comment);
-    params += '\n';
-  };
+  ShaderParams params;
   auto color_value = [&](const RGB& c) { return pr.color_literal(c); };
   for (const auto& c : pr.free_constants(p.reflectance))
-    param(pr.type(c->type), c->name, c->type == ir::Type::Color ? color_value(c->value) : pr.literal(c->value[0]));
-  param("color", "material_ambient", color_value(m.ambient), "m_a");
-  param("color", "material_emission", color_value(m.emission), "m_e");
-  param("vector", "tangent_axis", triple(pr, "vector", to_blender(normalize(Vec3(m.tangent_axis)))));
-  param("color", "ambient_light", color_value(scene.ambient), "the scene's ambient colour A");
+    params.add(pr.type(c->type), c->name, c->type == ir::Type::Color ? color_value(c->value) : pr.literal(c->value[0]));
+  params.add("color", "material_ambient", color_value(m.ambient), "m_a");
+  params.add("color", "material_emission", color_value(m.emission), "m_e");
+  params.add("vector", "tangent_axis", triple(pr, "vector", to_blender(normalize(Vec3(m.tangent_axis)))));
+  params.add("color", "ambient_light", color_value(scene.ambient), "the scene's ambient colour A");
 
   std::string lights;
-  for (size_t i = 0; i < scene.lights.size(); ++i) {
-    const Light& l = scene.lights[i];
-    std::string id = fmt::format("light{}_", i);
-    param("color", id + "color", color_value(l.color));
-    std::string body;
-    if (l.type == Light::Type::Directional) {
-      param("vector", id + "direction", triple(pr, "vector", to_blender(l.direction)), "the way the light travels");
-      body += fmt::format("        vector L = -normalize({}direction);\n", id);
-      body += "        float d = 1e30;\n        float factor = 1.0;\n";
-    } else {
-      param("point", id + "position", triple(pr, "point", to_blender(l.position)));
-      body += fmt::format("        vector to_light = {}position - P;\n", id);
-      body += "        float d = length(to_light);\n        vector L = to_light / d;\n";
-      const Attenuation& a = l.attenuation;
-      if (a.law == Attenuation::Law::None) body += "        float factor = 1.0;\n";
-      if (a.law == Attenuation::Law::InverseSquare) body += "        float factor = attenuation_inverse_square(d);\n";
-      if (a.law == Attenuation::Law::Polynomial) {
-        param("float", id + "constant", pr.literal(a.constant), "attenuation c1");
-        param("float", id + "linear", pr.literal(a.linear), "attenuation c2");
-        param("float", id + "quadratic", pr.literal(a.quadratic), "attenuation c3");
-        body += fmt::format("        float factor = attenuation_polynomial(d, {0}constant, {0}linear, {0}quadratic);\n", id);
-      }
-      if (l.type == Light::Type::Spot) {
-        param("vector", id + "direction", triple(pr, "vector", to_blender(l.direction)), "the cone's axis");
-        param("float", id + "cutoff", pr.literal(l.cutoff), "degrees");
-        param("float", id + "exponent", pr.literal(l.exponent));
-        body += fmt::format(
-            "        factor *= spot_cone(-dot(L, normalize({0}direction)), cos(radians({0}cutoff)), {0}exponent);\n", id);
-      }
-    }
-    const char* kind = l.type == Light::Type::Point ? "point" : l.type == Light::Type::Spot ? "spot" : "directional";
-    lights += fmt::format("    {{   // light {}: {}\n{}", i, kind, body);
-    lights += "        if (factor > 0 && dot(Nn, L) > 0 && !(shadows && trace(P, L, \"maxdist\", d)))\n";
-    lights += fmt::format("            radiance += factor * {}color * facet_reflect(Nn, L, V, T{});\n    }}\n", id,
-                          constant_args);
-  }
+  for (size_t i = 0; i < scene.lights.size(); ++i) lights += light_block(pr, scene.lights[i], i, params, constant_args);
   std::string shader = render_template("osl/shader.osl", {{"scene", scene.name},
                                                           {"shader", "facet_" + identifier(m.name)},
-                                                          {"parameters", params},
+                                                          {"parameters", params.text},
                                                           {"lights", lights}});
   return header + "\n" + library + shader;
 }

@@ -1,0 +1,423 @@
+// POV-Ray's function route: the shading frame, the lights and the objects as IR
+// functions (named Facet_…, printed like the catalog's terms), the pigments
+// that hold their radiance, and the passes (shared/notes/povray.md, recipe A).
+#include <optional>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "catalog/catalog.h"
+#include "targets/pov_scene.h"
+#include "targets/sweep_grid.h"
+#include "targets/templates.h"
+
+namespace facet::targets {
+
+using ir::Expr;
+
+namespace {
+
+// Three scalar expressions: POV-Ray functions see vectors component by component.
+struct Triple {
+  Expr x, y, z;
+};
+Triple operator+(const Triple& a, const Triple& b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+Triple operator-(const Vec3& a, const Triple& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+Triple operator-(const Triple& a, const Vec3& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+Triple operator/(const Triple& a, const Expr& d) { return {a.x / d, a.y / d, a.z / d}; }
+Expr dot3(const Triple& a, const Triple& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+Expr length3(const Triple& a) { return ir::sqrt(dot3(a, a)); }
+Triple cross3(const Triple& a, const Triple& b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+Triple constant(const Vec3& v) { return {v.x, v.y, v.z}; }
+Triple params(ir::FunctionBuilder& fb, const char* x, const char* y, const char* z) {
+  return {fb.param(x), fb.param(y), fb.param(z)};
+}
+Triple lets(ir::FunctionBuilder& fb, const char* x, const char* y, const char* z, const Triple& v) {
+  return {fb.let(x, v.x), fb.let(y, v.y), fb.let(z, v.z)};
+}
+void append(std::vector<Expr>& out, const Triple& v) { out.insert(out.end(), {v.x, v.y, v.z}); }
+std::vector<Expr> args(std::initializer_list<Triple> vs) {
+  std::vector<Expr> out;
+  for (const auto& v : vs) append(out, v);
+  return out;
+}
+
+// `name`(n, l, v[, t]) → the reflectance of `p` (a light of unit colour), its
+// inputs the dot products of unit vectors, h = (l + v) / Hl, Hl = max(|l + v|, ε)
+// (catalog.h, Input), b = n × t.
+ir::FunctionPtr frame_function(const MaterialProgram& p, const std::string& name, bool tangent) {
+  ir::FunctionBuilder fb(name, "");
+  Triple N = params(fb, "Nx", "Ny", "Nz"), L = params(fb, "Lx", "Ly", "Lz"), V = params(fb, "Vx", "Vy", "Vz");
+  Triple T = tangent ? params(fb, "Tx", "Ty", "Tz") : Triple{0.0, 0.0, 0.0};
+  Triple H = L + V, B = cross3(N, T);
+  Expr Hl = p.uses_half_vector() ? fb.let("Hl", ir::max(length3(H), kEpsilon)) : Expr(1.0);
+  auto input = [&](const std::string& in) -> Expr {
+    if (in == "NoL") return dot3(N, L);
+    if (in == "NoV") return dot3(N, V);
+    if (in == "LoV") return dot3(L, V);
+    if (in == "LoT") return dot3(L, T);
+    if (in == "VoT") return dot3(V, T);
+    if (in == "LoB") return dot3(L, B);
+    if (in == "VoB") return dot3(V, B);
+    if (in == "NoH") return dot3(N, H) / Hl;
+    if (in == "VoH") return dot3(V, H) / Hl;
+    if (in == "HoT") return dot3(H, T) / Hl;
+    if (in == "HoB") return dot3(H, B) / Hl;
+    throw std::logic_error("facet: POV-Ray has no input " + in);
+  };
+  std::vector<Expr> inputs;
+  for (const auto& in : p.inputs) inputs.push_back(input(in));
+  return fb.returns(ir::call(p.reflectance, inputs));
+}
+
+}  // namespace
+
+// {P}Facet_Reflect(n, l, v), with the tangent rule where the model reads t:
+// t = normalize(axis × n), or x̂ × n = (0, −nz, ny) where |axis × n| < ε.
+ir::FunctionPtr PovScene::reflect_function(PovShading& sh) {
+  const MaterialProgram& p = sh.program;
+  if (!p.uses_tangent()) {
+    ir::FunctionPtr f = frame_function(p, "Facet_Reflect", false);
+    sh.printer.add_own(f);
+    return f;
+  }
+  ir::FunctionPtr frame = frame_function(p, "Facet_Frame", true);
+  ir::FunctionBuilder unit("Facet_Tangent", "");  // t = C / |C|
+  Triple N = params(unit, "Nx", "Ny", "Nz"), L = params(unit, "Lx", "Ly", "Lz"), V = params(unit, "Vx", "Vy", "Vz");
+  Triple C = params(unit, "Cx", "Cy", "Cz");
+  Expr len = unit.param("Len");
+  ir::FunctionPtr tangent = unit.returns(ir::call(frame, args({N, L, V, C / len})));
+
+  ir::FunctionBuilder fb("Facet_Reflect", "");
+  N = params(fb, "Nx", "Ny", "Nz"), L = params(fb, "Lx", "Ly", "Lz"), V = params(fb, "Vx", "Vy", "Vz");
+  // |C| from the cross product itself, so one helper takes C and |C|.
+  const Triple axis_x_n = cross3(constant(normalize(Vec3(sh.material->tangent_axis))), N);
+  C = lets(fb, "Cx", "Cy", "Cz", axis_x_n);
+  Expr c_len = fb.let("Len", length3(axis_x_n));
+  std::vector<Expr> fallback = args({N, L, V, {0.0, -N.z, N.y}}), own = args({N, L, V, C});
+  fallback.push_back(ir::sqrt(N.z * N.z + N.y * N.y));
+  own.push_back(c_len);
+  ir::FunctionPtr f =
+      fb.returns(ir::select(c_len < 1e-4, ir::call(tangent, fallback), ir::call(tangent, own)));
+  for (const auto& g : {frame, tangent, f}) sh.printer.add_own(g);
+  return f;
+}
+
+// {P}Facet_Light{i}(x, y, z, n): the radiance of light i of unit colour at a point
+// with unit normal n, seen from the camera: att(d) · spot · reflectance. L and V
+// lead to the light and the eye, D and Dv are their lengths.
+ir::FunctionPtr PovScene::light_function(PovShading& sh, size_t i) {
+  const Light& l = s_.lights[i];
+  ir::FunctionBuilder fb(fmt::format("Facet_Light{}", i), "");
+  Triple P = params(fb, "x", "y", "z"), N = params(fb, "Nx", "Ny", "Nz");
+  if (l.type == Light::Type::Directional) {
+    Triple V = lets(fb, "Vx", "Vy", "Vz", s_.camera.position - P);
+    Expr dv = fb.let("Dv", length3(s_.camera.position - P));
+    ir::FunctionPtr f = fb.returns(ir::call(sh.reflect, args({N, constant(-l.direction), V / dv})));
+    sh.printer.add_own(f);
+    return f;
+  }
+  // The lengths from the differences themselves: one helper takes all four.
+  Triple L = lets(fb, "Lx", "Ly", "Lz", l.position - P), V = lets(fb, "Vx", "Vy", "Vz", s_.camera.position - P);
+  Expr d = fb.let("D", length3(l.position - P)), dv = fb.let("Dv", length3(s_.camera.position - P));
+  std::optional<Expr> factor;
+  auto times = [&](const Expr& x) { factor = factor ? *factor * x : x; };
+  const Attenuation& a = l.attenuation;
+  if (a.law == Attenuation::Law::InverseSquare) times(ir::call(terms::attenuation_inverse_square(), {d}));
+  if (a.law == Attenuation::Law::Polynomial)
+    times(ir::call(terms::attenuation_polynomial(), {d, a.constant, a.linear, a.quadratic}));
+  if (l.type == Light::Type::Spot)
+    times(ir::call(terms::spot_cone(),
+                   {-dot3(L / d, constant(l.direction)), std::cos(l.cutoff * kPi / 180), l.exponent}));
+  Expr reflected = ir::call(sh.reflect, args({N, L / d, V / dv}));
+  ir::FunctionPtr f = fb.returns(factor ? *factor * reflected : reflected);
+  sh.printer.add_own(f);
+  return f;
+}
+
+// Facet_Object{o}_Light{i}: light i on object o. Spheres and squares take
+// (x, y, z); meshes take (x, y, z) and the unnormalized interpolated normal.
+ir::FunctionPtr PovScene::object_function(size_t o, size_t i) {
+  const Object& obj = s_.objects[o];
+  ir::FunctionBuilder fb(fmt::format("Facet_Object{}_Light{}", o, i), "");
+  Triple P = params(fb, "x", "y", "z");
+  const ir::FunctionPtr& light = shading(o).lights[i];
+  if (obj.type == Object::Type::Plane) return fb.returns(ir::call(light, args({P, constant(obj.normal)})));
+  if (obj.type == Object::Type::Mesh) {
+    Triple M = params(fb, "Mx", "My", "Mz");
+    Expr len = fb.let("Len", length3(M));
+    return fb.returns(ir::call(light, args({P, M / len})));
+  }
+  // Sphere: n = (P − C)/|P − C|, which holds for the shrunken copies too.
+  Triple radial = P - obj.center;
+  Expr r = fb.let("R", length3(radial));
+  return fb.returns(ir::call(light, args({P, radial / r})));
+}
+
+void PovScene::build_scaffolding() {
+  for (auto& sh : shadings_) {
+    sh->reflect = reflect_function(*sh);
+    for (size_t i = 0; i < s_.lights.size(); ++i) sh->lights.push_back(light_function(*sh, i));
+  }
+  for (size_t o = 0; o < s_.objects.size(); ++o) {
+    objects_.emplace_back();
+    for (size_t i = 0; i < s_.lights.size(); ++i) objects_.back().push_back(object_function(o, i));
+  }
+}
+
+std::string PovScene::functions() {
+  std::string constants, terms, frames;
+  for (const auto& sh : shadings_) {
+    constants += "// ---- Material constants";
+    if (!sh->prefix.empty()) constants += " of \"" + sh->material->name + "\"";
+    constants += "\n" + sh->printer.constants(sh->program.constants());
+  }
+  std::set<const ir::Function*> printed;
+  for (const auto& sh : shadings_)
+    for (const auto& f : sh->program.functions())
+      if (printed.insert(f.get()).second) terms += sh->printer.function(f) + "\n";
+  for (const auto& sh : shadings_)
+    for (const auto& f : ir::dependencies({sh->reflect}))
+      if (is_scaffold(*f)) frames += sh->printer.function(f);
+  return render_template("pov/functions.pov", {{"constants", constants}, {"terms", terms}, {"frames", frames}});
+}
+
+// The interpolated normal of each triangle of mesh o, as three functions of the
+// hit point: m(P) = n0 + u(P)(n1 − n0) + v(P)(n2 − n0), with the barycentrics u, v
+// linear in P: u = (P − p0)·a1, v = (P − p0)·a2 for the dual basis a1, a2.
+std::string PovScene::mesh_normals(size_t o) {
+  const Mesh& m = *s_.objects[o].mesh;
+  const PovPrinter& printer = shading(o).printer;
+  std::string out = fmt::format("// Mesh \"{}\": each triangle's interpolated normal (unnormalized) at the hit point\n",
+                                s_.objects[o].name);
+  for (size_t t = 0; t < m.triangles.size(); ++t) {
+    const auto& k = m.triangles[t];
+    Vec3 p0 = m.positions[k[0]], e1 = m.positions[k[1]] - p0, e2 = m.positions[k[2]] - p0;
+    Vec3 g = cross(e1, e2);
+    const double g2 = dot(g, g);
+    const Vec3 n0 = m.normals[k[0]];
+    for (int j = 0; j < 3 && g2 == 0; ++j) {  // a degenerate triangle: its first normal
+      ir::FunctionBuilder fb(fmt::format("Facet_Object{}_T{}_{}", o, t, "XYZ"[j]), "");
+      params(fb, "x", "y", "z");
+      out += printer.function(fb.returns(n0[j]));
+    }
+    if (g2 == 0) continue;
+    Vec3 a1 = cross(e2, g) / g2, a2 = cross(g, e1) / g2;
+    Vec3 d1 = m.normals[k[1]] - n0, d2 = m.normals[k[2]] - n0;
+    double c1 = dot(p0, a1), c2 = dot(p0, a2);
+    for (int j = 0; j < 3; ++j) {
+      ir::FunctionBuilder fb(fmt::format("Facet_Object{}_T{}_{}", o, t, "XYZ"[j]), "");
+      Triple P = params(fb, "x", "y", "z");
+      double cx = a1.x * d1[j] + a2.x * d2[j], cy = a1.y * d1[j] + a2.y * d2[j], cz = a1.z * d1[j] + a2.z * d2[j];
+      double c0 = n0[j] - c1 * d1[j] - c2 * d2[j];
+      out += printer.function(fb.returns(cx * P.x + cy * P.y + cz * P.z + c0));
+    }
+  }
+  return out;
+}
+
+std::string PovScene::lights() {
+  std::string functions, objects;
+  for (const auto& sh : shadings_)
+    for (const auto& f : sh->lights) functions += sh->printer.function(f);
+  for (size_t o = 0; o < s_.objects.size(); ++o)
+    for (const auto& f : objects_[o]) objects += shading(o).printer.function(f);
+  for (size_t o = 0; o < s_.objects.size(); ++o)
+    if (s_.objects[o].type == Object::Type::Mesh) objects += mesh_normals(o);
+  return render_template("pov/lights.pov", {{"functions", functions}, {"objects", objects}});
+}
+
+std::string pov_pigment(const PovPrinter& pr, bool dependent, const PovPigment& p, size_t width) {
+  const bool t = p.transmit > 0;
+  auto color = [&](const std::string& r, const std::string& g, const std::string& b) {
+    if (t) return fmt::format("rgbt <{}, {}, {}, {}>", r, g, b, pov_number(p.transmit));
+    return r == g && g == b ? "rgb " + r : fmt::format("rgb <{}, {}, {}>", r, g, b);
+  };
+  // max(0, min(1, radiance · Π factors)), and the colour at 1: weight / Π factors. The
+  // scale is in the colour, not a factor of the pigment: that would scale transmit too.
+  auto held = [&](int ch, const std::vector<Expr>& factors) {
+    Expr product = p.radiance(ch);
+    for (const auto& f : factors) product = product * f;
+    return "function { " + pr.expr(ir::max(0.0, ir::min(1.0, product)).node(), ch) + " }";
+  };
+  auto top = [&](int ch, const std::vector<Expr>& factors, double weight) {
+    std::optional<Expr> product;
+    for (const auto& f : factors) product = product ? *product * f : f;
+    return pr.expr((Expr(weight) / *product).node(), ch);
+  };
+  CodeWriter w(width);
+  if (!dependent) {
+    std::vector<Expr> factors = p.factors(0);
+    if (factors.empty()) return "pigment { " + color("0", "0", "0") + " }\n";
+    w.open("pigment {");
+    w.line(held(0, factors));
+    std::string k = top(0, factors, p.weight);
+    w.line("color_map { [0 " + color("0", "0", "0") + "] [1 " + color(k, k, k) + "] }");
+    w.close("}");
+    return w.take();
+  }
+  w.open("pigment {");
+  w.line("average");
+  w.open("pigment_map {");
+  for (int ch = 0; ch < 3; ++ch) {
+    std::vector<Expr> factors = p.factors(ch);
+    if (factors.empty()) {
+      w.line("[1 " + color("0", "0", "0") + "]");
+      continue;
+    }
+    std::string e[3] = {"0", "0", "0"};
+    e[ch] = top(ch, factors, 3 * p.weight);
+    w.line("[1 " + held(ch, factors));
+    w.line("  color_map { [0 " + color("0", "0", "0") + "] [1 " + color(e[0], e[1], e[2]) + "] }]");
+  }
+  w.close("}");
+  w.close("}");
+  return w.take();
+}
+
+namespace {
+const char* kLitFinish = "finish { ambient 0 emission 0 diffuse 1 brilliance 0 specular 0 phong 0 }\n";
+}  // namespace
+
+// Object o lit by light i, × weight, with transmit t. The function holds
+// min(radiance·S, 1), S = the light's colour × exposure: exact up to the
+// radiance at which the 16-bit output saturates anyway.
+std::string PovScene::lit(size_t o, size_t i, double weight, double t, double shrink, const std::string& mods) {
+  const Object& obj = s_.objects[o];
+  const PovShading& sh = shading(o);
+  const RGB& c = s_.lights[i].color;
+  PovPigment p;
+  p.weight = weight;
+  p.transmit = t;
+  p.factors = [&](int ch) -> std::vector<Expr> {
+    double s = sh.dependent ? c[size_t(ch)] : 0;
+    if (!sh.dependent)
+      for (double x : c)
+        if (x > 0 && (s == 0 || x < s)) s = x;  // the dimmest channel that shows
+    if (s == 0) return {};
+    return {s, var("Facet_Exposure")};
+  };
+  const ir::FunctionPtr& f = objects_[o][i];
+  std::vector<Expr> at = {var("x"), var("y"), var("z")};
+  const size_t width = kPovWidth - indent_ - 4;  // the pigment in the texture in the object (or macro)
+  if (obj.type != Object::Type::Mesh) {
+    p.radiance = [&](int) { return ir::call(f, at); };
+    return object(o, shrink, "texture {\n" + indented(pov_pigment(sh.printer, sh.dependent, p, width), 2) + "  " +
+                                 kLitFinish + "}\n",
+                  mods);
+  }
+  // One texture per triangle, from a macro taking the triangle's normal
+  // functions (declared once, Facet_Object{o}_T{t}_X/Y/Z).
+  std::vector<Expr> with_normal = at;
+  for (const char* n : {"NX", "NY", "NZ"}) with_normal.push_back(ir::call(declared(n, 3), at));
+  p.radiance = [&](int) { return ir::call(f, with_normal); };
+  std::string macro = fmt::format("Facet_Object{}_Light{}_Texture{}", o, i,
+                                  weight == 1 && t == 0 ? "" : fmt::format("_{}", int(weight)));
+  std::string out = "#macro " + macro + "(NX, NY, NZ)\n  texture {\n" +
+                    indented(pov_pigment(sh.printer, sh.dependent, p, width), 4) + "    " + kLitFinish + "  }\n#end\n";
+  std::vector<std::string> items;
+  for (size_t tr = 0; tr < s_.objects[o].mesh->triangles.size(); ++tr)
+    items.push_back(
+        fmt::format("{0}(Facet_Object{1}_T{2}_X, Facet_Object{1}_T{2}_Y, Facet_Object{1}_T{2}_Z)", macro, o, tr));
+  return out + object(o, shrink, texture_list(items), mods);
+}
+
+std::string PovScene::texture_list(const std::vector<std::string>& items) const {
+  return "texture_list {\n  " + std::to_string(items.size()) + ",\n" + fill(items, 2, kPovWidth - indent_ - 2) + "}\n";
+}
+
+// Object o with its emission m_a ⊗ A + m_e, × weight, with transmit t.
+std::string PovScene::emitting(size_t o, double weight, double t, double shrink, const std::string& mods) {
+  std::string texture = emission_texture(shading(o).emission(s_), weight, t);
+  if (s_.objects[o].type != Object::Type::Mesh) return object(o, shrink, texture, mods);
+  // Every triangle the same texture, declared once.
+  std::string name =
+      fmt::format("Facet_Object{}_Emission{}", o, weight == 1 && t == 0 ? "" : fmt::format("_{}", int(weight)));
+  std::vector<std::string> items(s_.objects[o].mesh->triangles.size(), "texture { " + name + " }");
+  return "#declare " + name + " = " + texture + object(o, shrink, texture_list(items), mods);
+}
+
+// Pass `item`: light `item` alone, or after the lights the emission alone.
+std::string PovScene::pass(size_t item) {
+  const size_t n = s_.lights.size();
+  std::string out = item < n ? light_source(s_.lights[item]) : "";
+  for (size_t o = 0; o < s_.objects.size(); ++o) out += item < n ? lit(o, item, 1, 0, 0, "") : emitting(o, 1, 0, 0, "");
+  return out;
+}
+
+std::string PovScene::passes() {
+  const size_t n = s_.lights.size();
+  bool emits = false;
+  for (size_t o = 0; o < s_.objects.size(); ++o) emits |= !pov_black(shading(o).emission(s_));
+  const size_t items = n + (emits ? 1 : 0);
+  if (items <= 1) return items == 1 ? pass(0) : "";
+  std::string cases, copies;
+  for (size_t i = 0; i < items; ++i)
+    cases += fmt::format("#case ({})  // {}\n", i, i < n ? fmt::format("light {}", i) : "emission") + pass(i) +
+             "#break\n";
+  // Copy k lets t_k = (items − k − 1)/(items − k) through to the copies inside it
+  // and keeps 1 − t_k of its own pigment, so copy k is seen with weight
+  // t_0 ⋯ t_(k−1) (1 − t_k) = 1/items: every pigment is scaled by items.
+  for (size_t k = 0; k < items; ++k) {
+    double t = double(items - 1 - k) / double(items - k);
+    double weight = double(items);
+    double shrink = 1e-4 * double(k);
+    std::string mods = k + 1 == items ? "" : "no_shadow\n";
+    if (k >= n) {
+      for (size_t o = 0; o < s_.objects.size(); ++o) copies += emitting(o, weight, t, shrink, mods);
+      continue;
+    }
+    indent_ = 2;
+    std::string group = light_source(s_.lights[k]);
+    for (size_t o = 0; o < s_.objects.size(); ++o) group += lit(o, k, weight, t, shrink, mods);
+    indent_ = 0;
+    copies += "light_group {\n" + indented(group, 2) + "  global_lights off\n}\n";
+  }
+  return render_template("pov/passes.pov", {{"cases", cases}, {"copies", copies}});
+}
+
+// Facet_Point_Shade(x, y, z, n, light position, eye) for the library's pigment macro.
+std::string PovScene::point_shade() {
+  PovShading& sh = *shadings_.front();
+  ir::FunctionBuilder fb("Facet_Point_Shade", "");
+  Triple P = params(fb, "x", "y", "z"), N = params(fb, "Nx", "Ny", "Nz");
+  Triple light = params(fb, "Px", "Py", "Pz"), eye = params(fb, "Ex", "Ey", "Ez");
+  Triple to_light = {light.x - P.x, light.y - P.y, light.z - P.z}, to_eye = {eye.x - P.x, eye.y - P.y, eye.z - P.z};
+  Triple L = lets(fb, "Lx", "Ly", "Lz", to_light), V = lets(fb, "Vx", "Vy", "Vz", to_eye);
+  Expr d = fb.let("D", length3(to_light)), dv = fb.let("Dv", length3(to_eye));
+  ir::FunctionPtr f = fb.returns(ir::call(sh.reflect, args({N, L / d, V / dv})));
+  sh.printer.add_own(f);
+  return sh.printer.function(f);
+}
+
+// The robustness sweep (analysis/sweep.h): each pixel centre of a unit square is a
+// direction set of the grid; each channel shows whether that channel of the
+// reflectance is finite and ≥ 0 (POV-Ray would render a NaN black, like a 0).
+std::string PovScene::sweep() {
+  PovShading& sh = *shadings_.front();
+  PovPrinter grid_printer;
+  std::string grid;
+  for (const auto& f : ir::dependencies(sweep_grid())) grid += grid_printer.function(f) + "\n";
+  ir::FunctionBuilder fb("Facet_Reflect_grid", "");
+  Expr x = fb.param("x"), y = fb.param("y");
+  std::vector<Expr> directions;
+  for (const auto& component : sweep_grid()) directions.push_back(ir::call(component, {x, y}));
+  ir::FunctionPtr f = fb.returns(ir::call(sh.reflect, directions));
+  sh.printer.add_own(f);
+  std::string pigment = "  pigment {\n    average\n    pigment_map {\n";
+  for (int ch = 0; ch < 3; ++ch) {
+    pigment += fmt::format("      [1 function {{ Facet_Ok({}(x, y)) }} color_map {{ [0 rgb 0] [1 rgb {}] }}]\n",
+                           sh.printer.name(f, sh.dependent ? ch : 0),
+                           ch == 0 ? "<3, 0, 0>" : ch == 1 ? "<0, 3, 0>" : "<0, 0, 3>");
+  }
+  pigment += "    }\n  }\n";
+  return render_template("pov/sweep.pov", {{"header", header()},
+                                           {"functions", functions()},
+                                           {"grid", grid},
+                                           {"reflect", sh.printer.function(f)},
+                                           {"pigment", pigment}});
+}
+
+}  // namespace facet::targets

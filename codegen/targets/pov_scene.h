@@ -1,0 +1,94 @@
+// facet — the POV-Ray scene builder, private to codegen/targets: pov.cpp (the
+// frame, the plan, the native route) and pov_functions.cpp (function pigments).
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "catalog/program.h"
+#include "scene/scene.h"
+#include "targets/pov_printer.h"
+#include "targets/targets.h"
+
+namespace facet::targets {
+
+// One material of the scene: its program, the printer with its prefix, and the
+// scaffolding functions that shade with it.
+struct PovShading {
+  const Material* material = nullptr;
+  MaterialProgram program;
+  PovPrinter printer;
+  std::string prefix;      // "" when the scene has one material
+  bool dependent = false;  // the reflectance differs per channel: three functions
+  ir::FunctionPtr reflect;              // {P}Facet_Reflect(n, l, v): the catalog's inputs from unit vectors
+  std::vector<ir::FunctionPtr> lights;  // {P}Facet_Light{i}(x, y, z, n): light i's radiance
+  int channels() const { return dependent ? 3 : 1; }
+  std::string suffix(int ch) const;
+  RGB emission(const Scene& s) const;  // m_a ⊗ A + m_e
+};
+
+// A pigment holding `radiance(ch)` × weight with transmit t: the function holds
+// min(radiance · Π factors(ch), 1) and the colour map scales it back. An empty
+// list of factors is a black channel.
+struct PovPigment {
+  std::function<ir::Expr(int)> radiance;
+  std::function<std::vector<ir::Expr>(int)> factors;
+  double weight = 1;
+  double transmit = 0;
+};
+// `width`: the longest line, counted from the pigment's own indentation.
+std::string pov_pigment(const PovPrinter& printer, bool dependent, const PovPigment& p, size_t width);
+
+class PovScene {
+ public:
+  PovScene(const Scene& s, const Material* fallback, const std::string& source);
+  std::string render();
+  std::string library();
+  std::string sweep();
+
+ private:
+  // pov.cpp
+  std::string header();
+  std::string light_source(const Light& l, std::vector<std::string> extra = {}, double scale = 1,
+                           const std::string& comment = "");
+  std::string object(size_t o, double shrink, const std::string& body, const std::string& modifiers);
+  std::string mesh(size_t o, double shrink, const std::string& body, const std::string& modifiers);
+  std::string native_light(size_t i);
+  std::string native();
+  // pov_functions.cpp
+  void build_scaffolding();
+  ir::FunctionPtr reflect_function(PovShading& sh);
+  ir::FunctionPtr light_function(PovShading& sh, size_t i);
+  ir::FunctionPtr object_function(size_t o, size_t i);
+  std::string functions();
+  std::string lights();
+  std::string mesh_normals(size_t o);
+  std::string lit(size_t o, size_t i, double weight, double t, double shrink, const std::string& mods);
+  std::string emitting(size_t o, double weight, double t, double shrink, const std::string& mods);
+  std::string texture_list(const std::vector<std::string>& items) const;
+  std::string pass(size_t item);
+  std::string passes();
+  std::string point_shade();
+
+  const PovShading& shading(size_t o) const { return *shadings_[shading_of_[o]]; }
+
+  const Scene& s_;
+  std::string source_;
+  PovPlan plan_;
+  std::vector<std::unique_ptr<PovShading>> shadings_;
+  std::vector<size_t> shading_of_;
+  std::vector<std::vector<ir::FunctionPtr>> objects_;  // [o][i]: Facet_Object{o}_Light{i}
+  double scale_ = 1;
+  size_t indent_ = 0;  // of the objects being printed: 2 inside a light_group
+};
+
+// Helpers of both files.
+bool pov_grey(const RGB& c);
+bool pov_black(const RGB& c);
+std::string emission_texture(const RGB& e, double weight, double t);
+// `texture { … }` of a native finish, from the catalog's PovFinish of each lobe.
+std::string native_texture(const Material& m, double weight);
+
+}  // namespace facet::targets

@@ -1,0 +1,4 @@
+{{constants}}
+// ---- Terms (one function per term of the model catalog)
+{{terms}}// ---- Shading frame: unit n, l, v → Reflectance's inputs
+{{frames}}

@@ -1,0 +1,2 @@
+// ---- Lights: the radiance of each light of unit colour, per material and object
+{{functions}}{{objects}}
