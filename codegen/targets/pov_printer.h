@@ -78,6 +78,8 @@ class PovPrinter : public ExprWriter {
 
  protected:
   void leaf_to(std::string& out, const ir::Node& n) const override;
+  // Products and quotients tight (a*b/c), sums spaced: as POV-Ray's own scenes write them, and shorter.
+  bool spaced(ir::Op op) const override { return op != ir::Op::Mul && op != ir::Op::Div; }
   bool spells(const ir::Node& n) const override;
   void spell_to(std::string& out, const ir::NodePtr& n) const override;
   void callee_to(std::string& out, const ir::Node& call) const override;

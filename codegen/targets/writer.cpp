@@ -93,10 +93,11 @@ void ExprWriter::expr_to(std::string& out, const NodePtr& np, int context) const
     out += " : ";
     operand_to(out, n, 2);
   } else if (const char* op = infix(n.op)) {
+    const bool space = spaced(n.op);
     expr_to(out, n.args[0], p);
-    out += ' ';
+    if (space) out += ' ';
     out += op;
-    out += ' ';
+    if (space) out += ' ';
     expr_to(out, n.args[1], p + 1);
   } else {
     const char* name = n.op == Op::Call ? nullptr : builtin(n.op);

@@ -59,6 +59,8 @@ class ExprWriter {
   virtual bool spells(const ir::Node&) const { return false; }
   virtual void spell_to(std::string&, const ir::NodePtr&) const {}
   virtual const char* infix(ir::Op op) const { return infix_operator(op); }
+  // Whether the infix operator `op` stands between spaces (lines break only at spaced ones).
+  virtual bool spaced(ir::Op) const { return true; }
   virtual const char* builtin(ir::Op op) const { return builtin_name(op); }
   // A call's function name, and arguments after the callee's parameters.
   virtual void callee_to(std::string& out, const ir::Node& call) const { out += call.callee->name; }

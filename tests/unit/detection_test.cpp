@@ -95,7 +95,7 @@ TEST(Detection, PovMissingPiFails) {
   std::string good = generate(f.material, o);
   f.job.code_override = good;
   EXPECT_TRUE(judged(f, render_one("pov", f.job)).pass);
-  f.job.code_override = inject(good, "{ pi / 4 * D * G * F / NoV }", "{ 1 / 4 * D * G * F / NoV }");
+  f.job.code_override = inject(good, "{ pi/4*D*G*F/NoV }", "{ 1/4*D*G*F/NoV }");
   ComparisonRow bad = judged(f, render_one("pov", f.job));
   EXPECT_FALSE(bad.pass) << "max |Δ|/max(1,|ref|) " << bad.metrics.max_excess;
 }
