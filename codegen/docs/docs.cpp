@@ -59,10 +59,11 @@ std::vector<std::pair<std::string, std::string>> cell_figures(const CostCell& c,
   std::vector<std::pair<std::string, std::string>> out;
   for (const auto& d : format.figures)
     if (auto it = c.figures.find(d.key); it != c.figures.end()) out.push_back({d.label, figure_text(*it, d.kind)});
-  for (const auto& [key, v] : c.figures.items()) {
+  for (const auto& item : c.figures.items()) {  // no structured binding: clang 14 cannot capture one
+    const std::string& key = item.key();
     const auto& defs = format.figures;
     if (std::none_of(defs.begin(), defs.end(), [&](const CostFigureDef& d) { return d.key == key; }))
-      out.push_back({key, shown(v)});
+      out.push_back({key, shown(item.value())});
   }
   return out;
 }
