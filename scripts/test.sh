@@ -18,6 +18,12 @@ cd "$(dirname "$0")/.."
 stages=${FACET_TEST_STAGES:-main sanitize fuzz}
 jobs=$(nproc)
 
+# The sanitizer builds: -O1, as AddressSanitizer's own documentation advises, and
+# line tables only (-g1), which is all a sanitizer's stack trace prints (function,
+# file:line). Measured on this suite: the build in 4.5 min instead of 11 with
+# -O2 -g, and the tests no slower (391 s against 436 s).
+sanitizer_flags="-O1 -g1 -DNDEBUG"
+
 say() { printf '\033[1m==> %s\033[0m\n' "$*"; }
 
 # configure DIR ARGS…, then build it; the log is shown only when it fails.
@@ -39,7 +45,8 @@ for stage in $stages; do
       ;;
     sanitize)
       say "Stage sanitize: the whole suite under AddressSanitizer and UndefinedBehaviorSanitizer (build-asan/)"
-      build_tree build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DFACET_SANITIZE=ON -DFACET_WERROR=ON \
+      build_tree build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=$sanitizer_flags" \
+        -DFACET_SANITIZE=ON -DFACET_WERROR=ON \
         -DFACET_PYTHON="$PWD/.venv/bin/python"
       # Leak checking included: facet's processes end with every allocation freed
       # or still reachable (gl_renderer.cpp pins Mesa's driver so its own stays reachable).
@@ -56,7 +63,8 @@ for stage in $stages; do
       ;;
     fuzz)
       say "Stage fuzz: libFuzzer targets, bounded runs (build-fuzz/)"
-      build_tree build-fuzz -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo -DFACET_FUZZ=ON \
+      build_tree build-fuzz -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+        "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=$sanitizer_flags" -DFACET_FUZZ=ON \
         -DFACET_WERROR=ON
       (cd build-fuzz && ctest --output-on-failure -j"$jobs" "$@")
       ;;

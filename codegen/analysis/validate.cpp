@@ -36,18 +36,6 @@ bool has_hard_toon(const Material& m) {
   return false;
 }
 
-std::vector<std::string> example_materials() {
-  fs::path dir = "examples/materials";
-#ifdef FACET_SOURCE_DIR
-  if (!fs::exists(dir)) dir = fs::path(FACET_SOURCE_DIR) / "examples/materials";
-#endif
-  std::vector<std::string> files;
-  if (fs::exists(dir))
-    for (const auto& e : fs::directory_iterator(dir))
-      if (e.path().extension() == ".json") files.push_back(e.path().string());
-  std::sort(files.begin(), files.end());
-  return files;
-}
 
 // One image to compare: a material on a scene, or a scene with its own materials.
 struct Case {
@@ -228,6 +216,19 @@ void write_report(const fs::path& out, const ValidateOptions& o, const std::vect
 }
 
 }  // namespace
+
+std::vector<std::string> example_materials() {
+  fs::path dir = "examples/materials";
+#ifdef FACET_SOURCE_DIR
+  if (!fs::exists(dir)) dir = fs::path(FACET_SOURCE_DIR) / "examples/materials";
+#endif
+  std::vector<std::string> files;
+  if (fs::exists(dir))
+    for (const auto& e : fs::directory_iterator(dir))
+      if (e.path().extension() == ".json") files.push_back(e.path().string());
+  std::sort(files.begin(), files.end());
+  return files;
+}
 
 std::string validate_image(const std::string& key, const std::string& scene, const std::string& renderer) {
   return fmt::format("images/{}_{}_{}.png", key, identifier(scene), renderer);

@@ -52,6 +52,9 @@ struct ValidateResult {
 // Where OUT/images/ holds an image: "images/<key>_<scene>_<renderer>.png" (key: ComparisonRow::key).
 std::string validate_image(const std::string& key, const std::string& scene, const std::string& renderer);
 
+// examples/materials/*.json, sorted: from the working directory, else the source tree.
+std::vector<std::string> example_materials();
+
 // Renders, compares, writes OUT/metrics.json, OUT/report.html and OUT/images/.
 ValidateResult validate(const ValidateOptions& options, std::ostream& progress);
 

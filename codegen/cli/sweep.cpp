@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "analysis/sweep.h"
+#include "analysis/validate.h"
 #include "catalog/material.h"
 #include "cli/command.h"
 #include "renderers/renderer.h"
@@ -56,11 +57,7 @@ int run_sweep(const SweepArgs& a) {
   const std::vector<std::string> renderers = renderer_list("--renderers", a.renderers);
   std::vector<Material> ms;
   std::vector<std::string> files = a.materials;
-  if (files.empty()) {
-    for (const auto& e : std::filesystem::directory_iterator(std::filesystem::path(FACET_SOURCE_DIR) / "examples/materials"))
-      files.push_back(e.path().string());
-    std::sort(files.begin(), files.end());
-  }
+  if (files.empty()) files = example_materials();
   for (const auto& f : files) ms.push_back(load_material(f));
   if (a.extremes)
     for (auto& m : extreme_materials()) ms.push_back(m);
