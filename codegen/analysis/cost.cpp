@@ -6,13 +6,13 @@
 #include "analysis/cost.h"
 
 #include <algorithm>
-#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <optional>
+#include <regex>
 #include <sstream>
 
 #include <fmt/format.h>
@@ -365,50 +365,17 @@ struct PovCost {
   double ns_per_pixel = 0;  // 0 when not timed
 };
 
-// A plain scanner rather than <regex>, which costs more to compile than this file.
-size_t skip_spaces(const std::string& s, size_t at) {
-  while (at < s.size() && std::isspace(static_cast<unsigned char>(s[at]))) ++at;
-  return at;
-}
-
-bool word_char(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }
-
-// Whether "WORD = function" (any spacing, "function" a whole word) starts at `at`.
-bool declares_function(const std::string& s, size_t at) {
-  size_t end = at;
-  while (end < s.size() && word_char(s[end])) ++end;
-  if (end == at) return false;
-  at = skip_spaces(s, end);
-  if (at >= s.size() || s[at] != '=') return false;
-  at = skip_spaces(s, at + 1);
-  static const std::string function = "function";
-  return s.compare(at, function.size(), function) == 0 &&
-         (at + function.size() == s.size() || !word_char(s[at + function.size()]));
-}
-
 int count_pov_functions(const std::string& scene) {
-  static const std::string declare = "#declare";
-  int n = 0;
-  for (size_t at = scene.find(declare); at != std::string::npos; at = scene.find(declare, at + 1)) {
-    size_t name = skip_spaces(scene, at + declare.size());
-    if (name > at + declare.size() && declares_function(scene, name)) ++n;
-  }
-  return n;
+  static const std::regex declaration(R"(#declare\s+\w+\s*=\s*function\b)");
+  return int(std::distance(std::sregex_iterator(scene.begin(), scene.end(), declaration), std::sregex_iterator()));
 }
 
 // The trace's CPU time POV-Ray reports ("Trace Time: … using 1 thread(s) with
 // X CPU-seconds total"): less disturbed than wall time by other processes.
 double trace_cpu_seconds(const std::string& log) {
-  size_t at = log.find("Trace Time:");
-  if (at == std::string::npos || (at = log.find('\n', at)) == std::string::npos) return -1;
-  at = skip_spaces(log, at);
-  static const std::string with = " thread(s) with ";
-  if (log.compare(at, 6, "using ") != 0 || (at = log.find(with, at)) == std::string::npos) return -1;
-  at += with.size();
-  size_t end = at;
-  while (end < log.size() && (std::isdigit(static_cast<unsigned char>(log[end])) || log[end] == '.')) ++end;
-  if (end == at || log.compare(end, 12, " CPU-seconds") != 0) return -1;
-  return std::stod(log.substr(at, end - at));
+  static const std::regex trace(R"(Trace Time:[^\n]*\n\s*using \d+ thread\(s\) with ([0-9.]+) CPU-seconds)");
+  std::smatch m;
+  return std::regex_search(log, m, trace) ? std::stod(m[1]) : -1;
 }
 
 void pov_counts(const std::vector<Material>& ms, const fs::path& dir, std::vector<PovCost>& out) {

@@ -36,7 +36,6 @@ bool has_hard_toon(const Material& m) {
   return false;
 }
 
-
 // One image to compare: a material on a scene, or a scene with its own materials.
 struct Case {
   std::optional<Material> material;  // absent: the scene's own materials

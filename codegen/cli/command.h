@@ -1,5 +1,7 @@
 // facet's command line: one file per command (cli/<command>.cpp), each adding its
 // subcommand, options and help to the app and returning how to run it.
+// The files are compiled as one translation unit (UNITY_BUILD in codegen/CMakeLists.txt,
+// so CLI11 is compiled once): names in their anonymous namespaces must differ between files.
 #pragma once
 
 #include <functional>

@@ -6,6 +6,7 @@
 // format `facet cost --json` prints, not measurements.
 #include <algorithm>
 #include <filesystem>
+#include <regex>
 #include <set>
 
 #include <gtest/gtest.h>
@@ -39,12 +40,9 @@ size_t count(const std::string& text, const std::string& what) {
 // Every src= and href= of a page, as written.
 std::vector<std::string> links(const std::string& html) {
   std::vector<std::string> out;
-  for (const std::string attribute : {"src=\"", "href=\""})
-    for (size_t at = html.find(attribute); at != std::string::npos; at = html.find(attribute, at + 1)) {
-      size_t start = at + attribute.size(), end = html.find('"', start);
-      if (end == std::string::npos) break;
-      out.push_back(html.substr(start, end - start));
-    }
+  std::regex link(R"re((?:src|href)="([^"]*)")re");
+  for (auto it = std::sregex_iterator(html.begin(), html.end(), link); it != std::sregex_iterator(); ++it)
+    out.push_back((*it)[1]);
   return out;
 }
 
