@@ -1,4 +1,5 @@
 // facet generate: generate GLSL, OSL or POV-Ray code from a material file.
+#include <filesystem>
 #include <iostream>
 
 #include <CLI/CLI.hpp>
@@ -11,6 +12,7 @@
 #include "targets/targets.h"
 
 using nlohmann::json;
+namespace fs = std::filesystem;
 
 namespace facet::cli {
 namespace {
@@ -20,6 +22,7 @@ struct GenerateArgs {
   std::string target = "glsl";
   std::string scene;
   std::string output;
+  std::string pov_route = "auto";
   bool library = false;
   bool json = false;  // --json: print what was generated as one JSON object
 };
@@ -33,27 +36,62 @@ int run_generate(const GenerateArgs& a) {
                                                                    "unless every object of --scene has its own")
                                           : load_optional_material(a.material, std::nullopt,
                                                                    "for --target " + a.target + (a.library ? " --library" : ""));
+  bool to_stdout = a.output.empty() || a.output == "-";
+  const PovRoute route = *parse_pov_route(a.pov_route);  // CLI11 checked the name
   std::string code;
-  if (m) {
+  PovOutput pov;
+  if (whole_scene) {
+    const fs::path out(to_stdout ? "facet.pov" : a.output);
+    const std::string named = a.scene.empty() ? a.material : a.scene;
+    try {
+      pov = generate_pov_files(scene ? *scene : default_scene(), m ? &*m : nullptr, m ? a.material : a.scene, route,
+                               out.stem().string());
+    } catch (const std::invalid_argument& e) {  // --pov-route native where a material is not
+      throw InputError({Diagnostic{named, "", e.what()}});
+    }
+    if (!pov.files.empty() && to_stdout)
+      throw InputError({Diagnostic{named, "", "its meshes read " + pov.files.front().name +
+                                                  " beside the .pov (their geometry, for POV-Ray's functions): "
+                                                  "give -o FILE.pov"}});
+    if (!a.json)  // the JSON carries them
+      for (const auto& r : pov.plan.routes) std::cerr << "facet: " << r << "\n";
+    code = std::move(pov.code);
+  } else {
     GenerateOptions o;
     o.target = *target;
     o.library = a.library;
     o.source = a.material;
     o.scene = scene;
+    o.pov_route = route;
     code = generate(*m, o);
-  } else {
-    code = generate_pov_scene(*scene, nullptr, a.scene);
   }
-  bool to_stdout = a.output.empty() || a.output == "-";
+  // The files beside the scene first, the scene last: a scene is never left reading a missing file.
+  std::vector<std::string> written;
+  auto write_all = [&] {
+    try {
+      for (const auto& f : pov.files) {
+        const std::string path = (fs::path(a.output).parent_path() / f.name).string();
+        write_file_atomic(path, f.data);
+        written.push_back(path);
+      }
+      if (!to_stdout) write_file_atomic(a.output, code);
+    } catch (...) {
+      for (const auto& w : written) fs::remove(w);
+      throw;
+    }
+  };
   if (a.json) {
     using ojson = nlohmann::ordered_json;  // keys in the documented order
     ojson j = {{"target", a.target}, {"output", to_stdout ? ojson() : ojson(a.output)}};
     if (whole_scene) {  // the scene generate() renders: --scene's, else default_scene()
-      PovPlan p = m ? pov_plan(*m, scene ? *scene : default_scene()) : pov_plan(*scene, nullptr);
-      j["pov"] = {{"passes", p.passes}, {"native", p.native}, {"reason", p.reason}};
+      const PovPlan& p = pov.plan;
+      ojson files = ojson::array();
+      for (const auto& f : pov.files) files.push_back(f.name);
+      j["pov"] = {{"passes", p.passes}, {"native", p.native}, {"reason", p.reason}, {"routes", p.routes},
+                  {"files", files}};
     }
     if (to_stdout) j["code"] = code;
-    else write_file_atomic(a.output, code);
+    write_all();
     std::cout << j.dump() << "\n";
     return 0;
   }
@@ -61,7 +99,7 @@ int run_generate(const GenerateArgs& a) {
     std::cout << code;
     return 0;
   }
-  write_file_atomic(a.output, code);
+  write_all();
   return 0;
 }
 
@@ -82,6 +120,13 @@ Command generate_command(CLI::App& app) {
   g->add_option("--scene", gen.scene,
                 "Scene for OSL's lights and POV-Ray's frame: a scene file or a built-in name (single, shadows). "
                 "Default: single");
+  g->add_option("--pov-route", gen.pov_route,
+                "How POV-Ray draws the scene: auto (POV-Ray's own finish where every material is one exactly, "
+                "else function pigments), native (the finish, or an error saying why not), exact (function "
+                "pigments everywhere). A mesh drawn by function pigments reads its geometry from FILE_meshN.ppm, "
+                "written beside -o FILE.pov")
+      ->check(CLI::IsMember({"auto", "native", "exact"}))
+      ->capture_default_str();
   g->add_flag("--library", gen.library,
               "Only the functions, for an engine (GLSL, OSL), or an include file declaring the texture (POV-Ray)");
   g->add_option("-o,--output", gen.output, "Output file; standard output without it. Written whole or not at all");

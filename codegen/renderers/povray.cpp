@@ -115,10 +115,12 @@ RenderOutcome render_pov(const RenderJob& job) {
   const Material* fallback = job.material ? &*job.material : nullptr;
   const std::string base = job_name(job);
   try {
-    write_file_atomic((fs::path(dir) / (base + ".pov")).string(),
-                      job.code_override.empty()
-                          ? generate_pov_scene(job.scene, fallback, fallback ? fallback->source : job.scene.source)
-                          : job.code_override);
+    // The files beside the scene (a mesh's data image) come with an overriding code too.
+    PovOutput pov = generate_pov_files(job.scene, fallback, fallback ? fallback->source : job.scene.source,
+                                       PovRoute::Auto, base);
+    if (!job.code_override.empty()) pov.code = job.code_override;
+    for (const auto& f : pov.files) write_file_atomic((fs::path(dir) / f.name).string(), f.data);
+    write_file_atomic((fs::path(dir) / (base + ".pov")).string(), pov.code);
   } catch (const std::invalid_argument& e) {  // an object without a material, and none given
     out.error = e.what();
     return out;

@@ -20,6 +20,7 @@
 #include <algorithm>
 #include <cmath>
 #include <set>
+#include <stdexcept>
 
 #include <fmt/format.h>
 
@@ -81,17 +82,46 @@ std::string material_native(const Material& m) {
 
 }  // namespace
 
-PovPlan pov_plan(const Scene& s, const Material* fallback) {
+namespace {
+
+std::string object_kind(const Object& o) {
+  switch (o.type) {
+    case Object::Type::Sphere: return "sphere";
+    case Object::Type::Plane: return "square";
+    case Object::Type::Mesh: return fmt::format("mesh of {} triangles", o.mesh->triangles.size());
+  }
+  return "object";
+}
+
+// How object o is drawn, for the header and stderr.
+std::string route_line(const Object& o, bool native) {
+  std::string how;
+  if (native)
+    how = o.type == Object::Type::Mesh
+              ? "POV-Ray's finish on mesh2, whose normals POV-Ray blends barycentrically as facet does (exact; "
+                "POV-Ray stores the vertices in float32)"
+              : "POV-Ray's finish (exact)";
+  else
+    how = o.type == Object::Type::Mesh ? "function pigments, the geometry read from a data image (exact)"
+                                       : "function pigments on the analytic normal (exact)";
+  return fmt::format("object \"{}\" ({}): {}", o.name, object_kind(o), how);
+}
+
+}  // namespace
+
+PovPlan pov_plan(const Scene& s, const Material* fallback, PovRoute route) {
   PovPlan plan;
+  if (route == PovRoute::Exact) plan.reason = "--pov-route exact: function pigments for every object";
   for (size_t i = 0; i < s.objects.size() && plan.reason.empty(); ++i) {
-    if (s.objects[i].type == Object::Type::Mesh)
-      plan.reason = "meshes are shaded by function pigments (exact interpolated normals)";
-    else
-      plan.reason = material_native(s.material_of(i, fallback));
+    plan.reason = material_native(s.material_of(i, fallback));
+    if (!plan.reason.empty()) plan.reason = "object \"" + s.objects[i].name + "\": " + plan.reason;
   }
   for (const auto& l : s.lights)
     if (plan.reason.empty() && !native_attenuation(l)) plan.reason = "this attenuation law is not a POV-Ray fade";
   plan.native = plan.reason.empty();
+  if (route == PovRoute::Native && !plan.native)
+    throw std::invalid_argument("--pov-route native: " + plan.reason);
+  for (const auto& o : s.objects) plan.routes.push_back(route_line(o, plan.native));
   // Function pigments: a pass per light, and one for the emission (m_a ⊗ A + m_e).
   bool emits = false;
   for (size_t i = 0; i < s.objects.size(); ++i) {
@@ -102,7 +132,7 @@ PovPlan pov_plan(const Scene& s, const Material* fallback) {
   return plan;
 }
 
-PovPlan pov_plan(const Material& m, const Scene& s) { return pov_plan(s, &m); }
+PovPlan pov_plan(const Material& m, const Scene& s, PovRoute route) { return pov_plan(s, &m, route); }
 
 namespace targets {
 
@@ -158,8 +188,10 @@ std::string native_texture(const Material& m, double weight) {
 
 // ---------------------------------------------------------------- the scene's frame
 
-PovScene::PovScene(const Scene& s, const Material* fallback, const std::string& source)
-    : s_(s), source_(source), plan_(pov_plan(s, fallback)) {
+PovScene::PovScene(const Scene& s, const Material* fallback, const std::string& source, PovRoute route,
+                   const std::string& stem)
+    : s_(s), source_(source), plan_(pov_plan(s, fallback, route)), stem_(stem), data_(s.objects.size()),
+      routes_(plan_.routes) {
   std::vector<const Material*> distinct;
   for (size_t i = 0; i < s.objects.size(); ++i) {
     const Material* m = &s.material_of(i, fallback);
@@ -198,14 +230,15 @@ PovScene::PovScene(const Scene& s, const Material* fallback, const std::string& 
 std::string PovScene::render() {
   const Camera& c = s_.camera;
   const int count = plan_.native ? 1 : plan_.passes;
-  return render_template("pov/scene.pov", {{"header", header()},
+  std::string body = plan_.native ? native() : functions() + lights() + passes();  // before the header: it
+  return render_template("pov/scene.pov", {{"header", header()},                      // names what lights() measured
                                            {"passes", std::to_string(count)},
                                            {"last", std::to_string(count - 1)},
                                            {"location", pov_vector(c.position)},
                                            {"sky", pov_vector(c.up)},
                                            {"fov", pov_number(c.fov)},
                                            {"look_at", pov_vector(c.look_at)},
-                                           {"body", plan_.native ? native() : functions() + lights() + passes()}});
+                                           {"body", body}});
 }
 
 std::string PovScene::library() {
@@ -283,6 +316,7 @@ std::string PovScene::header() {
   if (!plan_.native) notes += "\n(" + plan_.reason + ")";
   std::string note_lines;
   comment_to(note_lines, notes, "", "//", kPovWidth);
+  for (const auto& r : routes_) comment_to(note_lines, r, "", "//", kPovWidth);
   return render_template("pov/header.pov", {{"kind", shadings_.size() > 1 ? "materials" : "material"},
                                             {"names", names},
                                             {"route", plan_.native ? "(native finish)" : "(function pigments)"},
@@ -341,24 +375,24 @@ std::string PovScene::object(size_t o, double shrink, const std::string& body, c
   return w.take();
 }
 
-// A mesh: `body` is its texture_list (each face uses its own texture).
+// A mesh with `body` (its texture) inside. On the native route its lists are
+// written here; on the function route mesh_declarations() wrote them as macros,
+// and a copy inset by `shrink` has vertices of its own.
 std::string PovScene::mesh(size_t o, double shrink, const std::string& body, const std::string& modifiers) {
   const Object& obj = s_.objects[o];
   const Mesh& m = *obj.mesh;
-  auto list = [this](const std::string& name, const std::vector<std::string>& items) {
-    return name + " {\n    " + std::to_string(items.size()) + ",\n" + fill(items, 4, kPovWidth - indent_) + "  }\n";
-  };
-  std::vector<std::string> positions, normals, faces;
-  for (size_t i = 0; i < m.positions.size(); ++i)
-    positions.push_back(pov_vector(m.positions[i] - m.normals[i] * (shrink * scale_)));
-  for (const auto& n : m.normals) normals.push_back(pov_vector(n));
-  for (size_t i = 0; i < m.triangles.size(); ++i) {
-    const auto& t = m.triangles[i];
-    faces.push_back(fmt::format("<{}, {}, {}>", t[0], t[1], t[2]) + (body.empty() ? "" : fmt::format(", {}", i)));
+  std::string out = "mesh2 {  // " + obj.name + "\n";
+  if (plan_.native) {
+    out += pov_vector_list("vertex_vectors", m.positions, 2) + pov_vector_list("normal_vectors", m.normals, 2) +
+           pov_mesh_faces(m, 2);
+  } else if (shrink == 0) {
+    out += fmt::format("  Facet_Mesh{0}_Vertices()\n  Facet_Mesh{0}_Shape()\n", o);
+  } else {
+    std::vector<Vec3> inset(m.positions.size());
+    for (size_t i = 0; i < inset.size(); ++i) inset[i] = m.positions[i] - m.normals[i] * (shrink * scale_);
+    out += pov_vector_list("vertex_vectors", inset, 2) + fmt::format("  Facet_Mesh{}_Shape()\n", o);
   }
-  return "mesh2 {  // " + obj.name + "\n  " + list("vertex_vectors", positions) + "  " +
-         list("normal_vectors", normals) + indented(body, 2) + "  " + list("face_indices", faces) +
-         indented(modifiers, 2) + "}\n";
+  return out + indented(body, 2) + indented(modifiers, 2) + "}\n";
 }
 
 // ---------------------------------------------------------------- the native route
@@ -369,7 +403,13 @@ std::string PovScene::native_light(size_t i) {
   const Attenuation& a = l.attenuation;
   double scale = 1;
   std::vector<std::string> extra;
-  if (a.law == Attenuation::Law::InverseSquare) extra.push_back("fade_distance 0 fade_power 2");
+  // POV-Ray fades only when fade_distance > 1e-10 (point.cpp): 1/d² is C/(2 fd²) · 2/(1 + (d/fd)²) = C/(fd² + d²)
+  // with fd = 1e-4, within 1e-8/d² of it (povray.md §2).
+  if (a.law == Attenuation::Law::InverseSquare) {
+    constexpr double fd = 1e-4;
+    scale = 1 / (2 * fd * fd);
+    extra.push_back(fmt::format("fade_distance {} fade_power 2", pov_number(fd)));
+  }
   if (a.law == Attenuation::Law::Polynomial) {
     if (a.linear == 0 && a.quadratic == 0) {
       scale = 1 / a.constant;
@@ -404,20 +444,42 @@ std::string PovScene::native() {
 
 }  // namespace targets
 
-std::string generate_pov(const Material& m, const GenerateOptions& o) {
-  Scene s = o.scene ? *o.scene : default_scene();
-  targets::PovScene scene(s, &m, o.source);
-  return o.library ? scene.library() : scene.render();
-}
-
 std::string generate_pov_sweep(const Material& m) {
   Scene s = default_scene();
   return targets::PovScene(s, &m, m.source).sweep();
 }
 
+PovOutput generate_pov_files(const Scene& s, const Material* fallback, const std::string& source, PovRoute route,
+                             const std::string& stem) {
+  targets::PovScene scene(s, fallback, source, route, stem);
+  PovOutput out;
+  out.code = scene.render();
+  out.files = std::move(scene.files());
+  out.plan = pov_plan(s, fallback, route);
+  out.plan.routes = scene.routes();
+  return out;
+}
+
+namespace {
+
+// The code of a scene that reads no file beside it.
+std::string pov_code_alone(const PovOutput& out) {
+  if (!out.files.empty())
+    throw std::invalid_argument("this POV-Ray scene reads " + out.files.front().name +
+                                " beside it: write it with generate_pov_files (facet generate -o FILE)");
+  return out.code;
+}
+
+}  // namespace
+
 std::string generate_pov_scene(const Scene& s, const Material* fallback, const std::string& source) {
-  targets::PovScene scene(s, fallback, source);
-  return scene.render();
+  return pov_code_alone(generate_pov_files(s, fallback, source, PovRoute::Auto, "facet"));
+}
+
+std::string generate_pov(const Material& m, const GenerateOptions& o) {
+  Scene s = o.scene ? *o.scene : default_scene();
+  if (o.library) return targets::PovScene(s, &m, o.source, o.pov_route).library();
+  return pov_code_alone(generate_pov_files(s, &m, o.source, o.pov_route, "facet"));
 }
 
 }  // namespace facet

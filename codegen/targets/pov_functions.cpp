@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "catalog/catalog.h"
+#include "targets/pov_mesh.h"
 #include "targets/pov_scene.h"
 #include "targets/sweep_grid.h"
 #include "targets/templates.h"
@@ -146,9 +147,17 @@ ir::FunctionPtr PovScene::object_function(size_t o, size_t i) {
   const ir::FunctionPtr& light = shading(o).lights[i];
   if (obj.type == Object::Type::Plane) return fb.returns(ir::call(light, args({P, constant(obj.normal)})));
   if (obj.type == Object::Type::Mesh) {
-    Triple M = params(fb, "Mx", "My", "Mz");
+    // (x, y) is uv_mapping's: the triangle and its barycentrics, whose point
+    // and normal the data functions read (pov_mesh.h).
+    auto data = [&](const char* f, size_t n) { return declared(fmt::format("Facet_Mesh{}_{}", o, f), n); };
+    std::vector<Expr> at = {fb.let("Tri", ir::call(data("Tri", 2), {P.x, P.y})),
+                            fb.let("A", ir::call(data("Bary", 1), {P.x})), fb.let("B", ir::call(data("Bary", 1), {P.y}))};
+    Triple hit = lets(fb, "Px", "Py", "Pz", {ir::call(data("PX", 3), at), ir::call(data("PY", 3), at),
+                                             ir::call(data("PZ", 3), at)});
+    Triple M = lets(fb, "Mx", "My", "Mz", {ir::call(data("MX", 3), at), ir::call(data("MY", 3), at),
+                                           ir::call(data("MZ", 3), at)});
     Expr len = fb.let("Len", length3(M));
-    return fb.returns(ir::call(light, args({P, M / len})));
+    return fb.returns(ir::call(light, args({hit, M / len})));
   }
   // Sphere: n = (P − C)/|P − C|, which holds for the shrunken copies too.
   Triple radial = P - obj.center;
@@ -184,37 +193,22 @@ std::string PovScene::functions() {
   return render_template("pov/functions.pov", {{"constants", constants}, {"terms", terms}, {"frames", frames}});
 }
 
-// The interpolated normal of each triangle of mesh o, as three functions of the
-// hit point: m(P) = n0 + u(P)(n1 − n0) + v(P)(n2 − n0), with the barycentrics u, v
-// linear in P: u = (P − p0)·a1, v = (P − p0)·a2 for the dual basis a1, a2.
-std::string PovScene::mesh_normals(size_t o) {
-  const Mesh& m = *s_.objects[o].mesh;
-  const PovPrinter& printer = shading(o).printer;
-  std::string out = fmt::format("// Mesh \"{}\": each triangle's interpolated normal (unnormalized) at the hit point\n",
-                                s_.objects[o].name);
-  for (size_t t = 0; t < m.triangles.size(); ++t) {
-    const auto& k = m.triangles[t];
-    Vec3 p0 = m.positions[k[0]], e1 = m.positions[k[1]] - p0, e2 = m.positions[k[2]] - p0;
-    Vec3 g = cross(e1, e2);
-    const double g2 = dot(g, g);
-    const Vec3 n0 = m.normals[k[0]];
-    for (int j = 0; j < 3 && g2 == 0; ++j) {  // a degenerate triangle: its first normal
-      ir::FunctionBuilder fb(fmt::format("Facet_Object{}_T{}_{}", o, t, "XYZ"[j]), "");
-      params(fb, "x", "y", "z");
-      out += printer.function(fb.returns(n0[j]));
-    }
-    if (g2 == 0) continue;
-    Vec3 a1 = cross(e2, g) / g2, a2 = cross(g, e1) / g2;
-    Vec3 d1 = m.normals[k[1]] - n0, d2 = m.normals[k[2]] - n0;
-    double c1 = dot(p0, a1), c2 = dot(p0, a2);
-    for (int j = 0; j < 3; ++j) {
-      ir::FunctionBuilder fb(fmt::format("Facet_Object{}_T{}_{}", o, t, "XYZ"[j]), "");
-      Triple P = params(fb, "x", "y", "z");
-      double cx = a1.x * d1[j] + a2.x * d2[j], cy = a1.y * d1[j] + a2.y * d2[j], cz = a1.z * d1[j] + a2.z * d2[j];
-      double c0 = n0[j] - c1 * d1[j] - c2 * d2[j];
-      out += printer.function(fb.returns(cx * P.x + cy * P.y + cz * P.z + c0));
-    }
-  }
+// Mesh o's data functions (pov_mesh.h) and two macros: its vertices as they are
+// and the rest of its mesh2 (normals, uv numbering, faces), which every pass and
+// copy of it shares.
+std::string PovScene::mesh_declarations(size_t o) {
+  const Object& obj = s_.objects[o];
+  const Mesh& m = *obj.mesh;
+  data_[o] = pov_mesh_data(m, fmt::format("{}_mesh{}.ppm", stem_, o));
+  files_.push_back({data_[o].file, std::move(data_[o].image)});
+  routes_[o] += fmt::format("; {} holds its positions to {:.2g} and normals to {:.2g}", data_[o].file,
+                            data_[o].position_error, data_[o].normal_error);
+  std::string out = pov_mesh_decoder(data_[o], o);
+  out += fmt::format("// Mesh {} (\"{}\"): its vertices, and the rest of its mesh2\n", o, obj.name);
+  out += fmt::format("#macro Facet_Mesh{}_Vertices()\n", o) + pov_vector_list("vertex_vectors", m.positions, 2) +
+         "#end\n";
+  out += fmt::format("#macro Facet_Mesh{}_Shape()\n", o) + pov_vector_list("normal_vectors", m.normals, 2) +
+         pov_mesh_uv_vectors(m, 2) + pov_mesh_faces(m, 2) + pov_mesh_uv_indices(m, 2) + "#end\n";
   return out;
 }
 
@@ -223,9 +217,9 @@ std::string PovScene::lights() {
   for (const auto& sh : shadings_)
     for (const auto& f : sh->lights) functions += sh->printer.function(f);
   for (size_t o = 0; o < s_.objects.size(); ++o)
-    for (const auto& f : objects_[o]) objects += shading(o).printer.function(f);
+    if (s_.objects[o].type == Object::Type::Mesh) objects += mesh_declarations(o);  // the data functions first
   for (size_t o = 0; o < s_.objects.size(); ++o)
-    if (s_.objects[o].type == Object::Type::Mesh) objects += mesh_normals(o);
+    for (const auto& f : objects_[o]) objects += shading(o).printer.function(f);
   return render_template("pov/lights.pov", {{"functions", functions}, {"objects", objects}});
 }
 
@@ -301,42 +295,19 @@ std::string PovScene::lit(size_t o, size_t i, double weight, double t, double sh
   };
   const ir::FunctionPtr& f = objects_[o][i];
   std::vector<Expr> at = {var("x"), var("y"), var("z")};
-  const size_t width = kPovWidth - indent_ - 4;  // the pigment in the texture in the object (or macro)
-  if (obj.type != Object::Type::Mesh) {
-    p.radiance = [&](int) { return ir::call(f, at); };
-    return object(o, shrink, "texture {\n" + indented(pov_pigment(sh.printer, sh.dependent, p, width), 2) + "  " +
-                                 kLitFinish + "}\n",
-                  mods);
-  }
-  // One texture per triangle, from a macro taking the triangle's normal
-  // functions (declared once, Facet_Object{o}_T{t}_X/Y/Z).
-  std::vector<Expr> with_normal = at;
-  for (const char* n : {"NX", "NY", "NZ"}) with_normal.push_back(ir::call(declared(n, 3), at));
-  p.radiance = [&](int) { return ir::call(f, with_normal); };
-  std::string macro = fmt::format("Facet_Object{}_Light{}_Texture{}", o, i,
-                                  weight == 1 && t == 0 ? "" : fmt::format("_{}", int(weight)));
-  std::string out = "#macro " + macro + "(NX, NY, NZ)\n  texture {\n" +
-                    indented(pov_pigment(sh.printer, sh.dependent, p, width), 4) + "    " + kLitFinish + "  }\n#end\n";
-  std::vector<std::string> items;
-  for (size_t tr = 0; tr < s_.objects[o].mesh->triangles.size(); ++tr)
-    items.push_back(
-        fmt::format("{0}(Facet_Object{1}_T{2}_X, Facet_Object{1}_T{2}_Y, Facet_Object{1}_T{2}_Z)", macro, o, tr));
-  return out + object(o, shrink, texture_list(items), mods);
-}
-
-std::string PovScene::texture_list(const std::vector<std::string>& items) const {
-  return "texture_list {\n  " + std::to_string(items.size()) + ",\n" + fill(items, 2, kPovWidth - indent_ - 2) + "}\n";
+  const size_t width = kPovWidth - indent_ - 4;  // the pigment in the texture in the object
+  p.radiance = [&](int) { return ir::call(f, at); };
+  // A mesh's pigment sees uv_mapping's (u, v): its object function reads the rest.
+  const char* mapping = obj.type == Object::Type::Mesh ? "  uv_mapping\n" : "";
+  return object(o, shrink,
+                "texture {\n" + std::string(mapping) + indented(pov_pigment(sh.printer, sh.dependent, p, width), 2) +
+                    "  " + kLitFinish + "}\n",
+                mods);
 }
 
 // Object o with its emission m_a ⊗ A + m_e, × weight, with transmit t.
 std::string PovScene::emitting(size_t o, double weight, double t, double shrink, const std::string& mods) {
-  std::string texture = emission_texture(shading(o).emission(s_), weight, t);
-  if (s_.objects[o].type != Object::Type::Mesh) return object(o, shrink, texture, mods);
-  // Every triangle the same texture, declared once.
-  std::string name =
-      fmt::format("Facet_Object{}_Emission{}", o, weight == 1 && t == 0 ? "" : fmt::format("_{}", int(weight)));
-  std::vector<std::string> items(s_.objects[o].mesh->triangles.size(), "texture { " + name + " }");
-  return "#declare " + name + " = " + texture + object(o, shrink, texture_list(items), mods);
+  return object(o, shrink, emission_texture(shading(o).emission(s_), weight, t), mods);
 }
 
 // Pass `item`: light `item` alone, or after the lights the emission alone.

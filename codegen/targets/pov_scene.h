@@ -9,6 +9,7 @@
 
 #include "catalog/program.h"
 #include "scene/scene.h"
+#include "targets/pov_mesh.h"
 #include "targets/pov_printer.h"
 #include "targets/targets.h"
 
@@ -43,8 +44,13 @@ std::string pov_pigment(const PovPrinter& printer, bool dependent, const PovPigm
 
 class PovScene {
  public:
-  PovScene(const Scene& s, const Material* fallback, const std::string& source);
+  // `stem` starts the names of the files the scene reads (pov_mesh.h).
+  PovScene(const Scene& s, const Material* fallback, const std::string& source, PovRoute route = PovRoute::Auto,
+           const std::string& stem = "facet");
   std::string render();
+  // After render(): the files to write beside the scene, and each object's route.
+  std::vector<PovFile>& files() { return files_; }
+  const std::vector<std::string>& routes() const { return routes_; }
   std::string library();
   std::string sweep();
 
@@ -64,10 +70,9 @@ class PovScene {
   ir::FunctionPtr object_function(size_t o, size_t i);
   std::string functions();
   std::string lights();
-  std::string mesh_normals(size_t o);
+  std::string mesh_declarations(size_t o);
   std::string lit(size_t o, size_t i, double weight, double t, double shrink, const std::string& mods);
   std::string emitting(size_t o, double weight, double t, double shrink, const std::string& mods);
-  std::string texture_list(const std::vector<std::string>& items) const;
   std::string pass(size_t item);
   std::string passes();
   std::string point_shade();
@@ -80,6 +85,10 @@ class PovScene {
   std::vector<std::unique_ptr<PovShading>> shadings_;
   std::vector<size_t> shading_of_;
   std::vector<std::vector<ir::FunctionPtr>> objects_;  // [o][i]: Facet_Object{o}_Light{i}
+  std::string stem_;
+  std::vector<PovMeshData> data_;      // [o]: a mesh's data image on the function route
+  std::vector<PovFile> files_;
+  std::vector<std::string> routes_;    // [o]: how object o is drawn
   double scale_ = 1;
   size_t indent_ = 0;  // of the objects being printed: 2 inside a light_group
 };

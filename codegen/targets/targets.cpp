@@ -13,6 +13,14 @@ std::optional<Target> parse_target(const std::string& name) {
   return std::nullopt;
 }
 
+std::optional<PovRoute> parse_pov_route(const std::string& name) {
+  static const std::pair<const char*, PovRoute> routes[] = {
+      {"auto", PovRoute::Auto}, {"native", PovRoute::Native}, {"exact", PovRoute::Exact}};
+  for (const auto& [n, r] : routes)
+    if (name == n) return r;
+  return std::nullopt;
+}
+
 const char* target_name(Target t) {
   switch (t) {
     case Target::Glsl: return "glsl";

@@ -16,8 +16,17 @@ std::optional<Target> parse_target(const std::string& name);
 const char* target_name(Target t);
 const std::vector<Target>& all_targets();
 
+// How POV-Ray draws a scene (facet generate --pov-route). auto: POV-Ray's own
+// finish where every material is one exactly (meshes included: POV-Ray blends
+// their normals barycentrically, as facet does), else function pigments
+// everywhere; native: the finish, or an error saying why not; exact: function
+// pigments everywhere.
+enum class PovRoute { Auto, Native, Exact };
+std::optional<PovRoute> parse_pov_route(const std::string& name);
+
 struct GenerateOptions {
   Target target = Target::Glsl;
+  PovRoute pov_route = PovRoute::Auto;
   bool library = false;        // just the functions (GLSL, OSL) / an include file (POV-Ray)
   std::optional<Scene> scene;  // OSL: its lights; POV-Ray: the whole scene. Default: default_scene()
   std::string source;          // named in the header comment
@@ -47,11 +56,31 @@ struct PovPlan {
   // Renders to sum for the exact image (Declare=Facet_Light=i, i < passes);
   // one render with Facet_Light=-1 is exact when passes == 1.
   int passes = 1;
+  // One line per object: how it is drawn and how exactly (generate_pov_files
+  // adds what it measured, e.g. a mesh's data precision).
+  std::vector<std::string> routes;
 };
-PovPlan pov_plan(const Material& m, const Scene& s);
+// Throws std::invalid_argument when `route` is native and a material is not.
+PovPlan pov_plan(const Material& m, const Scene& s, PovRoute route = PovRoute::Auto);
 // Objects without a material of their own use `fallback` (may be null when every object has one).
-PovPlan pov_plan(const Scene& s, const Material* fallback);
-// The POV-Ray scene of a whole scene with its objects' own materials.
+PovPlan pov_plan(const Scene& s, const Material* fallback, PovRoute route = PovRoute::Auto);
+
+// A POV-Ray scene and the files it reads, which go beside it: a mesh on the
+// function route reads its geometry from an image (targets/pov_mesh.h).
+struct PovFile {
+  std::string name;  // relative to the scene's folder
+  std::string data;
+};
+struct PovOutput {
+  std::string code;
+  std::vector<PovFile> files;
+  PovPlan plan;
+};
+// `stem` starts the files' names (the scene file's own stem, say).
+PovOutput generate_pov_files(const Scene& s, const Material* fallback, const std::string& source, PovRoute route,
+                             const std::string& stem);
+// The POV-Ray scene of a whole scene with its objects' own materials; throws
+// std::invalid_argument when it needs files beside it (use generate_pov_files).
 std::string generate_pov_scene(const Scene& s, const Material* fallback, const std::string& source);
 
 }  // namespace facet

@@ -15,7 +15,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   std::string text(reinterpret_cast<const char*>(data), size);
   facet::fuzz::refuse_only_with_input_errors("scene", [&] {
     facet::Scene s = facet::parse_scene(facet::parse_json(text, "fuzz.json"), "fuzz.json");
-    (void)facet::generate_pov_scene(s, &lambert, "fuzz.json");
+    (void)facet::generate_pov_files(s, &lambert, "fuzz.json", facet::PovRoute::Auto, "fuzz");
     (void)facet::render_reference(lambert, s, 4, 4, 1);
   });
   return 0;

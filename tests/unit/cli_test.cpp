@@ -129,8 +129,12 @@ TEST(Cli, GenerateJsonDescribesTheOutput) {
   EXPECT_EQ(j["target"], "pov");
   EXPECT_EQ(j["output"], out.string());
   EXPECT_FALSE(j.contains("code"));
-  EXPECT_EQ(j["pov"]["native"], false);  // meshes: function pigments, a pass per light
+  EXPECT_EQ(j["pov"]["native"], false);  // Oren–Nayar, GGX, Ward: function pigments, a pass per light
   EXPECT_FALSE(j["pov"]["reason"].get<std::string>().empty());
+  ASSERT_EQ(j["pov"]["routes"].size(), 4u) << "one line per object";
+  EXPECT_NE(j["pov"]["routes"][0].get<std::string>().find("data image"), std::string::npos) << j["pov"]["routes"][0];
+  ASSERT_EQ(j["pov"]["files"].size(), 4u) << "each mesh's data image";
+  for (const auto& f : j["pov"]["files"]) EXPECT_TRUE(fs::exists(out.parent_path() / f.get<std::string>())) << f;
   std::string pov = read_file(out.string());
   std::string declared = "#declare Facet_Passes = " + std::to_string(j["pov"]["passes"].get<int>()) + ";";
   EXPECT_NE(pov.find(declared), std::string::npos) << "the JSON and the scene agree on " << declared;
@@ -146,7 +150,10 @@ TEST(Cli, GenerateJsonDescribesTheOutput) {
   EXPECT_FALSE(j.contains("pov"));
   r = facet({"generate", lambert, "--target", "pov", "--json"});
   j = json::parse(r.output);
-  EXPECT_EQ(j["pov"], json({{"passes", 1}, {"native", true}, {"reason", ""}})) << "Lambert is POV-Ray's own finish";
+  EXPECT_EQ(j["pov"]["passes"], 1);
+  EXPECT_EQ(j["pov"]["native"], true) << "Lambert is POV-Ray's own finish";
+  EXPECT_EQ(j["pov"]["reason"], "");
+  EXPECT_EQ(j["pov"]["files"], json::array()) << "a sphere reads no file";
   r = facet({"generate", lambert, "--target", "pov", "--library", "--json"});
   EXPECT_FALSE(json::parse(r.output).contains("pov")) << "an include file has no passes";
 }

@@ -12,6 +12,7 @@
 #include "catalog/material.h"
 #include "catalog/program.h"
 #include "reference/raycaster.h"
+#include "scene/shapes.h"
 #include "renderers/compare.h"
 #include "renderers/opengl.h"
 #include "renderers/renderer.h"
@@ -108,6 +109,55 @@ TEST(Detection, PovExponentOffByOneFails) {
   f.job.code_override = inject(generate(f.material, o), "roughness 0.02", "roughness 0.0196078431372549");
   ComparisonRow bad = judged(f, render_one("pov", f.job));
   EXPECT_FALSE(bad.pass) << "max |Δ|/max(1,|ref|) " << bad.metrics.max_excess;
+}
+
+// The mesh conventions docs/povray-meshes.md measured, each proved by a wrong
+// variant that fails: POV-Ray maps an image's first row to the top (v = 1), the
+// uv barycentrics weigh corners 1 and 2, and on the native route POV-Ray blends
+// the vertex normals itself.
+Fixture mesh_fixture(const std::string& example, const std::string& name) {
+  Fixture f = fixture(example, "pov-mesh-" + name);
+  f.scene = mesh_bench_scene(3000);
+  f.reference = render_reference(f.material, f.scene, kSize, kSize);
+  f.job.scene = f.scene;
+  f.job.max_value = 0;
+  for (float v : f.reference.image.rgb) f.job.max_value = std::max<double>(f.job.max_value, v);
+  return f;
+}
+
+TEST(Detection, PovMeshDataConventionsFailWhenWrong) {
+  Fixture f = mesh_fixture("ggx", "data");
+  // Named as the renderer names its files, so the code read back finds its data images.
+  PovOutput pov = generate_pov_files(f.scene, &f.material, "ggx.json", PovRoute::Auto, job_name(f.job));
+  ASSERT_EQ(pov.files.size(), 3u) << "three meshes on the function route, three data images";
+  EXPECT_TRUE(judged(f, render_one("pov", f.job)).pass);
+  // Texel K's row counted from the bottom of the image instead of the top.
+  const std::string row = "#declare Facet_Mesh0_Row = function(K) { ";
+  size_t at = pov.code.find(row), end = pov.code.find(" }\n", at);
+  ASSERT_NE(at, std::string::npos);
+  const std::string height = pov.code.substr(pov.code.rfind('/', end) + 1, end - pov.code.rfind('/', end) - 1);
+  f.job.code_override = pov.code.substr(0, at + row.size()) + "(floor(K/4096) + 0.5)/" + height + pov.code.substr(end);
+  ComparisonRow flipped = judged(f, render_one("pov", f.job));
+  EXPECT_FALSE(flipped.pass) << "rows from the bottom: max |Δ|/max(1,|ref|) " << flipped.metrics.max_excess;
+  // The barycentrics of corners 1 and 2 swapped.
+  f.job.code_override = inject(pov.code, "A*Facet_Mesh0_Q(Tri, I + 3) + B*Facet_Mesh0_Q(Tri, I + 6)",
+                               "B*Facet_Mesh0_Q(Tri, I + 3) + A*Facet_Mesh0_Q(Tri, I + 6)");
+  ComparisonRow swapped = judged(f, render_one("pov", f.job));
+  EXPECT_FALSE(swapped.pass) << "corners 1 and 2 swapped: max |Δ|/max(1,|ref|) " << swapped.metrics.max_excess;
+}
+
+TEST(Detection, PovMeshNativeNormalsFailWhenFlat) {
+  Fixture f = mesh_fixture("blinn_phong", "native");  // POV-Ray's own finish on mesh2
+  PovOutput pov = generate_pov_files(f.scene, &f.material, "blinn_phong.json", PovRoute::Auto, "x");
+  ASSERT_TRUE(pov.plan.native);
+  ASSERT_TRUE(pov.files.empty());
+  EXPECT_TRUE(judged(f, render_one("pov", f.job)).pass);
+  // Without the first mesh's normal_vectors POV-Ray shades its triangles flat.
+  size_t at = pov.code.find("  normal_vectors {"), end = pov.code.find("\n  }\n", at);
+  ASSERT_NE(at, std::string::npos);
+  f.job.code_override = pov.code.substr(0, at) + pov.code.substr(end + 5);
+  ComparisonRow flat = judged(f, render_one("pov", f.job));
+  EXPECT_FALSE(flat.pass) << "flat normals: max |Δ|/max(1,|ref|) " << flat.metrics.max_excess;
 }
 
 TEST(Detection, OslMissingPiAndExponentOffByOneFail) {

@@ -201,19 +201,24 @@ def write_atomic(path, data):
 
 
 def generate_to(exe, path, args, replace=None, describe=None):
-    """Runs `facet generate ... -o TMP` and moves TMP onto `path` when facet succeeds.
+    """Runs `facet generate ... -o TMP/NAME` and moves what it wrote onto `path` (and,
+    for a POV-Ray scene whose meshes read data images, those beside it) when facet
+    succeeds.
 
-    facet itself writes whole-or-nothing; the temporary file beside `path` also keeps
-    a previous `path` intact when facet fails.
+    facet itself writes whole-or-nothing; the temporary folder beside `path` (same
+    file system, so each move is atomic, and the same file names, which a POV-Ray
+    scene refers to its data images by) also keeps a previous `path` intact when
+    facet fails.
 
     With `describe` (a function of one argument), facet is also asked what it
     generated (`facet generate --json`: {"target", "output", "pov": {...}}) and
-    `describe(that object)` runs before TMP is moved: when it raises, `path` stays as
-    it was. Its result is returned."""
+    `describe(that object)` runs before anything is moved: when it raises, `path`
+    stays as it was. Its result is returned."""
     folder = os.path.dirname(os.path.abspath(path))
     if not os.path.isdir(folder):
         raise UserError(f"cannot write '{path}': folder '{folder}' does not exist")
-    tmp = temp_path_beside(path)
+    tmp_dir = tempfile.mkdtemp(prefix="." + os.path.basename(path) + ".", suffix=".tmp", dir=folder)
+    tmp = os.path.join(tmp_dir, os.path.basename(path))
     command = ["generate"] + list(args) + (["--json"] if describe else []) + ["-o", tmp]
     try:
         try:
@@ -225,11 +230,12 @@ def generate_to(exe, path, args, replace=None, describe=None):
                                   f"needs: it is older than the add-on; update facet"], e.command)
             raise
         result = describe(_parse_json(out, exe, command)) if describe else None
-        _give_ordinary_permissions(tmp)
-        os.replace(tmp, path)
+        # The files beside the scene first, the scene last: it never reads a missing file.
+        for name in sorted(os.listdir(tmp_dir), key=lambda n: n == os.path.basename(path)):
+            _give_ordinary_permissions(os.path.join(tmp_dir, name))
+            os.replace(os.path.join(tmp_dir, name), os.path.join(folder, name))
     finally:
-        if os.path.exists(tmp):
-            os.remove(tmp)
+        shutil.rmtree(tmp_dir, ignore_errors=True)
     return result
 
 

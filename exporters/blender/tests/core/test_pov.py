@@ -42,10 +42,12 @@ def test_plan_of_refuses_anything_else(description):
 def test_generate_scene_returns_facets_plan_and_writes_the_scene(tmp_path, facet):
     out = tmp_path / "three.pov"
     plan = pov.generate_scene(facet, three_meshes(), "three", str(out))
-    # meshes: function pigments, one pass per light (two lights) and one for the emission/ambient term
-    assert plan.native is False and "function pigments" in plan.reason
+    # GGX, Oren–Nayar, Ward: function pigments, one pass per light (two lights) and one for the emission/ambient
+    # term; each mesh's geometry in a data image beside the scene, named after it
+    assert plan.native is False and "not a POV-Ray finish" in plan.reason
     assert plan.passes == declared_passes(out) == 3
-    assert os.listdir(tmp_path) == ["three.pov"]
+    assert sorted(os.listdir(tmp_path)) == ["three.pov"] + [f"three_mesh{i}.ppm" for i in range(4)]
+    assert all(f'ppm "three_mesh{i}.ppm"' in out.read_text() for i in range(4))
 
 
 def test_generate_scene_of_native_spheres_is_one_run(tmp_path, facet):

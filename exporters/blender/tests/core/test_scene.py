@@ -175,7 +175,7 @@ def test_a_scene_built_here_is_one_facet_renders(tmp_path, facet):
     data = scene.scene("S", cam, [0.0, 0.0, 0.0], [light], objects, materials)
     assert list(data) == ["name", "camera", "ambient", "materials", "objects", "lights"]
     plan = pov.generate_scene(facet, data, "S", str(tmp_path / "s.pov"))
-    assert plan.passes == 1 and not plan.native                # a mesh, one light
+    assert plan.passes == 1 and plan.native                    # a Lambert mesh: POV-Ray's own finish on mesh2
     assert os.path.getsize(tmp_path / "s.pov") > 0
     osl_scene = scene.scene("S", cam, [0.1, 0.1, 0.1], [light], [dict(scene.OSL_PLACEHOLDER_OBJECT)])
     assert "materials" not in osl_scene

@@ -1,0 +1,169 @@
+// A mesh's geometry as a data image for POV-Ray's exact route (pov_mesh.h).
+#include "targets/pov_mesh.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "targets/pov_printer.h"
+#include "targets/templates.h"
+
+namespace facet::targets {
+
+namespace {
+
+constexpr uint32_t kLevels = (1u << 24) - 1;  // 24-bit fixed point
+constexpr size_t kGrid = 2048;               // triangle t ↔ uv cell (t mod 2048, t / 2048)
+constexpr int kWidth = 4096;                 // texels a row
+constexpr size_t kTexels = 9;                // per triangle
+
+// Items separated by ", ", wrapped at the scene's width, each line `indent` in.
+class ListWriter {
+ public:
+  ListWriter(std::string& out, size_t indent) : out_(out), indent_(indent) {}
+  void item(std::string_view s) {
+    if (column_ > 0 && column_ + 2 + s.size() + 1 > kPovWidth) {
+      out_ += ",\n";
+      column_ = 0;
+    } else if (column_ > 0) {
+      out_ += ", ";
+      column_ += 2;
+    }
+    if (column_ == 0) {
+      out_.append(indent_, ' ');
+      column_ = indent_;
+    }
+    out_ += s;
+    column_ += s.size();
+  }
+  void end() {
+    if (column_ > 0) out_ += "\n";
+  }
+
+ private:
+  std::string& out_;
+  size_t indent_;
+  size_t column_ = 0;
+};
+
+uint32_t quantize(double x, double lo, double step) {
+  double q = std::round((x - lo) / step);
+  return uint32_t(std::clamp(q, 0.0, double(kLevels)));
+}
+
+}  // namespace
+
+PovMeshData pov_mesh_data(const Mesh& m, const std::string& file) {
+  if (m.triangles.size() > kGrid * kGrid)
+    throw std::invalid_argument(fmt::format("a mesh of {} triangles: POV-Ray's exact route numbers at most {}",
+                                            m.triangles.size(), kGrid * kGrid));
+  PovMeshData d;
+  d.file = file;
+  std::array<double, 3> lo = m.positions.empty() ? std::array<double, 3>{} : m.positions[0].array(), hi = lo,
+                        step{};
+  for (const Vec3& p : m.positions)
+    for (size_t k = 0; k < 3; ++k) {
+      lo[k] = std::min(lo[k], p[int(k)]);
+      hi[k] = std::max(hi[k], p[int(k)]);
+    }
+  for (size_t k = 0; k < 3; ++k) step[k] = std::max(hi[k] - lo[k], 1e-30) / kLevels;
+  d.lo = Vec3(lo);
+  d.step = Vec3(step);
+  d.normal_step = 2.0 / kLevels;
+  const size_t texels = m.triangles.size() * kTexels;
+  d.width = kWidth;
+  d.height = int(std::max<size_t>(1, (texels + kWidth - 1) / kWidth));
+  std::string header = fmt::format("P6\n{} {}\n65535\n", d.width, d.height);
+  d.image.assign(header.size() + size_t(d.width) * size_t(d.height) * 6, '\0');
+  std::copy(header.begin(), header.end(), d.image.begin());
+  auto* px = reinterpret_cast<unsigned char*>(d.image.data() + header.size());
+  uint32_t q[18];
+  for (size_t t = 0; t < m.triangles.size(); ++t) {
+    for (int c = 0; c < 3; ++c) {
+      const Vec3& p = m.positions[m.triangles[t][size_t(c)]];
+      const Vec3& n = m.normals[m.triangles[t][size_t(c)]];
+      for (int k = 0; k < 3; ++k) {
+        q[3 * c + k] = quantize(p[k], d.lo[k], d.step[k]);
+        q[9 + 3 * c + k] = quantize(n[k], -1, d.normal_step);
+        d.position_error = std::max(d.position_error, std::abs(d.lo[k] + d.step[k] * q[3 * c + k] - p[k]));
+        d.normal_error = std::max(d.normal_error, std::abs(-1 + d.normal_step * q[9 + 3 * c + k] - n[k]));
+      }
+    }
+    // Two values a texel: R = a >> 8, G = (a & 255) << 8 | b >> 16, B = b & 65535 (big-endian).
+    for (size_t j = 0; j < kTexels; ++j) {
+      const uint32_t a = q[2 * j], b = q[2 * j + 1];
+      const uint16_t ch[3] = {uint16_t(a >> 8), uint16_t(((a & 255u) << 8) | (b >> 16)), uint16_t(b & 65535u)};
+      unsigned char* out = px + (t * kTexels + j) * 6;
+      for (int k = 0; k < 3; ++k) {
+        out[2 * k] = uint8_t(ch[k] >> 8);
+        out[2 * k + 1] = uint8_t(ch[k] & 255);
+      }
+    }
+  }
+  return d;
+}
+
+std::string pov_mesh_decoder(const PovMeshData& d, size_t o) {
+  return render_template("pov/mesh_data.pov", {{"o", std::to_string(o)},
+                                               {"file", d.file},
+                                               {"width", std::to_string(d.width)},
+                                               {"height", std::to_string(d.height)},
+                                               {"lo_x", pov_number(d.lo.x)},
+                                               {"lo_y", pov_number(d.lo.y)},
+                                               {"lo_z", pov_number(d.lo.z)},
+                                               {"step_x", pov_number(d.step.x)},
+                                               {"step_y", pov_number(d.step.y)},
+                                               {"step_z", pov_number(d.step.z)},
+                                               {"step_n", pov_number(d.normal_step)}});
+}
+
+namespace {
+
+// `name` { count, items } with each item from item(i, buffer).
+template <typename Item>
+std::string pov_list(const std::string& name, size_t count, size_t indent, const Item& item) {
+  const std::string pad(indent, ' ');
+  std::string out = fmt::format("{0}{1} {{\n{0}  {2},\n", pad, name, count);
+  out.reserve(out.size() + count * 32);
+  ListWriter w(out, indent + 2);
+  fmt::memory_buffer b;
+  for (size_t i = 0; i < count; ++i) {
+    b.clear();
+    item(i, b);
+    w.item(std::string_view(b.data(), b.size()));
+  }
+  w.end();
+  return out + pad + "}\n";
+}
+
+}  // namespace
+
+std::string pov_vector_list(const std::string& name, const std::vector<Vec3>& v, size_t indent) {
+  return pov_list(name, v.size(), indent, [&](size_t i, fmt::memory_buffer& b) {
+    fmt::format_to(std::back_inserter(b), "<{}, {}, {}>", float(v[i].x), float(v[i].y), float(v[i].z));
+  });
+}
+
+std::string pov_mesh_faces(const Mesh& m, size_t indent) {
+  return pov_list("face_indices", m.triangles.size(), indent, [&](size_t i, fmt::memory_buffer& b) {
+    fmt::format_to(std::back_inserter(b), "<{}, {}, {}>", m.triangles[i][0], m.triangles[i][1], m.triangles[i][2]);
+  });
+}
+
+std::string pov_mesh_uv_vectors(const Mesh& m, size_t indent) {
+  return pov_list("uv_vectors", 3 * m.triangles.size(), indent, [&](size_t k, fmt::memory_buffer& b) {
+    const size_t t = k / 3, i = 4 * (t % kGrid) + 1 + (k % 3 == 1), j = 4 * (t / kGrid) + 1 + (k % 3 == 2);
+    fmt::format_to(std::back_inserter(b), "<{}, {}>", i, j);
+  });
+}
+
+std::string pov_mesh_uv_indices(const Mesh& m, size_t indent) {
+  return pov_list("uv_indices", m.triangles.size(), indent, [&](size_t t, fmt::memory_buffer& b) {
+    fmt::format_to(std::back_inserter(b), "<{}, {}, {}>", 3 * t, 3 * t + 1, 3 * t + 2);
+  });
+}
+
+}  // namespace facet::targets
