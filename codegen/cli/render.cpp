@@ -30,6 +30,7 @@ struct RenderArgs {
   std::string size = "256x256";
   std::string output;
   std::string preview;
+  std::string mask;
   std::string workdir;
   bool compare = false;
   bool exact = false;
@@ -92,6 +93,12 @@ int run_render(const RenderArgs& a) {
   }
   if (!a.output.empty()) write_pfm(a.output, image);
   if (!a.preview.empty()) write_png_preview(a.preview, image);
+  if (!a.mask.empty()) {  // a binary PGM, rows from the top: 255 where the comparison looks
+    std::vector<uint8_t> mask = interior_mask(ref);
+    std::string pgm = fmt::format("P5\n{} {}\n255\n", w, h);
+    for (uint8_t v : mask) pgm.push_back(char(v ? 255 : 0));
+    write_file_atomic(a.mask, pgm);
+  }
   return status;
 }
 
@@ -110,6 +117,9 @@ Command render_command(CLI::App& app) {
   rn->add_option("--size", ra.size, "Image size WIDTHxHEIGHT")->capture_default_str();
   rn->add_option("-o,--output", ra.output, "Linear float image (PFM)");
   rn->add_option("--preview", ra.preview, "An 8-bit sRGB PNG to look at");
+  rn->add_option("--mask", ra.mask,
+                 "The pixels --compare and facet validate judge, as a binary PGM (255: inside an object, not on its "
+                 "silhouette, no shadow ray grazing an occluder's edge)");
   rn->add_option("--workdir", ra.workdir, "Where the renderer's files go (default: a temporary folder)");
   rn->add_flag("--compare", ra.compare, "Print the comparison with the reference");
   rn->add_option("--check", ra.check,

@@ -323,8 +323,9 @@ def facet_render(work, opts, width, height):
     scene_path = os.path.join(work, "facet_scene.json")
     bpy.ops.facet.export_scene(filepath=scene_path)
     ref_path = os.path.join(work, "facet_reference.pfm")
+    mask_path = os.path.join(work, "facet_mask.pgm")
     subprocess.run([opts["facet"], "render", "--scene", scene_path, "-r", "reference", "--size",
-                    f"{width}x{height}", "-o", ref_path], check=True, stdout=subprocess.DEVNULL)
+                    f"{width}x{height}", "-o", ref_path, "--mask", mask_path], check=True, stdout=subprocess.DEVNULL)
     reference = read_pfm(ref_path)
     brightest = max(max(px[:3]) for row in reference for px in row)
     exposure = 2.0 ** -math.ceil(math.log2(brightest * 1.05)) if brightest >= 0.95 else 1.0
@@ -335,7 +336,21 @@ def facet_render(work, opts, width, height):
         raise RuntimeError(f"export_pov failed: {operators.LAST_REPORTS}")
     rows = load_pixels(os.path.join(work, "facet.png"), width, height)
     rows = [[tuple(c / exposure for c in px[:3]) + (1.0,) for px in row] for row in rows]
-    return rows, reference, notes, exposure, [m for _, m in operators.LAST_REPORTS]
+    return rows, reference, notes, exposure, [m for _, m in operators.LAST_REPORTS], read_pgm(mask_path)
+
+
+def read_pgm(path):
+    """facet render --mask: a binary PGM, rows from the top; returned bottom row first, as read_pfm's."""
+    with open(path, "rb") as f:
+        data = f.read()
+    parts, pos = [], 0
+    while len(parts) < 3:
+        end = data.index(b"\n", pos)
+        parts.append(data[pos:end].decode())
+        pos = end + 1
+    w, h = map(int, parts[1].split())
+    rows = [[data[pos + j * w + i] > 127 for i in range(w)] for j in range(h)]
+    return rows[::-1]
 
 
 def read_pfm(path):
@@ -478,7 +493,7 @@ def main():
     rp_legacy = render_povray_render(work, opts["povray"], width, height, use_nodes=False)
     timings["render_povray"] = time.perf_counter() - t
     t = time.perf_counter()
-    fc, reference, notes, exposure, export_report = facet_render(work, opts, width, height)
+    fc, reference, notes, exposure, export_report, judged = facet_render(work, opts, width, height)
     print("facet export: " + " / ".join(export_report))
     timings["facet"] = time.perf_counter() - t
     fc_alpha = povray_alpha(work, opts["povray"], "facet.pov", width, height, ["Declare=Facet_Light=0"])
@@ -501,7 +516,8 @@ def main():
                "coverage_mismatch": {"render_povray": coverage(ids, rp, lambda px: px[3] > 0.5),
                                      "render_povray_legacy": coverage(ids, rp_legacy, lambda px: px[3] > 0.5),
                                      "facet_pov": coverage(ids, fc_alpha, lambda covered: covered)},
-               "facet_pov_vs_reference_max_rel": max_rel(fc, reference, all_pixels),
+               # on the pixels facet validate judges: no silhouette, no shadow ray grazing an occluder's edge
+               "facet_pov_vs_reference_max_rel": max_rel(fc, reference, [(i, j) for i, j in all_pixels if judged[j][i]]),
                "timings_s": timings, "mapping_notes": notes, "work": work}
     for k in sorted(groups):
         name, label = labels[k]
@@ -514,7 +530,7 @@ def main():
             "render_povray_legacy_fit": stats(rp_legacy, cycles, px, scale_rpl),
             "facet_pov": stats(fc, cycles, px), "facet_reference": stats(reference, cycles, px),
             "facet_pov_fit": stats(fc, cycles, px, scale_fc),
-            "facet_exact_max_rel": max_rel(fc, cycles, px) if name in EXACT else None}
+            "facet_exact_max_rel": max_rel(fc, cycles, [(i, j) for i, j in px if judged[j][i]]) if name in EXACT else None}
     results["timings_s"]["total"] = time.perf_counter() - t0
     with open(os.path.join(work, "results.json"), "w") as f:
         json.dump(results, f, indent=2)
