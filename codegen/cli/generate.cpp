@@ -123,9 +123,10 @@ Command generate_command(CLI::App& app) {
   g->add_option("--pov-route", gen.pov_route,
                 "How POV-Ray draws the scene: auto (POV-Ray's own finish where every material is one exactly, "
                 "else function pigments), native (the finish, or an error saying why not), exact (function "
-                "pigments everywhere). A mesh drawn by function pigments reads its geometry from FILE_meshN.ppm, "
-                "written beside -o FILE.pov")
-      ->check(CLI::IsMember({"auto", "native", "exact"}))
+                "pigments everywhere), fast (as auto, but meshes with an isotropic material get slope tables over "
+                "n·l and n·v: no data image, approximate, the measured error printed). A mesh drawn by function "
+                "pigments reads its geometry from FILE_meshN.ppm, written beside -o FILE.pov")
+      ->check(CLI::IsMember({"auto", "native", "exact", "fast"}))
       ->capture_default_str();
   g->add_flag("--library", gen.library,
               "Only the functions, for an engine (GLSL, OSL), or an include file declaring the texture (POV-Ray)");

@@ -31,6 +31,7 @@ struct RenderArgs {
   std::string output;
   std::string preview;
   std::string mask;
+  std::string pov_route = "auto";
   std::string workdir;
   bool compare = false;
   bool exact = false;
@@ -82,6 +83,7 @@ int run_render(const RenderArgs& a) {
     job.workdir = a.workdir;
     job.bracket = a.exact;
     job.one_run = a.one_run;
+    job.pov_route = *parse_pov_route(a.pov_route);
     job.max_value = 0;
     for (float v : ref.image.rgb) job.max_value = std::max<double>(job.max_value, v);
     if (!render_with(a.renderer, job, image)) return 1;
@@ -117,6 +119,9 @@ Command render_command(CLI::App& app) {
   rn->add_option("--size", ra.size, "Image size WIDTHxHEIGHT")->capture_default_str();
   rn->add_option("-o,--output", ra.output, "Linear float image (PFM)");
   rn->add_option("--preview", ra.preview, "An 8-bit sRGB PNG to look at");
+  rn->add_option("--pov-route", ra.pov_route, "POV-Ray: auto, native, exact or fast (facet generate --pov-route)")
+      ->check(CLI::IsMember({"auto", "native", "exact", "fast"}))
+      ->capture_default_str();
   rn->add_option("--mask", ra.mask,
                  "The pixels --compare and facet validate judge, as a binary PGM (255: inside an object, not on its "
                  "silhouette, no shadow ray grazing an occluder's edge)");

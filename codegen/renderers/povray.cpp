@@ -117,7 +117,7 @@ RenderOutcome render_pov(const RenderJob& job) {
   try {
     // The files beside the scene (a mesh's data image) come with an overriding code too.
     PovOutput pov = generate_pov_files(job.scene, fallback, fallback ? fallback->source : job.scene.source,
-                                       PovRoute::Auto, base);
+                                       job.pov_route, base);
     if (!job.code_override.empty()) pov.code = job.code_override;
     for (const auto& f : pov.files) write_file_atomic((fs::path(dir) / f.name).string(), f.data);
     write_file_atomic((fs::path(dir) / (base + ".pov")).string(), pov.code);
@@ -126,7 +126,7 @@ RenderOutcome render_pov(const RenderJob& job) {
     return out;
   }
   const std::vector<double> exposure = exposures(job);
-  const int passes = job.one_run ? 1 : pov_plan(job.scene, fallback).passes, frames = passes * int(exposure.size());
+  const int passes = job.one_run ? 1 : pov_plan(job.scene, fallback, job.pov_route).passes, frames = passes * int(exposure.size());
   write_file_atomic((fs::path(dir) / (base + "_harness.pov")).string(), harness(base, passes, exposure));
   for (const auto& entry : fs::directory_iterator(dir))
     if (entry.path().filename().string().rfind(base + "_frame", 0) == 0) fs::remove(entry.path());

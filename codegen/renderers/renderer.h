@@ -14,6 +14,7 @@
 #include "catalog/material.h"
 #include "core/image.h"
 #include "scene/scene.h"
+#include "targets/targets.h"
 
 namespace facet {
 
@@ -34,6 +35,8 @@ struct RenderJob {
   // POV-Ray: render the generated file as a user would, in one run with every
   // light at once (Facet_Light = -1: light_group copies), instead of one pass per light.
   bool one_run = false;
+  // POV-Ray: how the generated scene draws its objects (facet generate --pov-route).
+  PovRoute pov_route = PovRoute::Auto;
   // Render this code instead of generating it (tests feed deliberately wrong targets).
   std::string code_override;
   // The workdir, or a temporary folder when it is empty: for the renderers

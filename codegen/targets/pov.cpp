@@ -94,9 +94,11 @@ std::string object_kind(const Object& o) {
 }
 
 // How object o is drawn, for the header and stderr.
-std::string route_line(const Object& o, bool native) {
+std::string route_line(const Object& o, bool native, bool table) {
   std::string how;
-  if (native)
+  if (table)
+    how = fmt::format("slope tables over n·l and n·v ({0} × {0} nodes a light; approximate)", targets::PovScene::kTableNodes);
+  else if (native)
     how = o.type == Object::Type::Mesh
               ? "POV-Ray's finish on mesh2, whose normals POV-Ray blends barycentrically as facet does (exact; "
                 "POV-Ray stores the vertices in float32)"
@@ -121,7 +123,8 @@ PovPlan pov_plan(const Scene& s, const Material* fallback, PovRoute route) {
   plan.native = plan.reason.empty();
   if (route == PovRoute::Native && !plan.native)
     throw std::invalid_argument("--pov-route native: " + plan.reason);
-  for (const auto& o : s.objects) plan.routes.push_back(route_line(o, plan.native));
+  for (size_t i = 0; i < s.objects.size(); ++i)
+    plan.routes.push_back(route_line(s.objects[i], plan.native, targets::pov_table_object(s, i, fallback, route, plan.native)));
   // Function pigments: a pass per light, and one for the emission (m_a ⊗ A + m_e).
   bool emits = false;
   for (size_t i = 0; i < s.objects.size(); ++i) {
@@ -135,6 +138,11 @@ PovPlan pov_plan(const Scene& s, const Material* fallback, PovRoute route) {
 PovPlan pov_plan(const Material& m, const Scene& s, PovRoute route) { return pov_plan(s, &m, route); }
 
 namespace targets {
+
+bool pov_table_object(const Scene& s, size_t i, const Material* fallback, PovRoute route, bool native) {
+  return !native && route == PovRoute::Fast && s.objects[i].type == Object::Type::Mesh &&
+         !compile(s.material_of(i, fallback)).uses_tangent();
+}
 
 bool pov_grey(const RGB& c) { return c[0] == c[1] && c[1] == c[2]; }
 bool pov_black(const RGB& c) { return c[0] == 0 && c[1] == 0 && c[2] == 0; }
@@ -192,6 +200,7 @@ PovScene::PovScene(const Scene& s, const Material* fallback, const std::string& 
                    const std::string& stem)
     : s_(s), source_(source), plan_(pov_plan(s, fallback, route)), stem_(stem), data_(s.objects.size()),
       routes_(plan_.routes) {
+  for (size_t i = 0; i < s.objects.size(); ++i) table_.push_back(pov_table_object(s, i, fallback, route, plan_.native));
   std::vector<const Material*> distinct;
   for (size_t i = 0; i < s.objects.size(); ++i) {
     const Material* m = &s.material_of(i, fallback);

@@ -171,7 +171,15 @@ void PovScene::build_scaffolding() {
     for (size_t i = 0; i < s_.lights.size(); ++i) sh->lights.push_back(light_function(*sh, i));
   }
   for (size_t o = 0; o < s_.objects.size(); ++o) {
+    PovShading& sh = *shadings_[shading_of_[o]];
+    if (!table_[o] || !sh.tables.empty()) continue;
+    for (size_t i = 0; i < s_.lights.size(); ++i) sh.tables.push_back(table_function(sh, i));
+    routes_[o] += fmt::format("; within {:.2g} of the reflectance per unit light, measured at every cell's centre",
+                              table_error(*sh.material));
+  }
+  for (size_t o = 0; o < s_.objects.size(); ++o) {
     objects_.emplace_back();
+    if (table_[o]) continue;  // the table's leaves call Facet_Table{i}
     for (size_t i = 0; i < s_.lights.size(); ++i) objects_.back().push_back(object_function(o, i));
   }
 }
@@ -199,23 +207,30 @@ std::string PovScene::functions() {
 std::string PovScene::mesh_declarations(size_t o) {
   const Object& obj = s_.objects[o];
   const Mesh& m = *obj.mesh;
-  data_[o] = pov_mesh_data(m, fmt::format("{}_mesh{}.ppm", stem_, o));
-  files_.push_back({data_[o].file, std::move(data_[o].image)});
-  routes_[o] += fmt::format("; {} holds its positions to {:.2g} and normals to {:.2g}", data_[o].file,
-                            data_[o].position_error, data_[o].normal_error);
-  std::string out = pov_mesh_decoder(data_[o], o);
+  std::string out;
+  if (!table_[o]) {
+    data_[o] = pov_mesh_data(m, fmt::format("{}_mesh{}.ppm", stem_, o));
+    files_.push_back({data_[o].file, std::move(data_[o].image)});
+    routes_[o] += fmt::format("; {} holds its positions to {:.2g} and normals to {:.2g}", data_[o].file,
+                              data_[o].position_error, data_[o].normal_error);
+    out = pov_mesh_decoder(data_[o], o);
+  }
   out += fmt::format("// Mesh {} (\"{}\"): its vertices, and the rest of its mesh2\n", o, obj.name);
   out += fmt::format("#macro Facet_Mesh{}_Vertices()\n", o) + pov_vector_list("vertex_vectors", m.positions, 2) +
          "#end\n";
   out += fmt::format("#macro Facet_Mesh{}_Shape()\n", o) + pov_vector_list("normal_vectors", m.normals, 2) +
-         pov_mesh_uv_vectors(m, 2) + pov_mesh_faces(m, 2) + pov_mesh_uv_indices(m, 2) + "#end\n";
+         (table_[o] ? pov_mesh_faces(m, 2)
+                    : pov_mesh_uv_vectors(m, 2) + pov_mesh_faces(m, 2) + pov_mesh_uv_indices(m, 2)) +
+         "#end\n";
   return out;
 }
 
 std::string PovScene::lights() {
   std::string functions, objects;
-  for (const auto& sh : shadings_)
+  for (const auto& sh : shadings_) {
     for (const auto& f : sh->lights) functions += sh->printer.function(f);
+    for (const auto& f : sh->tables) functions += sh->printer.function(f);
+  }
   for (size_t o = 0; o < s_.objects.size(); ++o)
     if (s_.objects[o].type == Object::Type::Mesh) objects += mesh_declarations(o);  // the data functions first
   for (size_t o = 0; o < s_.objects.size(); ++o)
@@ -293,9 +308,17 @@ std::string PovScene::lit(size_t o, size_t i, double weight, double t, double sh
     if (s == 0) return {};
     return {s, var("Facet_Exposure")};
   };
+  const size_t width = kPovWidth - indent_ - 4;  // the pigment in the texture in the object
+  if (table_[o]) {  // one table per material, light and copy, declared where it is first used
+    const std::string name = fmt::format("Facet_{}Table{}{}", shading(o).prefix, i,
+                                         weight == 1 && t == 0 ? "" : fmt::format("_{}", int(weight)));
+    std::string declaration;
+    if (declared_tables_.insert(name).second)
+      declaration = "#declare " + name + " = " + table_pigment(o, i, p, kPovWidth - indent_);
+    return declaration + object(o, shrink, "texture {\n  pigment { " + name + " }\n  " + kLitFinish + "}\n", mods);
+  }
   const ir::FunctionPtr& f = objects_[o][i];
   std::vector<Expr> at = {var("x"), var("y"), var("z")};
-  const size_t width = kPovWidth - indent_ - 4;  // the pigment in the texture in the object
   p.radiance = [&](int) { return ir::call(f, at); };
   // A mesh's pigment sees uv_mapping's (u, v): its object function reads the rest.
   const char* mapping = obj.type == Object::Type::Mesh ? "  uv_mapping\n" : "";

@@ -17,8 +17,9 @@ namespace {
 
 constexpr uint32_t kLevels = (1u << 24) - 1;  // 24-bit fixed point
 constexpr size_t kGrid = 2048;               // triangle t ↔ uv cell (t mod 2048, t / 2048)
-constexpr int kWidth = 4096;                 // texels a row
 constexpr size_t kTexels = 9;                // per triangle
+constexpr size_t kPerRow = 455;              // triangles a row of the image
+constexpr int kWidth = int(kTexels * kPerRow);  // 4095 texels
 
 // Items separated by ", ", wrapped at the scene's width, each line `indent` in.
 class ListWriter {
@@ -73,9 +74,8 @@ PovMeshData pov_mesh_data(const Mesh& m, const std::string& file) {
   d.lo = Vec3(lo);
   d.step = Vec3(step);
   d.normal_step = 2.0 / kLevels;
-  const size_t texels = m.triangles.size() * kTexels;
   d.width = kWidth;
-  d.height = int(std::max<size_t>(1, (texels + kWidth - 1) / kWidth));
+  d.height = int(std::max<size_t>(1, (m.triangles.size() + kPerRow - 1) / kPerRow));
   std::string header = fmt::format("P6\n{} {}\n65535\n", d.width, d.height);
   d.image.assign(header.size() + size_t(d.width) * size_t(d.height) * 6, '\0');
   std::copy(header.begin(), header.end(), d.image.begin());
@@ -96,7 +96,7 @@ PovMeshData pov_mesh_data(const Mesh& m, const std::string& file) {
     for (size_t j = 0; j < kTexels; ++j) {
       const uint32_t a = q[2 * j], b = q[2 * j + 1];
       const uint16_t ch[3] = {uint16_t(a >> 8), uint16_t(((a & 255u) << 8) | (b >> 16)), uint16_t(b & 65535u)};
-      unsigned char* out = px + (t * kTexels + j) * 6;
+      unsigned char* out = px + ((t / kPerRow) * size_t(kWidth) + (t % kPerRow) * kTexels + j) * 6;
       for (int k = 0; k < 3; ++k) {
         out[2 * k] = uint8_t(ch[k] >> 8);
         out[2 * k + 1] = uint8_t(ch[k] & 255);
@@ -106,18 +106,33 @@ PovMeshData pov_mesh_data(const Mesh& m, const std::string& file) {
   return d;
 }
 
+namespace {
+
+// Component c (x, y, z) of the position (normal = false) or the normal: value I = c (+ 9 for the
+// normal) of corner 0, I + 3 of corner 1, I + 6 of corner 2; value I is in texel ⌊I/2⌋, first when I
+// is even (QA), second when odd (QB).
+std::string component(const PovMeshData& d, size_t o, bool normal, int c) {
+  auto q = [&](int i) { return fmt::format("Facet_Mesh{}_Q{}(X, Y, {})", o, i % 2 ? "B" : "A", i / 2); };
+  const int i = c + (normal ? 9 : 0);
+  std::string blend = fmt::format("(1 - A - B)*{} + A*{} + B*{}", q(i), q(i + 3), q(i + 6));
+  std::string value = normal ? fmt::format("{}*(\n    {}) - 1", pov_number(d.normal_step), blend)
+                             : fmt::format("{} + {}*(\n    {})", pov_number(d.lo[c]), pov_number(d.step[c]), blend);
+  const std::string name = fmt::format("Facet_Mesh{}_{}{}", o, normal ? "M" : "P", "XYZ"[c]);
+  return fmt::format("#declare {0}at = function(X, Y, A, B) {{\n  {1}\n}}\n"
+                     "#declare {0} = function(Tri, A, B) {{ {0}at(Facet_Mesh{2}_X(Tri), Facet_Mesh{2}_Y(Tri), A, B) }}\n",
+                     name, value, o);
+}
+
+}  // namespace
+
 std::string pov_mesh_decoder(const PovMeshData& d, size_t o) {
+  std::string components;
+  for (bool normal : {false, true})
+    for (int c = 0; c < 3; ++c) components += component(d, o, normal, c);
   return render_template("pov/mesh_data.pov", {{"o", std::to_string(o)},
                                                {"file", d.file},
-                                               {"width", std::to_string(d.width)},
                                                {"height", std::to_string(d.height)},
-                                               {"lo_x", pov_number(d.lo.x)},
-                                               {"lo_y", pov_number(d.lo.y)},
-                                               {"lo_z", pov_number(d.lo.z)},
-                                               {"step_x", pov_number(d.step.x)},
-                                               {"step_y", pov_number(d.step.y)},
-                                               {"step_z", pov_number(d.step.z)},
-                                               {"step_n", pov_number(d.normal_step)}});
+                                               {"components", components}});
 }
 
 namespace {

@@ -4,6 +4,7 @@
 
 #include <functional>
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,7 @@ struct PovShading {
   bool dependent = false;  // the reflectance differs per channel: three functions
   ir::FunctionPtr reflect;              // {P}Facet_Reflect(n, l, v): the catalog's inputs from unit vectors
   std::vector<ir::FunctionPtr> lights;  // {P}Facet_Light{i}(x, y, z, n): light i's radiance
+  std::vector<ir::FunctionPtr> tables;  // {P}Facet_Table{i}(x, y, z, n·l, n·v), for slope tables (fast route)
   int channels() const { return dependent ? 3 : 1; }
   std::string suffix(int ch) const;
   RGB emission(const Scene& s) const;  // m_a ⊗ A + m_e
@@ -44,6 +46,7 @@ std::string pov_pigment(const PovPrinter& printer, bool dependent, const PovPigm
 
 class PovScene {
  public:
+  static constexpr int kTableNodes = 128;  // a slope table's nodes in n·l and in n·v (pov_table.cpp)
   // `stem` starts the names of the files the scene reads (pov_mesh.h).
   PovScene(const Scene& s, const Material* fallback, const std::string& source, PovRoute route = PovRoute::Auto,
            const std::string& stem = "facet");
@@ -76,6 +79,9 @@ class PovScene {
   std::string pass(size_t item);
   std::string passes();
   std::string point_shade();
+  // pov_table.cpp
+  ir::FunctionPtr table_function(PovShading& sh, size_t i);
+  std::string table_pigment(size_t o, size_t i, PovPigment p, size_t width);
 
   const PovShading& shading(size_t o) const { return *shadings_[shading_of_[o]]; }
 
@@ -87,6 +93,8 @@ class PovScene {
   std::vector<std::vector<ir::FunctionPtr>> objects_;  // [o][i]: Facet_Object{o}_Light{i}
   std::string stem_;
   std::vector<PovMeshData> data_;      // [o]: a mesh's data image on the function route
+  std::vector<bool> table_;            // [o]: a mesh drawn through slope tables (fast route)
+  std::set<std::string> declared_tables_;
   std::vector<PovFile> files_;
   std::vector<std::string> routes_;    // [o]: how object o is drawn
   double scale_ = 1;
@@ -97,6 +105,11 @@ class PovScene {
 bool pov_grey(const RGB& c);
 bool pov_black(const RGB& c);
 std::string emission_texture(const RGB& e, double weight, double t);
+// Whether object i is drawn through slope tables: a mesh with an isotropic
+// material, on the function route, when the route asked is fast.
+bool pov_table_object(const Scene& s, size_t i, const Material* fallback, PovRoute route, bool native);
+// A slope table's largest error relative to max(1, |reflectance|), measured (pov_table.cpp).
+double table_error(const Material& m);
 // `texture { … }` of a native finish, from the catalog's PovFinish of each lobe.
 std::string native_texture(const Material& m, double weight);
 

@@ -15,7 +15,7 @@ std::optional<Target> parse_target(const std::string& name) {
 
 std::optional<PovRoute> parse_pov_route(const std::string& name) {
   static const std::pair<const char*, PovRoute> routes[] = {
-      {"auto", PovRoute::Auto}, {"native", PovRoute::Native}, {"exact", PovRoute::Exact}};
+      {"auto", PovRoute::Auto}, {"native", PovRoute::Native}, {"exact", PovRoute::Exact}, {"fast", PovRoute::Fast}};
   for (const auto& [n, r] : routes)
     if (name == n) return r;
   return std::nullopt;

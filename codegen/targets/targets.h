@@ -20,8 +20,9 @@ const std::vector<Target>& all_targets();
 // finish where every material is one exactly (meshes included: POV-Ray blends
 // their normals barycentrically, as facet does), else function pigments
 // everywhere; native: the finish, or an error saying why not; exact: function
-// pigments everywhere.
-enum class PovRoute { Auto, Native, Exact };
+// pigments everywhere; fast: as auto, but a mesh with an isotropic material
+// gets slope tables (approximate, measured; docs/povray-meshes.md).
+enum class PovRoute { Auto, Native, Exact, Fast };
 std::optional<PovRoute> parse_pov_route(const std::string& name);
 
 struct GenerateOptions {

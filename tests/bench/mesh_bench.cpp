@@ -95,12 +95,14 @@ struct Row {
 
 struct Options {
   std::vector<size_t> sizes = {2048, 8192, 32768, 131072, 524288, 2097152};
-  std::vector<std::string> materials = {"native", "isotropic", "anisotropic"};
+  std::vector<std::string> materials = {"native", "isotropic", "anisotropic", "isotropic-fast"};
   fs::path out = "out/mesh_bench", facet, markdown, plot;
   int width = 640, height = 480;
 };
 
-facet::Material bench_material(const std::string& kind) {
+// "isotropic-fast" is the isotropic material through --pov-route fast (slope tables).
+facet::Material bench_material(std::string kind) {
+  if (kind == "isotropic-fast") kind = "isotropic";
   json j;
   if (kind == "native")
     j = {{"name", "native"},
@@ -117,22 +119,53 @@ facet::Material bench_material(const std::string& kind) {
   return facet::parse_material(j, kind + ".json");
 }
 
-Row measure(const facet::Scene& scene, const std::string& kind, const Options& o) {
+fs::path folder(const Options& o, size_t triangles, const std::string& kind) {
+  return o.out / fmt::format("{}_{}", triangles, kind);
+}
+
+// Writes each material's GLB of the size-n scene in a child process, so that this
+// one stays small: a child's peak memory as wait4 reports it includes what it
+// inherited from its parent before exec. Returns the scene's triangle count.
+size_t write_glbs(size_t n, const Options& o) {
+  int pipefd[2];
+  if (pipe(pipefd) != 0) return 0;
+  pid_t pid = fork();
+  if (pid == 0) {
+    close(pipefd[0]);
+    facet::Scene scene = facet::mesh_bench_scene(n);
+    size_t triangles = 0;
+    for (const auto& obj : scene.objects) triangles += obj.mesh->triangles.size();
+    for (const auto& kind : o.materials) {
+      fs::create_directories(folder(o, triangles, kind));
+      const facet::Material m = bench_material(kind);
+      std::vector<std::string> notes;
+      facet::export_gltf(scene, &m, (folder(o, triangles, kind) / "bench.glb").string(), notes);
+    }
+    ssize_t written = write(pipefd[1], &triangles, sizeof triangles);
+    _exit(written == ssize_t(sizeof triangles) ? 0 : 1);
+  }
+  close(pipefd[1]);
+  size_t triangles = 0;
+  if (read(pipefd[0], &triangles, sizeof triangles) != ssize_t(sizeof triangles)) triangles = 0;
+  close(pipefd[0]);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  return triangles;
+}
+
+Row measure(size_t triangles, const std::string& kind, const Options& o) {
   Row r;
-  r.triangles = 0;
-  for (const auto& obj : scene.objects) r.triangles += obj.mesh->triangles.size();
+  r.triangles = triangles;
   r.material = kind;
-  const fs::path dir = o.out / fmt::format("{}_{}", r.triangles, kind);
-  fs::create_directories(dir);
-  const facet::Material m = bench_material(kind);
-  std::vector<std::string> notes;
-  facet::export_gltf(scene, &m, (dir / "bench.glb").string(), notes);
+  const fs::path dir = folder(o, triangles, kind);
   r.glb_mb = megabytes(dir / "bench.glb");
   Measured imp = run({o.facet.string(), "import-gltf", "bench.glb", "-o", "bench.json"}, dir);
   r.import_s = imp.seconds, r.import_mb = imp.peak_mb;
   r.json_kb = megabytes(dir / "bench.json") * 1e3;
   if (imp.exit_code != 0) return r.error = "import-gltf: " + imp.output, r;
-  Measured gen = run({o.facet.string(), "generate", "--target", "pov", "--scene", "bench.json", "-o", "bench.pov"}, dir);
+  Measured gen = run({o.facet.string(), "generate", "--target", "pov", "--scene", "bench.json", "--pov-route",
+                      kind == "isotropic-fast" ? "fast" : "auto", "-o", "bench.pov"},
+                     dir);
   r.generate_s = gen.seconds, r.generate_mb = gen.peak_mb;
   if (gen.exit_code != 0) return r.error = "generate: " + gen.output, r;
   r.pov_mb = megabytes(dir / "bench.pov");
@@ -187,7 +220,7 @@ std::string table(const std::vector<Row>& rows, const Options& o) {
 // Between 32 k and the largest size: the exponents the issue bounds.
 std::string summary(const std::vector<Row>& rows) {
   std::string out;
-  for (const std::string kind : {"native", "isotropic", "anisotropic"}) {
+  for (const std::string kind : {"native", "isotropic", "anisotropic", "isotropic-fast"}) {
     const Row *lo = nullptr, *hi = nullptr;
     for (const auto& r : rows)
       if (r.material == kind && r.error.empty() && r.triangles >= 30000) {
@@ -205,11 +238,12 @@ std::string summary(const std::vector<Row>& rows) {
 }
 
 void plot(const std::vector<Row>& rows, const fs::path& path) {
-  const facet::Color colors[] = {facet::Color::hex(0x1f77b4), facet::Color::hex(0xd62728), facet::Color::hex(0x2ca02c)};
+  const facet::Color colors[] = {facet::Color::hex(0x1f77b4), facet::Color::hex(0xd62728), facet::Color::hex(0x2ca02c),
+                                 facet::Color::hex(0x9467bd)};
   facet::LogLogChart time{"POV-Ray parse time against mesh size", "triangles", "seconds", {}, 1, 560, 380};
   facet::LogLogChart memory{"POV-Ray peak memory against mesh size", "triangles", "MB", {}, 1, 560, 380};
   int c = 0;
-  for (const std::string kind : {"native", "isotropic", "anisotropic"}) {
+  for (const std::string kind : {"native", "isotropic", "anisotropic", "isotropic-fast"}) {
     facet::ChartSeries t{kind, colors[c], {}, {}, false}, m{kind, colors[c++], {}, {}, false};
     for (const auto& r : rows)
       if (r.material == kind && r.error.empty()) {
@@ -257,7 +291,7 @@ std::optional<Options> parse_args(int argc, char** argv) {
       o.width = std::stoi(s.substr(0, s.find('x')));
       o.height = std::stoi(s.substr(s.find('x') + 1));
     } else {
-      std::cerr << "usage: facet_mesh_bench [--sizes 2k,8k,32k,128k,512k,2M] [--materials native,isotropic,anisotropic]\n"
+      std::cerr << "usage: facet_mesh_bench [--sizes 2k,8k,32k,128k,512k,2M] [--materials native,isotropic,anisotropic,isotropic-fast]\n"
                    "                        [--size 640x480] [--out DIR] [--markdown FILE.md] [--plot STEM (STEM_parse.svg, STEM_memory.svg)] [--facet PATH]\n";
       return std::nullopt;
     }
@@ -270,13 +304,18 @@ std::optional<Options> parse_args(int argc, char** argv) {
 int main(int argc, char** argv) {
   std::optional<Options> o = parse_args(argc, argv);
   if (!o) return 2;
+  o->out = fs::absolute(o->out);
   fs::create_directories(o->out);
   std::vector<Row> rows;
   bool failed = false;
   for (size_t n : o->sizes) {
-    facet::Scene scene = facet::mesh_bench_scene(n);
+    const size_t triangles = write_glbs(n, *o);
+    if (triangles == 0) {
+      std::cerr << "facet_mesh_bench: could not write the scenes of " << n << " triangles\n";
+      return 1;
+    }
     for (const auto& kind : o->materials) {
-      Row r = measure(scene, kind, *o);
+      Row r = measure(triangles, kind, *o);
       std::cerr << fmt::format("{:>8} triangles, {:<11}: generate {:.2f} s, POV-Ray parse {:.2f} s, trace {:.2f} s, "
                                "peak {:.0f} MB{}\n",
                                r.triangles, kind, r.generate_s, r.parse_s, r.trace_s, r.pov_peak_mb,

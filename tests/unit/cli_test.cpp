@@ -119,6 +119,40 @@ TEST(Cli, GenerateWritesTheFile) {
 }
 
 // --json describes what was generated; tools (the Blender add-on) read POV-Ray's pass count from it.
+// --pov-route: native refuses what POV-Ray's finish cannot draw, naming the object, and
+// writes nothing; fast draws the isotropic meshes through slope tables (no data image)
+// and says so, with its measured error; every object's route is on stderr.
+TEST(Cli, PovRoutesAreChosenAndSaid) {
+  const std::string scene = (kSource / "examples/scenes/three_meshes.json").string();
+  fs::path out = scratch("routes.pov");
+  fs::remove(out);
+  ProcessResult r = facet({"generate", "--target", "pov", "--scene", scene, "--pov-route", "native", "-o", out.string()});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.output.find("three_meshes.json"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("--pov-route native: object \"sphere\": ggx is not a POV-Ray finish"), std::string::npos)
+      << r.output;
+  EXPECT_FALSE(fs::exists(out));
+  EXPECT_FALSE(fs::exists(scratch("routes_mesh0.ppm")));
+
+  r = facet({"generate", "--target", "pov", "--scene", scene, "--pov-route", "fast", "--json", "-o", out.string()});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  json j = json::parse(r.output);
+  const auto& routes = j["pov"]["routes"];
+  ASSERT_EQ(routes.size(), 4u);
+  EXPECT_NE(routes[0].get<std::string>().find("slope tables"), std::string::npos) << routes[0];  // GGX: isotropic
+  EXPECT_NE(routes[0].get<std::string>().find("measured"), std::string::npos) << routes[0];
+  EXPECT_NE(routes[2].get<std::string>().find("data image"), std::string::npos) << routes[2];  // Ward reads t
+  EXPECT_EQ(j["pov"]["files"], json::array({"routes_mesh2.ppm"})) << "only the Ward torus reads a data image";
+  EXPECT_NE(read_file(out.string()).find("slope { point_at"), std::string::npos);
+
+  r = facet({"generate", "--target", "pov", "--scene", scene, "-o", out.string()});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("facet: object \"torus\" (mesh of"), std::string::npos) << "routes on stderr: " << r.output;
+  r = facet({"generate", "--target", "pov", "--scene", scene});
+  EXPECT_EQ(r.exit_code, 1) << "the data images need a folder: -o";
+  EXPECT_NE(r.output.find("give -o FILE.pov"), std::string::npos) << r.output;
+}
+
 TEST(Cli, GenerateJsonDescribesTheOutput) {
   fs::path out = scratch("three_meshes.pov");
   fs::remove(out);

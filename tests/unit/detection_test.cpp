@@ -131,17 +131,17 @@ TEST(Detection, PovMeshDataConventionsFailWhenWrong) {
   PovOutput pov = generate_pov_files(f.scene, &f.material, "ggx.json", PovRoute::Auto, job_name(f.job));
   ASSERT_EQ(pov.files.size(), 3u) << "three meshes on the function route, three data images";
   EXPECT_TRUE(judged(f, render_one("pov", f.job)).pass);
-  // Texel K's row counted from the bottom of the image instead of the top.
-  const std::string row = "#declare Facet_Mesh0_Row = function(K) { ";
+  // The triangle's row counted from the bottom of the image instead of the top.
+  const std::string row = "#declare Facet_Mesh0_Y = function(Tri) { ";
   size_t at = pov.code.find(row), end = pov.code.find(" }\n", at);
   ASSERT_NE(at, std::string::npos);
   const std::string height = pov.code.substr(pov.code.rfind('/', end) + 1, end - pov.code.rfind('/', end) - 1);
-  f.job.code_override = pov.code.substr(0, at + row.size()) + "(floor(K/4096) + 0.5)/" + height + pov.code.substr(end);
+  f.job.code_override = pov.code.substr(0, at + row.size()) + "(floor(Tri/455) + 0.5)/" + height + pov.code.substr(end);
   ComparisonRow flipped = judged(f, render_one("pov", f.job));
   EXPECT_FALSE(flipped.pass) << "rows from the bottom: max |Δ|/max(1,|ref|) " << flipped.metrics.max_excess;
   // The barycentrics of corners 1 and 2 swapped.
-  f.job.code_override = inject(pov.code, "A*Facet_Mesh0_Q(Tri, I + 3) + B*Facet_Mesh0_Q(Tri, I + 6)",
-                               "B*Facet_Mesh0_Q(Tri, I + 3) + A*Facet_Mesh0_Q(Tri, I + 6)");
+  f.job.code_override = inject(pov.code, "A*Facet_Mesh0_QB(X, Y, 1) + B*Facet_Mesh0_QA(X, Y, 3)",
+                               "B*Facet_Mesh0_QB(X, Y, 1) + A*Facet_Mesh0_QA(X, Y, 3)");
   ComparisonRow swapped = judged(f, render_one("pov", f.job));
   EXPECT_FALSE(swapped.pass) << "corners 1 and 2 swapped: max |Δ|/max(1,|ref|) " << swapped.metrics.max_excess;
 }

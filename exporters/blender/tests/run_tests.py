@@ -1322,6 +1322,41 @@ def test_export_pov_scene_matches_reference():
 
 
 @test()
+def test_export_pov_of_half_a_million_triangles():
+    """A 500,000-triangle smooth grid (Lambert + GGX: function pigments, the mesh's
+    geometry in a data image): the export's time is printed (issue 11 asks for under 30 s
+    on the 2-core machine; a figure, not an assertion), and POV-Ray's render of it equals
+    facet's reference on every pixel facet judges."""
+    check(scene_support(), "facet lacks scene materials/meshes")
+    check(OPTS.povray and shutil.which(OPTS.povray), "POV-Ray (povray) is not installed")
+    prefs().povray_path = shutil.which(OPTS.povray)
+    mat = new_material("Big", "lambert", "ggx")
+    mat.facet.diffuse_lambert.color = (0.6, 0.45, 0.3)
+    bpy.ops.mesh.primitive_grid_add(x_subdivisions=500, y_subdivisions=500, size=4.0)   # 500² quads (499² in 3.x)
+    grid = bpy.context.active_object
+    bpy.ops.object.shade_smooth()
+    grid.data.materials.append(mat)
+    triangles = sum(len(p.vertices) - 2 for p in grid.data.polygons)
+    check(triangles >= 498000, f"the grid has {triangles} triangles")
+    add_camera((0.0, -3.5, 2.5), (0.0, 0.0, 0.0), 40.0)
+    add_light("POINT", (1.0, -1.5, 2.0), 40.0)
+    w, h = 48, 36
+    scene = bpy.context.scene
+    scene.render.resolution_x, scene.render.resolution_y = w, h
+    pov = work("big.pov")
+    t0 = time.perf_counter()
+    expect_ok("export_pov", None, filepath=pov, render=False, save_scene=True)
+    info(f"export of {triangles} triangles to POV-Ray: {time.perf_counter() - t0:.1f} s "
+         f"(.pov {os.path.getsize(pov) / 1e6:.0f} MB, data image {os.path.getsize(work('big_mesh0.ppm')) / 1e6:.0f} MB)")
+    expect_ok("export_pov", None, filepath=pov, render=True)
+    _, _, got = read_png16(work("big.png"))
+    ref = facet_reference(None, read_json(work("big.json")), w, h, "big")
+    check(max(max(px) for row in ref for px in row) < 1.0, "reference above 1 would clip in the PNG")
+    covered = [[1 if any(c > 0 for c in px) else 0 for px in row] for row in ref]
+    compare(got, ref, covered, "500k-triangle grid, POV-Ray vs facet reference")
+
+
+@test()
 def test_export_pov_render_failure_keeps_old_png():
     """A POV-Ray that fails in one of the passes (one per light): a clear error naming the
     pass, the other runs stopped, the previous PNG intact and no temporary files left."""
