@@ -174,8 +174,10 @@ void PovScene::build_scaffolding() {
     PovShading& sh = *shadings_[shading_of_[o]];
     if (!table_[o] || !sh.tables.empty()) continue;
     for (size_t i = 0; i < s_.lights.size(); ++i) sh.tables.push_back(table_function(sh, i));
-    routes_[o] += fmt::format("; within {:.2g} of the reflectance per unit light, measured at every cell's centre",
-                              table_error(*sh.material));
+    const TableError e = table_error(*sh.material);
+    routes_[o] += fmt::format("; measured at every cell's centre, |Δ|/max(1, |ρ|) is at most {:.2g} and over 2e-3 in "
+                              "{:.2g} % of the cells (highlights and grazing angles: docs/povray-meshes.md)",
+                              e.worst, 100 * e.share_over);
   }
   for (size_t o = 0; o < s_.objects.size(); ++o) {
     objects_.emplace_back();

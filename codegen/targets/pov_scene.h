@@ -108,8 +108,12 @@ std::string emission_texture(const RGB& e, double weight, double t);
 // Whether object i is drawn through slope tables: a mesh with an isotropic
 // material, on the function route, when the route asked is fast.
 bool pov_table_object(const Scene& s, size_t i, const Material* fallback, PovRoute route, bool native);
-// A slope table's largest error relative to max(1, |reflectance|), measured (pov_table.cpp).
-double table_error(const Material& m);
+// A slope table's error relative to max(1, |reflectance|), measured at its cells' centres
+// (pov_table.cpp): the largest, and the share of cells where it is over 2e-3.
+struct TableError {
+  double worst = 0, share_over = 0;
+};
+TableError table_error(const Material& m);
 // `texture { … }` of a native finish, from the catalog's PovFinish of each lobe.
 std::string native_texture(const Material& m, double weight);
 

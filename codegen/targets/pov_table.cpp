@@ -117,16 +117,17 @@ std::string PovScene::table_pigment(size_t o, size_t i, PovPigment p, size_t wid
   return out + "  }\n}\n";
 }
 
-// The largest |table − exact| / max(1, |exact|) of the reflectance, per unit
-// light: at the centre of every cell, for l·v = cos γ at 24 angles γ, where the
-// three cosines are those of real directions.
-double table_error(const Material& m) {
+// |table − exact| / max(1, |exact|) of the reflectance, per unit light: at the
+// centre of every cell, for l·v = cos γ at 24 angles γ, where the three cosines
+// are those of real directions. The largest, and the share of cells over 2e-3.
+TableError table_error(const Material& m) {
   Reference ref(m);
   const int n = PovScene::kTableNodes;
   const size_t count = size_t(n);
   std::vector<double> c(count), angle(count);
   for (int j = 0; j < n; ++j) c[size_t(j)] = node_cos(j, n), angle[size_t(j)] = std::asin(c[size_t(j)]);
-  double worst = 0;
+  TableError e;
+  size_t cells = 0, over = 0;
   for (int g = 1; g < 24; ++g) {
     const double gamma = kPiTable * g / 24, lv = std::cos(gamma);
     std::vector<RGB> node(size_t(n * n));
@@ -139,14 +140,19 @@ double table_error(const Material& m) {
         const double tl = kPiTable / 2 - el, tv = kPiTable / 2 - ev;
         if (gamma < std::abs(tl - tv) || gamma > tl + tv) continue;  // no such directions
         RGB exact = ref.reflectance(table_inputs(std::sin(el), std::sin(ev), lv));
+        double cell = 0;
         for (size_t ch = 0; ch < 3; ++ch) {
           double mean = (node[size_t(j * n + k)][ch] + node[size_t((j + 1) * n + k)][ch] +
                          node[size_t(j * n + k + 1)][ch] + node[size_t((j + 1) * n + k + 1)][ch]) / 4;
-          worst = std::max(worst, std::abs(mean - exact[ch]) / std::max(1.0, std::abs(exact[ch])));
+          cell = std::max(cell, std::abs(mean - exact[ch]) / std::max(1.0, std::abs(exact[ch])));
         }
+        e.worst = std::max(e.worst, cell);
+        ++cells;
+        over += cell > 2e-3;
       }
   }
-  return worst;
+  e.share_over = cells ? double(over) / double(cells) : 0;
+  return e;
 }
 
 }  // namespace facet::targets
