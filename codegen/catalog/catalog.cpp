@@ -36,6 +36,7 @@ const char* param_kind_name(ParamKind k) {
     case ParamKind::String: return "string";
     case ParamKind::Points: return "points";
     case ParamKind::Triangles: return "triangles";
+    case ParamKind::Index: return "index";
   }
   return "?";
 }
@@ -79,6 +80,7 @@ std::string ParamDef::allowed() const {
     case ParamKind::String: return "a non-empty string";
     case ParamKind::Points: return nonzero ? "an array of [x, y, z], none of them zero" : "an array of [x, y, z]";
     case ParamKind::Triangles: return "an array of [a, b, c], indices of distinct vertices";
+    case ParamKind::Index: return by_name ? "an index (a whole number ≥ 0) or a name" : "an index (a whole number ≥ 0)";
     case ParamKind::Object: {
       std::string s = "an object with keys";
       const ModelDef* m = find_model(section, fixed);
@@ -87,6 +89,18 @@ std::string ParamDef::allowed() const {
     }
   }
   return "?";
+}
+
+std::string ModelDef::forms_text() const {
+  std::string s = "one of: ";
+  for (size_t i = 0; i < forms.size(); ++i) {
+    const ParamForm& f = forms[i];
+    s += (i ? "; " : "") + f.what + " (";
+    for (size_t k = 0; k < f.keys.size(); ++k) s += (k ? ", \"" : "\"") + f.keys[k] + "\"";
+    for (const auto& k : f.optional) s += ", optional \"" + k + "\"";
+    s += ")";
+  }
+  return s;
 }
 
 const ParamDef* ModelDef::param(const std::string& name) const {

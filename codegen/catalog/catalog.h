@@ -16,6 +16,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -52,6 +53,7 @@ enum class ParamKind {
   String,     // a non-empty string
   Points,     // an array of [x, y, z] (mesh positions and normals)
   Triangles,  // an array of [a, b, c] vertex indices
+  Index,      // an index (a whole number ≥ 0), or with `by_name` also a name (a non-empty string)
 };
 const char* param_kind_name(ParamKind k);
 
@@ -65,6 +67,7 @@ struct Value {
   std::array<double, 3> rgb{};
   std::shared_ptr<const ModelSpec> model;  // Model and Object kinds
   std::vector<std::array<double, 3>> points;  // Points and Triangles kinds
+  // Index kind: `number` holds the index, or −1 where `choice` holds a name (or the key is absent).
 };
 
 struct ParamDef {
@@ -81,6 +84,7 @@ struct ParamDef {
                                      // Model: the model an object without "model" means
   bool nonzero = false;              // Vector: a direction, so not the zero vector
   bool every_lobe = false;           // one of the parameters every diffuse and specular lobe takes (color, toon)
+  bool by_name = false;              // Index: a name is allowed as well as an index
   std::string allowed() const;       // what the error messages say is allowed
 };
 
@@ -130,6 +134,15 @@ struct PovFinish {
 
 class LobeContext;
 
+// One way of writing an object whose parameters come in alternatives (a mesh: its
+// arrays inline, or a reference to a glTF file). `keys` are the parameters the form
+// needs, `optional` those it also allows; a parameter of another form is an error.
+struct ParamForm {
+  std::string what;  // "inline arrays", "a glTF file's node"
+  std::vector<std::string> keys;
+  std::vector<std::string> optional;
+};
+
 // The scene vocabulary's kinds, as the catalog states them: the scene layer builds
 // an object, a light or an attenuation law from the kind its model has (scene.h's
 // Object::Type, Light::Type and Attenuation::Law are these enums), never from the
@@ -146,6 +159,10 @@ struct ModelDef {
   std::string formula;   // the formula as in MODELS.md
   std::string doc;       // a paragraph for `facet models` and the docs
   std::vector<ParamDef> params;
+  // Empty: any of the parameters. Else an object holds exactly one of these forms
+  // (the checker names what is missing or extra; the schema says the same).
+  std::vector<ParamForm> forms;
+  std::string forms_text() const;  // "one of: inline arrays (\"positions\", …); …"
   Equivalence cycles;    // the nearest Cycles closure
   Equivalence pov;       // POV-Ray's native finish
   // Physics, as the literature states it (facet physics measures both):
@@ -184,6 +201,7 @@ struct ModelDef {
 struct ModelSpec {
   const ModelDef* def = nullptr;
   std::map<std::string, Value> values;
+  std::set<std::string> given;  // the keys the document held; the other values are defaults
   const Value& at(const std::string& name) const;
 };
 

@@ -47,6 +47,18 @@ inline ParamDef list(std::string name, std::string doc, ParamKind kind, bool non
   return p;
 }
 
+// An optional index into something (a glTF file's meshes), or also its name (`by_name`).
+inline ParamDef index(std::string name, std::string doc, bool by_name) {
+  ParamDef p;
+  p.name = std::move(name);
+  p.kind = ParamKind::Index;
+  p.doc = std::move(doc);
+  p.by_name = by_name;
+  p.fallback.kind = ParamKind::Index;
+  p.fallback.number = -1;
+  return p;
+}
+
 inline ParamDef flag(std::string name, std::string doc, bool fallback) {
   ParamDef p;
   p.name = std::move(name);

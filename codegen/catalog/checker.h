@@ -6,6 +6,7 @@
 #include <cmath>
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -157,6 +158,7 @@ class Checker {
       case ParamKind::String: return string_value(j, path, p);
       case ParamKind::Points:
       case ParamKind::Triangles: return list(j, path, p);
+      case ParamKind::Index: return index_value(j, path, p);
       case ParamKind::Bool: return bool_value(j, path, p);
       case ParamKind::Enum: return enum_value(j, path, p);
       case ParamKind::Color: return wrap(p, color(j, path, p), &Value::rgb);
@@ -220,10 +222,12 @@ class Checker {
         ok = false;
         continue;
       }
+      spec.given.insert(k);
       auto v = value(val, join_path(path, k), *p);
       if (v) spec.values[k] = *v;
       else ok = false;
     }
+    if (ok && !def->forms.empty()) ok = one_form(*def, spec.given, path);
     for (const auto& p : def->params) {
       if (spec.values.count(p.name) || j.contains(p.name)) continue;  // present: valid, or already reported
       if (p.required) {
@@ -256,6 +260,70 @@ class Checker {
       return std::nullopt;
     }
     return wrap(p, std::optional<std::string>(j.get<std::string>()), &Value::choice);
+  }
+
+  // A whole number ≥ 0, or (by_name) a non-empty string.
+  std::optional<Value> index_value(const json& j, const std::string& path, const ParamDef& p) {
+    Value out;
+    out.kind = p.kind;
+    out.number = -1;
+    if (j.is_number_integer() && j.get<double>() >= 0) out.number = j.get<double>();
+    else if (p.by_name && j.is_string() && !j.get<std::string>().empty()) out.choice = j.get<std::string>();
+    else {
+      std::string found = j.is_string() && j.get<std::string>().empty() ? "an empty string"
+                          : j.is_number()                             ? "the number " + j.dump()
+                                                                      : json_type_name(j);
+      sink_.error(path, fmt::format("expected {}, found {}", p.allowed(), found));
+      return std::nullopt;
+    }
+    return out;
+  }
+
+  // The keys of exactly one of def's forms; else what is missing or extra, by key.
+  // The form meant is the one with most of its keys given (its own keys count
+  // double); where several are as near and none is complete, the error names each.
+  bool one_form(const ModelDef& def, const std::set<std::string>& given, const std::string& path) {
+    auto in = [](const std::vector<std::string>& v, const std::string& k) {
+      return std::find(v.begin(), v.end(), k) != v.end();
+    };
+    auto missing = [&](const ParamForm& f) {
+      std::vector<std::string> m;
+      for (const auto& k : f.keys)
+        if (!given.count(k)) m.push_back(k);
+      return m;
+    };
+    std::vector<const ParamForm*> best;
+    size_t best_score = 0;
+    for (const auto& f : def.forms) {
+      size_t score = 0;
+      for (const auto& k : f.keys) score += given.count(k) * 2;
+      for (const auto& k : f.optional) score += given.count(k);
+      if (best.empty() || score > best_score) best.clear(), best_score = score;
+      if (score == best_score) best.push_back(&f);
+    }
+    std::string says = fmt::format("{} \"{}\" is {}", def.section, def.name, def.forms_text());
+    auto complete = std::find_if(best.begin(), best.end(), [&](const ParamForm* f) { return missing(*f).empty(); });
+    if (complete == best.end() && best.size() > 1) {
+      std::string alts;
+      for (const auto* f : best) alts += (alts.empty() ? "" : " or ") + quoted_list(missing(*f)) + " (" + f->what + ")";
+      sink_.error(path, fmt::format("missing {}; {}", alts, says));
+      return false;
+    }
+    const ParamForm& form = complete != best.end() ? **complete : *best.front();
+    bool ok = true;
+    for (const auto& k : missing(form)) {
+      sink_.error(join_path(path, k), fmt::format("missing for {}; {}", form.what, says));
+      ok = false;
+    }
+    for (const auto& k : given) {
+      bool of_a_form = std::any_of(def.forms.begin(), def.forms.end(),
+                                   [&](const ParamForm& f) { return in(f.keys, k) || in(f.optional, k); });
+      if (of_a_form && !in(form.keys, k) && !in(form.optional, k)) {
+        sink_.error(join_path(path, k), fmt::format("not allowed with {}; {}", form.what, says));
+        ok = false;
+      }
+    }
+    return ok;
   }
 
   std::optional<Value> bool_value(const json& j, const std::string& path, const ParamDef& p) {

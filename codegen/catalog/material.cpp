@@ -2,6 +2,7 @@
 
 #include "catalog/checker.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
@@ -127,6 +128,7 @@ json value_json(const Value& v) {
     case ParamKind::String: return v.choice;
     case ParamKind::Points:
     case ParamKind::Triangles: return v.points;
+    case ParamKind::Index: return v.number >= 0 ? json(int64_t(v.number)) : json(v.choice);
   }
   return nullptr;
 }
@@ -145,7 +147,8 @@ json default_json(const ParamDef& p) {
     case ParamKind::Model: return v.model ? spec_json(*v.model) : json(nullptr);
     case ParamKind::Object:
     case ParamKind::Points:
-    case ParamKind::Triangles: return nullptr;
+    case ParamKind::Triangles:
+    case ParamKind::Index: return nullptr;
   }
   return nullptr;
 }
@@ -197,6 +200,11 @@ json param_schema(const ParamDef& p) {
       s = {{"type", "array"}, {"items", {{"type", "array"}, {"items", item}, {"minItems", 3}, {"maxItems", 3}}}};
       break;
     }
+    case ParamKind::Index: {
+      json index = {{"type", "integer"}, {"minimum", 0}};
+      s = p.by_name ? json{{"oneOf", json::array({index, {{"type", "string"}, {"minLength", 1}}})}} : index;
+      break;
+    }
     case ParamKind::Color: {
       json comp = number_schema(p.range);
       s = {{"oneOf", json::array({comp, {{"type", "array"}, {"items", comp}, {"minItems", 3}, {"maxItems", 3}}})}};
@@ -230,6 +238,26 @@ json param_schema(const ParamDef& p) {
   return s;
 }
 
+namespace {
+
+// Exactly one of the model's forms: its keys present, every other form's keys absent.
+json forms_schema(const ModelDef& m) {
+  json alts = json::array();
+  for (const auto& f : m.forms) {
+    json absent = json::object();
+    for (const auto& other : m.forms)
+      for (const auto* keys : {&other.keys, &other.optional})
+        for (const auto& k : *keys)
+          if (std::find(f.keys.begin(), f.keys.end(), k) == f.keys.end() &&
+              std::find(f.optional.begin(), f.optional.end(), k) == f.optional.end())
+            absent[k] = false;
+    alts.push_back({{"description", f.what}, {"required", f.keys}, {"properties", absent}});
+  }
+  return alts;
+}
+
+}  // namespace
+
 json model_schema(const ModelDef& m, const std::string& key) {
   json props = json::object();
   json required = json::array();
@@ -242,6 +270,7 @@ json model_schema(const ModelDef& m, const std::string& key) {
     if (p.required) required.push_back(p.name);
   }
   json s = {{"type", "object"}, {"properties", props}, {"required", required}, {"additionalProperties", false}};
+  if (!m.forms.empty()) s["oneOf"] = forms_schema(m);
   s["title"] = m.title;
   if (!m.citation.empty()) s["description"] = m.citation + ". " + m.formula;
   return s;

@@ -176,12 +176,26 @@ void add_scene_vocabulary(std::vector<ModelDef>& all) {
     auto m = entry("object", "mesh", "Triangle mesh", "", "n(p) = normalize(Σ w_i n_i), w the barycentrics of p",
                    "Triangles in world space with a unit normal per vertex; shading interpolates the normals "
                    "(smooth shading; give flat faces their own vertices). Anisotropic models take the tangent "
-                   "rule's t from the interpolated normal.");
+                   "rule's t from the interpolated normal. The arrays are inline, or in a glTF 2.0 file the "
+                   "object references: a mesh (its coordinates as they are) or a node (its mesh in the node's "
+                   "world transform), all its triangle primitives or one; normals as facet import-gltf reads "
+                   "them (a primitive without NORMAL is flat-shaded, zero-area triangles dropped). A file "
+                   "several objects reference is read once.");
     m.params = {text("name", "a name for reports"), text("material", "a key of the scene's \"materials\""),
                 list("positions", "vertex positions, world space", ParamKind::Points),
                 list("normals", "a normal per vertex, world space", ParamKind::Points, true),
                 list("triangles", "vertex indices, counter-clockwise seen from the normals' side",
-                     ParamKind::Triangles)};
+                     ParamKind::Triangles),
+                text("gltf", "a glTF 2.0 file (.gltf or .glb), relative to the scene file"),
+                index("mesh", "the glTF file's mesh: its index in \"meshes\" or its name", true),
+                index("node", "the glTF file's node: its index in \"nodes\" or its name; its mesh in its world "
+                              "transform", true),
+                index("primitive", "the index of one primitive of the mesh; absent: every triangle primitive",
+                      false)};
+    for (auto& p : m.params) p.required = false;  // the forms say which keys a mesh needs
+    m.forms = {{"inline arrays", {"positions", "normals", "triangles"}, {}},
+               {"a glTF file's mesh", {"gltf", "mesh"}, {"primitive"}},
+               {"a glTF file's node", {"gltf", "node"}, {"primitive"}}};
     m.object_type = ObjectType::Mesh;
     all.push_back(m);
   }

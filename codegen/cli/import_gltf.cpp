@@ -8,6 +8,7 @@
 
 #include "catalog/material.h"
 #include "cli/command.h"
+#include "core/diagnostics.h"
 #include "core/io.h"
 #include "scene/gltf.h"
 #include "scene/scene.h"
@@ -18,6 +19,7 @@ namespace facet::cli {
 namespace {
 
 std::string gi_in, gi_out, gi_default;
+bool gi_inline = false;
 
 int run_import_gltf() {
   GltfImportOptions opt;
@@ -25,7 +27,12 @@ int run_import_gltf() {
   std::vector<std::string> notes;
   Scene s = import_gltf(gi_in, opt, notes);
   for (const auto& n : notes) std::cerr << "note: " << n << "\n";
-  write_file_atomic(gi_out, to_json(s).dump(1) + "\n");
+  if (gi_inline) {
+    size_t triangles = 0;
+    for (const auto& o : s.objects) triangles += o.mesh ? o.mesh->triangles.size() : 0;
+    if (triangles >= 500'000) progress(fmt::format("writing {}: {} triangles inline", gi_out, triangles));
+  }
+  write_file_atomic(gi_out, (gi_inline ? to_json(s) : to_json(s, gi_out)).dump(1) + "\n");
   fmt::print(stderr, "{}: {} objects, {} materials, {} lights\n", gi_out, s.objects.size(), s.materials.size(),
              s.lights.size());
   return 0;
@@ -37,11 +44,19 @@ Command import_gltf_command(CLI::App& app) {
   gi->add_option("scene", gi_in, "The glTF file")->required();
   gi->add_option("-o,--output", gi_out, "The facet scene (JSON)")->required();
   gi->add_option("--default-material", gi_default, "A facet material for primitives without one");
+  gi->add_flag("--inline", gi_inline,
+               "Write each mesh's positions, normals and triangles into the scene file instead of referencing the "
+               "glTF file");
   gi->footer(
       "Meshes (node transforms applied), the first perspective camera, KHR_lights_punctual lights and the\n"
       "materials: FACET_material exactly, else metallic–roughness as GGX (α = roughness², separable Smith,\n"
       "Schlick f0 = mix(0.04, base, metallic)) over Lambert (base · (1 − metallic)). What is approximate or\n"
-      "ignored is printed. Example:\n"
+      "ignored is printed.\n"
+      "The scene file references the glTF file's triangles rather than copying them, so it stays a few kB:\n"
+      "each mesh object is {\"type\": \"mesh\", \"gltf\": FILE, \"node\": N} (\"primitive\": P where the node's mesh\n"
+      "has several), FILE relative to the scene file; facet reads the node's mesh in its world transform.\n"
+      "A scene file may also say \"mesh\": N (a mesh as it is), and name a node or mesh instead of N. Keep\n"
+      "the glTF file beside the scene (or give --inline, for the arrays themselves). Example:\n"
       "  facet import-gltf examples/scenes/three_meshes.gltf -o scene.json && facet validate --scene scene.json");
   return {gi, [] { return run_import_gltf(); }};
 }

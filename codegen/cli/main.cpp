@@ -31,6 +31,7 @@ int main(int argc, char** argv) {
   };
 
   CLI11_PARSE(app, argc, argv);
+  set_progress_sink([](const std::string& line) { std::cerr << line << "\n"; });
 
   try {
     for (const auto& c : commands)

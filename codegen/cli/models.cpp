@@ -35,6 +35,7 @@ json catalog_json() {
     }
     json mj = {{"name", m.name},       {"title", m.title}, {"citation", m.citation},
                {"formula", m.formula}, {"doc", m.doc},     {"parameters", params}};
+    for (const auto& f : m.forms) mj["forms"].push_back({{"what", f.what}, {"keys", f.keys}, {"optional", f.optional}});
     if (m.section == "diffuse" || m.section == "specular") {
       mj["cycles"] = {{"level", level_name(m.cycles.level)}, {"note", m.cycles.note}};
       mj["pov"] = {{"level", level_name(m.pov.level)}, {"note", m.pov.note}};
@@ -69,6 +70,7 @@ int run_models(bool as_json) {
       if (p.kind == ParamKind::Model && p.fallback.model) dflt = fmt::format(", default {}", p.fallback.choice);
       fmt::print("  {:<18}   {}{}: {}{}\n", "", p.name, p.required ? " (required)" : "", p.allowed(), dflt);
     }
+    if (!m.forms.empty()) fmt::print("  {:<18}   written as {}\n", "", m.forms_text());
   }
   fmt::print("\nEvery diffuse and specular lobe also takes \"color\" (k_d or k_s, default 1) and \"toon\".\n");
   return 0;

@@ -37,6 +37,19 @@ void DiagnosticSink::throw_if_any() const {
   if (!diagnostics_.empty()) throw InputError(diagnostics_);
 }
 
+namespace {
+std::function<void(const std::string&)>& progress_sink() {
+  static std::function<void(const std::string&)> sink;
+  return sink;
+}
+}  // namespace
+
+void set_progress_sink(std::function<void(const std::string&)> sink) { progress_sink() = std::move(sink); }
+
+void progress(const std::string& line) {
+  if (progress_sink()) progress_sink()(line);
+}
+
 std::string join_path(const std::string& parent, const std::string& key) {
   return parent.empty() ? key : parent + "." + key;
 }
@@ -227,7 +240,10 @@ json read_json_file(const std::string& path) {
   std::ostringstream ss;
   ss << in.rdbuf();
   if (in.bad()) throw InputError({{path, "", "cannot read the file", 0, 0}});
-  return parse_json(ss.str(), path);
+  const std::string text = ss.str();
+  // About 70 MB a second: a file this big takes a second or more (inline meshes).
+  if (text.size() >= 64'000'000) progress(fmt::format("reading {}: {} MB of JSON", path, text.size() / 1'000'000));
+  return parse_json(text, path);
 }
 
 }  // namespace facet

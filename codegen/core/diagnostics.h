@@ -1,6 +1,7 @@
 // facet — errors in user input, each naming the file and the key path.
 #pragma once
 
+#include <functional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -46,6 +47,11 @@ class DiagnosticSink {
 // parser had reached; duplicate keys and an empty document are errors too.
 nlohmann::json parse_json(const std::string& text, const std::string& file);
 nlohmann::json read_json_file(const std::string& path);  // also reports a missing/unreadable file
+
+// Progress of a step that takes seconds (reading a big mesh): one line, without
+// its newline. The command line prints it on stderr; by default it goes nowhere.
+void set_progress_sink(std::function<void(const std::string&)> sink);
+void progress(const std::string& line);
 
 // "a.b[2].c" helpers.
 std::string join_path(const std::string& parent, const std::string& key);

@@ -139,7 +139,9 @@ std::string params_table(const ModelDef& m) {
     h += fmt::format("<tr><td><code>{}</code>{}</td><td>{}</td><td>{}</td><td><code>{}</code></td><td>{}</td></tr>\n",
                      html_escape(p.name), p.required ? " <span class=muted>(required)</span>" : "",
                      param_kind_name(p.kind), html_escape(p.allowed()), html_escape(default_text(p)), html_escape(p.doc));
-  return h + "</table>\n";
+  h += "</table>\n";
+  if (!m.forms.empty()) h += fmt::format("<p>Written as {}.</p>\n", html_escape(m.forms_text()));
+  return h;
 }
 
 // The formula, the citation and the documentation of a model, as every page shows them.

@@ -1,6 +1,7 @@
 #include "scene/gltf.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -12,20 +13,21 @@
 #include <sstream>
 #include <utility>
 
-#define TINYGLTF_IMPLEMENTATION
-#define TINYGLTF_NO_STB_IMAGE
-#define TINYGLTF_NO_STB_IMAGE_WRITE
-#define TINYGLTF_NO_EXTERNAL_IMAGE
 #include <fmt/format.h>
-#include <tiny_gltf.h>
 
 #include "core/io.h"
 #include "core/vec.h"
+#define TINYGLTF_IMPLEMENTATION  // the one translation unit with tinygltf's code
+#include "scene/gltf_read.h"
 
 namespace facet {
 
 using nlohmann::json;
 namespace fs = std::filesystem;
+using gltf_detail::local_matrix;
+using gltf_detail::Mat4;
+using gltf_detail::PrimitivePlan;
+using gltf_detail::Reader;
 
 namespace {
 
@@ -36,154 +38,12 @@ const char* kSceneExt = "FACET_scene";
 const char* kLightsExt = "KHR_lights_punctual";
 const std::set<std::string> kSupportedRequired = {kLightsExt, kMaterialExt, kObjectExt, kLightExt, kSceneExt};
 
-// ---------------------------------------------------------------- 4×4 matrices, column-major as glTF
-
-struct Mat4 {
-  double m[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
-  double operator()(int row, int col) const { return m[col * 4 + row]; }
-  double& operator()(int row, int col) { return m[col * 4 + row]; }
-  Mat4 operator*(const Mat4& b) const {
-    Mat4 r;
-    for (int i = 0; i < 4; ++i)
-      for (int j = 0; j < 4; ++j) {
-        double s = 0;
-        for (int k = 0; k < 4; ++k) s += (*this)(i, k) * b(k, j);
-        r(i, j) = s;
-      }
-    return r;
-  }
-  Vec3 point(const Vec3& p) const {
-    return {(*this)(0, 0) * p.x + (*this)(0, 1) * p.y + (*this)(0, 2) * p.z + (*this)(0, 3),
-            (*this)(1, 0) * p.x + (*this)(1, 1) * p.y + (*this)(1, 2) * p.z + (*this)(1, 3),
-            (*this)(2, 0) * p.x + (*this)(2, 1) * p.y + (*this)(2, 2) * p.z + (*this)(2, 3)};
-  }
-  Vec3 direction(const Vec3& d) const {
-    return {(*this)(0, 0) * d.x + (*this)(0, 1) * d.y + (*this)(0, 2) * d.z,
-            (*this)(1, 0) * d.x + (*this)(1, 1) * d.y + (*this)(1, 2) * d.z,
-            (*this)(2, 0) * d.x + (*this)(2, 1) * d.y + (*this)(2, 2) * d.z};
-  }
-  double det3() const {
-    const Mat4& a = *this;
-    return a(0, 0) * (a(1, 1) * a(2, 2) - a(1, 2) * a(2, 1)) - a(0, 1) * (a(1, 0) * a(2, 2) - a(1, 2) * a(2, 0)) +
-           a(0, 2) * (a(1, 0) * a(2, 1) - a(1, 1) * a(2, 0));
-  }
-  // Normals transform by the inverse transpose of the upper 3×3 (up to scale: the cofactor matrix).
-  Vec3 normal(const Vec3& n) const {
-    const Mat4& a = *this;
-    Vec3 c0(a(1, 1) * a(2, 2) - a(1, 2) * a(2, 1), a(1, 2) * a(2, 0) - a(1, 0) * a(2, 2), a(1, 0) * a(2, 1) - a(1, 1) * a(2, 0));
-    Vec3 c1(a(0, 2) * a(2, 1) - a(0, 1) * a(2, 2), a(0, 0) * a(2, 2) - a(0, 2) * a(2, 0), a(0, 1) * a(2, 0) - a(0, 0) * a(2, 1));
-    Vec3 c2(a(0, 1) * a(1, 2) - a(0, 2) * a(1, 1), a(0, 2) * a(1, 0) - a(0, 0) * a(1, 2), a(0, 0) * a(1, 1) - a(0, 1) * a(1, 0));
-    Vec3 r = c0 * n.x + c1 * n.y + c2 * n.z;
-    return normalize(det3() < 0 ? -r : r);
-  }
-};
-
-Mat4 local_matrix(const tinygltf::Node& n) {
-  Mat4 m;
-  if (n.matrix.size() == 16) {
-    for (int i = 0; i < 16; ++i) m.m[i] = n.matrix[size_t(i)];
-    return m;
-  }
-  Mat4 t, r, s;
-  if (n.translation.size() == 3) t(0, 3) = n.translation[0], t(1, 3) = n.translation[1], t(2, 3) = n.translation[2];
-  if (n.rotation.size() == 4) {
-    double x = n.rotation[0], y = n.rotation[1], z = n.rotation[2], w = n.rotation[3];
-    r(0, 0) = 1 - 2 * (y * y + z * z), r(0, 1) = 2 * (x * y - z * w), r(0, 2) = 2 * (x * z + y * w);
-    r(1, 0) = 2 * (x * y + z * w), r(1, 1) = 1 - 2 * (x * x + z * z), r(1, 2) = 2 * (y * z - x * w);
-    r(2, 0) = 2 * (x * z - y * w), r(2, 1) = 2 * (y * z + x * w), r(2, 2) = 1 - 2 * (x * x + y * y);
-  }
-  if (n.scale.size() == 3) s(0, 0) = n.scale[0], s(1, 1) = n.scale[1], s(2, 2) = n.scale[2];
-  return t * r * s;
-}
-
 json extension(const std::string& extensions_json, const char* name) {
   if (extensions_json.empty()) return nullptr;
   json all = json::parse(extensions_json, nullptr, false);
   if (!all.is_object() || !all.contains(name)) return nullptr;
   return all[name];
 }
-
-// ---------------------------------------------------------------- reading accessors
-
-class Reader {
- public:
-  Reader(const tinygltf::Model& m, const std::string& file) : m_(m), file_(file) {}
-
-  [[noreturn]] void fail(const std::string& path, const std::string& message) const {
-    throw InputError({{file_, path, message, 0, 0}});
-  }
-
-  const unsigned char* data(int index, const std::string& path, size_t& count, size_t& stride, int& type,
-                            int& component) const {
-    if (index < 0 || size_t(index) >= m_.accessors.size()) fail(path, "names no accessor");
-    const auto& a = m_.accessors[size_t(index)];
-    std::string apath = fmt::format("accessors[{}]", index);
-    if (a.sparse.isSparse) fail(apath, "sparse accessors are not supported");
-    if (a.bufferView < 0 || size_t(a.bufferView) >= m_.bufferViews.size()) fail(apath, "has no buffer view");
-    const auto& v = m_.bufferViews[size_t(a.bufferView)];
-    if (v.buffer < 0 || size_t(v.buffer) >= m_.buffers.size()) fail(apath, "its buffer view names no buffer");
-    const auto& b = m_.buffers[size_t(v.buffer)];
-    count = a.count;
-    type = a.type;
-    component = a.componentType;
-    int component_size = tinygltf::GetComponentSizeInBytes(uint32_t(component));
-    int components = tinygltf::GetNumComponentsInType(uint32_t(type));
-    if (component_size <= 0 || components <= 0) fail(apath, "has an unknown componentType or type");
-    size_t elem = size_t(component_size) * size_t(components);
-    stride = v.byteStride ? v.byteStride : elem;
-    if (stride < elem) fail(fmt::format("bufferViews[{}].byteStride", a.bufferView), "is smaller than one element");
-    // start + stride·(count − 1) + elem ≤ size, checked without overflowing.
-    size_t size = b.data.size();
-    bool inside = v.byteOffset <= size && a.byteOffset <= size - v.byteOffset;
-    size_t start = inside ? v.byteOffset + a.byteOffset : 0;
-    if (count > 0) inside = inside && elem <= size - start && (size - start - elem) / stride >= count - 1;
-    if (!inside) fail(apath, fmt::format("reads past the end of buffer {} ({} bytes)", v.buffer, size));
-    return b.data.data() + start;
-  }
-
-  std::vector<Vec3> vec3(int index, const std::string& path) const {
-    size_t count, stride;
-    int type, component;
-    const unsigned char* p = data(index, path, count, stride, type, component);
-    if (type != TINYGLTF_TYPE_VEC3 || component != TINYGLTF_COMPONENT_TYPE_FLOAT)
-      fail(fmt::format("accessors[{}]", index), "expected VEC3 of FLOAT");
-    std::vector<Vec3> out(count);
-    for (size_t i = 0; i < count; ++i) {
-      float f[3];
-      std::memcpy(f, p + i * stride, sizeof f);
-      if (!std::isfinite(f[0]) || !std::isfinite(f[1]) || !std::isfinite(f[2]))
-        fail(fmt::format("accessors[{}]", index), fmt::format("element {} is not finite", i));
-      out[i] = Vec3(f[0], f[1], f[2]);
-    }
-    return out;
-  }
-
-  std::vector<uint32_t> indices(int index, const std::string& path) const {
-    size_t count, stride;
-    int type, component;
-    const unsigned char* p = data(index, path, count, stride, type, component);
-    if (type != TINYGLTF_TYPE_SCALAR) fail(fmt::format("accessors[{}]", index), "indices must be SCALAR");
-    std::vector<uint32_t> out(count);
-    for (size_t i = 0; i < count; ++i) {
-      const unsigned char* e = p + i * stride;
-      if (component == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE) out[i] = *e;
-      else if (component == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT) {
-        uint16_t v;
-        std::memcpy(&v, e, 2);
-        out[i] = v;
-      } else if (component == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT) {
-        std::memcpy(&out[i], e, 4);
-      } else {
-        fail(fmt::format("accessors[{}]", index), "indices must be unsigned integers");
-      }
-    }
-    return out;
-  }
-
- private:
-  const tinygltf::Model& m_;
-  std::string file_;
-};
 
 // ---------------------------------------------------------------- materials
 
@@ -292,20 +152,6 @@ void sphere_mesh(const Object& o, std::vector<Vec3>& pos, std::vector<Vec3>& nor
 
 // ---------------------------------------------------------------- import
 
-// tinygltf reads a glTF's external buffers through these; an import from memory
-// has no folder, so it reads none (and says which it was asked for).
-tinygltf::FsCallbacks no_files() {
-  tinygltf::FsCallbacks fs{};
-  fs.FileExists = [](const std::string&, void*) { return false; };
-  fs.ExpandFilePath = [](const std::string& p, void*) { return p; };
-  fs.ReadWholeFile = [](std::vector<unsigned char>*, std::string* err, const std::string& p, void*) {
-    if (err) *err += "\"" + p + "\" is an external file, and an import from memory reads none\n";
-    return false;
-  };
-  fs.WriteWholeFile = [](std::string*, const std::string&, const std::vector<unsigned char>&, void*) { return false; };
-  return fs;
-}
-
 // A key path of the facet scene JSON import_gltf_data checks ("lights[2].color")
 // as the glTF path it came from ("nodes[4].extensions.FACET_light.color").
 std::string gltf_path(const std::string& p, const std::string& camera, const std::string& scene_ext,
@@ -322,47 +168,6 @@ std::string gltf_path(const std::string& p, const std::string& camera, const std
   if (p.rfind("camera", 0) == 0 && !camera.empty()) return camera + " (as a facet camera: " + p + ")";
   if (p.rfind("ambient", 0) == 0) return scene_ext + "." + p;
   return p;
-}
-
-// Names a missing external buffer by its key, before tinygltf reports it bare.
-void check_external_buffers(const std::string& text, const std::string& path) {
-  json doc = parse_json(text, path);
-  if (!doc.is_object() || !doc.contains("buffers") || !doc["buffers"].is_array()) return;
-  for (size_t i = 0; i < doc["buffers"].size(); ++i) {
-    const json& b = doc["buffers"][i];
-    if (!b.is_object() || !b.contains("uri") || !b["uri"].is_string()) continue;
-    std::string uri = b["uri"];
-    if (uri.rfind("data:", 0) == 0) continue;
-    fs::path file = fs::path(path).parent_path() / uri;
-    if (!fs::exists(file))
-      throw InputError({{path, fmt::format("buffers[{}].uri", i),
-                         fmt::format("\"{}\" is not there ({}); the buffer must sit beside the glTF", uri,
-                                     file.string()),
-                         0, 0}});
-  }
-}
-
-// Loads the glTF's bytes with tinygltf; its warnings become notes.
-tinygltf::Model load_model(const std::string& data, bool binary, const std::string& path, const std::string& folder,
-                           std::vector<std::string>& notes) {
-  tinygltf::TinyGLTF loader;
-  loader.SetStoreOriginalJSONForExtrasAndExtensions(true);
-  if (folder.empty()) loader.SetFsCallbacks(no_files());
-  tinygltf::Model model;
-  std::string err, warn;
-  if (data.size() > std::numeric_limits<unsigned int>::max())
-    throw InputError({{path, "", "is larger than 4 GiB, which glTF cannot address", 0, 0}});
-  auto size = static_cast<unsigned int>(data.size());
-  bool ok = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn,
-                                                 reinterpret_cast<const unsigned char*>(data.data()), size, folder)
-                   : loader.LoadASCIIFromString(&model, &err, &warn, data.data(), size, folder);
-  if (!warn.empty()) notes.push_back(path + ": tinygltf: " + warn);
-  if (!ok) {
-    std::string msg = err.empty() ? "tinygltf could not load the file" : err;
-    while (!msg.empty() && (msg.back() == '\n' || msg.back() == ' ')) msg.pop_back();
-    throw InputError({{path, "", msg, 0, 0}});
-  }
-  return model;
 }
 
 // One glTF file read into a facet scene, one function per kind of glTF object
@@ -386,6 +191,7 @@ class Importer {
     read_scene_extension(gscene, scene_index);
     for (int root : gscene.nodes) read_node(root, Mat4());
     if (s_.objects.empty()) reader_.fail(fmt::format("scenes[{}]", scene_index), "has no meshes");
+    read_meshes();
     check_gathered_parts();
     if (!have_camera_) frame_camera();
     return std::move(s_);
@@ -410,6 +216,20 @@ class Importer {
     if (size_t(scene_index) >= model_.scenes.size())
       reader_.fail("scene", fmt::format("names no scene ({})", scene_index));
     return scene_index;
+  }
+
+  // Node `ni` was reached from a root of the scene other than its ancestors' root:
+  // one of its ancestors (or itself) is a root and also a child.
+  [[noreturn]] void fail_root_with_parent(int ni) const {
+    const auto& roots = model_.scenes[size_t(default_scene())].nodes;
+    const std::vector<int>& up = reader_.parents();
+    for (int n = ni; n >= 0; n = up[size_t(n)])
+      if (up[size_t(n)] >= 0 && std::find(roots.begin(), roots.end(), n) != roots.end())
+        reader_.fail(fmt::format("nodes[{}]", n), fmt::format("is one of the scene's roots and also a child of "
+                                                              "nodes[{}]; glTF's node hierarchy is a set of disjoint "
+                                                              "trees",
+                                                              up[size_t(n)]));
+    reader_.fail(fmt::format("nodes[{}]", ni), "is reached from the scene's roots other than through its ancestors");
   }
 
   // FACET_scene: the ambient colour.
@@ -520,86 +340,37 @@ class Importer {
         object_paths_.push_back(npath + ".extensions." + kObjectExt);
       } else {
         o.type = Object::Type::Mesh;
-        o.mesh = read_primitive(prim, ppath, npath, world);
+        o.reference = MeshReference{path_, true, int64_t(&node - model_.nodes.data()), "",
+                                    mesh.primitives.size() > 1 ? int64_t(pi) : -1};
+        PrimitivePlan plan = gltf_detail::plan_primitive(reader_, prim, ppath, npath);
+        budget_.add(plan.size, path_, npath, fmt::format("{}'s {}", npath, ppath));
+        pending_.push_back({s_.objects.size(), std::move(plan), world});
       }
       s_.objects.push_back(o);
     }
   }
 
-  // A triangle primitive's mesh in world space.
-  std::shared_ptr<Mesh> read_primitive(const tinygltf::Primitive& prim, const std::string& ppath,
-                                       const std::string& npath, const Mat4& world) const {
-    if (prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != -1)
-      reader_.fail(ppath + ".mode", fmt::format("{}; facet takes triangles (mode 4)", prim.mode));
-    auto pos_it = prim.attributes.find("POSITION");
-    if (pos_it == prim.attributes.end()) reader_.fail(ppath + ".attributes", "has no POSITION");
-    std::vector<Vec3> pos = reader_.vec3(pos_it->second, ppath + ".attributes.POSITION");
-    std::vector<uint32_t> idx = triangle_indices(prim, ppath, pos.size());
-    auto mesh = std::make_shared<Mesh>();
-    auto nor_it = prim.attributes.find("NORMAL");
-    if (nor_it != prim.attributes.end()) {
-      std::vector<Vec3> nor = reader_.vec3(nor_it->second, ppath + ".attributes.NORMAL");
-      if (nor.size() != pos.size()) reader_.fail(ppath + ".attributes.NORMAL", "has a different count from POSITION");
-      smooth_triangles(*mesh, pos, nor, idx, world);
-    } else {
-      notes_.push_back(ppath + ": no NORMAL; flat normals computed");
-      flat_triangles(*mesh, pos, idx, world);
+  // The triangle primitives met while visiting the nodes, counted within the limit:
+  // each node's in its world transform, which must be the one its ancestors give
+  // it (as a scene file's reference to the node reads it: glTF's nodes are trees).
+  void read_meshes() {
+    const uint64_t total = budget_.total().triangles;
+    auto start = std::chrono::steady_clock::now();
+    const bool big = total >= gltf_detail::kProgressTriangles;
+    if (big) progress(fmt::format("reading {}: {} triangles", path_, gltf_detail::thousands(total)));
+    for (const auto& p : pending_) {
+      const int ni = int(s_.objects[p.object].reference->index);
+      Mat4 tree = reader_.world_matrix(ni);
+      if (std::memcmp(tree.m, p.world.m, sizeof tree.m) != 0) fail_root_with_parent(ni);
+      auto mesh = std::make_shared<Mesh>();
+      gltf_detail::append_primitive(reader_, p.plan, p.world, *mesh, notes_);
+      if (mesh->triangles.empty()) reader_.fail(p.plan.path, "has no triangles");
+      mesh->build_bvh();
+      s_.objects[p.object].mesh = std::move(mesh);
     }
-    if (mesh->triangles.empty()) reader_.fail(ppath, "has no triangles");
-    for (size_t i = 0; i < mesh->positions.size(); ++i)
-      if (!finite(mesh->positions[i]) || !finite(mesh->normals[i]))
-        reader_.fail(npath, "its world transform makes a vertex or a normal of " + ppath +
-                                " infinite or undefined (a zero scale, or a huge one)");
-    mesh->build_bvh();
-    return mesh;
-  }
-
-  // The primitive's vertex indices (without an indices accessor: every vertex in
-  // order), three per triangle, each of one of the `vertices`.
-  std::vector<uint32_t> triangle_indices(const tinygltf::Primitive& prim, const std::string& ppath,
-                                         size_t vertices) const {
-    std::vector<uint32_t> idx;
-    if (prim.indices >= 0) idx = reader_.indices(prim.indices, ppath + ".indices");
-    else
-      for (uint32_t i = 0; i < vertices; ++i) idx.push_back(i);
-    if (idx.size() % 3) reader_.fail(ppath + ".indices", "the count is not a multiple of 3");
-    for (uint32_t i : idx)
-      if (i >= vertices) reader_.fail(ppath + ".indices", fmt::format("index {} is out of range", i));
-    return idx;
-  }
-
-  // The vertices with their normals; degenerate triangles are dropped, and a
-  // mirroring transform turns the others round so they still face their normals.
-  static void smooth_triangles(Mesh& mesh, const std::vector<Vec3>& pos, const std::vector<Vec3>& nor,
-                               const std::vector<uint32_t>& idx, const Mat4& world) {
-    bool flip = world.det3() < 0;
-    for (size_t i = 0; i < pos.size(); ++i) {
-      mesh.positions.push_back(world.point(pos[i]));
-      mesh.normals.push_back(world.normal(nor[i]));
-    }
-    for (size_t t = 0; t + 2 < idx.size(); t += 3) {
-      if (idx[t] == idx[t + 1] || idx[t + 1] == idx[t + 2] || idx[t] == idx[t + 2]) continue;
-      mesh.triangles.push_back(flip ? std::array<uint32_t, 3>{idx[t], idx[t + 2], idx[t + 1]}
-                                    : std::array<uint32_t, 3>{idx[t], idx[t + 1], idx[t + 2]});
-    }
-  }
-
-  // glTF: without normals, flat shading: each triangle its own vertices (and
-  // zero-area triangles none).
-  static void flat_triangles(Mesh& mesh, const std::vector<Vec3>& pos, const std::vector<uint32_t>& idx,
-                             const Mat4& world) {
-    bool flip = world.det3() < 0;
-    for (size_t t = 0; t + 2 < idx.size(); t += 3) {
-      Vec3 a = world.point(pos[idx[t]]), b = world.point(pos[idx[t + 1]]), c = world.point(pos[idx[t + 2]]);
-      if (flip) std::swap(b, c);
-      Vec3 n = cross(b - a, c - a);
-      if (length(n) == 0) continue;
-      n = normalize(n);
-      uint32_t base = uint32_t(mesh.positions.size());
-      mesh.positions.insert(mesh.positions.end(), {a, b, c});
-      mesh.normals.insert(mesh.normals.end(), {n, n, n});
-      mesh.triangles.push_back({base, base + 1, base + 2});
-    }
+    if (big)
+      progress(fmt::format("{}: {} triangles read in {:.1f} s", path_, gltf_detail::thousands(total),
+                           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()));
   }
 
   // The key in s_.materials of glTF material `index` (read once, on first use),
@@ -705,6 +476,13 @@ class Importer {
   std::vector<std::string> keys_;  // materials by index; only those the primitives use are read
   std::set<std::string> used_keys_;
   std::vector<bool> on_path_;  // the nodes being visited: a cycle is an error
+  struct Pending {
+    size_t object;  // in s_.objects
+    PrimitivePlan plan;
+    Mat4 world;
+  };
+  std::vector<Pending> pending_;  // the triangle primitives, read once all are counted
+  gltf_detail::MeshBudget budget_;
 };
 
 // ---------------------------------------------------------------- export
@@ -963,17 +741,13 @@ class Exporter {
 }  // namespace
 
 Scene import_gltf(const std::string& path, const GltfImportOptions& options, std::vector<std::string>& notes) {
-  if (!fs::exists(path)) throw InputError({{path, "", "no such file", 0, 0}});
-  bool binary = fs::path(path).extension() == ".glb";
-  std::string data = read_file(path);
-  if (!binary) check_external_buffers(data, path);
-  std::string folder = fs::path(path).parent_path().string();
-  return import_gltf_data(data, binary, path, folder.empty() ? "." : folder, options, notes);
+  tinygltf::Model model = gltf_detail::load_model_file(path, notes);
+  return Importer(model, path, options, notes).read();
 }
 
 Scene import_gltf_data(const std::string& data, bool binary, const std::string& path, const std::string& folder,
                        const GltfImportOptions& options, std::vector<std::string>& notes) {
-  tinygltf::Model model = load_model(data, binary, path, folder, notes);
+  tinygltf::Model model = gltf_detail::load_model(data, binary, path, folder, notes);
   return Importer(model, path, options, notes).read();
 }
 

@@ -22,11 +22,13 @@
 // None of the extensions is required: other viewers use the fallback.
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "catalog/material.h"
+#include "core/diagnostics.h"
 #include "scene/scene.h"
 
 namespace facet {
@@ -44,6 +46,29 @@ Scene import_gltf(const std::string& path, const GltfImportOptions& options, std
 // from anywhere (the fuzzer's, say) touch no file. `path` names the input in errors.
 Scene import_gltf_data(const std::string& data, bool binary, const std::string& path, const std::string& folder,
                        const GltfImportOptions& options, std::vector<std::string>& notes);
+
+// The glTF meshes one scene file's objects reference (MeshReference), each file read
+// once. Two steps, so that nothing is allocated for a scene over the limit: `add`
+// finds each reference's primitives and counts them against the scene's limit
+// (gltf_read.h: 100,000,000 triangles and as many vertices, and the memory
+// available), `build` then reads them (identical references share one mesh).
+// Problems go to the scene's sink under the object's key path; a problem inside
+// a glTF file names that file and its glTF key path.
+class GltfReferences {
+ public:
+  explicit GltfReferences(std::string scene_file);
+  ~GltfReferences();
+  GltfReferences(const GltfReferences&) = delete;
+  GltfReferences& operator=(const GltfReferences&) = delete;
+  // Object `object` of the scene, at key path `path`; `ref.file` from the working directory.
+  void add(size_t object, const MeshReference& ref, const std::string& path, DiagnosticSink& sink);
+  // Sets each referencing object's mesh (with its hierarchy), unless `sink` has problems.
+  void build(std::vector<Object>& objects, DiagnosticSink& sink);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
 
 // Writes `s` (objects without a material use `fallback`) as .gltf (one file,
 // buffer embedded) or .glb, by the path's extension. Written whole or not at all.

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "catalog/checker.h"
+#include "scene/gltf.h"
 
 namespace facet {
 
@@ -100,11 +101,30 @@ void parse_materials(const json& doc, const std::string& file, Scene& s, Diagnos
   }
 }
 
+// The glTF mesh an object spec references, its file's path from the working directory.
+MeshReference reference_of(const ModelSpec& o, const std::string& file) {
+  MeshReference r;
+  std::filesystem::path f = o.at("gltf").choice;
+  if (f.is_relative()) f = std::filesystem::path(file).parent_path() / f;
+  r.file = f.string();
+  r.node = o.given.count("node") > 0;
+  const Value& which = o.at(r.node ? "node" : "mesh");
+  r.index = which.number >= 0 ? int64_t(which.number) : -1;
+  r.name = which.choice;
+  if (o.given.count("primitive")) r.primitive = int64_t(o.at("primitive").number);
+  return r;
+}
+
 // The mesh of an object spec: the vertex arrays, checked against each other.
 std::shared_ptr<Mesh> mesh_of(const ModelSpec& o, const std::string& path, DiagnosticSink& sink) {
   auto m = std::make_shared<Mesh>();
   for (const auto& p : o.at("positions").points) m->positions.push_back(Vec3(p));
-  for (const auto& n : o.at("normals").points) m->normals.push_back(normalize(Vec3(n)));
+  // Normals are made unit; one already unit to rounding is kept as written, so that
+  // a mesh written out (to_json, import-gltf --inline) reads back bit for bit.
+  for (const auto& n : o.at("normals").points) {
+    Vec3 v(n);
+    m->normals.push_back(std::fabs(length(v) - 1) <= 1e-15 ? v : normalize(v));
+  }
   if (m->normals.size() != m->positions.size())
     sink.error(join_path(path, "normals"), fmt::format("has {} normals for {} positions; allowed: one per position",
                                                        m->normals.size(), m->positions.size()));
@@ -201,7 +221,9 @@ void parse_ambient(const json& doc, Scene& s, DiagnosticSink& sink) {
 
 // The checked object `o` at `path`, to be the scene's next: unnamed, it is named
 // after its type and index. Its material must be a key of the scene's materials.
-Object object_of(const ModelSpec& o, const std::string& path, const Scene& s, DiagnosticSink& sink) {
+// A mesh that references a glTF file is read later, by `refs`.
+Object object_of(const ModelSpec& o, const std::string& path, const Scene& s, GltfReferences& refs,
+                 DiagnosticSink& sink) {
   Object obj;
   obj.name = o.at("name").choice;
   if (obj.name.empty()) obj.name = fmt::format("{}{}", o.def->name, s.objects.size());
@@ -225,7 +247,12 @@ Object object_of(const ModelSpec& o, const std::string& path, const Scene& s, Di
       obj.size = o.at("size").number;
       break;
     case Object::Type::Mesh:
-      obj.mesh = mesh_of(o, path, sink);
+      if (o.given.count("gltf")) {
+        obj.reference = reference_of(o, sink.file());
+        refs.add(s.objects.size(), *obj.reference, path, sink);
+      } else {
+        obj.mesh = mesh_of(o, path, sink);
+      }
       break;
   }
   return obj;
@@ -233,9 +260,12 @@ Object object_of(const ModelSpec& o, const std::string& path, const Scene& s, Di
 
 void parse_objects(const json& doc, Scene& s, DiagnosticSink& sink) {
   Checker check(sink);
+  GltfReferences refs(sink.file());
   each(doc, "objects", sink, [&](const json& j, const std::string& path) {
-    if (auto o = check.model(j, path, "object", nullptr, "type")) s.objects.push_back(object_of(*o, path, s, sink));
+    if (auto o = check.model(j, path, "object", nullptr, "type"))
+      s.objects.push_back(object_of(*o, path, s, refs, sink));
   });
+  refs.build(s.objects, sink);
   if (!doc.contains("objects")) sink.error("objects", "missing; allowed: an array of spheres and planes");
   else if (doc["objects"].is_array() && doc["objects"].empty()) sink.error("objects", "empty; a scene needs an object");
 }
@@ -349,7 +379,37 @@ Scene default_scene() {
   return single;
 }
 
-json to_json(const Scene& s) {
+json to_json(const Scene& s) { return to_json(s, ""); }
+
+namespace {
+
+// `file` (from the working directory) as a path from `folder`; absolute where there is none.
+std::string relative_to(const std::string& file, const std::string& folder) {
+  namespace fs = std::filesystem;
+  fs::path f = fs::absolute(file).lexically_normal();
+  fs::path rel = f.lexically_relative(fs::absolute(folder.empty() ? "." : folder).lexically_normal());
+  return rel.empty() ? f.generic_string() : rel.generic_string();
+}
+
+json mesh_json(const Object& o, const std::string& scene_file) {
+  if (o.reference && !scene_file.empty()) {
+    const MeshReference& r = *o.reference;
+    json oj = {{"type", "mesh"}, {"name", o.name},
+               {"gltf", relative_to(r.file, std::filesystem::path(scene_file).parent_path().string())}};
+    oj[r.node ? "node" : "mesh"] = r.index >= 0 ? json(r.index) : json(r.name);
+    if (r.primitive >= 0) oj["primitive"] = r.primitive;
+    return oj;
+  }
+  json pos = json::array(), nor = json::array(), tri = json::array();
+  for (const auto& p : o.mesh->positions) pos.push_back(p.array());
+  for (const auto& n : o.mesh->normals) nor.push_back(n.array());
+  for (const auto& t : o.mesh->triangles) tri.push_back(t);
+  return {{"type", "mesh"}, {"name", o.name}, {"positions", pos}, {"normals", nor}, {"triangles", tri}};
+}
+
+}  // namespace
+
+json to_json(const Scene& s, const std::string& scene_file) {
   json j;
   j["name"] = s.name;
   j["camera"] = {{"position", s.camera.position.array()},
@@ -370,11 +430,7 @@ json to_json(const Scene& s) {
       oj = {{"type", "plane"}, {"name", o.name}, {"point", o.point.array()}, {"normal", o.normal.array()},
             {"size", o.size}};
     } else {
-      json pos = json::array(), nor = json::array(), tri = json::array();
-      for (const auto& p : o.mesh->positions) pos.push_back(p.array());
-      for (const auto& n : o.mesh->normals) nor.push_back(n.array());
-      for (const auto& t : o.mesh->triangles) tri.push_back(t);
-      oj = {{"type", "mesh"}, {"name", o.name}, {"positions", pos}, {"normals", nor}, {"triangles", tri}};
+      oj = mesh_json(o, scene_file);
     }
     if (!o.material.empty()) oj["material"] = o.material;
     j["objects"].push_back(oj);

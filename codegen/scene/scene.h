@@ -92,6 +92,17 @@ struct Hit {
   bool ok() const { return t > 0; }
 };
 
+// Where a mesh object's triangles are when a scene file references them instead of
+// holding them: a glTF file's mesh (its coordinates as they are) or node (its mesh
+// in the node's world transform), chosen by index or name; one primitive or all.
+struct MeshReference {
+  std::string file;       // the glTF file, as a path from the working directory (or absolute)
+  bool node = true;       // a node, else a mesh
+  int64_t index = -1;     // its index, or −1 where `name` names it
+  std::string name;
+  int64_t primitive = -1;  // −1: every triangle primitive of the mesh
+};
+
 struct Object {
   using Type = ObjectType;  // the catalog's: each object model states its type
   Type type = Type::Sphere;
@@ -106,6 +117,7 @@ struct Object {
   double size = 10;
   // mesh
   std::shared_ptr<const Mesh> mesh;
+  std::optional<MeshReference> reference;  // where the mesh is in a glTF file, if the scene says so
 
   // The square's in-plane axes (unit, with normal forming a right-handed frame).
   void plane_axes(Vec3& u, Vec3& v) const;
@@ -138,8 +150,11 @@ Scene parse_scene(const nlohmann::json& doc, const std::string& file);
 Scene load_scene(const std::string& name_or_path);
 const std::vector<std::string>& builtin_scene_names();
 nlohmann::json builtin_scene_json(const std::string& name);
-// The canonical JSON form; materials are written inline.
+// The canonical JSON form; materials and meshes are written inline.
 nlohmann::json to_json(const Scene& s);
+// The form written to `scene_file`: as to_json, but a mesh with a reference is
+// written as that reference, its file's path relative to `scene_file`'s folder.
+nlohmann::json to_json(const Scene& s, const std::string& scene_file);
 nlohmann::json scene_schema();
 
 // The default validation scene: one unit sphere, a camera and one point light.

@@ -63,6 +63,19 @@ def main():
             if errors:
                 failures += 1
                 print(f"FAIL scene {name} rejected: {errors[0].message}")
+    # A mesh is inline arrays or a glTF reference (by mesh or by node), exactly one of them.
+    camera = {"position": [0, 0, 4]}
+    arrays = {"positions": [[0, 0, 0], [1, 0, 0], [0, 1, 0]], "normals": [[0, 0, 1]] * 3, "triangles": [[0, 1, 2]]}
+    good = [dict(arrays), {"gltf": "a.glb", "node": 0}, {"gltf": "a.glb", "mesh": "m", "primitive": 1}]
+    bad = [dict(arrays, gltf="a.glb", node=0), {"gltf": "a.glb"}, {"gltf": "a.glb", "node": 0, "mesh": 0},
+           {"gltf": "a.glb", "node": -1}, {"gltf": "a.glb", "node": 0, "primitive": "p"}, dict(arrays, primitive=0), {}]
+    for mesh in good + bad:
+        doc = {"camera": camera, "objects": [dict(mesh, type="mesh")]}
+        accepted = not any(True for _ in sv.iter_errors(doc))
+        if accepted != (mesh in good):
+            failures += 1
+            print(f"FAIL scene mesh {json.dumps(mesh)} {'accepted' if accepted else 'rejected'} by the schema")
+    print(f"{len(good)} mesh forms accepted, {len(bad)} mixed or incomplete ones rejected")
     print(f"{len(examples)} examples accepted, {rejected} of {len(expected)} malformed files rejected "
           f"(duplicate keys are facet's own check)")
     return 1 if failures else 0

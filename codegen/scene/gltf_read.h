@@ -1,0 +1,142 @@
+// facet — reading a glTF file's triangles, shared by `facet import-gltf`
+// (scene/gltf.cpp) and the mesh references of scene files (GltfReferences).
+//
+// One code path turns a primitive into facet's mesh arrays: its accessors are
+// checked against their buffer views, buffers and the file before anything is read,
+// what it will hold is counted against the scene's limit before anything is
+// allocated, and then it is streamed into the mesh (no per-vertex objects).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#define TINYGLTF_NO_STB_IMAGE
+#define TINYGLTF_NO_STB_IMAGE_WRITE
+#define TINYGLTF_NO_EXTERNAL_IMAGE
+#include <tiny_gltf.h>
+
+#include "core/vec.h"
+#include "scene/scene.h"
+
+namespace facet::gltf_detail {
+
+// ---------------------------------------------------------------- 4×4 matrices, column-major as glTF
+
+struct Mat4 {
+  double m[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+  double operator()(int row, int col) const { return m[col * 4 + row]; }
+  double& operator()(int row, int col) { return m[col * 4 + row]; }
+  Mat4 operator*(const Mat4& b) const;
+  Vec3 point(const Vec3& p) const;
+  Vec3 direction(const Vec3& d) const;
+  double det3() const;
+  // Normals transform by the inverse transpose of the upper 3×3 (up to scale: the cofactor matrix).
+  Vec3 normal(const Vec3& n) const;
+};
+
+Mat4 local_matrix(const tinygltf::Node& n);
+
+// ---------------------------------------------------------------- accessors
+
+// An accessor's elements, checked to lie inside its buffer view and its buffer.
+struct AccessorView {
+  int accessor = -1;
+  const unsigned char* data = nullptr;
+  size_t count = 0, stride = 0;
+  int component = 0;
+};
+
+class Reader {
+ public:
+  Reader(const tinygltf::Model& m, std::string file) : m_(m), file_(std::move(file)) {}
+  [[noreturn]] void fail(const std::string& path, const std::string& message) const;
+  const tinygltf::Model& model() const { return m_; }
+  const std::string& file() const { return file_; }
+
+  // Accessor `index` (named at `path`): VEC3 of FLOAT, or unsigned SCALAR indices.
+  AccessorView vec3(int index, const std::string& path) const;
+  AccessorView indices(int index, const std::string& path) const;
+  Vec3 vec3_at(const AccessorView& a, size_t i) const;  // fails on a non-finite element
+  static uint32_t index_at(const AccessorView& a, size_t i);
+
+  // The parent of every node (−1: none, kSeveral: more than one), from the children lists.
+  static constexpr int kSeveral = -2;
+  const std::vector<int>& parents() const;
+  // Node `ni`'s world matrix: its ancestors' local matrices, the root's first (as a
+  // scene's traversal multiplies them). Fails where a node has several parents or
+  // the ancestors make a cycle.
+  Mat4 world_matrix(int ni) const;
+
+ private:
+  AccessorView view(int index, const std::string& path, int type) const;
+  const tinygltf::Model& m_;
+  std::string file_;
+  mutable std::vector<int> parents_;
+  mutable bool have_parents_ = false;
+};
+
+// ---------------------------------------------------------------- primitives
+
+// What the meshes of one scene hold, counted before they are read.
+struct MeshSize {
+  uint64_t vertices = 0, triangles = 0;
+};
+
+// A triangle primitive checked and counted, nothing read yet. `where` names the
+// node or mesh whose transform it gets, for the errors that transform causes.
+struct PrimitivePlan {
+  const tinygltf::Primitive* prim = nullptr;
+  std::string path, where;
+  AccessorView positions, normals, indices;
+  bool has_normals = false, has_indices = false;
+  MeshSize size;  // at most: zero-area (flat) and degenerate triangles are dropped
+};
+
+bool is_triangles(const tinygltf::Primitive& prim);
+PrimitivePlan plan_primitive(const Reader& r, const tinygltf::Primitive& prim, const std::string& path,
+                             const std::string& where);
+// Appends the primitive in the world transform `world` to `mesh`: with NORMAL, its
+// vertices and normals (degenerate triangles dropped); without, flat normals, each
+// triangle its own three vertices (zero-area triangles dropped); a mirroring
+// transform turns the triangles round so they still face their normals. Does not
+// build the hierarchy. `notes` says which primitives had no normals.
+void append_primitive(const Reader& r, const PrimitivePlan& p, const Mat4& world, Mesh& mesh,
+                      std::vector<std::string>& notes);
+
+// The limit on what one scene's meshes may hold, checked before they are allocated:
+// at most kMaxSceneTriangles triangles and kMaxSceneVertices vertices, and no more
+// than the memory available (about kVertexBytes a vertex and kTriangleBytes a
+// triangle, with the hierarchy).
+inline constexpr uint64_t kMaxSceneTriangles = 100'000'000;
+inline constexpr uint64_t kMaxSceneVertices = 100'000'000;
+inline constexpr uint64_t kVertexBytes = 48, kTriangleBytes = 64;
+class MeshBudget {
+ public:
+  // Adds `more`; else throws InputError naming `file`, `path` and the limit. `what`
+  // says what is added ("nodes[3]'s meshes[0].primitives[0]").
+  void add(const MeshSize& more, const std::string& file, const std::string& path, const std::string& what);
+  const MeshSize& total() const { return total_; }
+
+ private:
+  MeshSize total_;
+};
+
+// "2,000,000"
+std::string thousands(uint64_t n);
+// Reading a mesh this big takes a second or so: progress() says so (a million
+// triangles, read and their hierarchy built, take about 0.4 s on a 2-core machine).
+inline constexpr uint64_t kProgressTriangles = 1'000'000;
+
+// ---------------------------------------------------------------- files
+
+// Checks a GLB's header and chunks (each inside the file, the buffer the BIN chunk
+// holds no longer than it) and a .gltf's external buffers (each there), naming the
+// key; then loads the bytes with tinygltf, whose warnings become notes. External
+// buffers are read from `folder` (none with an empty one).
+tinygltf::Model load_model(const std::string& data, bool binary, const std::string& path, const std::string& folder,
+                           std::vector<std::string>& notes);
+// The file at `path`, read and loaded; its bytes are freed before this returns.
+tinygltf::Model load_model_file(const std::string& path, std::vector<std::string>& notes);
+
+}  // namespace facet::gltf_detail
