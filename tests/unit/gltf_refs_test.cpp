@@ -132,8 +132,11 @@ TEST(GltfRefs, ImportWritesAReferencingSceneThatIsTheInlineOne) {
   }
   Render ra = render_reference(a, 96, 72), rb = render_reference(b, 96, 72);
   EXPECT_EQ(ra.image.rgb, rb.image.rgb) << "the same picture";
-  // The POV-Ray scenes differ only in the header line that names the source.
-  fs::path pa = scratch("three_refs.pov"), pb = scratch("three_inline.pov");
+  // The POV-Ray scenes differ only in the header line that names the source (written under one
+  // name in two folders: a scene names its meshes' data images after itself), their data images not at all.
+  fs::create_directories(scratch("refs"));
+  fs::create_directories(scratch("inline"));
+  fs::path pa = scratch("refs/three.pov"), pb = scratch("inline/three.pov");
   ASSERT_EQ(test::facet({"generate", "--target", "pov", "--scene", refs.string(), "-o", pa.string()}).exit_code, 0);
   ASSERT_EQ(test::facet({"generate", "--target", "pov", "--scene", inl.string(), "-o", pb.string()}).exit_code, 0);
   std::vector<std::string> la = lines(read_file(pa.string())), lb = lines(read_file(pb.string()));
@@ -145,6 +148,10 @@ TEST(GltfRefs, ImportWritesAReferencingSceneThatIsTheInlineOne) {
       EXPECT_NE(la[i].find("three_refs.json"), std::string::npos) << la[i];
     }
   EXPECT_EQ(differ, 1u);
+  for (int m = 0; m < 4; ++m) {
+    const std::string image = "three_mesh" + std::to_string(m) + ".ppm";
+    EXPECT_EQ(read_file(scratch("refs/" + image).string()), read_file(scratch("inline/" + image).string())) << image;
+  }
 }
 
 TEST(GltfRefs, ExampleReferencesByNameAreTheImport) {
