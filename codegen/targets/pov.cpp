@@ -18,13 +18,16 @@
 // The scaffolding is in templates/pov/; every expression is printed by the
 // shared writer (targets/writer.h) through PovPrinter, which folds it first.
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <set>
 #include <stdexcept>
 
 #include <fmt/format.h>
 
+#include "core/diagnostics.h"
 #include "core/vec.h"
+#include "scene/gltf_read.h"
 #include "targets/pov_scene.h"
 #include "targets/targets.h"
 #include "targets/targets_internal.h"
@@ -239,8 +242,16 @@ PovScene::PovScene(const Scene& s, const Material* fallback, const std::string& 
 std::string PovScene::render() {
   const Camera& c = s_.camera;
   const int count = plan_.native ? 1 : plan_.passes;
+  size_t triangles = 0;
+  for (const auto& o : s_.objects) triangles += o.type == Object::Type::Mesh ? o.mesh->triangles.size() : 0;
+  const bool big = triangles >= 250000;  // a second or more: say so
+  const auto start = std::chrono::steady_clock::now();
+  if (big) progress(fmt::format("writing the POV-Ray scene: {} triangles", gltf_detail::thousands(triangles)));
   std::string body = plan_.native ? native() : functions() + lights() + passes();  // before the header: it
-  return render_template("pov/scene.pov", {{"header", header()},                      // names what lights() measured
+  if (big)                                                                             // names what lights() measured
+    progress(fmt::format("POV-Ray scene written in {:.1f} s",
+                         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()));
+  return render_template("pov/scene.pov", {{"header", header()},
                                            {"passes", std::to_string(count)},
                                            {"last", std::to_string(count - 1)},
                                            {"location", pov_vector(c.position)},
