@@ -71,7 +71,7 @@ int run_generate(const GenerateArgs& a) {
     try {
       for (const auto& f : pov.files) {
         const std::string path = (fs::path(a.output).parent_path() / f.name).string();
-        write_file_atomic(path, f.data);
+        write_file_atomic(path, f.write);
         written.push_back(path);
       }
       if (!to_stdout) write_file_atomic(a.output, code);
@@ -124,8 +124,8 @@ Command generate_command(CLI::App& app) {
                 "How POV-Ray draws the scene: auto (POV-Ray's own finish where every material is one exactly, "
                 "else function pigments), native (the finish, or an error saying why not), exact (function "
                 "pigments everywhere), fast (as auto, but meshes with an isotropic material get slope tables over "
-                "n·l and n·v: no data image, approximate, the measured error printed). A mesh drawn by function "
-                "pigments reads its geometry from FILE_meshN.ppm, written beside -o FILE.pov")
+                "n·l and n·v: no data image, approximate, the measured error printed). A mesh's lists go to "
+                "FILE_meshN.inc beside -o FILE.pov, and on function pigments its corners to FILE_meshN.ppm")
       ->check(CLI::IsMember({"auto", "native", "exact", "fast"}))
       ->capture_default_str();
   g->add_flag("--library", gen.library,

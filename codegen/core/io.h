@@ -1,6 +1,8 @@
 // facet — files written whole or not at all.
 #pragma once
 
+#include <functional>
+#include <ostream>
 #include <stdexcept>
 #include <string>
 
@@ -15,6 +17,8 @@ class IoError : public std::runtime_error {
 // `path`: readers see the old file or the new one, never a part. On failure
 // the temporary file is removed, `path` is untouched, and IoError names it.
 void write_file_atomic(const std::string& path, const std::string& content);
+// The same for a file too big to hold: `write` streams it into the temporary file.
+void write_file_atomic(const std::string& path, const std::function<void(std::ostream&)>& write);
 std::string read_file(const std::string& path);  // IoError when unreadable
 
 }  // namespace facet

@@ -119,7 +119,7 @@ RenderOutcome render_pov(const RenderJob& job) {
     PovOutput pov = generate_pov_files(job.scene, fallback, fallback ? fallback->source : job.scene.source,
                                        job.pov_route, base);
     if (!job.code_override.empty()) pov.code = job.code_override;
-    for (const auto& f : pov.files) write_file_atomic((fs::path(dir) / f.name).string(), f.data);
+    for (const auto& f : pov.files) write_file_atomic((fs::path(dir) / f.name).string(), f.write);
     write_file_atomic((fs::path(dir) / (base + ".pov")).string(), pov.code);
   } catch (const std::invalid_argument& e) {  // an object without a material, and none given
     out.error = e.what();

@@ -237,6 +237,28 @@ PovScene::PovScene(const Scene& s, const Material* fallback, const std::string& 
   }
   scale_ = std::max(r, 1.0);
   build_scaffolding();
+  register_mesh_files();
+}
+
+// Each mesh's include file and, on the function route, its data image: written
+// later, straight to their files (generate_pov_files' caller), from the mesh itself.
+void PovScene::register_mesh_files() {
+  std::vector<double> insets;  // the one-run file's copies k = 1 … passes − 1 (passes())
+  for (int k = 1; !plan_.native && k < plan_.passes; ++k) insets.push_back(1e-4 * double(k) * scale_);
+  for (size_t o = 0; o < s_.objects.size(); ++o) {
+    const Object& obj = s_.objects[o];
+    if (obj.type != Object::Type::Mesh) continue;
+    std::shared_ptr<const Mesh> mesh = obj.mesh;
+    const bool numbered = !plan_.native && !table_[o];
+    files_.push_back({fmt::format("{}_mesh{}.inc", stem_, o), [mesh, o, name = obj.name, numbered, insets](std::ostream& out) {
+                        write_pov_mesh_include(out, *mesh, o, name, numbered, insets);
+                      }});
+    if (!numbered) continue;
+    data_[o] = pov_mesh_data(*mesh, fmt::format("{}_mesh{}.ppm", stem_, o));
+    routes_[o] += fmt::format("; {} holds its positions to {:.2g} and normals to {:.2g}", data_[o].file,
+                              data_[o].position_error, data_[o].normal_error);
+    files_.push_back({data_[o].file, [mesh, d = data_[o]](std::ostream& out) { write_pov_mesh_image(out, *mesh, d); }});
+  }
 }
 
 std::string PovScene::render() {
@@ -395,24 +417,14 @@ std::string PovScene::object(size_t o, double shrink, const std::string& body, c
   return w.take();
 }
 
-// A mesh with `body` (its texture) inside. On the native route its lists are
-// written here; on the function route mesh_declarations() wrote them as macros,
-// and a copy inset by `shrink` has vertices of its own.
+// A mesh with `body` (its texture) inside: its lists are macros of its include
+// file (register_mesh_files); copy k of the one-run file, inset by 1e-4·k of the
+// scene, has vertices of its own.
 std::string PovScene::mesh(size_t o, double shrink, const std::string& body, const std::string& modifiers) {
-  const Object& obj = s_.objects[o];
-  const Mesh& m = *obj.mesh;
-  std::string out = "mesh2 {  // " + obj.name + "\n";
-  if (plan_.native) {
-    out += pov_vector_list("vertex_vectors", m.positions, 2) + pov_vector_list("normal_vectors", m.normals, 2) +
-           pov_mesh_faces(m, 2);
-  } else if (shrink == 0) {
-    out += fmt::format("  Facet_Mesh{0}_Vertices()\n  Facet_Mesh{0}_Shape()\n", o);
-  } else {
-    std::vector<Vec3> inset(m.positions.size());
-    for (size_t i = 0; i < inset.size(); ++i) inset[i] = m.positions[i] - m.normals[i] * (shrink * scale_);
-    out += pov_vector_list("vertex_vectors", inset, 2) + fmt::format("  Facet_Mesh{}_Shape()\n", o);
-  }
-  return out + indented(body, 2) + indented(modifiers, 2) + "}\n";
+  const long copy = std::lround(shrink / 1e-4);
+  std::string vertices = copy == 0 ? fmt::format("Facet_Mesh{}_Vertices()", o) : fmt::format("Facet_Mesh{}_Vertices_{}()", o, copy);
+  return fmt::format("mesh2 {{  // {}\n  {}\n  Facet_Mesh{}_Shape()\n", s_.objects[o].name, vertices, o) +
+         indented(body, 2) + indented(modifiers, 2) + "}\n";
 }
 
 // ---------------------------------------------------------------- the native route
@@ -452,6 +464,8 @@ std::string PovScene::native_light(size_t i) {
 std::string PovScene::native() {
   std::string lights, objects;
   for (size_t i = 0; i < s_.lights.size(); ++i) lights += native_light(i);
+  for (size_t o = 0; o < s_.objects.size(); ++o)
+    if (s_.objects[o].type == Object::Type::Mesh) objects += mesh_declarations(o);
   for (size_t o = 0; o < s_.objects.size(); ++o) {
     const PovShading& sh = shading(o);
     RGB e = sh.emission(s_);

@@ -203,28 +203,12 @@ std::string PovScene::functions() {
   return render_template("pov/functions.pov", {{"constants", constants}, {"terms", terms}, {"frames", frames}});
 }
 
-// Mesh o's data functions (pov_mesh.h) and two macros: its vertices as they are
-// and the rest of its mesh2 (normals, uv numbering, faces), which every pass and
-// copy of it shares.
+// Mesh o's data functions (pov_mesh.h, on the function route) and its include
+// file, whose macros every pass and copy of it calls.
 std::string PovScene::mesh_declarations(size_t o) {
-  const Object& obj = s_.objects[o];
-  const Mesh& m = *obj.mesh;
-  std::string out;
-  if (!table_[o]) {
-    data_[o] = pov_mesh_data(m, fmt::format("{}_mesh{}.ppm", stem_, o));
-    files_.push_back({data_[o].file, std::move(data_[o].image)});
-    routes_[o] += fmt::format("; {} holds its positions to {:.2g} and normals to {:.2g}", data_[o].file,
-                              data_[o].position_error, data_[o].normal_error);
-    out = pov_mesh_decoder(data_[o], o);
-  }
-  out += fmt::format("// Mesh {} (\"{}\"): its vertices, and the rest of its mesh2\n", o, obj.name);
-  out += fmt::format("#macro Facet_Mesh{}_Vertices()\n", o) + pov_vector_list("vertex_vectors", m.positions, 2) +
-         "#end\n";
-  out += fmt::format("#macro Facet_Mesh{}_Shape()\n", o) + pov_vector_list("normal_vectors", m.normals, 2) +
-         (table_[o] ? pov_mesh_faces(m, 2)
-                    : pov_mesh_uv_vectors(m, 2) + pov_mesh_faces(m, 2) + pov_mesh_uv_indices(m, 2)) +
-         "#end\n";
-  return out;
+  std::string out = data_[o].file.empty() ? "" : pov_mesh_decoder(data_[o], o);  // on the function route
+  return out + fmt::format("#include \"{}_mesh{}.inc\"  // mesh {} (\"{}\"): its lists, as macros\n", stem_, o, o,
+                           s_.objects[o].name);
 }
 
 std::string PovScene::lights() {

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <ostream>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -24,28 +25,28 @@ constexpr int kWidth = int(kTexels * kPerRow);  // 4095 texels
 // Items separated by ", ", wrapped at the scene's width, each line `indent` in.
 class ListWriter {
  public:
-  ListWriter(std::string& out, size_t indent) : out_(out), indent_(indent) {}
+  ListWriter(std::ostream& out, size_t indent) : out_(out), indent_(indent) {}
   void item(std::string_view s) {
     if (column_ > 0 && column_ + 2 + s.size() + 1 > kPovWidth) {
-      out_ += ",\n";
+      out_ << ",\n";
       column_ = 0;
     } else if (column_ > 0) {
-      out_ += ", ";
+      out_ << ", ";
       column_ += 2;
     }
     if (column_ == 0) {
-      out_.append(indent_, ' ');
+      out_ << std::string(indent_, ' ');
       column_ = indent_;
     }
-    out_ += s;
+    out_ << s;
     column_ += s.size();
   }
   void end() {
-    if (column_ > 0) out_ += "\n";
+    if (column_ > 0) out_ << "\n";
   }
 
  private:
-  std::string& out_;
+  std::ostream& out_;
   size_t indent_;
   size_t column_ = 0;
 };
@@ -76,34 +77,45 @@ PovMeshData pov_mesh_data(const Mesh& m, const std::string& file) {
   d.normal_step = 2.0 / kLevels;
   d.width = kWidth;
   d.height = int(std::max<size_t>(1, (m.triangles.size() + kPerRow - 1) / kPerRow));
-  std::string header = fmt::format("P6\n{} {}\n65535\n", d.width, d.height);
-  d.image.assign(header.size() + size_t(d.width) * size_t(d.height) * 6, '\0');
-  std::copy(header.begin(), header.end(), d.image.begin());
-  auto* px = reinterpret_cast<unsigned char*>(d.image.data() + header.size());
-  uint32_t q[18];
-  for (size_t t = 0; t < m.triangles.size(); ++t) {
-    for (int c = 0; c < 3; ++c) {
-      const Vec3& p = m.positions[m.triangles[t][size_t(c)]];
-      const Vec3& n = m.normals[m.triangles[t][size_t(c)]];
+  for (const auto& t : m.triangles)
+    for (uint32_t v : t)
       for (int k = 0; k < 3; ++k) {
-        q[3 * c + k] = quantize(p[k], d.lo[k], d.step[k]);
-        q[9 + 3 * c + k] = quantize(n[k], -1, d.normal_step);
-        d.position_error = std::max(d.position_error, std::abs(d.lo[k] + d.step[k] * q[3 * c + k] - p[k]));
-        d.normal_error = std::max(d.normal_error, std::abs(-1 + d.normal_step * q[9 + 3 * c + k] - n[k]));
+        const Vec3 &p = m.positions[v], &n = m.normals[v];
+        d.position_error =
+            std::max(d.position_error, std::abs(d.lo[k] + d.step[k] * quantize(p[k], d.lo[k], d.step[k]) - p[k]));
+        d.normal_error = std::max(d.normal_error, std::abs(-1 + d.normal_step * quantize(n[k], -1, d.normal_step) - n[k]));
       }
-    }
-    // Two values a texel: R = a >> 8, G = (a & 255) << 8 | b >> 16, B = b & 65535 (big-endian).
-    for (size_t j = 0; j < kTexels; ++j) {
-      const uint32_t a = q[2 * j], b = q[2 * j + 1];
-      const uint16_t ch[3] = {uint16_t(a >> 8), uint16_t(((a & 255u) << 8) | (b >> 16)), uint16_t(b & 65535u)};
-      unsigned char* out = px + ((t / kPerRow) * size_t(kWidth) + (t % kPerRow) * kTexels + j) * 6;
-      for (int k = 0; k < 3; ++k) {
-        out[2 * k] = uint8_t(ch[k] >> 8);
-        out[2 * k + 1] = uint8_t(ch[k] & 255);
-      }
-    }
-  }
   return d;
+}
+
+void write_pov_mesh_image(std::ostream& out, const Mesh& m, const PovMeshData& d) {
+  out << fmt::format("P6\n{} {}\n65535\n", d.width, d.height);
+  std::vector<unsigned char> row(size_t(d.width) * 6);
+  uint32_t q[18];
+  for (size_t r = 0; r < size_t(d.height); ++r) {  // a row at a time: 455 triangles
+    std::fill(row.begin(), row.end(), 0);
+    for (size_t t = r * kPerRow; t < std::min(m.triangles.size(), (r + 1) * kPerRow); ++t) {
+      for (int c = 0; c < 3; ++c) {
+        const Vec3& p = m.positions[m.triangles[t][size_t(c)]];
+        const Vec3& n = m.normals[m.triangles[t][size_t(c)]];
+        for (int k = 0; k < 3; ++k) {
+          q[3 * c + k] = quantize(p[k], d.lo[k], d.step[k]);
+          q[9 + 3 * c + k] = quantize(n[k], -1, d.normal_step);
+        }
+      }
+      // Two values a texel: R = a >> 8, G = (a & 255) << 8 | b >> 16, B = b & 65535 (big-endian).
+      for (size_t j = 0; j < kTexels; ++j) {
+        const uint32_t a = q[2 * j], b = q[2 * j + 1];
+        const uint16_t ch[3] = {uint16_t(a >> 8), uint16_t(((a & 255u) << 8) | (b >> 16)), uint16_t(b & 65535u)};
+        unsigned char* px = row.data() + ((t % kPerRow) * kTexels + j) * 6;
+        for (int k = 0; k < 3; ++k) {
+          px[2 * k] = uint8_t(ch[k] >> 8);
+          px[2 * k + 1] = uint8_t(ch[k] & 255);
+        }
+      }
+    }
+    out.write(reinterpret_cast<const char*>(row.data()), std::streamsize(row.size()));
+  }
 }
 
 namespace {
@@ -139,10 +151,9 @@ namespace {
 
 // `name` { count, items } with each item from item(i, buffer).
 template <typename Item>
-std::string pov_list(const std::string& name, size_t count, size_t indent, const Item& item) {
+void pov_list(std::ostream& out, const std::string& name, size_t count, size_t indent, const Item& item) {
   const std::string pad(indent, ' ');
-  std::string out = fmt::format("{0}{1} {{\n{0}  {2},\n", pad, name, count);
-  out.reserve(out.size() + count * 32);
+  out << fmt::format("{0}{1} {{\n{0}  {2},\n", pad, name, count);
   ListWriter w(out, indent + 2);
   fmt::memory_buffer b;
   for (size_t i = 0; i < count; ++i) {
@@ -151,34 +162,48 @@ std::string pov_list(const std::string& name, size_t count, size_t indent, const
     w.item(std::string_view(b.data(), b.size()));
   }
   w.end();
-  return out + pad + "}\n";
+  out << pad << "}\n";
+}
+
+// float32 is what POV-Ray stores a mesh's vectors in: its shortest decimal reads back the same.
+void vector_list(std::ostream& out, const std::string& name, const Mesh& m, bool normals, double inset) {
+  const std::vector<Vec3>& v = normals ? m.normals : m.positions;
+  pov_list(out, name, v.size(), 2, [&](size_t i, fmt::memory_buffer& b) {
+    const Vec3 p = inset == 0 ? v[i] : v[i] - m.normals[i] * inset;
+    fmt::format_to(std::back_inserter(b), "<{}, {}, {}>", float(p.x), float(p.y), float(p.z));
+  });
 }
 
 }  // namespace
 
-std::string pov_vector_list(const std::string& name, const std::vector<Vec3>& v, size_t indent) {
-  return pov_list(name, v.size(), indent, [&](size_t i, fmt::memory_buffer& b) {
-    fmt::format_to(std::back_inserter(b), "<{}, {}, {}>", float(v[i].x), float(v[i].y), float(v[i].z));
-  });
-}
-
-std::string pov_mesh_faces(const Mesh& m, size_t indent) {
-  return pov_list("face_indices", m.triangles.size(), indent, [&](size_t i, fmt::memory_buffer& b) {
+void write_pov_mesh_include(std::ostream& out, const Mesh& m, size_t o, const std::string& name, bool numbered,
+                            const std::vector<double>& insets) {
+  out << fmt::format("// facet: mesh {} (\"{}\"), {} triangles: the macros its mesh2 objects call\n", o, name,
+                     m.triangles.size());
+  out << fmt::format("#macro Facet_Mesh{}_Vertices()\n", o);
+  vector_list(out, "vertex_vectors", m, false, 0);
+  out << "#end\n";
+  for (size_t k = 0; k < insets.size(); ++k) {  // the copies of the one-run file, inset along the normals
+    out << fmt::format("#macro Facet_Mesh{}_Vertices_{}()\n", o, k + 1);
+    vector_list(out, "vertex_vectors", m, false, insets[k]);
+    out << "#end\n";
+  }
+  out << fmt::format("#macro Facet_Mesh{}_Shape()\n", o);
+  vector_list(out, "normal_vectors", m, true, 0);
+  const size_t n = m.triangles.size();
+  if (numbered)
+    pov_list(out, "uv_vectors", 3 * n, 2, [&](size_t k, fmt::memory_buffer& b) {
+      const size_t t = k / 3, i = 4 * (t % kGrid) + 1 + (k % 3 == 1), j = 4 * (t / kGrid) + 1 + (k % 3 == 2);
+      fmt::format_to(std::back_inserter(b), "<{}, {}>", i, j);
+    });
+  pov_list(out, "face_indices", n, 2, [&](size_t i, fmt::memory_buffer& b) {
     fmt::format_to(std::back_inserter(b), "<{}, {}, {}>", m.triangles[i][0], m.triangles[i][1], m.triangles[i][2]);
   });
-}
-
-std::string pov_mesh_uv_vectors(const Mesh& m, size_t indent) {
-  return pov_list("uv_vectors", 3 * m.triangles.size(), indent, [&](size_t k, fmt::memory_buffer& b) {
-    const size_t t = k / 3, i = 4 * (t % kGrid) + 1 + (k % 3 == 1), j = 4 * (t / kGrid) + 1 + (k % 3 == 2);
-    fmt::format_to(std::back_inserter(b), "<{}, {}>", i, j);
-  });
-}
-
-std::string pov_mesh_uv_indices(const Mesh& m, size_t indent) {
-  return pov_list("uv_indices", m.triangles.size(), indent, [&](size_t t, fmt::memory_buffer& b) {
-    fmt::format_to(std::back_inserter(b), "<{}, {}, {}>", 3 * t, 3 * t + 1, 3 * t + 2);
-  });
+  if (numbered)
+    pov_list(out, "uv_indices", n, 2, [&](size_t t, fmt::memory_buffer& b) {
+      fmt::format_to(std::back_inserter(b), "<{}, {}, {}>", 3 * t, 3 * t + 1, 3 * t + 2);
+    });
+  out << "#end\n";
 }
 
 }  // namespace facet::targets

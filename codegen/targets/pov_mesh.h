@@ -20,7 +20,9 @@
 //   The pigment rebuilds P = Σ wₖ pₖ and the unnormalized normal Σ wₖ nₖ.
 #pragma once
 
+#include <ostream>
 #include <string>
+#include <vector>
 
 #include "core/vec.h"
 #include "scene/scene.h"
@@ -29,7 +31,6 @@ namespace facet::targets {
 
 struct PovMeshData {
   std::string file;    // the image's name, beside the scene
-  std::string image;   // its bytes (binary PPM, 16 bits a channel)
   int width = 0, height = 0;
   Vec3 lo, step;       // position = lo + step ⊙ q, q the 24-bit integer
   double normal_step = 0;  // normal component = −1 + normal_step · q
@@ -38,16 +39,18 @@ struct PovMeshData {
   double position_error = 0, normal_error = 0;
 };
 
-// The data image of mesh `m`, named `file`.
+// The data image's layout and precision for mesh `m`, named `file`.
 PovMeshData pov_mesh_data(const Mesh& m, const std::string& file);
-// The functions that read it for object o (Facet_Mesh{o}_Tri, _A, _B, _PX … _MZ).
+// The image itself (binary PPM, 16 bits a channel), a row at a time.
+void write_pov_mesh_image(std::ostream& out, const Mesh& m, const PovMeshData& d);
+// The functions that read it for object o (Facet_Mesh{o}_Tri, _Bary, _PX … _MZ).
 std::string pov_mesh_decoder(const PovMeshData& d, size_t o);
-// mesh2's lists, `indent` spaces in: `name` { count, vectors } (vertex_vectors,
-// normal_vectors) in float32, which is what POV-Ray stores them in; the faces;
-// the uv vectors and indices that number the triangles.
-std::string pov_vector_list(const std::string& name, const std::vector<Vec3>& v, size_t indent);
-std::string pov_mesh_faces(const Mesh& m, size_t indent);
-std::string pov_mesh_uv_vectors(const Mesh& m, size_t indent);
-std::string pov_mesh_uv_indices(const Mesh& m, size_t indent);
+// Mesh o's include file: the macros its mesh2 objects call, Facet_Mesh{o}_Vertices()
+// (the vertices), Facet_Mesh{o}_Vertices_{k}() (inset by insets[k − 1] along the
+// normals, for the one-run file's copies) and Facet_Mesh{o}_Shape() (normals, the uv
+// numbering of the triangles when `numbered`, faces). Lists in float32, which is
+// what POV-Ray stores them in.
+void write_pov_mesh_include(std::ostream& out, const Mesh& m, size_t o, const std::string& name, bool numbered,
+                            const std::vector<double>& insets);
 
 }  // namespace facet::targets

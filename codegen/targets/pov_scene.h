@@ -74,6 +74,7 @@ class PovScene {
   std::string functions();
   std::string lights();
   std::string mesh_declarations(size_t o);
+  void register_mesh_files();
   std::string lit(size_t o, size_t i, double weight, double t, double shrink, const std::string& mods);
   std::string emitting(size_t o, double weight, double t, double shrink, const std::string& mods);
   std::string pass(size_t item);

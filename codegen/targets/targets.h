@@ -1,7 +1,9 @@
 // facet — the code generators: one material, equivalent code for each target.
 #pragma once
 
+#include <functional>
 #include <optional>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -69,8 +71,8 @@ PovPlan pov_plan(const Scene& s, const Material* fallback, PovRoute route = PovR
 // A POV-Ray scene and the files it reads, which go beside it: a mesh on the
 // function route reads its geometry from an image (targets/pov_mesh.h).
 struct PovFile {
-  std::string name;  // relative to the scene's folder
-  std::string data;
+  std::string name;                          // relative to the scene's folder
+  std::function<void(std::ostream&)> write;  // writes it (a mesh's lists or data: hundreds of MB)
 };
 struct PovOutput {
   std::string code;

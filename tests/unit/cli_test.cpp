@@ -103,9 +103,11 @@ TEST(Cli, AFailedWriteLeavesThePreviousOutputIntactAndNoTemporary) {
   fs::path out = previous_output("efbig"), dir = out.parent_path();
   ProcessResult r = limited_generate(out, true);
   EXPECT_EQ(r.exit_code, 1) << r.output;
-  EXPECT_NE(r.output.find(out.string() + ": cannot write"), std::string::npos) << r.output;
+  // The first file too big for the limit is a mesh's include file, written before the scene.
+  EXPECT_NE(r.output.find((dir / "scene_mesh0.inc").string() + ": cannot write"), std::string::npos) << r.output;
   EXPECT_EQ(read_file(out.string()), "previous contents\n");
   EXPECT_TRUE(hidden_temporaries(dir).empty());
+  EXPECT_FALSE(fs::exists(dir / "scene_mesh0.inc"));
 }
 
 TEST(Cli, GenerateWritesTheFile) {
@@ -142,7 +144,9 @@ TEST(Cli, PovRoutesAreChosenAndSaid) {
   EXPECT_NE(routes[0].get<std::string>().find("slope tables"), std::string::npos) << routes[0];  // GGX: isotropic
   EXPECT_NE(routes[0].get<std::string>().find("measured"), std::string::npos) << routes[0];
   EXPECT_NE(routes[2].get<std::string>().find("data image"), std::string::npos) << routes[2];  // Ward reads t
-  EXPECT_EQ(j["pov"]["files"], json::array({"routes_mesh2.ppm"})) << "only the Ward torus reads a data image";
+  EXPECT_EQ(j["pov"]["files"], json::array({"routes_mesh0.inc", "routes_mesh1.inc", "routes_mesh2.inc",
+                                            "routes_mesh2.ppm", "routes_mesh3.inc"}))
+      << "each mesh's lists, and a data image for the Ward torus only";
   EXPECT_NE(read_file(out.string()).find("slope { point_at"), std::string::npos);
 
   r = facet({"generate", "--target", "pov", "--scene", scene, "-o", out.string()});
@@ -167,7 +171,7 @@ TEST(Cli, GenerateJsonDescribesTheOutput) {
   EXPECT_FALSE(j["pov"]["reason"].get<std::string>().empty());
   ASSERT_EQ(j["pov"]["routes"].size(), 4u) << "one line per object";
   EXPECT_NE(j["pov"]["routes"][0].get<std::string>().find("data image"), std::string::npos) << j["pov"]["routes"][0];
-  ASSERT_EQ(j["pov"]["files"].size(), 4u) << "each mesh's data image";
+  ASSERT_EQ(j["pov"]["files"].size(), 8u) << "each mesh's lists and its data image";
   for (const auto& f : j["pov"]["files"]) EXPECT_TRUE(fs::exists(out.parent_path() / f.get<std::string>())) << f;
   std::string pov = read_file(out.string());
   std::string declared = "#declare Facet_Passes = " + std::to_string(j["pov"]["passes"].get<int>()) + ";";

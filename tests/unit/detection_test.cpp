@@ -129,7 +129,7 @@ TEST(Detection, PovMeshDataConventionsFailWhenWrong) {
   Fixture f = mesh_fixture("ggx", "data");
   // Named as the renderer names its files, so the code read back finds its data images.
   PovOutput pov = generate_pov_files(f.scene, &f.material, "ggx.json", PovRoute::Auto, job_name(f.job));
-  ASSERT_EQ(pov.files.size(), 3u) << "three meshes on the function route, three data images";
+  ASSERT_EQ(pov.files.size(), 6u) << "three meshes on the function route: their lists and their data images";
   EXPECT_TRUE(judged(f, render_one("pov", f.job)).pass);
   // The triangle's row counted from the bottom of the image instead of the top.
   const std::string row = "#declare Facet_Mesh0_Y = function(Tri) { ";
@@ -148,14 +148,28 @@ TEST(Detection, PovMeshDataConventionsFailWhenWrong) {
 
 TEST(Detection, PovMeshNativeNormalsFailWhenFlat) {
   Fixture f = mesh_fixture("blinn_phong", "native");  // POV-Ray's own finish on mesh2
-  PovOutput pov = generate_pov_files(f.scene, &f.material, "blinn_phong.json", PovRoute::Auto, "x");
+  PovOutput pov = generate_pov_files(f.scene, &f.material, "blinn_phong.json", PovRoute::Auto, job_name(f.job));
   ASSERT_TRUE(pov.plan.native);
-  ASSERT_TRUE(pov.files.empty());
+  ASSERT_EQ(pov.files.size(), 3u) << "each mesh's lists, no data image";
   EXPECT_TRUE(judged(f, render_one("pov", f.job)).pass);
-  // Without the first mesh's normal_vectors POV-Ray shades its triangles flat.
-  size_t at = pov.code.find("  normal_vectors {"), end = pov.code.find("\n  }\n", at);
+  // Without the first mesh's normal_vectors POV-Ray shades its triangles flat: its mesh2 calls a
+  // Shape macro of the scene's own that leaves them out (the include file's lists are written as they are).
+  const std::string calls = "  Facet_Mesh0_Shape()\n";
+  size_t at = pov.code.find(calls);
   ASSERT_NE(at, std::string::npos);
-  f.job.code_override = pov.code.substr(0, at) + pov.code.substr(end + 5);
+  std::string flat_code = pov.code;
+  flat_code.replace(at, calls.size(), "  Facet_Flat0()\n");
+  const std::string include = "#include \"" + job_name(f.job) + "_mesh0.inc\"";
+  size_t inc = flat_code.find(include);
+  ASSERT_NE(inc, std::string::npos);
+  const Mesh& m = *f.scene.objects[0].mesh;
+  std::string faces = "#macro Facet_Flat0()\n  face_indices {\n    " + std::to_string(m.triangles.size()) + ",\n";
+  for (const auto& t : m.triangles)
+    faces += "    <" + std::to_string(t[0]) + ", " + std::to_string(t[1]) + ", " + std::to_string(t[2]) + ">,\n";
+  faces.resize(faces.size() - 2);
+  faces += "\n  }\n#end\n";
+  flat_code.insert(flat_code.find('\n', inc) + 1, faces);
+  f.job.code_override = flat_code;
   ComparisonRow flat = judged(f, render_one("pov", f.job));
   EXPECT_FALSE(flat.pass) << "flat normals: max |Δ|/max(1,|ref|) " << flat.metrics.max_excess;
 }

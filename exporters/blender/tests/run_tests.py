@@ -1347,7 +1347,8 @@ def test_export_pov_of_half_a_million_triangles():
     t0 = time.perf_counter()
     expect_ok("export_pov", None, filepath=pov, render=False, save_scene=True)
     info(f"export of {triangles} triangles to POV-Ray: {time.perf_counter() - t0:.1f} s "
-         f"(.pov {os.path.getsize(pov) / 1e6:.0f} MB, data image {os.path.getsize(work('big_mesh0.ppm')) / 1e6:.0f} MB)")
+         f"(.pov {os.path.getsize(pov) / 1e6:.1f} MB, lists {os.path.getsize(work('big_mesh0.inc')) / 1e6:.0f} MB, "
+         f"data image {os.path.getsize(work('big_mesh0.ppm')) / 1e6:.0f} MB)")
     expect_ok("export_pov", None, filepath=pov, render=True)
     _, _, got = read_png16(work("big.png"))
     ref = facet_reference(None, read_json(work("big.json")), w, h, "big")
@@ -1385,9 +1386,10 @@ def test_export_pov_render_failure_keeps_old_png():
     info(f"message: {error.splitlines()[0]}")
     with open(png) as f:
         check_equal(f.read(), "old image", "the previous PNG must be intact")
-    # The export itself stays: the .pov and its meshes' data images (scene_mesh<i>.ppm), which it reads.
+    # The export itself stays: the .pov and the files it reads, its meshes' lists and data images
+    # (scene_mesh<i>.inc, scene_mesh<i>.ppm).
     left = sorted(n for n in os.listdir(folder)
-                  if n not in ("povray", "scene.png", "scene.pov") and not re.fullmatch(r"scene_mesh\d+\.ppm", n))
+                  if n not in ("povray", "scene.png", "scene.pov") and not re.fullmatch(r"scene_mesh\d+\.(ppm|inc)", n))
     check(not left, f"temporary files left behind: {left}")
 
 

@@ -46,7 +46,7 @@ def test_generate_scene_returns_facets_plan_and_writes_the_scene(tmp_path, facet
     # term; each mesh's geometry in a data image beside the scene, named after it
     assert plan.native is False and "not a POV-Ray finish" in plan.reason
     assert plan.passes == declared_passes(out) == 3
-    assert sorted(os.listdir(tmp_path)) == ["three.pov"] + [f"three_mesh{i}.ppm" for i in range(4)]
+    assert sorted(os.listdir(tmp_path)) == ["three.pov"] + sorted(f"three_mesh{i}.{x}" for i in range(4) for x in ("inc", "ppm"))
     assert all(f'ppm "three_mesh{i}.ppm"' in out.read_text() for i in range(4))
 
 
