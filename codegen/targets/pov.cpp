@@ -5,7 +5,10 @@
 // grey k_s; POV-compatible attenuation). Every other model is evaluated exactly
 // in function pigments (shared/notes/povray.md, recipe A; pov_functions.cpp):
 // the function receives the hit point, the generator knows each object's
-// analytic normal, and the pigment holds the whole per-light radiance.
+// analytic normal (a mesh's pigment receives uv_mapping's triangle number and
+// barycentrics and reads its corners from a data image: pov_mesh.h), and the
+// pigment holds the whole per-light radiance. Meshes with a native material are
+// POV-Ray's own mesh2, whose smooth normal is facet's (docs/povray-meshes.md).
 // `finish { diffuse 1 brilliance 0 }` then multiplies it by the light's colour
 // and its shadow test, and nothing else.
 //
