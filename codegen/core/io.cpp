@@ -13,44 +13,6 @@
 
 namespace facet {
 
-void write_file_atomic(const std::string& path, const std::string& content) {
-  namespace fs = std::filesystem;
-  fs::path target(path);
-  fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
-  std::string tmpl = (dir / ("." + target.filename().string() + ".facet-XXXXXX")).string();
-  int fd = mkstemp(tmpl.data());
-  if (fd < 0) throw IoError(path + ": cannot create a file in " + dir.string() + ": " + std::strerror(errno));
-  auto fail = [&](const char* what) {
-    int err = errno;
-    ::close(fd);
-    std::remove(tmpl.c_str());
-    throw IoError(path + ": " + what + ": " + std::strerror(err));
-  };
-  size_t done = 0;
-  while (done < content.size()) {
-    ssize_t n = ::write(fd, content.data() + done, content.size() - done);
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      fail("cannot write");
-    }
-    done += size_t(n);
-  }
-  if (::fsync(fd) != 0) fail("cannot flush");
-  // mkstemp creates 0600; give the file the usual permissions.
-  mode_t mask = ::umask(0);
-  ::umask(mask);
-  ::fchmod(fd, 0666 & ~mask);
-  if (::close(fd) != 0) {
-    std::remove(tmpl.c_str());
-    throw IoError(path + ": cannot close: " + std::strerror(errno));
-  }
-  if (std::rename(tmpl.c_str(), path.c_str()) != 0) {
-    int err = errno;
-    std::remove(tmpl.c_str());
-    throw IoError(path + ": cannot replace the file: " + std::strerror(err));
-  }
-}
-
 void write_file_atomic(const std::string& path, const std::function<void(std::ostream&)>& write) {
   namespace fs = std::filesystem;
   fs::path target(path);
@@ -62,9 +24,13 @@ void write_file_atomic(const std::string& path, const std::function<void(std::os
   try {
     {
       std::ofstream out(tmpl, std::ios::binary | std::ios::trunc);
+      errno = 0;
       write(out);
       out.flush();
-      if (!out) throw IoError(path + ": cannot write");
+      if (!out) {
+        const int err = errno;  // what the failed write(2) set, when it did
+        throw IoError(path + ": cannot write" + (err ? std::string(": ") + std::strerror(err) : std::string()));
+      }
     }
     int sync = ::open(tmpl.c_str(), O_RDONLY);
     if (sync < 0 || ::fsync(sync) != 0) {
@@ -72,6 +38,7 @@ void write_file_atomic(const std::string& path, const std::function<void(std::os
       throw IoError(path + ": cannot flush: " + std::strerror(errno));
     }
     ::close(sync);
+    // mkstemp creates 0600; give the file the usual permissions.
     mode_t mask = ::umask(0);
     ::umask(mask);
     ::chmod(tmpl.c_str(), 0666 & ~mask);
@@ -81,6 +48,10 @@ void write_file_atomic(const std::string& path, const std::function<void(std::os
     std::remove(tmpl.c_str());
     throw;
   }
+}
+
+void write_file_atomic(const std::string& path, const std::string& content) {
+  write_file_atomic(path, [&](std::ostream& out) { out.write(content.data(), std::streamsize(content.size())); });
 }
 
 std::string read_file(const std::string& path) {

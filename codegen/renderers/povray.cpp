@@ -114,11 +114,13 @@ RenderOutcome render_pov(const RenderJob& job) {
   fs::create_directories(dir);
   const Material* fallback = job.material ? &*job.material : nullptr;
   const std::string base = job_name(job);
+  int passes = 1;
   try {
-    // The files beside the scene (a mesh's data image) come with an overriding code too.
+    // The files beside the scene (a mesh's lists and data image) come with an overriding code too.
     PovOutput pov = generate_pov_files(job.scene, fallback, fallback ? fallback->source : job.scene.source,
                                        job.pov_route, base);
     if (!job.code_override.empty()) pov.code = job.code_override;
+    passes = job.one_run ? 1 : pov.plan.passes;
     for (const auto& f : pov.files) write_file_atomic((fs::path(dir) / f.name).string(), f.write);
     write_file_atomic((fs::path(dir) / (base + ".pov")).string(), pov.code);
   } catch (const std::invalid_argument& e) {  // an object without a material, and none given
@@ -126,7 +128,7 @@ RenderOutcome render_pov(const RenderJob& job) {
     return out;
   }
   const std::vector<double> exposure = exposures(job);
-  const int passes = job.one_run ? 1 : pov_plan(job.scene, fallback, job.pov_route).passes, frames = passes * int(exposure.size());
+  const int frames = passes * int(exposure.size());
   write_file_atomic((fs::path(dir) / (base + "_harness.pov")).string(), harness(base, passes, exposure));
   for (const auto& entry : fs::directory_iterator(dir))
     if (entry.path().filename().string().rfind(base + "_frame", 0) == 0) fs::remove(entry.path());

@@ -492,8 +492,8 @@ PovOutput generate_pov_files(const Scene& s, const Material* fallback, const std
   PovOutput out;
   out.code = scene.render();
   out.files = std::move(scene.files());
-  out.plan = pov_plan(s, fallback, route);
-  out.plan.routes = scene.routes();
+  out.plan = scene.plan();
+  out.plan.routes = scene.routes();  // with what generation measured
   return out;
 }
 

@@ -53,6 +53,7 @@ class PovScene {
   std::string render();
   // After render(): the files to write beside the scene, and each object's route.
   std::vector<PovFile>& files() { return files_; }
+  const PovPlan& plan() const { return plan_; }
   const std::vector<std::string>& routes() const { return routes_; }
   std::string library();
   std::string sweep();

@@ -192,7 +192,7 @@ const Row* find(const std::vector<Row>& rows, size_t n, const std::string& kind)
   return nullptr;
 }
 
-std::string table(const std::vector<Row>& rows, const Options& o) {
+std::string table(const std::vector<Row>& rows) {
   std::string out =
       "| triangles | material | import s / MB | generate s / MB | .glb MB | .json kB | .pov + .inc MB | data MB | "
       "POV-Ray parse s | trace s | POV-Ray peak MB | ÷ native | exponent (parse, memory) |\n"
@@ -215,7 +215,6 @@ std::string table(const std::vector<Row>& rows, const Options& o) {
                        r.triangles, r.material, r.import_s, r.import_mb, r.generate_s, r.generate_mb, r.glb_mb,
                        r.json_kb, r.pov_mb, r.data_mb, r.parse_s, r.trace_s, r.pov_peak_mb, ratio, growth);
   }
-  (void)o;
   return out;
 }
 
@@ -326,7 +325,7 @@ int main(int argc, char** argv) {
       rows.push_back(r);
     }
   }
-  std::string md = table(rows, *o) + "\n" + summary(rows);
+  std::string md = table(rows) + "\n" + summary(rows);
   std::cout << md;
   if (!o->markdown.empty()) facet::write_file_atomic(o->markdown.string(), md);
   if (!o->plot.empty()) plot(rows, o->plot);

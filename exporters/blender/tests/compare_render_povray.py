@@ -339,8 +339,8 @@ def facet_render(work, opts, width, height):
     return rows, reference, notes, exposure, [m for _, m in operators.LAST_REPORTS], read_pgm(mask_path)
 
 
-def read_pgm(path):
-    """facet render --mask: a binary PGM, rows from the top; returned bottom row first, as read_pfm's."""
+def read_header(path):
+    """(data, the three header lines, where the samples start) of a binary PGM or PFM."""
     with open(path, "rb") as f:
         data = f.read()
     parts, pos = [], 0
@@ -348,19 +348,19 @@ def read_pgm(path):
         end = data.index(b"\n", pos)
         parts.append(data[pos:end].decode())
         pos = end + 1
+    return data, parts, pos
+
+
+def read_pgm(path):
+    """facet render --mask: a binary PGM, rows from the top; returned bottom row first, as read_pfm's."""
+    data, parts, pos = read_header(path)
     w, h = map(int, parts[1].split())
     rows = [[data[pos + j * w + i] > 127 for i in range(w)] for j in range(h)]
     return rows[::-1]
 
 
 def read_pfm(path):
-    with open(path, "rb") as f:
-        data = f.read()
-    parts, pos = [], 0
-    while len(parts) < 3:
-        end = data.index(b"\n", pos)
-        parts.append(data[pos:end].decode())
-        pos = end + 1
+    data, parts, pos = read_header(path)
     w, h = map(int, parts[1].split())
     floats = array.array("f")
     floats.frombytes(data[pos:pos + 12 * w * h])
