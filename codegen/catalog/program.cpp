@@ -91,4 +91,20 @@ MaterialProgram compile(const Material& m) {
   return p;
 }
 
+ir::FunctionPtr lobe_reflectance(const MaterialProgram& p, bool specular) {
+  const ir::FunctionPtr& lobe = specular ? p.specular : p.diffuse;
+  if (!lobe) return nullptr;
+  const std::string which = specular ? "specular" : "diffuse";
+  ir::FunctionBuilder fb("reflectance_" + which,
+                         fmt::format("MODELS.md: ρ_{}(l, v), the {} lobe without its colour", which[0], which),
+                         "Horizon rule: nothing is reflected where n·l ≤ 0 or n·v ≤ 0, i.e. min(n·l, n·v) ≤ 0.");
+  // n·l and n·v for the horizon rule, then what the lobe reads.
+  fb.param("NoL");
+  fb.param("NoV");
+  for (const auto& param : lobe->params) fb.param(param.name, param.type);
+  fb.order_params(input_order());
+  ir::Expr zero = lobe->result_type() == ir::Type::Color ? ir::color(0, 0, 0) : ir::Expr(0.0);
+  return fb.returns(ir::select(ir::min(fb.arg("NoL"), fb.arg("NoV")) <= 0.0, zero, ir::call(lobe, args_for(lobe, fb))));
+}
+
 }  // namespace facet

@@ -29,6 +29,11 @@ struct MaterialProgram {
 };
 
 MaterialProgram compile(const Material& m);
+// One lobe of `p` without its colour, ρ_d or ρ_s, 0 below the horizon, taking n·l,
+// n·v and the inputs the lobe reads (so k_d ⊗ ρ_d + k_s ⊗ ρ_s is k_d ⊗ this(diffuse) +
+// k_s ⊗ this(specular)): for a target that applies k_d and k_s itself, as POV-Ray's
+// colour maps do. Null where `p` has no such lobe.
+ir::FunctionPtr lobe_reflectance(const MaterialProgram& p, bool specular);
 // "Phong (n = 32)": the model's title and its numeric parameters, as the
 // generated code's comments and the diagrams name a lobe.
 std::string describe(const ModelSpec& s);

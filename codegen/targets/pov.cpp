@@ -5,8 +5,9 @@
 // grey k_s; POV-compatible attenuation). Every other model is evaluated exactly
 // in function pigments (shared/notes/povray.md, recipe A; pov_functions.cpp):
 // the function receives the hit point, the generator knows each object's
-// analytic normal (a mesh's pigment receives uv_mapping's triangle number and
-// barycentrics and reads its corners from a data image: pov_mesh.h), and the
+// analytic normal (a mesh's pigment receives uv_mapping's point in its
+// triangle's block of a data image, whose bilinear lookup blends the corners'
+// point and normal: pov_mesh.h), and the
 // pigment holds the whole per-light radiance. Meshes with a native material are
 // POV-Ray's own mesh2, whose smooth normal is facet's (docs/povray-meshes.md).
 // `finish { diffuse 1 brilliance 0 }` then multiplies it by the light's colour
@@ -245,6 +246,8 @@ PovScene::PovScene(const Scene& s, const Material* fallback, const std::string& 
 
 // Each mesh's include file and, on the function route, its data image: written
 // later, straight to their files (generate_pov_files' caller), from the mesh itself.
+// POV-Ray's own shading (native finish, slope tables) reads the mesh's normal_vectors;
+// the function route reads its normals from the data image and needs none.
 void PovScene::register_mesh_files() {
   std::vector<double> insets;  // the one-run file's copies k = 1 … passes − 1 (passes())
   for (int k = 1; !plan_.native && k < plan_.passes; ++k) insets.push_back(1e-4 * double(k) * scale_);
@@ -253,13 +256,14 @@ void PovScene::register_mesh_files() {
     if (obj.type != Object::Type::Mesh) continue;
     std::shared_ptr<const Mesh> mesh = obj.mesh;
     const bool numbered = !plan_.native && !table_[o];
-    files_.push_back({fmt::format("{}_mesh{}.inc", stem_, o), [mesh, o, name = obj.name, numbered, insets](std::ostream& out) {
-                        write_pov_mesh_include(out, *mesh, o, name, numbered, insets);
+    files_.push_back({fmt::format("{}_mesh{}.inc", stem_, o),
+                      [mesh, o, name = obj.name, numbered, insets](std::ostream& out) {
+                        write_pov_mesh_include(out, *mesh, o, name, !numbered, numbered, insets);
                       }});
     if (!numbered) continue;
     data_[o] = pov_mesh_data(*mesh, fmt::format("{}_mesh{}.ppm", stem_, o));
-    routes_[o] += fmt::format("; {} holds its positions to {:.2g} and normals to {:.2g}", data_[o].file,
-                              data_[o].position_error, data_[o].normal_error);
+    routes_[o] += fmt::format("; POV-Ray reads its positions from {} to within {:.2g} and normals to within {:.2g}",
+                              data_[o].file, data_[o].position_error, data_[o].normal_error);
     files_.push_back({data_[o].file, [mesh, d = data_[o]](std::ostream& out) { write_pov_mesh_image(out, *mesh, d); }});
   }
 }
@@ -272,7 +276,7 @@ std::string PovScene::render() {
   const bool big = triangles >= 250000;  // a second or more: say so
   const auto start = std::chrono::steady_clock::now();
   if (big) progress(fmt::format("writing the POV-Ray scene: {} triangles", gltf_detail::thousands(triangles)));
-  std::string body = plan_.native ? native() : functions() + lights() + passes();  // before the header: it
+  std::string body = plan_.native ? native() : functions(true) + lights() + passes();  // before the header: it
   if (big)                                                                             // names what lights() measured
     progress(fmt::format("POV-Ray scene written in {:.1f} s",
                          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()));
@@ -420,14 +424,17 @@ std::string PovScene::object(size_t o, double shrink, const std::string& body, c
   return w.take();
 }
 
-// A mesh with `body` (its texture) inside: its lists are macros of its include
-// file (register_mesh_files); copy k of the one-run file, inset by 1e-4·k of the
-// scene, has vertices of its own.
+// A mesh with `body` (its texture) inside: an instance of the mesh2 its include
+// file declares (register_mesh_files); copy k of the one-run file, inset by 1e-4·k
+// of the scene, has vertices of its own. On the function route the pigment is the
+// whole radiance, n·l ≤ 0 included, so POV-Ray must not skip a light by its own
+// normal (trace.cpp, ComputeOneDiffuseLight): double_illuminate.
 std::string PovScene::mesh(size_t o, double shrink, const std::string& body, const std::string& modifiers) {
   const long copy = std::lround(shrink / 1e-4);
-  std::string vertices = copy == 0 ? fmt::format("Facet_Mesh{}_Vertices()", o) : fmt::format("Facet_Mesh{}_Vertices_{}()", o, copy);
-  return fmt::format("mesh2 {{  // {}\n  {}\n  Facet_Mesh{}_Shape()\n", s_.objects[o].name, vertices, o) +
-         indented(body, 2) + indented(modifiers, 2) + "}\n";
+  std::string name = copy == 0 ? fmt::format("Facet_Mesh{}", o) : fmt::format("Facet_Mesh{}_Copy{}", o, copy);
+  std::string lit_both = data_[o].file.empty() ? "" : "double_illuminate\n";
+  return fmt::format("object {{  // {}\n  {}\n", s_.objects[o].name, name) + indented(body, 2) +
+         indented(modifiers + lit_both, 2) + "}\n";
 }
 
 // ---------------------------------------------------------------- the native route

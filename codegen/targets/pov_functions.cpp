@@ -1,6 +1,7 @@
 // POV-Ray's function route: the shading frame, the lights and the objects as IR
 // functions (named Facet_…, printed like the catalog's terms), the pigments
 // that hold their radiance, and the passes (shared/notes/povray.md, recipe A).
+#include <array>
 #include <optional>
 #include <stdexcept>
 
@@ -45,15 +46,23 @@ std::vector<Expr> args(std::initializer_list<Triple> vs) {
   return out;
 }
 
-// `name`(n, l, v[, t]) → the reflectance of `p` (a light of unit colour), its
-// inputs the dot products of unit vectors, h = (l + v) / Hl, Hl = max(|l + v|, ε)
-// (catalog.h, Input), b = n × t.
-ir::FunctionPtr frame_function(const MaterialProgram& p, const std::string& name, bool tangent) {
+bool reads(const ir::Function& f, std::initializer_list<const char*> inputs) {
+  for (const auto& p : f.params)
+    for (const char* in : inputs)
+      if (p.name == in) return true;
+  return false;
+}
+bool reads_tangent(const ir::Function& f) { return reads(f, {"LoT", "VoT", "LoB", "VoB", "HoT", "HoB"}); }
+
+// `name`(n, l, v[, t]) → `reflectance` (a light of unit colour), its inputs the dot
+// products of unit vectors, h = (l + v) / Hl, Hl = max(|l + v|, ε) (catalog.h,
+// Input), b = n × t.
+ir::FunctionPtr frame_function(const ir::FunctionPtr& reflectance, const std::string& name, bool tangent) {
   ir::FunctionBuilder fb(name, "");
   Triple N = params(fb, "Nx", "Ny", "Nz"), L = params(fb, "Lx", "Ly", "Lz"), V = params(fb, "Vx", "Vy", "Vz");
   Triple T = tangent ? params(fb, "Tx", "Ty", "Tz") : Triple{0.0, 0.0, 0.0};
   Triple H = L + V, B = cross3(N, T);
-  Expr Hl = p.uses_half_vector() ? fb.let("Hl", ir::max(length3(H), kEpsilon)) : Expr(1.0);
+  Expr Hl = reads(*reflectance, {"NoH", "VoH", "HoT", "HoB"}) ? fb.let("Hl", ir::max(length3(H), kEpsilon)) : Expr(1.0);
   auto input = [&](const std::string& in) -> Expr {
     if (in == "NoL") return dot3(N, L);
     if (in == "NoV") return dot3(N, V);
@@ -69,29 +78,29 @@ ir::FunctionPtr frame_function(const MaterialProgram& p, const std::string& name
     throw std::logic_error("facet: POV-Ray has no input " + in);
   };
   std::vector<Expr> inputs;
-  for (const auto& in : p.inputs) inputs.push_back(input(in));
-  return fb.returns(ir::call(p.reflectance, inputs));
+  for (const auto& in : reflectance->params) inputs.push_back(input(in.name));
+  return fb.returns(ir::call(reflectance, inputs));
 }
 
 }  // namespace
 
-// {P}Facet_Reflect(n, l, v), with the tangent rule where the model reads t:
-// t = normalize(axis × n), or x̂ × n = (0, −nz, ny) where |axis × n| < ε.
-ir::FunctionPtr PovScene::reflect_function(PovShading& sh) {
-  const MaterialProgram& p = sh.program;
-  if (!p.uses_tangent()) {
-    ir::FunctionPtr f = frame_function(p, "Facet_Reflect", false);
+// {P}Facet_Reflect{suffix}(n, l, v) → `reflectance`, with the tangent rule where it
+// reads t: t = normalize(axis × n), or x̂ × n = (0, −nz, ny) where |axis × n| < ε.
+ir::FunctionPtr PovScene::reflect_function(PovShading& sh, const ir::FunctionPtr& reflectance,
+                                           const std::string& suffix) {
+  if (!reads_tangent(*reflectance)) {
+    ir::FunctionPtr f = frame_function(reflectance, "Facet_Reflect" + suffix, false);
     sh.printer.add_own(f);
     return f;
   }
-  ir::FunctionPtr frame = frame_function(p, "Facet_Frame", true);
-  ir::FunctionBuilder unit("Facet_Tangent", "");  // t = C / |C|
+  ir::FunctionPtr frame = frame_function(reflectance, "Facet_Frame" + suffix, true);
+  ir::FunctionBuilder unit("Facet_Tangent" + suffix, "");  // t = C / |C|
   Triple N = params(unit, "Nx", "Ny", "Nz"), L = params(unit, "Lx", "Ly", "Lz"), V = params(unit, "Vx", "Vy", "Vz");
   Triple C = params(unit, "Cx", "Cy", "Cz");
   Expr len = unit.param("Len");
   ir::FunctionPtr tangent = unit.returns(ir::call(frame, args({N, L, V, C / len})));
 
-  ir::FunctionBuilder fb("Facet_Reflect", "");
+  ir::FunctionBuilder fb("Facet_Reflect" + suffix, "");
   N = params(fb, "Nx", "Ny", "Nz"), L = params(fb, "Lx", "Ly", "Lz"), V = params(fb, "Vx", "Vy", "Vz");
   // |C| from the cross product itself, so one helper takes C and |C|.
   const Triple axis_x_n = cross3(constant(normalize(Vec3(sh.material->tangent_axis))), N);
@@ -106,17 +115,18 @@ ir::FunctionPtr PovScene::reflect_function(PovShading& sh) {
   return f;
 }
 
-// {P}Facet_Light{i}(x, y, z, n): the radiance of light i of unit colour at a point
-// with unit normal n, seen from the camera: att(d) · spot · reflectance. L and V
+// {P}Facet_Light{i}{suffix}(x, y, z, n): the radiance of light i of unit colour at a
+// point with unit normal n, seen from the camera: att(d) · spot · `reflect`. L and V
 // lead to the light and the eye, D and Dv are their lengths.
-ir::FunctionPtr PovScene::light_function(PovShading& sh, size_t i) {
+ir::FunctionPtr PovScene::light_function(PovShading& sh, size_t i, const ir::FunctionPtr& reflect,
+                                         const std::string& suffix) {
   const Light& l = s_.lights[i];
-  ir::FunctionBuilder fb(fmt::format("Facet_Light{}", i), "");
+  ir::FunctionBuilder fb(fmt::format("Facet_Light{}{}", i, suffix), "");
   Triple P = params(fb, "x", "y", "z"), N = params(fb, "Nx", "Ny", "Nz");
   if (l.type == Light::Type::Directional) {
     Triple V = lets(fb, "Vx", "Vy", "Vz", s_.camera.position - P);
     Expr dv = fb.let("Dv", length3(s_.camera.position - P));
-    ir::FunctionPtr f = fb.returns(ir::call(sh.reflect, args({N, constant(-l.direction), V / dv})));
+    ir::FunctionPtr f = fb.returns(ir::call(reflect, args({N, constant(-l.direction), V / dv})));
     sh.printer.add_own(f);
     return f;
   }
@@ -132,30 +142,29 @@ ir::FunctionPtr PovScene::light_function(PovShading& sh, size_t i) {
   if (l.type == Light::Type::Spot)
     times(ir::call(terms::spot_cone(),
                    {-dot3(L / d, constant(l.direction)), std::cos(l.cutoff * kPi / 180), l.exponent}));
-  Expr reflected = ir::call(sh.reflect, args({N, L / d, V / dv}));
+  Expr reflected = ir::call(reflect, args({N, L / d, V / dv}));
   ir::FunctionPtr f = fb.returns(factor ? *factor * reflected : reflected);
   sh.printer.add_own(f);
   return f;
 }
 
-// Facet_Object{o}_Light{i}: light i on object o. Spheres and squares take
-// (x, y, z); meshes take (x, y, z) and the unnormalized interpolated normal.
-ir::FunctionPtr PovScene::object_function(size_t o, size_t i) {
+// Facet_Object{o}_Light{i}{suffix}: `light` (light i) on object o, which takes (x, y, z):
+// the hit point on spheres and squares, uv_mapping's point on meshes.
+ir::FunctionPtr PovScene::object_function(size_t o, size_t i, const ir::FunctionPtr& light,
+                                          const std::string& suffix) {
   const Object& obj = s_.objects[o];
-  ir::FunctionBuilder fb(fmt::format("Facet_Object{}_Light{}", o, i), "");
+  ir::FunctionBuilder fb(fmt::format("Facet_Object{}_Light{}{}", o, i, suffix), "");
   Triple P = params(fb, "x", "y", "z");
-  const ir::FunctionPtr& light = shading(o).lights[i];
   if (obj.type == Object::Type::Plane) return fb.returns(ir::call(light, args({P, constant(obj.normal)})));
   if (obj.type == Object::Type::Mesh) {
-    // (x, y) is uv_mapping's: the triangle and its barycentrics, whose point
-    // and normal the data functions read (pov_mesh.h).
-    auto data = [&](const char* f, size_t n) { return declared(fmt::format("Facet_Mesh{}_{}", o, f), n); };
-    std::vector<Expr> at = {fb.let("Tri", ir::call(data("Tri", 2), {P.x, P.y})),
-                            fb.let("A", ir::call(data("Bary", 1), {P.x})), fb.let("B", ir::call(data("Bary", 1), {P.y}))};
-    Triple hit = lets(fb, "Px", "Py", "Pz", {ir::call(data("PX", 3), at), ir::call(data("PY", 3), at),
-                                             ir::call(data("PZ", 3), at)});
-    Triple M = lets(fb, "Mx", "My", "Mz", {ir::call(data("MX", 3), at), ir::call(data("MY", 3), at),
-                                           ir::call(data("MZ", 3), at)});
+    // (x, y) is uv_mapping's: where in the data image the hit point's block
+    // blends its corners' point and normal (pov_mesh.h).
+    auto data = [&](const char* f) { return declared(fmt::format("Facet_Mesh{}_{}", o, f), 2); };
+    std::vector<Expr> at = {P.x, P.y};
+    Triple hit = lets(fb, "Px", "Py", "Pz", {ir::call(data("PX"), at), ir::call(data("PY"), at),
+                                             ir::call(data("PZ"), at)});
+    Triple M = lets(fb, "Mx", "My", "Mz", {ir::call(data("MX"), at), ir::call(data("MY"), at),
+                                           ir::call(data("MZ"), at)});
     Expr len = fb.let("Len", length3(M));
     return fb.returns(ir::call(light, args({hit, M / len})));
   }
@@ -165,10 +174,37 @@ ir::FunctionPtr PovScene::object_function(size_t o, size_t i) {
   return fb.returns(ir::call(light, args({P, radial / r})));
 }
 
+namespace {
+
+// Whether `sh` is shaded lobe by lobe (PovShading::lobes): its reflectance differs per
+// channel only through k_d and k_s.
+bool by_lobe(const PovShading& sh) {
+  const MaterialProgram& p = sh.program;
+  if (!sh.dependent) return false;
+  for (const auto& lobe : {p.diffuse, p.specular})
+    if (lobe && (lobe->result_type() != ir::Type::Float || sh.printer.channel_dependent(lobe))) return false;
+  return true;
+}
+
+}  // namespace
+
 void PovScene::build_scaffolding() {
   for (auto& sh : shadings_) {
-    sh->reflect = reflect_function(*sh);
-    for (size_t i = 0; i < s_.lights.size(); ++i) sh->lights.push_back(light_function(*sh, i));
+    sh->reflect = reflect_function(*sh, sh->program.reflectance, "");
+    for (size_t i = 0; i < s_.lights.size(); ++i) sh->lights.push_back(light_function(*sh, i, sh->reflect, ""));
+    if (!by_lobe(*sh)) continue;
+    for (bool specular : {false, true}) {
+      if (!(specular ? sh->program.specular : sh->program.diffuse)) continue;
+      PovShading::Lobe lobe;
+      lobe.suffix = specular ? "_Specular" : "_Diffuse";
+      lobe.color = (specular ? sh->material->specular : sh->material->diffuse)->at("color").rgb;
+      ir::FunctionPtr reflectance = lobe_reflectance(sh->program, specular);
+      sh->printer.add_own(reflectance);
+      lobe.reflect = reflect_function(*sh, reflectance, lobe.suffix);
+      for (size_t i = 0; i < s_.lights.size(); ++i)
+        lobe.lights.push_back(light_function(*sh, i, lobe.reflect, lobe.suffix));
+      sh->lobes.push_back(std::move(lobe));
+    }
   }
   for (size_t o = 0; o < s_.objects.size(); ++o) {
     PovShading& sh = *shadings_[shading_of_[o]];
@@ -180,47 +216,70 @@ void PovScene::build_scaffolding() {
                               e.worst, 100 * e.share_over);
   }
   for (size_t o = 0; o < s_.objects.size(); ++o) {
-    objects_.emplace_back();
+    objects_.emplace_back(s_.lights.size());
     if (table_[o]) continue;  // the table's leaves call Facet_Table{i}
-    for (size_t i = 0; i < s_.lights.size(); ++i) objects_.back().push_back(object_function(o, i));
+    const PovShading& sh = shading(o);
+    for (size_t i = 0; i < s_.lights.size(); ++i) {
+      if (sh.lobes.empty()) objects_[o][i].push_back(object_function(o, i, sh.lights[i], ""));
+      for (const auto& lobe : sh.lobes) objects_[o][i].push_back(object_function(o, i, lobe.lights[i], lobe.suffix));
+    }
   }
 }
 
-std::string PovScene::functions() {
+// What the objects of `sh` call: its lobes' reflect functions, or its whole one, and the
+// whole reflectance where a slope table reads it (`objects` false: the whole one, which the
+// library and the sweep call).
+std::vector<ir::FunctionPtr> PovScene::reflect_roots(const PovShading& sh, bool objects) const {
+  if (!objects || sh.lobes.empty()) return {sh.reflect};
+  std::vector<ir::FunctionPtr> roots;
+  if (!sh.tables.empty()) roots.push_back(sh.program.reflectance);
+  for (const auto& lobe : sh.lobes) roots.push_back(lobe.reflect);
+  return roots;
+}
+
+std::string PovScene::functions(bool objects) {
   std::string constants, terms, frames;
   for (const auto& sh : shadings_) {
     constants += "// ---- Material constants";
     if (!sh->prefix.empty()) constants += " of \"" + sh->material->name + "\"";
-    constants += "\n" + sh->printer.constants(sh->program.constants());
+    constants += "\n" + sh->printer.constants(ir::constants(reflect_roots(*sh, objects)));
   }
   std::set<const ir::Function*> printed;
+  for (const auto& sh : shadings_) {
+    std::vector<ir::FunctionPtr> roots = {terms::attenuation_inverse_square(), terms::attenuation_polynomial(),
+                                          terms::spot_cone()};
+    for (const auto& r : reflect_roots(*sh, objects)) roots.push_back(r);
+    for (const auto& f : ir::dependencies(roots))
+      if (!is_scaffold(*f) && printed.insert(f.get()).second) terms += sh->printer.function(f) + "\n";
+  }
   for (const auto& sh : shadings_)
-    for (const auto& f : sh->program.functions())
-      if (printed.insert(f.get()).second) terms += sh->printer.function(f) + "\n";
-  for (const auto& sh : shadings_)
-    for (const auto& f : ir::dependencies({sh->reflect}))
+    for (const auto& f : ir::dependencies(reflect_roots(*sh, objects)))
       if (is_scaffold(*f)) frames += sh->printer.function(f);
   return render_template("pov/functions.pov", {{"constants", constants}, {"terms", terms}, {"frames", frames}});
 }
 
 // Mesh o's data functions (pov_mesh.h, on the function route) and its include
-// file, whose macros every pass and copy of it calls.
+// file, whose mesh2 objects every pass and copy of it instances.
 std::string PovScene::mesh_declarations(size_t o) {
   std::string out = data_[o].file.empty() ? "" : pov_mesh_decoder(data_[o], o);  // on the function route
-  return out + fmt::format("#include \"{}_mesh{}.inc\"  // mesh {} (\"{}\"): its lists, as macros\n", stem_, o, o,
+  return out + fmt::format("#include \"{}_mesh{}.inc\"  // mesh {} (\"{}\"): its mesh2, declared\n", stem_, o, o,
                            s_.objects[o].name);
 }
 
 std::string PovScene::lights() {
   std::string functions, objects;
   for (const auto& sh : shadings_) {
-    for (const auto& f : sh->lights) functions += sh->printer.function(f);
+    for (const auto& f : sh->lights)
+      if (sh->lobes.empty()) functions += sh->printer.function(f);
+    for (const auto& lobe : sh->lobes)
+      for (const auto& f : lobe.lights) functions += sh->printer.function(f);
     for (const auto& f : sh->tables) functions += sh->printer.function(f);
   }
   for (size_t o = 0; o < s_.objects.size(); ++o)
     if (s_.objects[o].type == Object::Type::Mesh) objects += mesh_declarations(o);  // the data functions first
   for (size_t o = 0; o < s_.objects.size(); ++o)
-    for (const auto& f : objects_[o]) objects += shading(o).printer.function(f);
+    for (const auto& parts : objects_[o])
+      for (const auto& f : parts) objects += shading(o).printer.function(f);
   return render_template("pov/lights.pov", {{"functions", functions}, {"objects", objects}});
 }
 
@@ -230,42 +289,55 @@ std::string pov_pigment(const PovPrinter& pr, bool dependent, const PovPigment& 
     if (t) return fmt::format("rgbt <{}, {}, {}, {}>", r, g, b, pov_number(p.transmit));
     return r == g && g == b ? "rgb " + r : fmt::format("rgb <{}, {}, {}>", r, g, b);
   };
-  // max(0, min(1, radiance · Π factors)), and the colour at 1: weight / Π factors. The
-  // scale is in the colour, not a factor of the pigment: that would scale transmit too.
-  auto held = [&](int ch, const std::vector<Expr>& factors) {
-    Expr product = p.radiance(ch);
-    for (const auto& f : factors) product = product * f;
-    return "function { " + pr.expr(ir::max(0.0, ir::min(1.0, product)).node(), ch) + " }";
+  // Each entry holds max(0, min(1, radiance · Π factors)) and its colour map scales it
+  // back: the colour at 1 is weight / Π factors (times the entry's colour). The scale is in
+  // the colour, not a factor of the pigment: that would scale transmit too. Several entries
+  // are averaged, so each colour is also times their count.
+  struct Entry {
+    Expr held;
+    std::array<double, 3> coefficient;  // the colour at 1 is coefficient / denominator (0: black)
+    Expr denominator;
+    int ch;                             // the channel the printer prints `held` for
   };
-  auto top = [&](int ch, const std::vector<Expr>& factors, double weight) {
-    std::optional<Expr> product;
-    for (const auto& f : factors) product = product ? *product * f : f;
-    return pr.expr((Expr(weight) / *product).node(), ch);
+  std::vector<Entry> entries;
+  for (const auto& part : p.parts) {
+    Expr scale = Expr(part.scale) * var("Facet_Exposure");
+    Entry e{part.radiance * scale, {}, scale, 0};
+    for (size_t c = 0; c < 3; ++c) e.coefficient[c] = p.weight * part.color[c];
+    entries.push_back(e);
+  }
+  for (int ch = 0; p.parts.empty() && ch < (dependent ? 3 : 1); ++ch) {
+    std::vector<Expr> factors = p.factors(ch);
+    if (factors.empty()) continue;
+    Entry e{p.radiance(ch), {}, factors.front(), ch};
+    for (const auto& f : factors) e.held = e.held * f;
+    for (size_t k = 1; k < factors.size(); ++k) e.denominator = e.denominator * factors[k];
+    for (int c = 0; c < 3; ++c) e.coefficient[size_t(c)] = !dependent || c == ch ? p.weight : 0;
+    entries.push_back(e);
+  }
+  if (entries.empty()) return "pigment { " + color("0", "0", "0") + " }\n";
+  const double n = double(entries.size());
+  auto top = [&](const Entry& e, size_t c) {
+    return e.coefficient[c] != 0 ? pr.expr((Expr(n * e.coefficient[c]) / e.denominator).node(), e.ch)
+                                 : std::string("0");
+  };
+  auto held = [&](const Entry& e) {
+    return "function { " + pr.expr(ir::max(0.0, ir::min(1.0, e.held)).node(), e.ch) + " }";
   };
   CodeWriter w(width);
-  if (!dependent) {
-    std::vector<Expr> factors = p.factors(0);
-    if (factors.empty()) return "pigment { " + color("0", "0", "0") + " }\n";
-    w.open("pigment {");
-    w.line(held(0, factors));
-    std::string k = top(0, factors, p.weight);
-    w.line("color_map { [0 " + color("0", "0", "0") + "] [1 " + color(k, k, k) + "] }");
+  w.open("pigment {");
+  if (entries.size() == 1) {
+    const Entry& e = entries.front();
+    w.line(held(e));
+    w.line("color_map { [0 " + color("0", "0", "0") + "] [1 " + color(top(e, 0), top(e, 1), top(e, 2)) + "] }");
     w.close("}");
     return w.take();
   }
-  w.open("pigment {");
   w.line("average");
   w.open("pigment_map {");
-  for (int ch = 0; ch < 3; ++ch) {
-    std::vector<Expr> factors = p.factors(ch);
-    if (factors.empty()) {
-      w.line("[1 " + color("0", "0", "0") + "]");
-      continue;
-    }
-    std::string e[3] = {"0", "0", "0"};
-    e[ch] = top(ch, factors, 3 * p.weight);
-    w.line("[1 " + held(ch, factors));
-    w.line("  color_map { [0 " + color("0", "0", "0") + "] [1 " + color(e[0], e[1], e[2]) + "] }]");
+  for (const auto& e : entries) {
+    w.line("[1 " + held(e));
+    w.line("  color_map { [0 " + color("0", "0", "0") + "] [1 " + color(top(e, 0), top(e, 1), top(e, 2)) + "] }]");
   }
   w.close("}");
   w.close("}");
@@ -303,9 +375,20 @@ std::string PovScene::lit(size_t o, size_t i, double weight, double t, double sh
       declaration = "#declare " + name + " = " + table_pigment(o, i, p, kPovWidth - indent_);
     return declaration + object(o, shrink, "texture {\n  pigment { " + name + " }\n  " + kLitFinish + "}\n", mods);
   }
-  const ir::FunctionPtr& f = objects_[o][i];
   std::vector<Expr> at = {var("x"), var("y"), var("z")};
-  p.radiance = [&](int) { return ir::call(f, at); };
+  const std::vector<ir::FunctionPtr>& fs = objects_[o][i];
+  if (sh.lobes.empty()) {
+    p.radiance = [&](int) { return ir::call(fs.front(), at); };
+  } else {  // each lobe's pigment is k ⊗ ρ, held to where the dimmest channel that shows saturates
+    for (size_t k = 0; k < fs.size(); ++k) {
+      double scale = 0;
+      for (size_t ch = 0; ch < 3; ++ch) {
+        double x = sh.lobes[k].color[ch] * c[ch];
+        if (x > 0 && (scale == 0 || x < scale)) scale = x;
+      }
+      if (scale > 0) p.parts.push_back({ir::call(fs[k], at), sh.lobes[k].color, scale});
+    }
+  }
   // A mesh's pigment sees uv_mapping's (u, v): its object function reads the rest.
   const char* mapping = obj.type == Object::Type::Mesh ? "  uv_mapping\n" : "";
   return object(o, shrink,

@@ -2,8 +2,8 @@
 #include "targets/pov_mesh.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
+#include <cstdint>
 #include <ostream>
 #include <stdexcept>
 
@@ -16,11 +16,18 @@ namespace facet::targets {
 
 namespace {
 
-constexpr uint32_t kLevels = (1u << 24) - 1;  // 24-bit fixed point
-constexpr size_t kGrid = 2048;               // triangle t ↔ uv cell (t mod 2048, t / 2048)
-constexpr size_t kTexels = 9;                // per triangle
-constexpr size_t kPerRow = 455;              // triangles a row of the image
-constexpr int kWidth = int(kTexels * kPerRow);  // 4095 texels
+constexpr size_t kMaxBlocks = 2048;            // blocks a row at most: 4096 texels
+constexpr size_t kMaxTriangles = kMaxBlocks * kMaxBlocks;
+constexpr uint64_t kSplit = 32768;             // code = hi·kSplit + lo, two 16-bit channels
+constexpr uint64_t kCodeLo = 2 * kSplit;       // every texel's code is in [kCodeLo, kCodeHi], so that
+constexpr uint64_t kCodeHi = 65535 * kSplit;   // hi and lo stay 16-bit in the fourth texel too (split())
+constexpr uint64_t kMargin = 4;                // codes left free at each end for the fourth texel's rounding
+
+// What reading a value back adds, in codes: each channel is stored as float32(k/65535) and POV-Ray
+// rounds the bilinear blend to float32 again (half an ulp each below 1: 2⁻²⁵ + 2⁻²⁵), the planar
+// map adds EPSILON = 1e-10 to both coordinates (a weight of 1e-10 each), and the code itself is
+// rounded (½). The lo channel weighs 1/32768 of the hi channel.
+const double kReadCodes = double(65535 * (kSplit + 1)) * (std::ldexp(1.0, -24) + 2e-10) + 0.5;
 
 // Items separated by ", ", wrapped at the scene's width, each line `indent` in.
 class ListWriter {
@@ -51,66 +58,96 @@ class ListWriter {
   size_t column_ = 0;
 };
 
-uint32_t quantize(double x, double lo, double step) {
-  double q = std::round((x - lo) / step);
-  return uint32_t(std::clamp(q, 0.0, double(kLevels)));
+size_t blocks_of(size_t triangles) { return std::clamp<size_t>(triangles, 1, kMaxBlocks); }
+
+// Component c of corner k of triangle t: the position's x, y, z for c < 3, then the normal's.
+double corner_value(const Mesh& m, size_t t, int k, int c) {
+  const uint32_t v = m.triangles[t][size_t(k)];
+  return c < 3 ? m.positions[v][c] : m.normals[v][c - 3];
+}
+
+uint64_t encode(const PovMeshData& d, int c, double v) {
+  return uint64_t(std::llround((v - d.offset[size_t(c)]) / d.step[size_t(c)]));
+}
+
+// One value's four texels in a triangle's block, as (hi, lo): corners 0, 1 and 2, then
+// T₁₀ + T₀₁ − T₀₀. Both channels must be linear in the block for the bilinear blend to be, so
+// the fourth texel's hi and lo are hi₁ + hi₂ − hi₀ and lo₁ + lo₂ − lo₀; the corners' lo are
+// their code mod 32768, or that + 32768 for corner 1 where lo₁ + lo₂ − lo₀ would be negative,
+// which keeps every channel in 0 … 65535 given codes in [kCodeLo, kCodeHi].
+std::array<std::array<uint16_t, 2>, 4> split(const std::array<uint64_t, 3>& code) {
+  std::array<int64_t, 4> hi{}, lo{};
+  for (size_t k = 0; k < 3; ++k) lo[k] = int64_t(code[k] % kSplit);
+  if (lo[1] + lo[2] - lo[0] < 0) lo[1] += int64_t(kSplit);
+  for (size_t k = 0; k < 3; ++k) hi[k] = (int64_t(code[k]) - lo[k]) / int64_t(kSplit);
+  hi[3] = hi[1] + hi[2] - hi[0];
+  lo[3] = lo[1] + lo[2] - lo[0];
+  std::array<std::array<uint16_t, 2>, 4> out{};
+  for (size_t k = 0; k < 4; ++k) {
+    if (hi[k] < 0 || hi[k] > 65535 || lo[k] < 0 || lo[k] > 65535)
+      throw std::logic_error(fmt::format("facet: a data texel out of 16 bits ({}, {})", hi[k], lo[k]));
+    out[k] = {uint16_t(hi[k]), uint16_t(lo[k])};
+  }
+  return out;
 }
 
 }  // namespace
 
 PovMeshData pov_mesh_data(const Mesh& m, const std::string& file) {
-  if (m.triangles.size() > kGrid * kGrid)
-    throw std::invalid_argument(fmt::format("a mesh of {} triangles: POV-Ray's exact route numbers at most {}",
-                                            m.triangles.size(), kGrid * kGrid));
+  const size_t n = m.triangles.size();
+  if (n > kMaxTriangles)
+    throw std::invalid_argument(
+        fmt::format("a mesh of {} triangles: POV-Ray's exact route holds at most {} a mesh", n, kMaxTriangles));
   PovMeshData d;
   d.file = file;
-  std::array<double, 3> lo = m.positions.empty() ? std::array<double, 3>{} : m.positions[0].array(), hi = lo,
-                        step{};
-  for (const Vec3& p : m.positions)
-    for (size_t k = 0; k < 3; ++k) {
-      lo[k] = std::min(lo[k], p[int(k)]);
-      hi[k] = std::max(hi[k], p[int(k)]);
-    }
-  for (size_t k = 0; k < 3; ++k) step[k] = std::max(hi[k] - lo[k], 1e-30) / kLevels;
-  d.lo = Vec3(lo);
-  d.step = Vec3(step);
-  d.normal_step = 2.0 / kLevels;
-  d.width = kWidth;
-  d.height = int(std::max<size_t>(1, (m.triangles.size() + kPerRow - 1) / kPerRow));
-  for (const auto& t : m.triangles)
-    for (uint32_t v : t)
-      for (int k = 0; k < 3; ++k) {
-        const Vec3 &p = m.positions[v], &n = m.normals[v];
-        d.position_error =
-            std::max(d.position_error, std::abs(d.lo[k] + d.step[k] * quantize(p[k], d.lo[k], d.step[k]) - p[k]));
-        d.normal_error = std::max(d.normal_error, std::abs(-1 + d.normal_step * quantize(n[k], -1, d.normal_step) - n[k]));
+  d.blocks = int(blocks_of(n));
+  d.plane_rows = int(2 * std::max<size_t>(1, (n + size_t(d.blocks) - 1) / size_t(d.blocks)));
+  // Each component's range over all four texels of every block (the fourth, T₁₀ + T₀₁ − T₀₀,
+  // can lie outside the corners' range), mapped onto the codes inside the margins.
+  std::array<double, 6> lo, hi;
+  lo.fill(INFINITY);
+  hi.fill(-INFINITY);
+  for (size_t t = 0; t < n; ++t)
+    for (int c = 0; c < 6; ++c) {
+      const double v0 = corner_value(m, t, 0, c), v1 = corner_value(m, t, 1, c), v2 = corner_value(m, t, 2, c);
+      for (double v : {v0, v1, v2, v1 + v2 - v0}) {
+        lo[size_t(c)] = std::min(lo[size_t(c)], v);
+        hi[size_t(c)] = std::max(hi[size_t(c)], v);
       }
+    }
+  for (size_t c = 0; c < 6; ++c) {
+    if (n == 0) lo[c] = hi[c] = 0;
+    const double range = std::max(hi[c] - lo[c], 1e-12 * std::max({1.0, std::abs(lo[c]), std::abs(hi[c])}));
+    d.step[c] = range / double(kCodeHi - kCodeLo - 2 * kMargin);
+    d.offset[c] = lo[c] - d.step[c] * double(kCodeLo + kMargin);
+    (c < 3 ? d.position_error : d.normal_error) =
+        std::max(c < 3 ? d.position_error : d.normal_error, d.step[c] * kReadCodes);
+  }
   return d;
 }
 
 void write_pov_mesh_image(std::ostream& out, const Mesh& m, const PovMeshData& d) {
-  out << fmt::format("P6\n{} {}\n65535\n", d.width, d.height);
-  std::vector<unsigned char> row(size_t(d.width) * 6);
-  uint32_t q[18];
-  for (size_t r = 0; r < size_t(d.height); ++r) {  // a row at a time: 455 triangles
+  const size_t n = m.triangles.size(), blocks = size_t(d.blocks), plane_rows = size_t(d.plane_rows);
+  const size_t height = size_t(d.height());
+  out << fmt::format("P6\n{} {}\n65535\n", d.width(), height);
+  std::vector<unsigned char> row(size_t(d.width()) * 6);
+  for (size_t file_row = 0; file_row < height; ++file_row) {  // from the top
+    const size_t r = height - 1 - file_row;                     // from the bottom
+    const size_t plane = r / plane_rows, j = (r % plane_rows) / 2, b = r % 2;
+    const int first = plane < 2 ? 0 : 3;  // positions, then normals
+    const size_t part = plane % 2;        // hi, then lo
     std::fill(row.begin(), row.end(), 0);
-    for (size_t t = r * kPerRow; t < std::min(m.triangles.size(), (r + 1) * kPerRow); ++t) {
+    for (size_t i = 0; i < blocks && j * blocks + i < n; ++i) {
+      const size_t t = j * blocks + i;
       for (int c = 0; c < 3; ++c) {
-        const Vec3& p = m.positions[m.triangles[t][size_t(c)]];
-        const Vec3& n = m.normals[m.triangles[t][size_t(c)]];
-        for (int k = 0; k < 3; ++k) {
-          q[3 * c + k] = quantize(p[k], d.lo[k], d.step[k]);
-          q[9 + 3 * c + k] = quantize(n[k], -1, d.normal_step);
-        }
-      }
-      // Two values a texel: R = a >> 8, G = (a & 255) << 8 | b >> 16, B = b & 65535 (big-endian).
-      for (size_t j = 0; j < kTexels; ++j) {
-        const uint32_t a = q[2 * j], b = q[2 * j + 1];
-        const uint16_t ch[3] = {uint16_t(a >> 8), uint16_t(((a & 255u) << 8) | (b >> 16)), uint16_t(b & 65535u)};
-        unsigned char* px = row.data() + ((t % kPerRow) * kTexels + j) * 6;
-        for (int k = 0; k < 3; ++k) {
-          px[2 * k] = uint8_t(ch[k] >> 8);
-          px[2 * k + 1] = uint8_t(ch[k] & 255);
+        std::array<uint64_t, 3> code{};
+        for (int k = 0; k < 3; ++k) code[size_t(k)] = encode(d, first + c, corner_value(m, t, k, first + c));
+        const auto texels = split(code);
+        for (size_t a = 0; a < 2; ++a) {  // texel (a, b) of the block holds texels[a + 2b]
+          const uint16_t v = texels[a + 2 * b][part];
+          unsigned char* px = row.data() + ((2 * i + a) * 3 + size_t(c)) * 2;
+          px[0] = uint8_t(v >> 8);  // big-endian
+          px[1] = uint8_t(v & 255);
         }
       }
     }
@@ -118,32 +155,24 @@ void write_pov_mesh_image(std::ostream& out, const Mesh& m, const PovMeshData& d
   }
 }
 
-namespace {
-
-// Component c (x, y, z) of the position (normal = false) or the normal: value I = c (+ 9 for the
-// normal) of corner 0, I + 3 of corner 1, I + 6 of corner 2; value I is in texel ⌊I/2⌋, first when I
-// is even (QA), second when odd (QB).
-std::string component(const PovMeshData& d, size_t o, bool normal, int c) {
-  auto q = [&](int i) { return fmt::format("Facet_Mesh{}_Q{}(X, Y, {})", o, i % 2 ? "B" : "A", i / 2); };
-  const int i = c + (normal ? 9 : 0);
-  std::string blend = fmt::format("(1 - A - B)*{} + A*{} + B*{}", q(i), q(i + 3), q(i + 6));
-  std::string value = normal ? fmt::format("{}*(\n    {}) - 1", pov_number(d.normal_step), blend)
-                             : fmt::format("{} + {}*(\n    {})", pov_number(d.lo[c]), pov_number(d.step[c]), blend);
-  const std::string name = fmt::format("Facet_Mesh{}_{}{}", o, normal ? "M" : "P", "XYZ"[c]);
-  return fmt::format("#declare {0}at = function(X, Y, A, B) {{\n  {1}\n}}\n"
-                     "#declare {0} = function(Tri, A, B) {{ {0}at(Facet_Mesh{2}_X(Tri), Facet_Mesh{2}_Y(Tri), A, B) }}\n",
-                     name, value, o);
-}
-
-}  // namespace
-
 std::string pov_mesh_decoder(const PovMeshData& d, size_t o) {
+  // value = offset + step·code, code = 65535·(32768·hi + lo) with hi, lo the channels as read.
   std::string components;
-  for (bool normal : {false, true})
-    for (int c = 0; c < 3; ++c) components += component(d, o, normal, c);
+  for (size_t c = 0; c < 6; ++c) {
+    const int plane = c < 3 ? 0 : 2;
+    const char channel = "RGB"[c % 3];
+    components += fmt::format(
+        "#declare Facet_Mesh{0}_{1}{2} = function(U, V) {{\n  {3} + {4}*Facet_Mesh{0}_{5}(U, V, {6})\n"
+        "      + {7}*Facet_Mesh{0}_{5}(U, V, {8})\n}}\n",
+        o, c < 3 ? "P" : "M", "XYZ"[c % 3], pov_number(d.offset[c]), pov_number(d.step[c] * 65535.0 * double(kSplit)),
+        channel, plane, pov_number(d.step[c] * 65535.0), plane + 1);
+  }
   return render_template("pov/mesh_data.pov", {{"o", std::to_string(o)},
                                                {"file", d.file},
-                                               {"height", std::to_string(d.height)},
+                                               {"blocks", std::to_string(d.blocks)},
+                                               {"width", std::to_string(d.width())},
+                                               {"height", std::to_string(d.height())},
+                                               {"plane_rows", std::to_string(d.plane_rows)},
                                                {"components", components}});
 }
 
@@ -174,27 +203,16 @@ void vector_list(std::ostream& out, const std::string& name, const Mesh& m, bool
   });
 }
 
-}  // namespace
-
-void write_pov_mesh_include(std::ostream& out, const Mesh& m, size_t o, const std::string& name, bool numbered,
-                            const std::vector<double>& insets) {
-  out << fmt::format("// facet: mesh {} (\"{}\"), {} triangles: the macros its mesh2 objects call\n", o, name,
-                     m.triangles.size());
-  out << fmt::format("#macro Facet_Mesh{}_Vertices()\n", o);
-  vector_list(out, "vertex_vectors", m, false, 0);
-  out << "#end\n";
-  for (size_t k = 0; k < insets.size(); ++k) {  // the copies of the one-run file, inset along the normals
-    out << fmt::format("#macro Facet_Mesh{}_Vertices_{}()\n", o, k + 1);
-    vector_list(out, "vertex_vectors", m, false, insets[k]);
-    out << "#end\n";
-  }
-  out << fmt::format("#macro Facet_Mesh{}_Shape()\n", o);
-  vector_list(out, "normal_vectors", m, true, 0);
-  const size_t n = m.triangles.size();
-  if (numbered)
+// One mesh2 declared as `name`, its vertices inset by `inset` along the normals.
+void mesh2(std::ostream& out, const Mesh& m, const std::string& name, bool normals, bool numbered, double inset) {
+  out << "#declare " << name << " = mesh2 {\n";
+  vector_list(out, "vertex_vectors", m, false, inset);
+  if (normals) vector_list(out, "normal_vectors", m, true, 0);
+  const size_t n = m.triangles.size(), blocks = blocks_of(n);
+  if (numbered)  // corner k of triangle t: texel (2i + [k = 1], 2j + [k = 2]) of its block (i, j)
     pov_list(out, "uv_vectors", 3 * n, 2, [&](size_t k, fmt::memory_buffer& b) {
-      const size_t t = k / 3, i = 4 * (t % kGrid) + 1 + (k % 3 == 1), j = 4 * (t / kGrid) + 1 + (k % 3 == 2);
-      fmt::format_to(std::back_inserter(b), "<{}, {}>", i, j);
+      const size_t t = k / 3;
+      fmt::format_to(std::back_inserter(b), "<{}, {}>", 2 * (t % blocks) + (k % 3 == 1), 2 * (t / blocks) + (k % 3 == 2));
     });
   pov_list(out, "face_indices", n, 2, [&](size_t i, fmt::memory_buffer& b) {
     fmt::format_to(std::back_inserter(b), "<{}, {}, {}>", m.triangles[i][0], m.triangles[i][1], m.triangles[i][2]);
@@ -203,7 +221,18 @@ void write_pov_mesh_include(std::ostream& out, const Mesh& m, size_t o, const st
     pov_list(out, "uv_indices", n, 2, [&](size_t t, fmt::memory_buffer& b) {
       fmt::format_to(std::back_inserter(b), "<{}, {}, {}>", 3 * t, 3 * t + 1, 3 * t + 2);
     });
-  out << "#end\n";
+  out << "}\n";
+}
+
+}  // namespace
+
+void write_pov_mesh_include(std::ostream& out, const Mesh& m, size_t o, const std::string& name, bool normals,
+                            bool numbered, const std::vector<double>& insets) {
+  out << fmt::format("// facet: mesh {} (\"{}\"), {} triangles: the mesh2 objects the scene's objects instance\n", o,
+                     name, m.triangles.size());
+  mesh2(out, m, fmt::format("Facet_Mesh{}", o), normals, numbered, 0);
+  for (size_t k = 0; k < insets.size(); ++k)  // the copies of the one-run file, inset along the normals
+    mesh2(out, m, fmt::format("Facet_Mesh{}_Copy{}", o, k + 1), normals, numbered, insets[k]);
 }
 
 }  // namespace facet::targets

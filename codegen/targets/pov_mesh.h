@@ -9,17 +9,22 @@
 // the exact route keeps every function the same whatever the mesh size and
 // puts the mesh's data in an image instead (measured: docs/povray-meshes.md):
 //
-// * uv_mapping hands the pigment (u, v, 0), interpolated barycentrically from
-//   the three corners' uv vectors (Mesh::MeshUV). Triangle t's corners get
-//   (4i+1, 4j+1), (4i+2, 4j+1), (4i+1, 4j+2) with t = 2048 j + i, integers
-//   that float32 holds exactly, so the pigment reads t = 2048·⌊v/4⌋ + ⌊u/4⌋ and
-//   the barycentrics a = u − 4⌊u/4⌋ − 1, b = v − 4⌊v/4⌋ − 1 of corners 1 and 2.
-// * A 16-bit PPM holds, per triangle, its three corners' positions and normals
-//   as 24-bit fixed point (18 values, two per texel of three 16-bit channels,
-//   9 texels); image_map with interpolate off returns each channel exactly.
-//   The pigment rebuilds P = Σ wₖ pₖ and the unnormalized normal Σ wₖ nₖ.
+// * Triangle t owns a block of 2 × 2 texels of the image. Its corners' uv
+//   vectors are the block's texel centres (2i, 2j), (2i+1, 2j), (2i, 2j+1)
+//   (column, row from the bottom), and uv_mapping hands the pigment their
+//   barycentric blend (Mesh::UVCoord).
+// * The image is read with `interpolate 2`, POV-Ray's bilinear blend. The
+//   block's fourth texel holds T₁₀ + T₀₁ − T₀₀, so the bilinear blend inside the
+//   triangle is the linear one: one lookup returns Σ wₖ·valueₖ, the corners'
+//   values blended exactly as facet's reference blends them.
+// * Each value (a position or normal component) is a 31-bit code split into
+//   two 16-bit channels, hi·32768 + lo, and both channels are blended
+//   linearly; four planes of the image hold the positions' hi and lo and the
+//   normals' hi and lo, x, y, z in R, G, B. The pigment reads the hit point and
+//   the unnormalized normal in 12 lookups, and nothing is decoded by floor().
 #pragma once
 
+#include <array>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -30,27 +35,31 @@
 namespace facet::targets {
 
 struct PovMeshData {
-  std::string file;    // the image's name, beside the scene
-  int width = 0, height = 0;
-  Vec3 lo, step;       // position = lo + step ⊙ q, q the 24-bit integer
-  double normal_step = 0;  // normal component = −1 + normal_step · q
-  // The largest difference between a stored value and the mesh's own (measured
-  // over every corner): positions in scene units, normal components.
+  std::string file;   // the image's name, beside the scene
+  int blocks = 0;     // triangles (2 × 2 blocks) a row: the image is 2·blocks texels wide
+  int plane_rows = 0; // rows of each of the four planes; the image is 4·plane_rows high
+  // Component c (0–2 the position's x, y, z, 3–5 the normal's) = offset[c] + step[c] · code.
+  std::array<double, 6> offset{}, step{};
+  // How far a value POV-Ray reads may be from the mesh's own, at most: positions in
+  // scene units, normal components (the codes' step and float32's rounding of the blend).
   double position_error = 0, normal_error = 0;
+  int width() const { return 2 * blocks; }
+  int height() const { return 4 * plane_rows; }
 };
 
 // The data image's layout and precision for mesh `m`, named `file`.
 PovMeshData pov_mesh_data(const Mesh& m, const std::string& file);
 // The image itself (binary PPM, 16 bits a channel), a row at a time.
 void write_pov_mesh_image(std::ostream& out, const Mesh& m, const PovMeshData& d);
-// The functions that read it for object o (Facet_Mesh{o}_Tri, _Bary, _PX … _MZ).
+// The functions that read it for object o: Facet_Mesh{o}_PX … _PZ (the hit point)
+// and _MX … _MZ (the unnormalized normal), each of uv_mapping's (u, v).
 std::string pov_mesh_decoder(const PovMeshData& d, size_t o);
-// Mesh o's include file: the macros its mesh2 objects call, Facet_Mesh{o}_Vertices()
-// (the vertices), Facet_Mesh{o}_Vertices_{k}() (inset by insets[k − 1] along the
-// normals, for the one-run file's copies) and Facet_Mesh{o}_Shape() (normals, the uv
-// numbering of the triangles when `numbered`, faces). Lists in float32, which is
-// what POV-Ray stores them in.
-void write_pov_mesh_include(std::ostream& out, const Mesh& m, size_t o, const std::string& name, bool numbered,
-                            const std::vector<double>& insets);
+// Mesh o's include file: the mesh2 objects the scene's objects instance,
+// Facet_Mesh{o} and Facet_Mesh{o}_Copy{k} (inset by insets[k − 1] along the
+// normals, for the one-run file's copies). `normals`: with normal_vectors (POV-Ray's
+// own shading reads them); `numbered`: with the uv vectors of the data image's blocks.
+// Lists in float32, which is what POV-Ray stores them in.
+void write_pov_mesh_include(std::ostream& out, const Mesh& m, size_t o, const std::string& name, bool normals,
+                            bool numbered, const std::vector<double>& insets);
 
 }  // namespace facet::targets

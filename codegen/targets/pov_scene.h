@@ -27,6 +27,17 @@ struct PovShading {
   ir::FunctionPtr reflect;              // {P}Facet_Reflect(n, l, v): the catalog's inputs from unit vectors
   std::vector<ir::FunctionPtr> lights;  // {P}Facet_Light{i}(x, y, z, n): light i's radiance
   std::vector<ir::FunctionPtr> tables;  // {P}Facet_Table{i}(x, y, z, n·l, n·v), for slope tables (fast route)
+  // Where the reflectance differs per channel only through k_d and k_s, objects are shaded
+  // lobe by lobe: k_d ⊗ ρ_d + k_s ⊗ ρ_s as a scalar pigment a lobe whose colour map holds its
+  // colour: two evaluations a pixel (one for a single lobe) instead of three. Empty: the
+  // reflectance whole.
+  struct Lobe {
+    std::string suffix;                   // "_Diffuse", "_Specular"
+    RGB color;                            // k_d or k_s
+    ir::FunctionPtr reflect;              // {P}Facet_Reflect{suffix}
+    std::vector<ir::FunctionPtr> lights;  // {P}Facet_Light{i}{suffix}
+  };
+  std::vector<Lobe> lobes;
   int channels() const { return dependent ? 3 : 1; }
   std::string suffix(int ch) const;
   RGB emission(const Scene& s) const;  // m_a ⊗ A + m_e
@@ -40,6 +51,14 @@ struct PovPigment {
   std::function<std::vector<ir::Expr>(int)> factors;
   double weight = 1;
   double transmit = 0;
+  // Instead of radiance and factors: scalar parts, each a radiance whose colour at 1 is
+  // `color` (its pigment is color ⊗ radiance), held as min(radiance · scale · exposure, 1).
+  struct Part {
+    ir::Expr radiance;
+    RGB color;
+    double scale;
+  };
+  std::vector<Part> parts;
 };
 // `width`: the longest line, counted from the pigment's own indentation.
 std::string pov_pigment(const PovPrinter& printer, bool dependent, const PovPigment& p, size_t width);
@@ -69,10 +88,13 @@ class PovScene {
   std::string native();
   // pov_functions.cpp
   void build_scaffolding();
-  ir::FunctionPtr reflect_function(PovShading& sh);
-  ir::FunctionPtr light_function(PovShading& sh, size_t i);
-  ir::FunctionPtr object_function(size_t o, size_t i);
-  std::string functions();
+  ir::FunctionPtr reflect_function(PovShading& sh, const ir::FunctionPtr& reflectance, const std::string& suffix);
+  ir::FunctionPtr light_function(PovShading& sh, size_t i, const ir::FunctionPtr& reflect, const std::string& suffix);
+  ir::FunctionPtr object_function(size_t o, size_t i, const ir::FunctionPtr& light, const std::string& suffix);
+  // Constants, terms and frames; `objects`: those the scene's objects call (lobe by lobe
+  // where PovShading::lobes), else the whole reflectance's (the library, the sweep).
+  std::string functions(bool objects = false);
+  std::vector<ir::FunctionPtr> reflect_roots(const PovShading& sh, bool objects) const;
   std::string lights();
   std::string mesh_declarations(size_t o);
   void register_mesh_files();
@@ -92,7 +114,8 @@ class PovScene {
   PovPlan plan_;
   std::vector<std::unique_ptr<PovShading>> shadings_;
   std::vector<size_t> shading_of_;
-  std::vector<std::vector<ir::FunctionPtr>> objects_;  // [o][i]: Facet_Object{o}_Light{i}
+  // [o][i]: Facet_Object{o}_Light{i}, or one function per lobe (PovShading::lobes).
+  std::vector<std::vector<std::vector<ir::FunctionPtr>>> objects_;
   std::string stem_;
   std::vector<PovMeshData> data_;      // [o]: a mesh's data image on the function route
   std::vector<bool> table_;            // [o]: a mesh drawn through slope tables (fast route)

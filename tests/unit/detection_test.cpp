@@ -4,7 +4,9 @@
 #include <cmath>
 #include <filesystem>
 #include <functional>
+#include <iostream>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include "analysis/sweep.h"
@@ -112,9 +114,9 @@ TEST(Detection, PovExponentOffByOneFails) {
 }
 
 // The mesh conventions docs/povray-meshes.md measured, each proved by a wrong
-// variant that fails: POV-Ray maps an image's first row to the top (v = 1), the
-// uv barycentrics weigh corners 1 and 2, and on the native route POV-Ray blends
-// the vertex normals itself.
+// variant that fails: POV-Ray puts an image's first row at the top (v = 1) and
+// a texel's centre half a texel in, `interpolate 2` blends a block's texels
+// linearly, and on the native route POV-Ray blends the vertex normals itself.
 Fixture mesh_fixture(const std::string& example, const std::string& name) {
   Fixture f = fixture(example, "pov-mesh-" + name);
   f.scene = mesh_bench_scene(3000);
@@ -125,25 +127,40 @@ Fixture mesh_fixture(const std::string& example, const std::string& name) {
   return f;
 }
 
+// Every occurrence of `from` in `code` replaced; the test fails if there is none.
+std::string inject_all(std::string code, const std::string& from, const std::string& to) {
+  size_t at = code.find(from);
+  EXPECT_NE(at, std::string::npos) << "the code no longer contains: " << from;
+  for (; at != std::string::npos; at = code.find(from, at + to.size())) code.replace(at, from.size(), to);
+  return code;
+}
+
 TEST(Detection, PovMeshDataConventionsFailWhenWrong) {
   Fixture f = mesh_fixture("ggx", "data");
   // Named as the renderer names its files, so the code read back finds its data images.
   PovOutput pov = generate_pov_files(f.scene, &f.material, "ggx.json", PovRoute::Auto, job_name(f.job));
   ASSERT_EQ(pov.files.size(), 6u) << "three meshes on the function route: their lists and their data images";
   EXPECT_TRUE(judged(f, render_one("pov", f.job)).pass);
-  // The triangle's row counted from the bottom of the image instead of the top.
-  const std::string row = "#declare Facet_Mesh0_Y = function(Tri) { ";
-  size_t at = pov.code.find(row), end = pov.code.find(" }\n", at);
+  // Mesh 0's lookups, as its data functions write them: "(U + 0.5)/W, (V + K*R + 0.5)/H".
+  const size_t at = pov.code.find("Facet_Mesh0_Image((U + 0.5)/");
   ASSERT_NE(at, std::string::npos);
-  const std::string height = pov.code.substr(pov.code.rfind('/', end) + 1, end - pov.code.rfind('/', end) - 1);
-  f.job.code_override = pov.code.substr(0, at + row.size()) + "(floor(Tri/455) + 0.5)/" + height + pov.code.substr(end);
-  ComparisonRow flipped = judged(f, render_one("pov", f.job));
-  EXPECT_FALSE(flipped.pass) << "rows from the bottom: max |Δ|/max(1,|ref|) " << flipped.metrics.max_excess;
-  // The barycentrics of corners 1 and 2 swapped.
-  f.job.code_override = inject(pov.code, "A*Facet_Mesh0_QB(X, Y, 1) + B*Facet_Mesh0_QA(X, Y, 3)",
-                               "B*Facet_Mesh0_QB(X, Y, 1) + A*Facet_Mesh0_QA(X, Y, 3)");
-  ComparisonRow swapped = judged(f, render_one("pov", f.job));
-  EXPECT_FALSE(swapped.pass) << "corners 1 and 2 swapped: max |Δ|/max(1,|ref|) " << swapped.metrics.max_excess;
+  const size_t v_at = pov.code.find("(V + ", at), v_end = pov.code.find(", 0)", v_at);
+  const std::string v = pov.code.substr(v_at, v_end - v_at);  // "(V + K*R + 0.5)/H"
+  struct Wrong {
+    const char* what;
+    std::string code;
+  };
+  const Wrong wrong[] = {
+      {"rows counted from the top", inject_all(pov.code, ", " + v + ", 0)", ", 1 - " + v + ", 0)")},
+      {"texel centres on integers", inject_all(pov.code, "Facet_Mesh0_Image((U + 0.5)/", "Facet_Mesh0_Image(U/")},
+      {"no bilinear blend (nearest texel)", inject(pov.code, "gamma 1.0 interpolate 2", "gamma 1.0")},
+  };
+  for (const auto& w : wrong) {
+    f.job.code_override = w.code;
+    ComparisonRow bad = judged(f, render_one("pov", f.job));
+    std::cout << w.what << ": max |Δ|/max(1,|ref|) " << bad.metrics.max_excess << "\n";
+    EXPECT_FALSE(bad.pass) << w.what << ": max |Δ|/max(1,|ref|) " << bad.metrics.max_excess;
+  }
 }
 
 TEST(Detection, PovMeshNativeNormalsFailWhenFlat) {
@@ -152,26 +169,51 @@ TEST(Detection, PovMeshNativeNormalsFailWhenFlat) {
   ASSERT_TRUE(pov.plan.native);
   ASSERT_EQ(pov.files.size(), 3u) << "each mesh's lists, no data image";
   EXPECT_TRUE(judged(f, render_one("pov", f.job)).pass);
-  // Without the first mesh's normal_vectors POV-Ray shades its triangles flat: its mesh2 calls a
-  // Shape macro of the scene's own that leaves them out (the include file's lists are written as they are).
-  const std::string calls = "  Facet_Mesh0_Shape()\n";
-  size_t at = pov.code.find(calls);
-  ASSERT_NE(at, std::string::npos);
-  std::string flat_code = pov.code;
-  flat_code.replace(at, calls.size(), "  Facet_Flat0()\n");
+  // Without the first mesh's normal_vectors POV-Ray shades its triangles flat: the scene
+  // declares Facet_Mesh0 again after its include file, the same mesh2 without them.
   const std::string include = "#include \"" + job_name(f.job) + "_mesh0.inc\"";
-  size_t inc = flat_code.find(include);
+  size_t inc = pov.code.find(include);
   ASSERT_NE(inc, std::string::npos);
   const Mesh& m = *f.scene.objects[0].mesh;
-  std::string faces = "#macro Facet_Flat0()\n  face_indices {\n    " + std::to_string(m.triangles.size()) + ",\n";
+  std::string flat = "#declare Facet_Mesh0 = mesh2 {\n  vertex_vectors {\n    " + std::to_string(m.positions.size());
+  for (const auto& p : m.positions)
+    flat += fmt::format(",\n    <{}, {}, {}>", float(p.x), float(p.y), float(p.z));
+  flat += "\n  }\n  face_indices {\n    " + std::to_string(m.triangles.size());
   for (const auto& t : m.triangles)
-    faces += "    <" + std::to_string(t[0]) + ", " + std::to_string(t[1]) + ", " + std::to_string(t[2]) + ">,\n";
-  faces.resize(faces.size() - 2);
-  faces += "\n  }\n#end\n";
-  flat_code.insert(flat_code.find('\n', inc) + 1, faces);
+    flat += fmt::format(",\n    <{}, {}, {}>", t[0], t[1], t[2]);
+  flat += "\n  }\n}\n";
+  std::string flat_code = pov.code;
+  flat_code.insert(flat_code.find('\n', inc) + 1, flat);
   f.job.code_override = flat_code;
-  ComparisonRow flat = judged(f, render_one("pov", f.job));
-  EXPECT_FALSE(flat.pass) << "flat normals: max |Δ|/max(1,|ref|) " << flat.metrics.max_excess;
+  ComparisonRow bad = judged(f, render_one("pov", f.job));
+  EXPECT_FALSE(bad.pass) << "flat normals: max |Δ|/max(1,|ref|) " << bad.metrics.max_excess;
+}
+
+// Blender keeps a mesh's custom normals in 16 bits, and a sharp lobe shows it on a dense
+// mesh: the generated shader reads the harness's float normals (its facet_normal input,
+// templates/osl/shader.osl) and passes; the same shader on Cycles' N fails.
+TEST(Detection, OslMeshOnBlendersNormalsFails) {
+  Fixture f = fixture("ward", "osl-mesh-normals");  // Ward αx = 0.08
+  f.scene = mesh_bench_scene(131072);
+  const int w = 320, h = 240;
+  f.reference = render_reference(f.material, f.scene, w, h);
+  f.job.scene = f.scene;
+  f.job.width = w, f.job.height = h;
+  GenerateOptions o;
+  o.target = Target::Osl;
+  o.scene = f.scene;
+  const std::string good = generate(f.material, o);
+  std::vector<RenderJob> jobs = {f.job, f.job};
+  jobs[0].code_override = good;
+  jobs[1].code_override = inject(good, "facet_normal != 0 ? normalize(facet_normal) : normalize(N)", "normalize(N)");
+  jobs[1].material->name = "ward_on_blenders_normals";
+  std::vector<RenderOutcome> r = make_renderer("osl")->render(jobs);
+  ASSERT_EQ(r.size(), 2u);
+  ComparisonRow ok = judged(f, r[0]), bad = judged(f, r[1]);
+  std::cout << "float normals: " << ok.metrics.max_excess << ", Blender's 16-bit normals: " << bad.metrics.max_excess
+            << "\n";
+  EXPECT_TRUE(ok.pass) << "max |Δ|/max(1,|ref|) " << ok.metrics.max_excess;
+  EXPECT_FALSE(bad.pass) << "max |Δ|/max(1,|ref|) " << bad.metrics.max_excess;
 }
 
 TEST(Detection, OslMissingPiAndExponentOffByOneFail) {
