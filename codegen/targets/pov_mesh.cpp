@@ -131,7 +131,9 @@ void write_pov_mesh_image(std::ostream& out, const Mesh& m, const PovMeshData& d
   const size_t height = size_t(d.height());
   out << fmt::format("P6\n{} {}\n65535\n", d.width(), height);
   std::vector<unsigned char> row(size_t(d.width()) * 6);
-  for (size_t file_row = 0; file_row < height; ++file_row) {  // from the top
+  std::fill(row.begin(), row.end(), 0);
+  out.write(reinterpret_cast<const char*>(row.data()), std::streamsize(row.size()));  // the row of zeros
+  for (size_t file_row = 1; file_row < height; ++file_row) {  // from the top
     const size_t r = height - 1 - file_row;                     // from the bottom
     const size_t plane = r / plane_rows, j = (r % plane_rows) / 2, b = r % 2;
     const int first = plane < 2 ? 0 : 3;  // positions, then normals

@@ -44,7 +44,10 @@ struct PovMeshData {
   // scene units, normal components (the codes' step and float32's rounding of the blend).
   double position_error = 0, normal_error = 0;
   int width() const { return 2 * blocks; }
-  int height() const { return 4 * plane_rows; }
+  // The four planes and, at the top, a row of zeros: POV-Ray's PPM reader takes a byte 13
+  // right after the header for the end of the header's line (IStream::getline reads "\n\r"
+  // as one line break), so the first pixel's first byte must not be 13.
+  int height() const { return 4 * plane_rows + 1; }
 };
 
 // The data image's layout and precision for mesh `m`, named `file`.

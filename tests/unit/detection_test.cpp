@@ -163,6 +163,26 @@ TEST(Detection, PovMeshDataConventionsFailWhenWrong) {
   }
 }
 
+// The benchmark's 32,196-triangle scene with Lambert + Ward: before the data images began
+// with a row of zeros, its torus's began with the byte 13, which POV-Ray's PPM reader
+// took for the end of the header's line ("Unexpected EOF in PPM file").
+TEST(Detection, PovMeshDataImagesReadWhateverTheirFirstByte) {
+  Fixture f = fixture("ward", "pov-mesh-first-byte");
+  f.material = parse_material(nlohmann::json::parse(R"({"name": "anisotropic",
+      "diffuse": {"model": "lambert", "color": [0.25, 0.25, 0.28]},
+      "specular": {"model": "ward", "color": [0.8, 0.75, 0.7], "alpha_x": 0.12, "alpha_y": 0.35}})"),
+                              "anisotropic.json");
+  f.scene = mesh_bench_scene(32768);
+  f.reference = render_reference(f.material, f.scene, kSize, kSize);
+  f.job.material = f.material;
+  f.job.scene = f.scene;
+  f.job.max_value = 0;
+  for (float v : f.reference.image.rgb) f.job.max_value = std::max<double>(f.job.max_value, v);
+  RenderOutcome r = render_one("pov", f.job);
+  ASSERT_TRUE(r.ok) << r.error;
+  EXPECT_TRUE(judged(f, r).pass);
+}
+
 TEST(Detection, PovMeshNativeNormalsFailWhenFlat) {
   Fixture f = mesh_fixture("blinn_phong", "native");  // POV-Ray's own finish on mesh2
   PovOutput pov = generate_pov_files(f.scene, &f.material, "blinn_phong.json", PovRoute::Auto, job_name(f.job));
