@@ -1,5 +1,6 @@
 #include "catalog/catalog.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -51,8 +52,10 @@ const char* level_name(Equivalence::Level l) {
 }
 
 std::string ParamDef::allowed() const {
+  // A texturable parameter also takes an image; texels are clamped to the range (catalog/texture.h).
+  const std::string image = texturable ? ", or an image {\"texture\": file, …} whose values are clamped to that range" : "";
   switch (kind) {
-    case ParamKind::Number: return "a number " + range.describe();
+    case ParamKind::Number: return "a number " + range.describe() + image;
     case ParamKind::Bool: return "true or false";
     case ParamKind::Enum: {
       std::string s = "one of";
@@ -60,7 +63,7 @@ std::string ParamDef::allowed() const {
       return s;
     }
     case ParamKind::Color:
-      return "an RGB array [r, g, b] or one number for grey, each " + range.describe();
+      return "an RGB array [r, g, b] or one number for grey, each " + range.describe() + image;
     case ParamKind::Vector: return nonzero ? "an array of three numbers, not all zero" : "an array of three numbers";
     case ParamKind::Model: {
       if (!fixed.empty()) {  // the shorthand form (attenuation)
@@ -159,10 +162,29 @@ ir::Expr LobeContext::VoH() {
 
 bool LobeContext::has(const std::string& param) const { return spec_.values.count(param) > 0; }
 
-ir::Expr LobeContext::number(const std::string& param) {
-  const Value& v = spec_.at(param);
-  if (v.kind == ParamKind::Color) return ir::constant(lobe_ + "_" + param, v.rgb);
-  return ir::constant(lobe_ + "_" + param, v.number);
+ir::Expr LobeContext::number(const std::string& param) { return parameter(spec_, param, lobe_ + "_" + param); }
+
+bool LobeContext::textured(const ModelSpec& spec, const std::string& param) const {
+  return spec.at(param).texture != nullptr;
+}
+
+ir::Expr LobeContext::parameter(const ModelSpec& spec, const std::string& param, const std::string& name, bool grey) {
+  const Value& v = spec.at(param);
+  if (v.texture) {
+    const ParamDef* def = spec.def->param(param);
+    ir::Type type = v.kind == ParamKind::Color ? ir::Type::Color : ir::Type::Float;
+    auto known = std::find_if(textured_.begin(), textured_.end(), [&](const TexturedInput& t) { return t.name == name; });
+    if (known == textured_.end()) {
+      // The key path: the lobe's own parameter, or a sub-model's (fresnel_f0 → fresnel.f0).
+      std::string rest = name.substr(lobe_.size() + 1);
+      if (&spec != &spec_) rest[rest.find('_')] = '.';
+      textured_.push_back({name, lobe_ + "." + rest, type, v, def ? def->range : Range{}});
+    }
+    return fb_.param(name, type);
+  }
+  if (v.kind != ParamKind::Color) return ir::constant(name, v.number);
+  if (grey && v.rgb[0] == v.rgb[1] && v.rgb[1] == v.rgb[2]) return ir::constant(name, v.rgb[0]);
+  return ir::constant(name, v.rgb);
 }
 
 bool LobeContext::flag(const std::string& param) const { return spec_.at(param).flag; }
@@ -180,15 +202,15 @@ ir::Expr LobeContext::fresnel() {
   if (name == "schlick") {
     // A grey f0 is one number: F stays scalar until k ⊗ ρ. Schlick's term clamps
     // its own base, so v·h goes in without the bracket.
-    const std::array<double, 3>& f0 = f.at("f0").rgb;
-    ir::Expr c = f0[0] == f0[1] && f0[1] == f0[2] ? ir::constant(lobe_ + "_fresnel_f0", f0[0])
-                                                 : ir::constant(lobe_ + "_fresnel_f0", f0);
+    ir::Expr c = parameter(f, "f0", lobe_ + "_fresnel_f0", true);
     return ir::call(terms::fresnel_schlick(c.type()), {c, input(Input::VoH)});
   }
   if (name == "exact") {
+    // An image may give η on either side of 1: the form with total internal reflection then.
     double ior = f.at("ior").number;
-    return ir::call(ior > 1 ? terms::fresnel_exact() : terms::fresnel_exact_tir(),
-                    {ir::constant(lobe_ + "_fresnel_ior", ior), VoH()});
+    bool tir = textured(f, "ior") || ior <= 1;
+    return ir::call(tir ? terms::fresnel_exact_tir() : terms::fresnel_exact(),
+                    {parameter(f, "ior", lobe_ + "_fresnel_ior"), VoH()});
   }
   throw std::logic_error("facet: unknown Fresnel model " + name);
 }
@@ -230,6 +252,19 @@ void resolve_defaults(std::vector<ModelDef>& all) {
   }
 }
 
+// The shading parameters (the lobes', their Fresnel terms' and modifiers' numbers and
+// colours) may come from an image; the lights', the camera's and the objects' may not.
+void mark_texturable(std::vector<ModelDef>& all) {
+  for (auto& m : all) {
+    if (m.section != "diffuse" && m.section != "specular" && m.section != "fresnel" && m.section != "modifier") continue;
+    for (auto& p : m.params) {
+      // Toon's width 0 selects the hard step when the code is generated: it stays a number.
+      if (m.name == "toon" && p.name == "width") continue;
+      p.texturable = p.kind == ParamKind::Number || p.kind == ParamKind::Color;
+    }
+  }
+}
+
 std::vector<ModelDef> build_catalog() {
   std::vector<ModelDef> all;
   catalog_detail::add_diffuse(all);
@@ -237,6 +272,7 @@ std::vector<ModelDef> build_catalog() {
   catalog_detail::add_terms(all);
   catalog_detail::add_lights(all);
   catalog_detail::add_scene_vocabulary(all);
+  mark_texturable(all);
   resolve_defaults(all);
   return all;
 }

@@ -59,6 +59,7 @@ const char* param_kind_name(ParamKind k);
 
 // A parameter's value in a material (after defaults are applied).
 struct ModelSpec;
+struct TextureRef;  // catalog/texture.h
 struct Value {
   ParamKind kind = ParamKind::Number;
   double number = 0;
@@ -67,6 +68,9 @@ struct Value {
   std::array<double, 3> rgb{};
   std::shared_ptr<const ModelSpec> model;  // Model and Object kinds
   std::vector<std::array<double, 3>> points;  // Points and Triangles kinds
+  // Number and Color kinds (ParamDef::texturable): the value comes from an image, times
+  // the factor `number` / `rgb` holds, clamped to the range (catalog/texture.h).
+  std::shared_ptr<const TextureRef> texture;
   // Index kind: `number` holds the index, or −1 where `choice` holds a name (or the key is absent).
 };
 
@@ -85,6 +89,7 @@ struct ParamDef {
   bool nonzero = false;              // Vector: a direction, so not the zero vector
   bool every_lobe = false;           // one of the parameters every diffuse and specular lobe takes (color, toon)
   bool by_name = false;              // Index: a name is allowed as well as an index
+  bool texturable = false;           // Number, Color: may come from an image ({"texture": …})
   std::string allowed() const;       // what the error messages say is allowed
 };
 
@@ -217,8 +222,20 @@ enum class Input { NoL, NoV, LoV, LoT, VoT, LoB, VoB, NoH, VoH, HoT, HoB };
 const char* input_name(Input i);
 const std::vector<std::string>& input_order();
 
+// A parameter that comes from an image (catalog/texture.h): an input of the lobe
+// function named as its constant would be (`diffuse_color`, `specular_fresnel_f0`),
+// whose value each target samples at the shading point.
+struct TexturedInput {
+  std::string name;
+  std::string key;  // its key path in the material: diffuse.color, specular.fresnel.f0
+  ir::Type type = ir::Type::Float;
+  Value value;  // its texture and factor
+  Range range;  // the parameter's: the value is clamped to it
+};
+
 // What a lobe's `build` sees: inputs, the material's parameter values as named
-// constants, and the let-bindings of the lobe function being built.
+// constants (inputs where they come from an image), and the let-bindings of the
+// lobe function being built.
 class LobeContext {
  public:
   LobeContext(const ModelSpec& spec, std::string lobe, ir::FunctionBuilder& fb);
@@ -234,6 +251,12 @@ class LobeContext {
   ir::Expr HoB() { return input(Input::HoB); }
 
   ir::Expr number(const std::string& param);  // a named constant, e.g. specular_m
+  // Parameter `param` of `spec` (the lobe's own or a sub-model's) as the IR value
+  // `name`: a constant (one number where `grey` and the colour is grey), or an input
+  // where it comes from an image.
+  ir::Expr parameter(const ModelSpec& spec, const std::string& param, const std::string& name, bool grey = false);
+  bool textured(const ModelSpec& spec, const std::string& param) const;
+  const std::vector<TexturedInput>& textured_inputs() const { return textured_; }
   bool flag(const std::string& param) const;
   const std::string& choice(const std::string& param) const;
   const ModelSpec& model(const std::string& param) const;  // a Model/Object-kind parameter
@@ -250,6 +273,7 @@ class LobeContext {
   const ModelSpec& spec_;
   std::string lobe_;
   ir::FunctionBuilder& fb_;
+  std::vector<TexturedInput> textured_;
 };
 
 // The whole catalog, in documentation order. Besides the shading vocabulary

@@ -15,6 +15,7 @@
 
 #include "catalog/catalog.h"
 #include "catalog/material.h"
+#include "catalog/texture.h"
 #include "core/diagnostics.h"
 
 namespace facet {
@@ -153,6 +154,7 @@ class Checker {
 
   // The value of parameter `p` given as `j`, else a diagnostic.
   std::optional<Value> value(const json& j, const std::string& path, const ParamDef& p) {
+    if (p.texturable && j.is_object()) return parse_texture_value(j, path, p, sink_);
     switch (p.kind) {
       case ParamKind::Number: return wrap(p, ranged(j, path, p), &Value::number);
       case ParamKind::String: return string_value(j, path, p);

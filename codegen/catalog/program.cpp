@@ -4,6 +4,8 @@
 
 #include <fmt/format.h>
 
+#include "catalog/texture.h"
+
 namespace facet {
 
 std::string describe(const ModelSpec& s) {
@@ -11,7 +13,11 @@ std::string describe(const ModelSpec& s) {
   std::string params;
   for (const auto& p : s.def->params) {
     if (p.kind != ParamKind::Number) continue;
-    params += fmt::format("{}{} = {}", params.empty() ? "" : ", ", p.name, s.at(p.name).number);
+    const Value& v = s.at(p.name);
+    if (v.texture)
+      params += fmt::format("{}{} from \"{}\"", params.empty() ? "" : ", ", p.name, v.texture->file);
+    else
+      params += fmt::format("{}{} = {}", params.empty() ? "" : ", ", p.name, v.number);
   }
   return params.empty() ? d : d + " (" + params + ")";
 }
@@ -19,14 +25,15 @@ std::string describe(const ModelSpec& s) {
 namespace {
 
 // rho_<lobe>(inputs…): the model's formula, then the toon modifier.
-ir::FunctionPtr build_lobe(const ModelSpec& spec, const std::string& lobe, const std::string& material) {
+ir::FunctionPtr build_lobe(const ModelSpec& spec, const std::string& lobe, const std::string& material,
+                           std::vector<TexturedInput>& textured) {
   ir::FunctionBuilder fb("rho_" + lobe, fmt::format("The {} lobe of \"{}\": {}", lobe, material, describe(spec)));
   LobeContext ctx(spec, lobe, fb);
   ir::Expr rho = spec.def->build(ctx);
   auto toon = spec.values.find("toon");
   if (toon != spec.values.end() && toon->second.model) {
     const ModelSpec& t = *toon->second.model;
-    ir::Expr cutoff = ir::constant(lobe + "_toon_cutoff", t.at("cutoff").number);
+    ir::Expr cutoff = ctx.parameter(t, "cutoff", lobe + "_toon_cutoff");
     double width = t.at("width").number;
     if (width > 0) {
       rho = ir::call(terms::toon(rho.type()), {rho, cutoff, ir::constant(lobe + "_toon_width", width)});
@@ -35,6 +42,7 @@ ir::FunctionPtr build_lobe(const ModelSpec& spec, const std::string& lobe, const
     }
   }
   fb.order_params(input_order());
+  for (const auto& t : ctx.textured_inputs()) textured.push_back(t);
   return fb.returns(rho);
 }
 
@@ -45,6 +53,10 @@ std::vector<ir::Expr> args_for(const ir::FunctionPtr& f, const ir::FunctionBuild
 }
 
 }  // namespace
+
+bool MaterialProgram::is_textured(const std::string& input) const {
+  return std::any_of(textured.begin(), textured.end(), [&](const TexturedInput& t) { return t.name == input; });
+}
 
 bool MaterialProgram::uses(const std::string& input) const {
   return std::find(inputs.begin(), inputs.end(), input) != inputs.end();
@@ -60,8 +72,8 @@ std::vector<ir::NodePtr> MaterialProgram::constants() const { return ir::constan
 MaterialProgram compile(const Material& m) {
   MaterialProgram p;
   p.material = m;
-  if (m.diffuse) p.diffuse = build_lobe(*m.diffuse, "diffuse", m.name);
-  if (m.specular) p.specular = build_lobe(*m.specular, "specular", m.name);
+  if (m.diffuse) p.diffuse = build_lobe(*m.diffuse, "diffuse", m.name, p.textured);
+  if (m.specular) p.specular = build_lobe(*m.specular, "specular", m.name, p.textured);
 
   ir::FunctionBuilder fb("reflectance",
                          "MODELS.md: k_d ⊗ ρ_d(l, v) + k_s ⊗ ρ_s(l, v) for a light of unit colour",
@@ -71,19 +83,25 @@ MaterialProgram compile(const Material& m) {
   fb.param("NoV");
   for (const auto& lobe : {p.diffuse, p.specular})
     if (lobe)
-      for (const auto& param : lobe->params) fb.param(param.name);
-  fb.order_params(input_order());
+      for (const auto& param : lobe->params) fb.param(param.name, param.type);
 
   ir::Expr sum = 0.0;
   bool first = true;
   auto add = [&](const ir::FunctionPtr& lobe, const ModelSpec& spec, const char* name) {
-    ir::Expr k = ir::constant(std::string(name) + "_color", spec.at("color").rgb);
+    const Value& color = spec.at("color");
+    const std::string k_name = std::string(name) + "_color";
+    ir::Expr k = ir::constant(k_name, color.rgb);
+    if (color.texture) {
+      k = fb.param(k_name, ir::Type::Color);
+      p.textured.push_back({k_name, std::string(name) + ".color", ir::Type::Color, color, spec.def->param("color")->range});
+    }
     ir::Expr term = k * ir::call(lobe, args_for(lobe, fb));
     sum = first ? term : sum + term;
     first = false;
   };
   if (p.diffuse) add(p.diffuse, *m.diffuse, "diffuse");
   if (p.specular) add(p.specular, *m.specular, "specular");
+  fb.order_params(input_order());
   ir::Expr horizon_zero = ir::color(0, 0, 0);
   // One comparison of the smaller cosine rather than two and an ||: the same test.
   p.reflectance = fb.returns(ir::select(ir::min(fb.arg("NoL"), fb.arg("NoV")) <= 0.0, horizon_zero, sum));

@@ -15,9 +15,15 @@ struct MaterialProgram {
   ir::FunctionPtr diffuse;      // rho_diffuse(inputs…), or null
   ir::FunctionPtr specular;     // rho_specular(inputs…), or null
   ir::FunctionPtr reflectance;  // k_d ⊗ ρ_d + k_s ⊗ ρ_s, 0 below the horizon
-  std::vector<std::string> inputs;  // reflectance's parameters, in input_order()
+  std::vector<std::string> inputs;  // reflectance's parameters: input_order()'s, then `textured`'s
+  // The parameters that come from images, each an input of reflectance (and of the
+  // lobe that reads it) whose value the target samples at the shading point.
+  std::vector<TexturedInput> textured;
 
   bool uses(const std::string& input) const;
+  bool has_textures() const { return !textured.empty(); }
+  // Whether `input` (a name of `inputs`) is a textured parameter rather than a dot product.
+  bool is_textured(const std::string& input) const;
   bool uses_tangent() const {
     return uses("LoT") || uses("VoT") || uses("LoB") || uses("VoB") || uses("HoT") || uses("HoB");
   }

@@ -21,7 +21,8 @@ json catalog_json() {
     json params = json::array();
     for (const auto& p : m.params) {
       json pj = {{"name", p.name}, {"type", param_kind_name(p.kind)}, {"doc", p.doc}, {"required", p.required},
-                 {"allowed", p.allowed()}};
+                 {"allowed", p.allowed()},
+                 {"texturable", p.texturable}};
       if (p.kind == ParamKind::Number || p.kind == ParamKind::Color) {
         pj["range"] = {{"min", std::isfinite(p.range.min) ? json(p.range.min) : json(nullptr)},
                        {"max", std::isfinite(p.range.max) ? json(p.range.max) : json(nullptr)},

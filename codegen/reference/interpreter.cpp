@@ -6,6 +6,10 @@
 #include <stdexcept>
 #include <unordered_map>
 
+#include <fmt/format.h>
+
+#include "catalog/texture.h"
+
 namespace facet {
 
 using ir::Op;
@@ -208,6 +212,9 @@ Vec3 tangent_rule(const Vec3& n, const Vec3& axis) {
 // ---------------------------------------------------------------- Reference
 
 Reference::Reference(const Material& m) : program_(compile(m)) {
+  if (program_.textured.size() > kMaxTexturedInputs)
+    throw std::logic_error(fmt::format("facet reference: {} textured parameters; at most {}", program_.textured.size(),
+                                       kMaxTexturedInputs));
   reflectance_ = prepare(program_.reflectance);
   if (program_.diffuse) diffuse_ = prepare(program_.diffuse);
   if (program_.specular) specular_ = prepare(program_.specular);
@@ -238,18 +245,41 @@ double Reference::light_factor(const Light& light, const Vec3& l, double d) cons
 Reference::Prepared Reference::prepare(const ir::FunctionPtr& f) {
   Prepared p;
   p.id = interp_.prepare(f);
-  if (f->params.size() > kInputCount) throw std::logic_error("facet reference: too many inputs for " + f->name);
-  for (const auto& param : f->params) p.inputs.push_back(ShadingInputs::index(param.name));
+  if (f->params.size() > kInputCount + kMaxTexturedInputs)
+    throw std::logic_error("facet reference: too many inputs for " + f->name);
+  const auto& textured = program_.textured;
+  for (const auto& param : f->params) {
+    // A textured parameter's slot follows the dot products'.
+    auto t = std::find_if(textured.begin(), textured.end(), [&](const TexturedInput& x) { return x.name == param.name; });
+    p.inputs.push_back(t != textured.end() ? int(kInputCount + size_t(t - textured.begin()))
+                                           : ShadingInputs::index(param.name));
+  }
   return p;
 }
 
 RGB Reference::call(const Prepared& f, const ShadingInputs& in) const {
-  RGB args[kInputCount];  // a function reads each input at most once
+  RGB args[kInputCount + kMaxTexturedInputs];  // a function reads each input at most once
   for (size_t i = 0; i < f.inputs.size(); ++i) {
-    double x = in.get(f.inputs[i]);
-    args[i] = {x, x, x};
+    const size_t k = size_t(f.inputs[i]);
+    if (k >= kInputCount) {
+      args[i] = in.textured[k - kInputCount];
+    } else {
+      double x = in.get(f.inputs[i]);
+      args[i] = {x, x, x};
+    }
   }
   return interp_.run(f.id, args);
+}
+
+bool Reference::sample_textures(const std::array<std::array<double, 2>, 2>& uv, ShadingInputs& in) const {
+  const auto& textured = program_.textured;
+  bool fragile = false;
+  for (size_t i = 0; i < textured.size(); ++i) {
+    const TexturedInput& t = textured[i];
+    const auto& st = uv[size_t(t.value.texture->uv)];
+    in.textured[i] = texture_value(t.value, t.range, st[0], st[1], &fragile);
+  }
+  return fragile;
 }
 
 RGB Reference::reflectance(const ShadingInputs& in) const { return call(reflectance_, in); }

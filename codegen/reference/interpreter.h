@@ -4,6 +4,7 @@
 // renderer, and (in the unit tests) closed forms written from the papers.
 #pragma once
 
+#include <array>
 #include <memory>
 #include <vector>
 
@@ -33,10 +34,15 @@ class Interpreter {
   std::unique_ptr<Impl> impl_;
 };
 
-// The dot products a lobe reads (catalog.h: Input).
+// The most parameters one material may take from images (MaterialProgram::textured).
+inline constexpr size_t kMaxTexturedInputs = 16;
+
+// The dot products a lobe reads (catalog.h: Input), and the values of the
+// material's textured parameters at the shading point (in MaterialProgram::textured's order).
 struct ShadingInputs {
   double NoL = 0, NoV = 0, LoV = 0, LoT = 0, VoT = 0, LoB = 0, VoB = 0;
   double NoH = 0, VoH = 0, HoT = 0, HoB = 0;  // h = (l + v) / max(|l + v|, ε)
+  std::array<RGB, kMaxTexturedInputs> textured{};
   double get(const std::string& name) const;
   double get(int index) const;           // in input_order()
   static int index(const std::string& name);
@@ -53,6 +59,9 @@ class Reference {
   const MaterialProgram& program() const { return program_; }
   const Material& material() const { return program_.material; }
 
+  // The values of the textured parameters at texture coordinates uv[0] (set 0) and uv[1] (set 1).
+  // True where a nearest-filtered lookup lies on a texel's edge (catalog/texture.h).
+  bool sample_textures(const std::array<std::array<double, 2>, 2>& uv, ShadingInputs& in) const;
   // k_d ⊗ ρ_d + k_s ⊗ ρ_s, zero below the horizon. Unit vectors; t ⟂ n.
   RGB reflectance(const Vec3& n, const Vec3& l, const Vec3& v, const Vec3& t) const;
   RGB reflectance(const Vec3& n, const Vec3& l, const Vec3& v) const;  // tangent rule

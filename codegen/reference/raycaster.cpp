@@ -4,6 +4,7 @@
 #include <cmath>
 #include <memory>
 
+#include "catalog/texture.h"
 #include "core/parallel.h"
 #include "reference/interpreter.h"
 
@@ -117,7 +118,18 @@ void shade_pixel(const Scene& s, const std::vector<const Reference*>& shading, d
   Vec3 t = tangent_rule(n, Vec3(m.tangent_axis));
   RGB L;
   for (int c = 0; c < 3; ++c) L[c] = m.ambient[c] * s.ambient[c] + m.emission[c];
+  // The textured parameters' values at this point, once for every light.
+  ShadingInputs textured;
   bool grazing = false;
+  if (ref.program().has_textures()) {
+    // A texel's edge under nearest filtering, or where a sphere's mapping is not continuous
+    // (the seam u = 0 | 1, the poles), is as fragile as a grazing shadow ray.
+    grazing = ref.sample_textures(obj.uv_at(p, h.hit), textured);
+    if (obj.type == Object::Type::Sphere) {
+      Vec3 d = (p - obj.center) / obj.radius;
+      grazing = grazing || std::hypot(d.x, d.z) < 1e-3 || (d.z < 0 && std::fabs(d.x) < kTexelEdgeMargin * 2 * M_PI);
+    }
+  }
   for (const auto& light : s.lights) {
     Vec3 l;
     double d;
@@ -125,7 +137,9 @@ void shade_pixel(const Scene& s, const std::vector<const Reference*>& shading, d
     double factor = ref.light_factor(light, l, d);
     if (!(factor > 0) || dot(n, l) <= 0) continue;
     if (blocked(s, h.object, h.hit.triangle, p, l, d, offset, close, grazing)) continue;
-    RGB f = ref.reflectance(n, l, v, t);
+    ShadingInputs in = shading_inputs(n, l, v, t);
+    in.textured = textured.textured;
+    RGB f = ref.reflectance(in);
     for (int c = 0; c < 3; ++c) L[c] += factor * light.color[c] * f[c];
   }
   r.grazing[idx] = grazing;

@@ -21,6 +21,7 @@
 #include "renderers/backends.h"
 #include "renderers/harness.h"
 #include "renderers/opengl.h"
+#include "targets/texture_code.h"
 #include "renderers/sweep.h"
 #include "targets/glsl_lights.h"
 #include "targets/targets.h"
@@ -264,11 +265,14 @@ std::vector<SweepCount> GlRenderer::sweep(const std::vector<SweepJob>& jobs, con
 }
 
 std::string GlRenderer::fragment_source(const Material& m) {
-  GlslParts parts = glsl_parts(compile(m), Target::Glsl, m.source);
+  MaterialProgram p = compile(m);
+  GlslParts parts = glsl_parts(p, Target::Glsl, m.source);
+  std::string sample = p.has_textures() ? "    facet_sample_textures(facet_uv(hit, p, best, 0), facet_uv(hit, p, best, 1));\n" : "";
   return "#version 330 core\n" + parts.header + parts.library + parts.lights +
          render_harness("raycast.glsl", {{"sphere", std::to_string(kSphere)},
                                          {"square", std::to_string(kSquare)},
-                                         {"mesh", std::to_string(kMesh)}});
+                                         {"mesh", std::to_string(kMesh)},
+                                         {"sample", sample}});
 }
 
 namespace {
@@ -276,7 +280,7 @@ namespace {
 // Every mesh's BVH and triangles, concatenated: 2 RGBA32F texels a node, 6 a
 // triangle (in BVH order), as codegen/renderers/harness/raycast.glsl reads them.
 struct MeshBuffers {
-  std::vector<float> nodes, triangles;
+  std::vector<float> nodes, triangles, texcoords;
   std::vector<int> first_node;  // per object (meshes only)
 };
 
@@ -298,11 +302,18 @@ MeshBuffers mesh_buffers(const Scene& s) {
       const auto& k = m.triangles[t];
       for (int c = 0; c < 3; ++c) push(b.triangles, m.positions[k[size_t(c)]], 0);
       for (int c = 0; c < 3; ++c) push(b.triangles, m.normals[k[size_t(c)]], 0);
+      for (int c = 0; c < 3; ++c) {
+        std::array<double, 2> st[2] = {{0, 0}, {0, 0}};
+        for (size_t set = 0; set < 2; ++set)
+          if (!m.texcoords[set].empty()) st[set] = m.texcoords[set][k[size_t(c)]];
+        b.texcoords.insert(b.texcoords.end(), {float(st[0][0]), float(st[0][1]), float(st[1][0]), float(st[1][1])});
+      }
     }
   }
   // Texture buffers may not be empty.
   if (b.nodes.empty()) b.nodes.assign(8, 0);
   if (b.triangles.empty()) b.triangles.assign(24, 0);
+  if (b.texcoords.empty()) b.texcoords.assign(12, 0);
   return b;
 }
 
@@ -321,10 +332,11 @@ GLuint texture_buffer(const std::vector<float>& data, GLuint& buffer) {
 class MeshTextures {
  public:
   explicit MeshTextures(const MeshBuffers& m)
-      : textures_{texture_buffer(m.nodes, buffers_[0]), texture_buffer(m.triangles, buffers_[1])} {}
+      : textures_{texture_buffer(m.nodes, buffers_[0]), texture_buffer(m.triangles, buffers_[1]),
+                  texture_buffer(m.texcoords, buffers_[2])} {}
   ~MeshTextures() {
-    glDeleteTextures(2, textures_);
-    glDeleteBuffers(2, buffers_);
+    glDeleteTextures(3, textures_);
+    glDeleteBuffers(3, buffers_);
   }
   MeshTextures(const MeshTextures&) = delete;
   MeshTextures& operator=(const MeshTextures&) = delete;
@@ -336,11 +348,52 @@ class MeshTextures {
     glActiveTexture(GL_TEXTURE1);
     glBindTexture(GL_TEXTURE_BUFFER, textures_[1]);
     glUniform1i(glGetUniformLocation(prog, "facet_triangles"), 1);
+    glActiveTexture(GL_TEXTURE2);
+    glBindTexture(GL_TEXTURE_BUFFER, textures_[2]);
+    glUniform1i(glGetUniformLocation(prog, "facet_texcoords"), 2);
   }
 
  private:
-  GLuint buffers_[2] = {0, 0};
-  GLuint textures_[2];
+  GLuint buffers_[3] = {0, 0, 0};
+  GLuint textures_[3];
+};
+
+// A material's images as RGBA32F textures holding the files' values, read by texelFetch
+// only (glsl/textures.glsl), on units 3, 4, …, bound to facet_texture_<parameter>.
+class MaterialImages {
+ public:
+  explicit MaterialImages(const MaterialProgram& p) {
+    for (const auto& c : texture_calls(p)) {
+      GLuint tex = 0;
+      glGenTextures(1, &tex);
+      glBindTexture(GL_TEXTURE_2D, tex);
+      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
+      glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+      // Row 0 of the file first: texelFetch's j is the file's row j (no flip).
+      glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, c.texels->width, c.texels->height, 0, GL_RGBA, GL_FLOAT,
+                   c.texels->rgba.data());
+      textures_.push_back(tex);
+      names_.push_back("facet_texture_" + c.name);
+    }
+  }
+  ~MaterialImages() {
+    if (!textures_.empty()) glDeleteTextures(GLsizei(textures_.size()), textures_.data());
+  }
+  MaterialImages(const MaterialImages&) = delete;
+  MaterialImages& operator=(const MaterialImages&) = delete;
+  void bind(GLuint prog) const {
+    for (size_t i = 0; i < textures_.size(); ++i) {
+      glActiveTexture(GLenum(GL_TEXTURE3 + i));
+      glBindTexture(GL_TEXTURE_2D, textures_[i]);
+      glUniform1i(glGetUniformLocation(prog, names_[i].c_str()), GLint(3 + i));
+    }
+  }
+
+ private:
+  std::vector<GLuint> textures_;
+  std::vector<std::string> names_;
 };
 
 // Setting a program's uniforms by name.
@@ -493,6 +546,8 @@ RenderOutcome GlRenderer::render_passes(const RenderJob& job, const std::vector<
     set_lights(u, s);
     set_objects(u, s, meshes, pass_of, k);
     textures.bind(prog);
+    const MaterialImages images(compile(*passes[k]));
+    images.bind(prog);
     glClearColor(0, 0, 0, 0);
     glClear(GL_COLOR_BUFFER_BIT);
     glBindVertexArray(state_->vao);

@@ -184,6 +184,39 @@ Vec3 Object::normal_at(const Vec3& p, const Hit& h) const {
   return normal;
 }
 
+std::array<std::array<double, 2>, 2> Object::uv_at(const Vec3& p, const Hit& h) const {
+  std::array<double, 2> st{0, 0};
+  switch (type) {
+    case Type::Sphere: {
+      // Longitude from +z towards +x, latitude from the +y pole: v = 0 at the top.
+      Vec3 d = (p - center) / radius;
+      st = {0.5 + std::atan2(d.x, d.z) / (2 * M_PI), std::acos(std::clamp(d.y, -1.0, 1.0)) / M_PI};
+      return {st, st};
+    }
+    case Type::Plane: {
+      // The square's own axes: u along the first, v down the second, [0, 1]² edge to edge.
+      Vec3 a, b;
+      plane_axes(a, b);
+      Vec3 q = p - point;
+      st = {0.5 + dot(q, a) / (2 * size), 0.5 - dot(q, b) / (2 * size)};
+      return {st, st};
+    }
+    case Type::Mesh: {
+      std::array<std::array<double, 2>, 2> out{};
+      for (size_t set = 0; set < 2; ++set) {
+        const auto& tc = mesh->texcoords[set];
+        if (tc.empty()) continue;
+        const auto& tri = mesh->triangles[size_t(h.triangle)];
+        const double w0 = 1 - h.u - h.v;
+        for (size_t k = 0; k < 2; ++k)
+          out[set][k] = w0 * tc[tri[0]][k] + h.u * tc[tri[1]][k] + h.v * tc[tri[2]][k];
+      }
+      return out;
+    }
+  }
+  return {st, st};
+}
+
 void Object::bounds(Vec3& c, double& r) const {
   switch (type) {
     case Type::Sphere:

@@ -64,6 +64,9 @@ struct Light {
 struct Mesh {
   std::vector<Vec3> positions, normals;
   std::vector<std::array<uint32_t, 3>> triangles;
+  // Texture coordinates per vertex, sets 0 and 1 (glTF's TEXCOORD_0/1: v down the
+  // picture); empty where the mesh has no such set.
+  std::array<std::vector<std::array<double, 2>>, 2> texcoords;
   // A bounding volume hierarchy, nodes in depth-first order: an inner node's
   // left child follows it, `right` indexes the other; a leaf holds `count`
   // triangles from `start` in `order`.
@@ -125,6 +128,10 @@ struct Object {
   Hit hit(const Vec3& origin, const Vec3& dir, double t_min = 0, int skip = -1) const;
   double intersect(const Vec3& origin, const Vec3& dir, double t_min = 0) const { return hit(origin, dir, t_min).t; }
   Vec3 normal_at(const Vec3& p, const Hit& h) const;
+  // Texture coordinates sets 0 and 1 at p (docs/textures.md): a sphere's and a square's
+  // are their documented mappings (the same in both sets), a mesh's its vertices'
+  // blended barycentrically ((0, 0) for a set it lacks).
+  std::array<std::array<double, 2>, 2> uv_at(const Vec3& p, const Hit& h) const;
   // Spheres and squares are convex: they never shadow themselves where n·l > 0.
   bool convex() const { return type != Type::Mesh; }
   // A sphere around the object (for culling and scene scale).

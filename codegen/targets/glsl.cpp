@@ -1,4 +1,6 @@
 // GLSL: a fragment shader in three dialects, or the functions alone.
+#include <cmath>
+
 #include <fmt/format.h>
 
 #include "targets/cfamily.h"
@@ -7,6 +9,7 @@
 #include "targets/targets.h"
 #include "targets/targets_internal.h"
 #include "targets/templates.h"
+#include "targets/texture_code.h"
 
 namespace facet {
 
@@ -63,6 +66,43 @@ std::string main_inputs(Target t) {
          "out vec4 facet_color;\n";
 }
 
+// The uv′ of a texture call: KHR_texture_transform's affine map of set `uv`.
+std::string glsl_uv(const targets::CPrinter& pr, const TextureCall& c) {
+  std::string uv = fmt::format("uv{}", c.uv);
+  if (!c.transformed) return uv;
+  return fmt::format("vec2({} * {uv}.x + {} * {uv}.y + {}, {} * {uv}.x + {} * {uv}.y + {})", pr.literal(c.a),
+                     pr.literal(c.b), pr.literal(c.ou), pr.literal(c.c), pr.literal(c.d), pr.literal(c.ov),
+                     fmt::arg("uv", uv));
+}
+
+// The textures' uniforms, their parameters' globals and facet_sample_textures(): empty
+// for a material without textures.
+std::string glsl_textures(const MaterialProgram& p, Target dialect) {
+  if (!p.has_textures()) return "";
+  targets::CPrinter pr({});
+  std::string uniforms, globals, samples;
+  int binding = 1;  // Vulkan: binding 0 is the scene's uniform block
+  for (const auto& c : texture_calls(p)) {
+    std::string layout = dialect == Target::Glsl450 ? fmt::format("layout(set = 0, binding = {}) ", binding++) : "";
+    uniforms += fmt::format("{}uniform sampler2D facet_texture_{};  // \"{}\", {}×{}\n", layout, c.name, c.file,
+                            c.texels->width, c.texels->height);
+    std::string type = c.color ? "vec3" : "float";
+    globals += fmt::format("{} {};\n", type, c.name);
+    std::string lookup = fmt::format("facet_texture(facet_texture_{}, {}, ivec2({}, {}), {}, {})", c.name,
+                                     glsl_uv(pr, c), c.wrap[0], c.wrap[1], c.bilinear ? "true" : "false",
+                                     c.srgb ? "true" : "false");
+    std::string value = c.channel < 0 ? lookup + ".rgb" : lookup + "." + std::string(1, "rgba"[c.channel]);
+    if (c.color && c.channel >= 0) value = "vec3(" + value + ")";
+    std::string factor = c.color ? pr.color_literal(c.factor) : pr.literal(c.factor[0]);
+    value = factor + " * " + value;
+    std::string lo = c.color ? "vec3(" + pr.literal(c.lo) + ")" : pr.literal(c.lo);
+    std::string hi = c.color ? "vec3(" + pr.literal(c.hi) + ")" : pr.literal(c.hi);
+    value = std::isfinite(c.hi) ? fmt::format("clamp({}, {}, {})", value, lo, hi) : fmt::format("max({}, {})", value, lo);
+    samples += fmt::format("    {} = {};\n", c.name, value);
+  }
+  return render_template("glsl/textures.glsl", {{"uniforms", uniforms}, {"globals", globals}, {"samples", samples}});
+}
+
 }  // namespace
 
 GlslParts glsl_parts(const MaterialProgram& p, Target dialect, const std::string& source) {
@@ -92,10 +132,11 @@ GlslParts glsl_parts(const MaterialProgram& p, Target dialect, const std::string
                           "    vec3 h = (l + v) * inversesqrt(max(dot(l + v, l + v), {}));\n",
                           printer.literal(kEpsilon * kEpsilon));
   for (const auto& in : p.inputs) {
+    arguments += (arguments.empty() ? "" : ", ") + in;
+    if (p.is_textured(in)) continue;  // a global facet_sample_textures() set
     // NoL → dot(n, l): the two letters either side of "o" name the vectors.
     std::string a(1, char(std::tolower(in[0]))), b(1, char(std::tolower(in[2])));
     inputs += fmt::format("    float {} = dot({}, {});\n", in, a, b);
-    arguments += (arguments.empty() ? "" : ", ") + in;
   }
 
   parts.header = render_template("glsl/header.glsl", {{"name", m.name},
@@ -104,13 +145,22 @@ GlslParts glsl_parts(const MaterialProgram& p, Target dialect, const std::string
                                                        {"source", source},
                                                        {"description", describe_material(m, "//")}});
   parts.library = render_template("glsl/library.glsl", {{"constants", constants},
+                                                        {"textures", glsl_textures(p, dialect)},
                                                         {"functions", functions},
                                                         {"inputs", inputs},
                                                         {"arguments", arguments}});
   std::map<std::string, std::string> lights = glsl_light::template_values();  // the light encoding's numbers
   lights["uniforms"] = light_uniforms(dialect);
   parts.lights = render_template("glsl/lights.glsl", lights);
-  parts.main = render_template("glsl/main.glsl", {{"inputs", main_inputs(dialect)}});
+  std::string main_in = main_inputs(dialect), sample;
+  if (p.has_textures()) {
+    main_in += dialect == Target::Glsl450 ? "layout(location = 3) in vec2 facet_texcoord0;\n"
+                                            "layout(location = 4) in vec2 facet_texcoord1;\n"
+                                          : "in vec2 facet_texcoord0;  // glTF's TEXCOORD_0: v down the picture\n"
+                                            "in vec2 facet_texcoord1;\n";
+    sample = "    facet_sample_textures(facet_texcoord0, facet_texcoord1);\n";
+  }
+  parts.main = render_template("glsl/main.glsl", {{"inputs", main_in}, {"sample", sample}});
   return parts;
 }
 

@@ -1,5 +1,6 @@
 // OSL: a shader Cycles compiles in a Script node, or the functions alone.
 #include <cmath>
+#include <filesystem>
 
 #include <fmt/format.h>
 
@@ -8,6 +9,7 @@
 #include "targets/targets.h"
 #include "targets/targets_internal.h"
 #include "targets/templates.h"
+#include "targets/texture_code.h"
 
 namespace facet {
 
@@ -81,9 +83,55 @@ std::string light_block(const targets::CPrinter& pr, const Light& l, size_t i, S
   return out;
 }
 
+// The textured parameters' shader parameters (each image's path), and the statements that
+// sample them at the shading point, before the lights: the locals facet_reflect takes.
+struct OslTextures {
+  std::string params, samples, reflect_params, reflect_args;
+};
+
+OslTextures osl_textures(const targets::CPrinter& pr, const MaterialProgram& p, ShaderParams& params) {
+  OslTextures out;
+  if (!p.has_textures()) return out;
+  out.samples = "    // Textured parameters. facet_uv0/1 are Blender's UV (v up); glTF's t = 1 − v.\n"
+                "    float s0 = facet_uv0[0], t0 = 1 - facet_uv0[1];\n"
+                "    float s1 = facet_uv1[0], t1 = 1 - facet_uv1[1];\n";
+  for (const auto& c : texture_calls(p)) {
+    std::string file = "facet_texture_" + c.name;
+    // An absolute path: Cycles opens it from wherever Blender runs.
+    params.add("string", file, "\"" + std::filesystem::absolute(c.texels->path).lexically_normal().string() + "\"",
+               c.file.c_str());
+    std::string s = fmt::format("s{}", c.uv), t = fmt::format("t{}", c.uv);
+    if (c.transformed) {
+      std::string su = fmt::format("{} * {} + {} * {} + {}", pr.literal(c.a), s, pr.literal(c.b), t, pr.literal(c.ou));
+      std::string tv = fmt::format("{} * {} + {} * {} + {}", pr.literal(c.c), s, pr.literal(c.d), t, pr.literal(c.ov));
+      s = su;
+      t = tv;
+    }
+    out.samples += fmt::format("    float {0}_alpha;\n    color {0}_texel = facet_texture({1}, {2}, {3}, {4}, {5}, {6}, {7}, {8}, {9}, {0}_alpha);\n",
+                               c.name, file, c.texels->width, c.texels->height, s, t, c.wrap[0], c.wrap[1],
+                               c.bilinear ? 1 : 0, c.srgb ? 1 : 0);
+    std::string texel = c.channel < 0   ? c.name + "_texel"
+                        : c.channel == 3 ? c.name + "_alpha"
+                                         : fmt::format("{}_texel[{}]", c.name, c.channel);
+    std::string type = c.color ? "color" : "float";
+    std::string factor = c.color ? pr.color_literal(c.factor) : pr.literal(c.factor[0]);
+    std::string value = factor + " * " + texel;
+    std::string lo = c.color ? "color(" + pr.literal(c.lo) + ")" : pr.literal(c.lo);
+    std::string hi = c.color ? "color(" + pr.literal(c.hi) + ")" : pr.literal(c.hi);
+    value = std::isfinite(c.hi) ? fmt::format("clamp({}, {}, {})", value, lo, hi) : fmt::format("max({}, {})", value, lo);
+    out.samples += fmt::format("    {} {} = {};\n", type, c.name, value);
+    out.reflect_params += ", " + type + " " + c.name;
+    out.reflect_args += ", " + c.name;
+  }
+  out.params = "    vector facet_uv0 = 0,  // texture coordinates: link a UV Map node (Blender's UV, v up)\n"
+               "    vector facet_uv1 = 0,\n";
+  return out;
+}
+
 }  // namespace
 
 std::string osl_sweep_source(const Material& m) {
+  require_untextured(m, "OSL sweep");
   GenerateOptions o;
   o.target = Target::Osl;
   o.library = true;
@@ -124,11 +172,14 @@ std::string generate_osl(const Material& m, const GenerateOptions& o) {
                           "    vector H = (L + V) * inversesqrt(max(dot(L + V, L + V), {}));\n",
                           pr.literal(kEpsilon * kEpsilon));
   for (const auto& in : p.inputs) {
+    arguments += (arguments.empty() ? "" : ", ") + in;
+    if (p.is_textured(in)) continue;  // a parameter of facet_reflect, sampled by the shader
     auto vec = [](char c) -> std::string { return c == 'N' ? "Nn" : std::string(1, c); };
     inputs += fmt::format("    float {} = dot({}, {});\n", in, vec(in[0]), vec(in[2]));
-    arguments += (arguments.empty() ? "" : ", ") + in;
   }
   arguments += constant_args;
+  ShaderParams params;
+  const OslTextures textures = osl_textures(pr, p, params);
 
   std::string header = render_template(
       "osl/header.osl", {{"name", m.name},
@@ -137,14 +188,14 @@ std::string generate_osl(const Material& m, const GenerateOptions& o) {
                          {"source", o.source},
                          {"description", describe_material(m, "//")}});
   std::string library = render_template("osl/library.osl", {{"functions", functions},
-                                                            {"constant_params", constant_params},
+                                                            {"textures", p.has_textures() ? render_template("osl/textures.osl", {}) : ""},
+                                                            {"constant_params", constant_params + textures.reflect_params},
                                                             {"inputs", inputs},
                                                             {"arguments", arguments}});
   if (o.library) return header + "\n" + library;
 
   const Scene scene = o.scene ? *o.scene : default_scene();
-  // Shader parameters: the material constants, then the scene's ambient and lights.
-  ShaderParams params;
+  // Shader parameters: the images, the material constants, then the scene's ambient and lights.
   auto color_value = [&](const RGB& c) { return pr.color_literal(c); };
   for (const auto& c : pr.free_constants(p.reflectance))
     params.add(pr.type(c->type), c->name, c->type == ir::Type::Color ? color_value(c->value) : pr.literal(c->value[0]));
@@ -154,10 +205,12 @@ std::string generate_osl(const Material& m, const GenerateOptions& o) {
   params.add("color", "ambient_light", color_value(scene.ambient), "the scene's ambient colour A");
 
   std::string lights;
-  for (size_t i = 0; i < scene.lights.size(); ++i) lights += light_block(pr, scene.lights[i], i, params, constant_args);
+  for (size_t i = 0; i < scene.lights.size(); ++i)
+    lights += light_block(pr, scene.lights[i], i, params, constant_args + textures.reflect_args);
   std::string shader = render_template("osl/shader.osl", {{"scene", scene.name},
                                                           {"shader", "facet_" + identifier(m.name)},
-                                                          {"parameters", params.text},
+                                                          {"parameters", params.text + textures.params},
+                                                          {"samples", textures.samples},
                                                           {"lights", lights}});
   return header + "\n" + library + shader;
 }

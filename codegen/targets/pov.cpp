@@ -83,6 +83,7 @@ std::string lobe_native(const std::optional<ModelSpec>& lobe) {
 }
 
 std::string material_native(const Material& m) {
+  if (compile(m).has_textures()) return "its parameters come from images, which function pigments sample";
   std::string why = lobe_native(m.diffuse);
   return why.empty() ? lobe_native(m.specular) : why;
 }
@@ -119,6 +120,9 @@ std::string route_line(const Object& o, bool native, bool table) {
 }  // namespace
 
 PovPlan pov_plan(const Scene& s, const Material* fallback, PovRoute route) {
+  for (size_t i = 0; i < s.objects.size(); ++i)
+    if (s.objects[i].type == Object::Type::Mesh)
+      require_untextured(s.material_of(i, fallback), "POV-Ray (on a mesh: object \"" + s.objects[i].name + "\")");
   PovPlan plan;
   if (route == PovRoute::Exact) plan.reason = "--pov-route exact: function pigments for every object";
   for (size_t i = 0; i < s.objects.size() && plan.reason.empty(); ++i) {
@@ -147,8 +151,9 @@ PovPlan pov_plan(const Material& m, const Scene& s, PovRoute route) { return pov
 namespace targets {
 
 bool pov_table_object(const Scene& s, size_t i, const Material* fallback, PovRoute route, bool native) {
-  return !native && route == PovRoute::Fast && s.objects[i].type == Object::Type::Mesh &&
-         !compile(s.material_of(i, fallback)).uses_tangent();
+  if (native || route != PovRoute::Fast || s.objects[i].type != Object::Type::Mesh) return false;
+  const MaterialProgram p = compile(s.material_of(i, fallback));
+  return !p.uses_tangent() && !p.has_textures();
 }
 
 bool pov_grey(const RGB& c) { return c[0] == c[1] && c[1] == c[2]; }
@@ -232,6 +237,7 @@ PovScene::PovScene(const Scene& s, const Material* fallback, const std::string& 
     sh->dependent = sh->printer.channel_dependent(sh->program.reflectance);
     shadings_.push_back(std::move(sh));
   }
+  register_textures();
   double r = length(s.camera.position);
   for (const auto& o : s.objects) {
     Vec3 c;
@@ -266,6 +272,35 @@ void PovScene::register_mesh_files() {
                               data_[o].file, data_[o].position_error, data_[o].normal_error);
     files_.push_back({data_[o].file, [mesh, d = data_[o]](std::ostream& out) { write_pov_mesh_image(out, *mesh, d); }});
   }
+}
+
+// Each textured parameter's image, written beside the scene (pov_texture.h), and its
+// sampling function; a colour from an image makes the material's pigments per channel.
+void PovScene::register_textures() {
+  for (auto& sh : shadings_)
+    for (const auto& c : texture_calls(sh->program)) {
+      PovTexture t;
+      t.call = c;
+      t.image = int(textures_.size());
+      t.file = fmt::format("{}_texture{}.ppm", stem_, t.image);
+      if (c.channel == 3) t.alpha = fmt::format("{}_texture{}_alpha.pgm", stem_, t.image);
+      const Texels* texels = c.texels;
+      files_.push_back({t.file, [texels](std::ostream& out) { write_pov_texture_image(out, *texels, false); }});
+      if (!t.alpha.empty())
+        files_.push_back({t.alpha, [texels](std::ostream& out) { write_pov_texture_image(out, *texels, true); }});
+      ir::FunctionPtr f = pov_sample_function(t);
+      sh->printer.add_own(f);
+      sh->samples[c.name] = {f, c.uv};
+      if (c.color && (c.channel < 0 || !pov_grey(c.factor))) sh->dependent = true;
+      textures_.push_back(t);
+    }
+}
+
+std::string PovScene::texture_declarations() const {
+  if (textures_.empty()) return "";
+  std::string out = render_template("pov/textures.pov", {});
+  for (const auto& t : textures_) out += pov_texture_declarations(t);
+  return out + "\n";
 }
 
 std::string PovScene::render() {
@@ -489,6 +524,7 @@ std::string PovScene::native() {
 }  // namespace targets
 
 std::string generate_pov_sweep(const Material& m) {
+  require_untextured(m, "POV-Ray sweep");
   Scene s = default_scene();
   return targets::PovScene(s, &m, m.source).sweep();
 }

@@ -57,13 +57,29 @@ bool reads_tangent(const ir::Function& f) { return reads(f, {"LoT", "VoT", "LoB"
 // `name`(n, l, v[, t]) → `reflectance` (a light of unit colour), its inputs the dot
 // products of unit vectors, h = (l + v) / Hl, Hl = max(|l + v|, ε) (catalog.h,
 // Input), b = n × t.
-ir::FunctionPtr frame_function(const ir::FunctionPtr& reflectance, const std::string& name, bool tangent) {
+// The texture coordinates S0, T0, S1, T1 as parameters of `fb`, where `sh` samples images.
+std::vector<Expr> uv_params(ir::FunctionBuilder& fb, const PovShading& sh) {
+  if (!sh.textured()) return {};
+  return {fb.param("S0"), fb.param("T0"), fb.param("S1"), fb.param("T1")};
+}
+std::vector<Expr> with(std::vector<Expr> a, const std::vector<Expr>& b) {
+  a.insert(a.end(), b.begin(), b.end());
+  return a;
+}
+
+ir::FunctionPtr frame_function(const ir::FunctionPtr& reflectance, const std::string& name, bool tangent,
+                               const PovShading& sh) {
   ir::FunctionBuilder fb(name, "");
   Triple N = params(fb, "Nx", "Ny", "Nz"), L = params(fb, "Lx", "Ly", "Lz"), V = params(fb, "Vx", "Vy", "Vz");
   Triple T = tangent ? params(fb, "Tx", "Ty", "Tz") : Triple{0.0, 0.0, 0.0};
+  const std::vector<Expr> uv = uv_params(fb, sh);
   Triple H = L + V, B = cross3(N, T);
   Expr Hl = reads(*reflectance, {"NoH", "VoH", "HoT", "HoB"}) ? fb.let("Hl", ir::max(length3(H), kEpsilon)) : Expr(1.0);
   auto input = [&](const std::string& in) -> Expr {
+    if (auto t = sh.samples.find(in); t != sh.samples.end()) {
+      const size_t set = size_t(t->second.second);
+      return ir::call(t->second.first, {uv[2 * set], uv[2 * set + 1]});
+    }
     if (in == "NoL") return dot3(N, L);
     if (in == "NoV") return dot3(N, V);
     if (in == "LoV") return dot3(L, V);
@@ -89,19 +105,21 @@ ir::FunctionPtr frame_function(const ir::FunctionPtr& reflectance, const std::st
 ir::FunctionPtr PovScene::reflect_function(PovShading& sh, const ir::FunctionPtr& reflectance,
                                            const std::string& suffix) {
   if (!reads_tangent(*reflectance)) {
-    ir::FunctionPtr f = frame_function(reflectance, "Facet_Reflect" + suffix, false);
+    ir::FunctionPtr f = frame_function(reflectance, "Facet_Reflect" + suffix, false, sh);
     sh.printer.add_own(f);
     return f;
   }
-  ir::FunctionPtr frame = frame_function(reflectance, "Facet_Frame" + suffix, true);
+  ir::FunctionPtr frame = frame_function(reflectance, "Facet_Frame" + suffix, true, sh);
   ir::FunctionBuilder unit("Facet_Tangent" + suffix, "");  // t = C / |C|
   Triple N = params(unit, "Nx", "Ny", "Nz"), L = params(unit, "Lx", "Ly", "Lz"), V = params(unit, "Vx", "Vy", "Vz");
   Triple C = params(unit, "Cx", "Cy", "Cz");
   Expr len = unit.param("Len");
-  ir::FunctionPtr tangent = unit.returns(ir::call(frame, args({N, L, V, C / len})));
+  const std::vector<Expr> unit_uv = uv_params(unit, sh);
+  ir::FunctionPtr tangent = unit.returns(ir::call(frame, with(args({N, L, V, C / len}), unit_uv)));
 
   ir::FunctionBuilder fb("Facet_Reflect" + suffix, "");
   N = params(fb, "Nx", "Ny", "Nz"), L = params(fb, "Lx", "Ly", "Lz"), V = params(fb, "Vx", "Vy", "Vz");
+  const std::vector<Expr> uv = uv_params(fb, sh);
   // |C| from the cross product itself, so one helper takes C and |C|.
   const Triple axis_x_n = cross3(constant(normalize(Vec3(sh.material->tangent_axis))), N);
   C = lets(fb, "Cx", "Cy", "Cz", axis_x_n);
@@ -109,6 +127,8 @@ ir::FunctionPtr PovScene::reflect_function(PovShading& sh, const ir::FunctionPtr
   std::vector<Expr> fallback = args({N, L, V, {0.0, -N.z, N.y}}), own = args({N, L, V, C});
   fallback.push_back(ir::sqrt(N.z * N.z + N.y * N.y));
   own.push_back(c_len);
+  fallback = with(fallback, uv);
+  own = with(own, uv);
   ir::FunctionPtr f =
       fb.returns(ir::select(c_len < 1e-4, ir::call(tangent, fallback), ir::call(tangent, own)));
   for (const auto& g : {frame, tangent, f}) sh.printer.add_own(g);
@@ -123,10 +143,11 @@ ir::FunctionPtr PovScene::light_function(PovShading& sh, size_t i, const ir::Fun
   const Light& l = s_.lights[i];
   ir::FunctionBuilder fb(fmt::format("Facet_Light{}{}", i, suffix), "");
   Triple P = params(fb, "x", "y", "z"), N = params(fb, "Nx", "Ny", "Nz");
+  const std::vector<Expr> uv = uv_params(fb, sh);
   if (l.type == Light::Type::Directional) {
     Triple V = lets(fb, "Vx", "Vy", "Vz", s_.camera.position - P);
     Expr dv = fb.let("Dv", length3(s_.camera.position - P));
-    ir::FunctionPtr f = fb.returns(ir::call(reflect, args({N, constant(-l.direction), V / dv})));
+    ir::FunctionPtr f = fb.returns(ir::call(reflect, with(args({N, constant(-l.direction), V / dv}), uv)));
     sh.printer.add_own(f);
     return f;
   }
@@ -142,7 +163,7 @@ ir::FunctionPtr PovScene::light_function(PovShading& sh, size_t i, const ir::Fun
   if (l.type == Light::Type::Spot)
     times(ir::call(terms::spot_cone(),
                    {-dot3(L / d, constant(l.direction)), std::cos(l.cutoff * kPi / 180), l.exponent}));
-  Expr reflected = ir::call(reflect, args({N, L / d, V / dv}));
+  Expr reflected = ir::call(reflect, with(args({N, L / d, V / dv}), uv));
   ir::FunctionPtr f = fb.returns(factor ? *factor * reflected : reflected);
   sh.printer.add_own(f);
   return f;
@@ -155,7 +176,20 @@ ir::FunctionPtr PovScene::object_function(size_t o, size_t i, const ir::Function
   const Object& obj = s_.objects[o];
   ir::FunctionBuilder fb(fmt::format("Facet_Object{}_Light{}{}", o, i, suffix), "");
   Triple P = params(fb, "x", "y", "z");
-  if (obj.type == Object::Type::Plane) return fb.returns(ir::call(light, args({P, constant(obj.normal)})));
+  // docs/textures.md: the shapes' texture coordinates (the same in both sets).
+  std::vector<Expr> uv;
+  auto coordinates = [&](const Expr& s, const Expr& t) {
+    if (!shading(o).textured()) return;
+    Expr s0 = fb.let("S0", s), t0 = fb.let("T0", t);
+    uv = {s0, t0, s0, t0};
+  };
+  if (obj.type == Object::Type::Plane) {
+    Vec3 a, b;
+    obj.plane_axes(a, b);
+    const Triple q = P - obj.point;
+    coordinates(0.5 + dot3(q, constant(a)) / (2 * obj.size), 0.5 - dot3(q, constant(b)) / (2 * obj.size));
+    return fb.returns(ir::call(light, with(args({P, constant(obj.normal)}), uv)));
+  }
   if (obj.type == Object::Type::Mesh) {
     // (x, y) is uv_mapping's: where in the data image the hit point's block
     // blends its corners' point and normal (pov_mesh.h).
@@ -171,7 +205,9 @@ ir::FunctionPtr PovScene::object_function(size_t o, size_t i, const ir::Function
   // Sphere: n = (P − C)/|P − C|, which holds for the shrunken copies too.
   Triple radial = P - obj.center;
   Expr r = fb.let("R", length3(radial));
-  return fb.returns(ir::call(light, args({P, radial / r})));
+  const Triple d = radial / r;
+  coordinates(0.5 + ir::atan2(d.x, d.z) / (2 * kPi), ir::acos(ir::clamp(d.y, -1.0, 1.0)) / kPi);
+  return fb.returns(ir::call(light, with(args({P, d}), uv)));
 }
 
 namespace {
@@ -180,7 +216,7 @@ namespace {
 // channel only through k_d and k_s.
 bool by_lobe(const PovShading& sh) {
   const MaterialProgram& p = sh.program;
-  if (!sh.dependent) return false;
+  if (!sh.dependent || sh.textured()) return false;  // k_d, k_s from an image are no colour map's
   for (const auto& lobe : {p.diffuse, p.specular})
     if (lobe && (lobe->result_type() != ir::Type::Float || sh.printer.channel_dependent(lobe))) return false;
   return true;
@@ -254,8 +290,9 @@ std::string PovScene::functions(bool objects) {
   }
   for (const auto& sh : shadings_)
     for (const auto& f : ir::dependencies(reflect_roots(*sh, objects)))
-      if (is_scaffold(*f)) frames += sh->printer.function(f);
-  return render_template("pov/functions.pov", {{"constants", constants}, {"terms", terms}, {"frames", frames}});
+      if (is_scaffold(*f) && !is_declared(*f)) frames += sh->printer.function(f);
+  return render_template("pov/functions.pov", {{"constants", constants}, {"terms", terms},
+                                               {"frames", texture_declarations() + frames}});
 }
 
 // Mesh o's data functions (pov_mesh.h, on the function route) and its include

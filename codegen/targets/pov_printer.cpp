@@ -119,9 +119,16 @@ ir::Expr var(const std::string& name) {
   return ir::Expr(NodePtr(n));
 }
 
+namespace {
+const char* const kDeclaredDoc = "(declared in the scene's SDL)";
+}
+
+bool is_declared(const ir::Function& f) { return f.doc == kDeclaredDoc; }
+
 ir::FunctionPtr declared(const std::string& name, size_t params) {
   auto f = std::make_shared<ir::Function>();
   f->name = name;
+  f->doc = kDeclaredDoc;
   for (size_t i = 0; i < params; ++i) f->params.push_back({"p" + std::to_string(i), Type::Float});
   return f;
 }

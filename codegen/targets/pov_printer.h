@@ -37,6 +37,7 @@ std::string pov_rgb(const std::array<double, 3>& c);    // <r, g, b>
 bool is_scaffold(const ir::Function& f);
 ir::Expr var(const std::string& name);                            // a parameter or SDL identifier
 ir::FunctionPtr declared(const std::string& name, size_t params);  // a function declared elsewhere
+bool is_declared(const ir::Function& f);                            // made by declared(): never printed
 
 // `n` with channel `ch` of its colour literals, rewritten where POV-Ray's
 // double arithmetic (IEEE 754) gives the same value:

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <functional>
+#include <map>
 #include <memory>
 #include <set>
 #include <string>
@@ -12,6 +13,7 @@
 #include "scene/scene.h"
 #include "targets/pov_mesh.h"
 #include "targets/pov_printer.h"
+#include "targets/pov_texture.h"
 #include "targets/targets.h"
 
 namespace facet::targets {
@@ -38,6 +40,10 @@ struct PovShading {
     std::vector<ir::FunctionPtr> lights;  // {P}Facet_Light{i}{suffix}
   };
   std::vector<Lobe> lobes;
+  // Textured parameters (pov_texture.h): input name → Facet_Sample_<name>(S, T) and the
+  // coordinate set it reads. Non-empty: the scaffolding's functions take S0, T0, S1, T1.
+  std::map<std::string, std::pair<ir::FunctionPtr, int>> samples;
+  bool textured() const { return !samples.empty(); }
   int channels() const { return dependent ? 3 : 1; }
   std::string suffix(int ch) const;
   RGB emission(const Scene& s) const;  // m_a ⊗ A + m_e
@@ -88,6 +94,7 @@ class PovScene {
   std::string native();
   // pov_functions.cpp
   void build_scaffolding();
+  std::string texture_declarations() const;
   ir::FunctionPtr reflect_function(PovShading& sh, const ir::FunctionPtr& reflectance, const std::string& suffix);
   ir::FunctionPtr light_function(PovShading& sh, size_t i, const ir::FunctionPtr& reflect, const std::string& suffix);
   ir::FunctionPtr object_function(size_t o, size_t i, const ir::FunctionPtr& light, const std::string& suffix);
@@ -118,6 +125,8 @@ class PovScene {
   std::vector<std::vector<std::vector<ir::FunctionPtr>>> objects_;
   std::string stem_;
   std::vector<PovMeshData> data_;      // [o]: a mesh's data image on the function route
+  std::vector<PovTexture> textures_;   // the images textured parameters read
+  void register_textures();
   std::vector<bool> table_;            // [o]: a mesh drawn through slope tables (fast route)
   std::set<std::string> declared_tables_;
   std::vector<PovFile> files_;

@@ -83,6 +83,16 @@ std::string describe_material(const Material& m, const std::string& marker) {
   return s;
 }
 
+void require_untextured(const Material& m, const std::string& target) {
+  MaterialProgram p = compile(m);
+  if (!p.has_textures()) return;
+  std::vector<Diagnostic> d;
+  for (const auto& t : p.textured)
+    d.push_back({m.source.empty() ? m.name : m.source, t.key,
+                 "an image texture, which the " + target + " target does not sample yet (GLSL does; docs/textures.md)"});
+  throw InputError(d);
+}
+
 std::string generate(const Material& m, const GenerateOptions& o) {
   switch (o.target) {
     case Target::Glsl:

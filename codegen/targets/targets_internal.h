@@ -16,6 +16,10 @@ namespace facet {
 std::string describe_material(const Material& m, const std::string& marker);
 std::string describe_lobe(const ModelSpec& s);
 
+// Throws InputError naming each textured parameter of `m` (file and key) for a target
+// that does not sample images yet.
+void require_untextured(const Material& m, const std::string& target);
+
 std::string generate_glsl(const Material& m, const GenerateOptions& o);
 std::string generate_osl(const Material& m, const GenerateOptions& o);
 std::string generate_pov(const Material& m, const GenerateOptions& o);

@@ -4,7 +4,7 @@
 
 // ---- Material constants
 {{constants}}
-// ---- Terms (one function per term of the model catalog)
+{{textures}}// ---- Terms (one function per term of the model catalog)
 
 {{functions}}
 // MODELS.md tangent rule: t = normalize(axis × n), or x̂ × n where |axis × n| < ε.

@@ -10,7 +10,7 @@ void main()
 #else
     vec3 t = facet_tangent(n);
 #endif
-    facet_color = vec4(facet_shade(facet_position, n, v, t), 1.0);
+{{sample}}    facet_color = vec4(facet_shade(facet_position, n, v, t), 1.0);
 }
 
 // This standalone shader casts no shadows; an engine puts its shadow lookup here.

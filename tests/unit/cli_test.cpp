@@ -110,6 +110,43 @@ TEST(Cli, AFailedWriteLeavesThePreviousOutputIntactAndNoTemporary) {
   EXPECT_FALSE(fs::exists(dir / "scene_mesh0.inc"));
 }
 
+// A textured material generates GLSL and OSL that sample its images, and a POV-Ray scene
+// with its images beside it; on a mesh POV-Ray does not sample images yet (issue 12) and
+// refuses it naming the file and each textured key, exit 1, writing nothing.
+TEST(Cli, TexturedMaterialsGenerateForEveryTarget) {
+  const std::string material = (kSource / "examples/textured/textured_ggx.json").string();
+  fs::path frag = scratch("textured.frag");
+  ProcessResult ok = facet({"generate", material, "--target", "glsl", "-o", frag.string()});
+  ASSERT_EQ(ok.exit_code, 0) << ok.output;
+  std::string code = read_file(frag.string());
+  EXPECT_NE(code.find("uniform sampler2D facet_texture_specular_alpha;"), std::string::npos);
+  EXPECT_NE(code.find("facet_sample_textures(facet_texcoord0, facet_texcoord1);"), std::string::npos);
+  ProcessResult osl = facet({"generate", material, "--target", "osl", "-o", scratch("textured.osl").string()});
+  ASSERT_EQ(osl.exit_code, 0) << osl.output;
+  EXPECT_NE(read_file(scratch("textured.osl").string()).find("string facet_texture_specular_alpha = \""),
+            std::string::npos);
+  const fs::path dir = scratch("textured_pov");
+  fs::create_directories(dir);
+  ProcessResult pov = facet({"generate", material, "--target", "pov", "-o", (dir / "t.pov").string()});
+  ASSERT_EQ(pov.exit_code, 0) << pov.output;
+  EXPECT_TRUE(fs::exists(dir / "t_texture0.ppm"));
+  EXPECT_TRUE(fs::exists(dir / "t_texture1.ppm"));
+  // On a mesh: refused.
+  const fs::path scene = scratch("textured_mesh.json");
+  write_file_atomic(scene.string(), R"({"camera": {"position": [0, 0, 4], "look_at": [0, 0, 0]},
+    "lights": [{"type": "point", "position": [2, 2, 2]}],
+    "objects": [{"type": "mesh", "name": "tri", "positions": [[0, 0, 0], [1, 0, 0], [0, 1, 0]],
+                 "normals": [[0, 0, 1], [0, 0, 1], [0, 0, 1]], "triangles": [[0, 1, 2]]}]})");
+  const fs::path out = scratch("textured_mesh.pov");
+  ProcessResult r = facet({"generate", material, "--scene", scene.string(), "--target", "pov", "-o", out.string()});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.output.find("textured_ggx.json"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("diffuse.color"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("specular.alpha"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("tri"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(out));
+}
+
 TEST(Cli, GenerateWritesTheFile) {
   fs::path out = scratch("lambert.frag");
   fs::remove(out);

@@ -35,10 +35,11 @@ struct Fixture {
   RenderJob job;
 };
 
-Fixture fixture(const std::string& example, const std::string& renderer) {
+Fixture fixture(const std::string& example, const std::string& renderer, const std::string& folder = "materials",
+                const std::string& scene = "single") {
   Fixture f;
-  f.material = load_material((kSource / "examples/materials" / (example + ".json")).string());
-  f.scene = load_scene("single");
+  f.material = load_material((kSource / "examples" / folder / (example + ".json")).string());
+  f.scene = load_scene(scene);
   f.reference = render_reference(f.material, f.scene, kSize, kSize);
   f.job.material = f.material;
   f.job.scene = f.scene;
@@ -79,6 +80,43 @@ TEST(Detection, GlslExponentOffByOneFails) {
   ComparisonRow bad = judged(f, gl.render(f.job));
   EXPECT_FALSE(bad.pass) << "max |Δ|/max(1,|ref|) " << bad.metrics.max_excess;
   EXPECT_GT(bad.metrics.over, 0u);
+}
+
+// docs/textures.md's sampling rule, each part made wrong in the generated GLSL: the
+// picture upside down (v up, as OpenGL's texture() and Blender's UV maps have it),
+// lookups half a texel off (texel corners taken for centres), sRGB not decoded.
+// Every one fails on the textured examples (sphere and square), the right code passes.
+TEST(Detection, GlslTextureConventionsFailWhenWrong) {
+  GlRenderer gl;
+  ASSERT_TRUE(gl.ok()) << gl.error();
+  struct Wrong {
+    const char* what;
+    const char* from;
+    const char* to;
+    const char* only;  // the example whose filter the fault is in, or null for both
+  };
+  const Wrong wrongs[] = {
+      {"v flipped", "vec2 x = uv * vec2(size);", "vec2 x = vec2(uv.x, 1.0 - uv.y) * vec2(size);", nullptr},
+      {"bilinear half a texel off", "    x -= 0.5;\n", "\n", "textured_ggx"},
+      {"nearest half a texel off", "int(floor(x.x)), int(floor(x.y))", "int(floor(x.x - 0.5)), int(floor(x.y - 0.5))",
+       "textured_lambert"},
+      {"sRGB not decoded", "return srgb ? facet_srgb_decode(c) : c;", "return c;", nullptr},
+  };
+  for (const char* example : {"textured_lambert", "textured_ggx"}) {
+    Fixture f = fixture(example, "glsl", "textured", "shadows");
+    std::string good = GlRenderer::fragment_source(f.material);
+    f.job.code_override = good;
+    ComparisonRow right = judged(f, gl.render(f.job));
+    EXPECT_TRUE(right.pass) << example << ": " << right.metrics.max_excess;
+    for (const auto& w : wrongs) {
+      if (w.only && std::string(example) != w.only) continue;
+      f.job.code_override = inject(good, w.from, w.to);
+      ComparisonRow bad = judged(f, gl.render(f.job));
+      EXPECT_FALSE(bad.pass) << example << ", " << w.what << ": max |Δ|/max(1,|ref|) " << bad.metrics.max_excess;
+      std::cout << example << ", " << w.what << ": " << bad.metrics.over << " pixels over, worst "
+                << bad.metrics.max_excess << "\n";
+    }
+  }
 }
 
 TEST(Detection, GlslMissingPiFails) {
@@ -163,6 +201,40 @@ TEST(Detection, PovMeshDataConventionsFailWhenWrong) {
   }
 }
 
+// The same three faults in POV-Ray's texture functions (pov_texture.h): the file's rows
+// counted from the bottom (POV-Ray's y up taken for glTF's v), lookups half a texel off,
+// sRGB not decoded. And a measured convention made wrong: the texel read at the image's
+// row J instead of J + 1, forgetting the row of zeros on top.
+TEST(Detection, PovTextureConventionsFailWhenWrong) {
+  for (const char* example : {"textured_lambert", "textured_ggx"}) {
+    Fixture f = fixture(example, "pov", "textured", "shadows");
+    // Named as the renderer names its files, so the code read back finds its images.
+    PovOutput pov = generate_pov_files(f.scene, &f.material, example, PovRoute::Auto, job_name(f.job));
+    f.job.code_override = pov.code;
+    ComparisonRow right = judged(f, render_one("pov", f.job));
+    EXPECT_TRUE(right.pass) << example << ": " << right.metrics.max_excess;
+    const bool bilinear = std::string(example) == "textured_ggx";
+    struct Wrong {
+      const char* what;
+      std::string code;
+    };
+    const Wrong wrong[] = {
+        {"v flipped", inject_all(pov.code, ", 1 - (", ", (")},
+        {"half a texel off", bilinear ? inject_all(pov.code, "*8 - 0.5", "*8")
+                                      : inject_all(pov.code, "floor(S*8), floor(T*8)", "floor(S*8 - 0.5), floor(T*8 - 0.5)")},
+        {"sRGB not decoded", inject_all(pov.code, "Facet_Srgb(Facet_Image", "(Facet_Image")},
+        {"the row of zeros forgotten", inject_all(pov.code, " + 1.5)/", " + 0.5)/")},
+    };
+    for (const auto& w : wrong) {
+      f.job.code_override = w.code;
+      ComparisonRow bad = judged(f, render_one("pov", f.job));
+      std::cout << example << ", " << w.what << ": " << bad.metrics.over << " pixels over, worst "
+                << bad.metrics.max_excess << "\n";
+      EXPECT_FALSE(bad.pass) << example << ", " << w.what << ": " << bad.metrics.max_excess;
+    }
+  }
+}
+
 // The benchmark's 32,196-triangle scene with Lambert + Ward: before the data images began
 // with a row of zeros, its torus's began with the byte 13, which POV-Ray's PPM reader
 // took for the end of the header's line ("Unexpected EOF in PPM file").
@@ -234,6 +306,51 @@ TEST(Detection, OslMeshOnBlendersNormalsFails) {
             << "\n";
   EXPECT_TRUE(ok.pass) << "max |Δ|/max(1,|ref|) " << ok.metrics.max_excess;
   EXPECT_FALSE(bad.pass) << "max |Δ|/max(1,|ref|) " << bad.metrics.max_excess;
+}
+
+// The same three faults in the generated OSL (docs/textures.md): Blender's v taken for
+// glTF's, texel corners for centres, sRGB not decoded; one Blender process renders the
+// right shader and the three wrong ones of each example on the shadows scene.
+TEST(Detection, OslTextureConventionsFailWhenWrong) {
+  struct Wrong {
+    const char* what;
+    const char* from;
+    const char* to;
+    const char* only;
+  };
+  const Wrong wrongs[] = {
+      {"v flipped", "t0 = 1 - facet_uv0[1];", "t0 = facet_uv0[1];", nullptr},
+      {"bilinear half a texel off", "    x -= 0.5;\n    y -= 0.5;\n", "", "textured_ggx"},
+      {"nearest half a texel off", "(int)floor(x), (int)floor(y)", "(int)floor(x - 0.5), (int)floor(y - 0.5)",
+       "textured_lambert"},
+      {"sRGB not decoded", "return srgb ? facet_srgb_decode(c) : c;", "return c;", nullptr},
+  };
+  for (const char* example : {"textured_lambert", "textured_ggx"}) {
+    Fixture f = fixture(example, "osl", "textured", "shadows");
+    GenerateOptions o;
+    o.target = Target::Osl;
+    o.scene = f.scene;
+    const std::string good = generate(f.material, o);
+    std::vector<RenderJob> jobs = {f.job};
+    jobs[0].code_override = good;
+    std::vector<std::string> names = {"right"};
+    for (const auto& w : wrongs) {
+      if (w.only && std::string(example) != w.only) continue;
+      jobs.push_back(f.job);
+      jobs.back().code_override = inject(good, w.from, w.to);
+      jobs.back().material->name = fmt::format("{}_wrong_{}", example, jobs.size());
+      names.push_back(w.what);
+    }
+    std::vector<RenderOutcome> r = make_renderer("osl")->render(jobs);
+    ASSERT_EQ(r.size(), jobs.size());
+    for (size_t k = 0; k < r.size(); ++k) {
+      ComparisonRow row = judged(f, r[k]);
+      std::cout << example << ", " << names[k] << ": " << row.metrics.over << " pixels over, worst "
+                << row.metrics.max_excess << "\n";
+      if (k == 0) EXPECT_TRUE(row.pass) << example << ": " << row.metrics.max_excess;
+      else EXPECT_FALSE(row.pass) << example << ", " << names[k] << ": " << row.metrics.max_excess;
+    }
+  }
 }
 
 TEST(Detection, OslMissingPiAndExponentOffByOneFail) {

@@ -353,11 +353,19 @@ def add_camera(bpy, scene, camera, frame):
     scene.camera = obj
 
 
+# Object.pass_index of each kind of shape: FACET_UV_OSL tells them apart by it.
+SPHERE_INDEX, SQUARE_INDEX, MESH_INDEX = 1, 2, 3
+
+
 def add_sphere(bpy, scene, obj_desc, material, index):
-    """An analytic sphere: a one-vertex mesh -> Geometry Nodes "Mesh to Points"."""
+    """An analytic sphere: a one-vertex mesh -> Geometry Nodes "Mesh to Points".
+    The vertex is the object's origin and the object sits at the centre, so that object
+    space is centred on the sphere (FACET_UV_OSL's texture coordinates)."""
     mesh = bpy.data.meshes.new(f"facet_sphere_{index}")
-    mesh.from_pydata([to_blender(obj_desc["center"])], [], [])
+    mesh.from_pydata([(0.0, 0.0, 0.0)], [], [])
     obj = bpy.data.objects.new(obj_desc.get("name") or f"sphere_{index}", mesh)
+    obj.location = to_blender(obj_desc["center"])
+    obj.pass_index = SPHERE_INDEX
     scene.collection.objects.link(obj)
 
     tree = bpy.data.node_groups.new(f"facet_sphere_{index}", "GeometryNodeTree")
@@ -376,13 +384,24 @@ def add_sphere(bpy, scene, obj_desc, material, index):
 
 
 def add_plane(bpy, scene, obj_desc, material, index):
-    """A single quad facing `normal`."""
-    corners = plane_corners(obj_desc["point"], obj_desc["normal"], float(obj_desc.get("size", PLANE_SIZE)))
+    """A single quad facing `normal`: the corners (±1, ±1, 0) of object space, whose
+    axes are the square's own a, b (scaled by the half-side) and n, its origin the
+    square's point (FACET_UV_OSL's texture coordinates)."""
+    from mathutils import Matrix
+    size = float(obj_desc.get("size", PLANE_SIZE))
+    corners = plane_corners(obj_desc["point"], obj_desc["normal"], size)
+    p = vec(obj_desc["point"])
+    a = vec(to_blender((corners[1] - corners[0]) / (2 * size)))
+    b = vec(to_blender((corners[3] - corners[0]) / (2 * size)))
+    n = np.cross(a, b)
+    origin = vec(to_blender(p))
     mesh = bpy.data.meshes.new(f"facet_plane_{index}")
-    mesh.from_pydata([to_blender(c) for c in corners], [], [(0, 1, 2, 3)])
+    mesh.from_pydata([(-1.0, -1.0, 0.0), (1.0, -1.0, 0.0), (1.0, 1.0, 0.0), (-1.0, 1.0, 0.0)], [], [(0, 1, 2, 3)])
     mesh.update()
     mesh.materials.append(material)
     obj = bpy.data.objects.new(obj_desc.get("name") or f"plane_{index}", mesh)
+    obj.matrix_world = Matrix([[a[k] * size, b[k] * size, n[k], origin[k]] for k in range(3)] + [[0.0, 0.0, 0.0, 1.0]])
+    obj.pass_index = SQUARE_INDEX
     scene.collection.objects.link(obj)
 
 
@@ -407,6 +426,7 @@ def add_mesh(bpy, scene, obj_desc, material, index):
     attribute.data.foreach_set("vector", np.asarray(normals, dtype=np.float32).ravel())
     mesh.materials.append(material)
     obj = bpy.data.objects.new(obj_desc.get("name") or f"mesh_{index}", mesh)
+    obj.pass_index = MESH_INDEX
     scene.collection.objects.link(obj)
 
 
@@ -469,6 +489,49 @@ def enable_oslquery(bpy):
     import oslquery  # noqa: F401,F811  (raises ImportError with Python's words if still missing)
 
 
+# The built-in shapes' texture coordinates (docs/textures.md) for a textured material's
+# facet_uv0/facet_uv1 inputs, in Blender's UV convention (v up; the shader takes t = 1 − v),
+# from the shading point in object space (add_sphere, add_plane). Facet's (x, y, z) is
+# Blender's (x, −z, y).
+FACET_UV_OSL = """\
+shader facet_uv(float kind = 0, vector mesh_uv = 0, output vector uv = 0)
+{
+    point q = transform("object", P);
+    if (kind == %d) {
+        vector d = normalize(q);
+        float x = d[0], y = d[2], z = -d[1];
+        uv = vector(0.5 + atan2(x, z) / M_2PI, 1 - acos(clamp(y, -1, 1)) / M_PI, 0);
+    } else if (kind == %d) {
+        uv = vector(0.5 + q[0] / 2, 0.5 + q[1] / 2, 0);
+    } else {
+        uv = mesh_uv;
+    }
+}
+""" % (SPHERE_INDEX, SQUARE_INDEX)
+
+
+def link_texture_coordinates(bpy, nt, script):
+    """FACET_UV_OSL in a Script node of its own, fed the object's kind (Object Info's
+    pass index) and the mesh's UV map, linked to the shader's facet_uv0 and facet_uv1."""
+    import cycles.osl
+    path = os.path.join(tempfile.gettempdir(), "facet_uv.osl")
+    with open(path, "w") as f:
+        f.write(FACET_UV_OSL)
+    node = nt.nodes.new("ShaderNodeScript")
+    node.mode = "INTERNAL"
+    node.script = bpy.data.texts.load(path, internal=False)
+    reports = []
+    if not cycles.osl.update_script_node(node, lambda kind, message: reports.append(message)) or "uv" not in node.outputs:
+        return "the harness's texture coordinate shader did not compile: " + "; ".join(reports)
+    info = nt.nodes.new("ShaderNodeObjectInfo")
+    nt.links.new(info.outputs["Object Index"], node.inputs["kind"])
+    uvmap = nt.nodes.new("ShaderNodeUVMap")
+    nt.links.new(uvmap.outputs["UV"], node.inputs["mesh_uv"])
+    for name in ("facet_uv0", "facet_uv1"):
+        nt.links.new(node.outputs["uv"], script.inputs[name])
+    return ""
+
+
 def compile_material(bpy, material, osl_path):
     """Replaces the material's nodes with a Script node compiled from `osl_path`.
 
@@ -523,6 +586,8 @@ def compile_material(bpy, material, osl_path):
         attribute = nt.nodes.new("ShaderNodeAttribute")
         attribute.attribute_name = "facet_normal"
         nt.links.new(attribute.outputs["Vector"], script.inputs["facet_normal"])
+    if "facet_uv0" in script.inputs:  # a textured material
+        return link_texture_coordinates(bpy, nt, script)
     return ""
 
 

@@ -17,6 +17,7 @@ uniform vec4 facet_object_axis[FACET_MAX_OBJECTS];   // square: the in-plane axi
 uniform int facet_object_shaded[FACET_MAX_OBJECTS];  // 1: shaded in this pass
 uniform samplerBuffer facet_bvh;        // 2 texels a node: (lo, right child or first triangle), (hi, count)
 uniform samplerBuffer facet_triangles;  // 6 texels a triangle: p0, p1, p2, n0, n1, n2
+uniform samplerBuffer facet_texcoords;  // 3 texels a triangle: vertex k's (uv set 0, uv set 1)
 uniform float facet_shadow_offset;      // shadow rays start this far out
 out vec4 facet_color;
 
@@ -136,6 +137,30 @@ float facet_visibility(vec3 p, vec3 l, float d)
     return 1.0;
 }
 
+// docs/textures.md: texture coordinates set `set` at p. A sphere's: longitude from +z
+// towards +x, latitude from the +y pole (v = 0 at the top); a square's: along its axes,
+// [0, 1]² edge to edge, v down the second axis; a mesh's: its vertices', blended
+// barycentrically.
+vec2 facet_uv(int i, vec3 p, FacetHit h, int set)
+{
+    float kind = facet_object_normal[i].w;
+    vec4 s = facet_object_shape[i];
+    if (kind == {{sphere}}.0) {
+        vec3 d = (p - s.xyz) / s.w;
+        return vec2(0.5 + atan(d.x, d.z) / (2.0 * PI), acos(clamp(d.y, -1.0, 1.0)) / PI);
+    }
+    if (kind == {{square}}.0) {
+        vec3 a = facet_object_axis[i].xyz;
+        vec3 b = cross(facet_object_normal[i].xyz, a);
+        vec3 q = p - s.xyz;
+        return vec2(0.5 + dot(q, a) / (2.0 * s.w), 0.5 - dot(q, b) / (2.0 * s.w));
+    }
+    int t = h.triangle * 3;
+    vec4 t0 = texelFetch(facet_texcoords, t), t1 = texelFetch(facet_texcoords, t + 1), t2 = texelFetch(facet_texcoords, t + 2);
+    vec4 st = t0 * (1.0 - h.uv.x - h.uv.y) + t1 * h.uv.x + t2 * h.uv.y;
+    return set == 0 ? st.xy : st.zw;
+}
+
 void main()
 {
     vec2 ndc = 2.0 * gl_FragCoord.xy / facet_resolution - 1.0;
@@ -171,5 +196,5 @@ void main()
                       + texelFetch(facet_triangles, t + 4).xyz * best.uv.x
                       + texelFetch(facet_triangles, t + 5).xyz * best.uv.y);
     }
-    facet_color = vec4(facet_shade(p, n, -dir, facet_tangent(n)), 1.0);
+{{sample}}    facet_color = vec4(facet_shade(p, n, -dir, facet_tangent(n)), 1.0);
 }

@@ -1,0 +1,280 @@
+#include "catalog/texture.h"
+
+#include <cmath>
+#include <filesystem>
+
+#include <fmt/format.h>
+
+#include "core/io.h"
+
+namespace facet {
+
+using nlohmann::json;
+
+namespace {
+
+const std::vector<std::string> kKeys = {"texture", "channel", "uv", "transform", "colorspace",
+                                        "filter", "wrap", "factor"};
+const std::vector<std::string> kTransformKeys = {"offset", "scale", "rotation"};
+const std::vector<std::string> kWraps = {"repeat", "clamp", "mirror"};
+
+std::string quoted(const std::vector<std::string>& xs) {
+  std::string s;
+  for (size_t i = 0; i < xs.size(); ++i) s += (i ? ", \"" : "\"") + xs[i] + "\"";
+  return s;
+}
+
+// Reads the keys of a texture object one by one, each problem at its key path.
+class TextureReader {
+ public:
+  TextureReader(const json& j, const std::string& path, const ParamDef& p, DiagnosticSink& sink)
+      : j_(j), path_(path), p_(p), sink_(sink) {}
+
+  std::optional<Value> read() {
+    for (const auto& [key, val] : j_.items())
+      if (std::find(kKeys.begin(), kKeys.end(), key) == kKeys.end()) {
+        std::string hint = suggest(key, kKeys);
+        error(key, fmt::format("unknown key of a texture{}; allowed keys: {}",
+                               hint.empty() ? "" : " (did you mean \"" + hint + "\"?)", quoted(kKeys)));
+      }
+    const bool color = p_.kind == ParamKind::Color;
+    ref_.channel = choice("channel", color ? std::vector<std::string>{"rgb", "r", "g", "b", "a"}
+                                           : std::vector<std::string>{"r", "g", "b", "a"},
+                          color ? "rgb" : "r");
+    ref_.colorspace = choice("colorspace", {"srgb", "linear"}, color ? "srgb" : "linear");
+    ref_.sampler.srgb = ref_.colorspace == "srgb";
+    ref_.sampler.filter = choice("filter", {"nearest", "bilinear"}, "bilinear") == "nearest" ? TextureFilter::Nearest
+                                                                                              : TextureFilter::Bilinear;
+    wrap();
+    uv_set();
+    transform();
+    Value out;
+    out.kind = p_.kind;
+    out.rgb = {1, 1, 1};
+    out.number = 1;
+    factor(out);
+    image();
+    if (!ok_) return std::nullopt;
+    out.texture = std::make_shared<TextureRef>(ref_);
+    return out;
+  }
+
+ private:
+  void error(const std::string& key, const std::string& message) {
+    sink_.error(key.empty() ? path_ : join_path(path_, key), message);
+    ok_ = false;
+  }
+
+  std::string choice(const std::string& key, const std::vector<std::string>& allowed, const std::string& fallback) {
+    auto it = j_.find(key);
+    if (it == j_.end()) return fallback;
+    if (!it->is_string() || std::find(allowed.begin(), allowed.end(), it->get<std::string>()) == allowed.end()) {
+      error(key, fmt::format("expected one of {}, found {}", quoted(allowed), it->dump()));
+      return fallback;
+    }
+    return it->get<std::string>();
+  }
+
+  TextureWrap wrap_of(const json& v, const std::string& key) {
+    if (v.is_string())
+      for (size_t i = 0; i < kWraps.size(); ++i)
+        if (v.get<std::string>() == kWraps[i]) return TextureWrap(i);
+    error(key, fmt::format("expected one of {} (or [u, v] of them), found {}", quoted(kWraps), v.dump()));
+    return TextureWrap::Repeat;
+  }
+
+  void wrap() {
+    auto it = j_.find("wrap");
+    if (it == j_.end()) return;
+    if (it->is_array() && it->size() == 2) {
+      ref_.sampler.wrap = {wrap_of((*it)[0], "wrap[0]"), wrap_of((*it)[1], "wrap[1]")};
+    } else {
+      TextureWrap w = wrap_of(*it, "wrap");
+      ref_.sampler.wrap = {w, w};
+    }
+  }
+
+  void uv_set() {
+    auto it = j_.find("uv");
+    if (it == j_.end()) return;
+    if (!it->is_number_integer() || (it->get<int64_t>() != 0 && it->get<int64_t>() != 1)) {
+      error("uv", fmt::format("expected the texture coordinate set 0 or 1, found {}", it->dump()));
+      return;
+    }
+    ref_.uv = it->get<int>();
+  }
+
+  bool finite(const json& v) { return v.is_number() && std::isfinite(v.get<double>()); }
+
+  void pair(const json& t, const std::string& key, std::array<double, 2>& out) {
+    auto it = t.find(key);
+    if (it == t.end()) return;
+    if (!it->is_array() || it->size() != 2 || !finite((*it)[0]) || !finite((*it)[1])) {
+      error("transform." + key, fmt::format("expected two finite numbers [u, v], found {}", it->dump()));
+      return;
+    }
+    out = {(*it)[0].get<double>(), (*it)[1].get<double>()};
+  }
+
+  void transform() {
+    auto it = j_.find("transform");
+    if (it == j_.end()) return;
+    if (!it->is_object()) {
+      error("transform", fmt::format("expected an object with keys {}, found {}", quoted(kTransformKeys), it->dump()));
+      return;
+    }
+    for (const auto& [key, val] : it->items())
+      if (std::find(kTransformKeys.begin(), kTransformKeys.end(), key) == kTransformKeys.end())
+        error("transform." + key, "unknown key; allowed keys: " + quoted(kTransformKeys));
+    pair(*it, "offset", ref_.offset);
+    pair(*it, "scale", ref_.scale);
+    auto r = it->find("rotation");
+    if (r != it->end()) {
+      if (!finite(*r)) error("transform.rotation", "expected a finite number (radians), found " + r->dump());
+      else ref_.rotation = r->get<double>();
+    }
+  }
+
+  // A number (any parameter) or a colour (colour parameters), each ≥ 0 and finite.
+  void factor(Value& out) {
+    auto it = j_.find("factor");
+    if (it == j_.end()) return;
+    auto one = [&](const json& v, const std::string& key, double& into) {
+      if (!finite(v) || v.get<double>() < 0) {
+        error(key, fmt::format("expected a finite number ≥ 0, found {}", v.dump()));
+        return;
+      }
+      into = v.get<double>();
+    };
+    if (it->is_array() && it->size() == 3 && p_.kind == ParamKind::Color) {
+      for (size_t i = 0; i < 3; ++i) one((*it)[i], index_path("factor", i), out.rgb[i]);
+    } else if (it->is_array()) {
+      error("factor", fmt::format("expected {}, found {}", p_.kind == ParamKind::Color ? "a number or three numbers"
+                                                                                       : "a number",
+                                  it->dump()));
+    } else {
+      one(*it, "factor", out.number);
+      out.rgb = {out.number, out.number, out.number};
+    }
+  }
+
+  void image() {
+    auto it = j_.find("texture");
+    if (it == j_.end()) {
+      error("texture", "missing; a texture names its image file (relative to this file's folder)");
+      return;
+    }
+    if (!it->is_string() || it->get<std::string>().empty()) {
+      error("texture", fmt::format("expected the image's file name, found {}", it->dump()));
+      return;
+    }
+    ref_.file = it->get<std::string>();
+    std::filesystem::path f(ref_.file);
+    ref_.path = f.is_absolute() ? f.string() : (std::filesystem::path(sink_.file()).parent_path() / f).string();
+    if (!ok_) return;  // decode only what is otherwise valid
+    try {
+      ref_.texels = load_texels(ref_.path);
+    } catch (const IoError& e) {
+      error("texture", e.what());
+    }
+  }
+
+  const json& j_;
+  std::string path_;
+  const ParamDef& p_;
+  DiagnosticSink& sink_;
+  TextureRef ref_;
+  bool ok_ = true;
+};
+
+}  // namespace
+
+std::array<double, 2> TextureRef::transform(double u, double v) const {
+  const double c = std::cos(rotation), s = std::sin(rotation);
+  const double su = scale[0] * u, sv = scale[1] * v;
+  return {c * su + s * sv + offset[0], -s * su + c * sv + offset[1]};
+}
+
+std::array<double, 2> texture_bounds(const Range& r) {
+  double lo = std::isfinite(r.min) ? r.min + (r.min_open ? kTextureOpenMargin : 0.0) : -HUGE_VAL;
+  double hi = std::isfinite(r.max) ? r.max - (r.max_open ? kTextureOpenMargin : 0.0) : HUGE_VAL;
+  return {lo, hi};
+}
+
+std::optional<Value> parse_texture_value(const json& j, const std::string& path, const ParamDef& p,
+                                         DiagnosticSink& sink) {
+  return TextureReader(j, path, p, sink).read();
+}
+
+json texture_json(const Value& v) {
+  const TextureRef& t = *v.texture;
+  static const char* wraps[] = {"repeat", "clamp", "mirror"};
+  json j = {{"texture", t.file},
+            {"channel", t.channel},
+            {"uv", t.uv},
+            {"colorspace", t.colorspace},
+            {"filter", t.sampler.filter == TextureFilter::Nearest ? "nearest" : "bilinear"}};
+  j["wrap"] = t.sampler.wrap[0] == t.sampler.wrap[1]
+                  ? json(wraps[int(t.sampler.wrap[0])])
+                  : json::array({wraps[int(t.sampler.wrap[0])], wraps[int(t.sampler.wrap[1])]});
+  if (t.has_transform()) j["transform"] = {{"offset", t.offset}, {"scale", t.scale}, {"rotation", t.rotation}};
+  const bool grey = v.rgb[0] == v.rgb[1] && v.rgb[1] == v.rgb[2];
+  j["factor"] = v.kind == ParamKind::Color && !grey ? json(v.rgb) : json(v.rgb[0]);
+  return j;
+}
+
+static json texture_schema_body(bool color) {
+  json wrap = {{"enum", kWraps}};
+  json channels = color ? json::array({"rgb", "r", "g", "b", "a"}) : json::array({"r", "g", "b", "a"});
+  json factor = {{"type", "number"}, {"minimum", 0}};
+  if (color)
+    factor = {{"oneOf", json::array({factor, {{"type", "array"}, {"items", factor}, {"minItems", 3}, {"maxItems", 3}}})}};
+  json pair = {{"type", "array"}, {"items", {{"type", "number"}}}, {"minItems", 2}, {"maxItems", 2}};
+  return {{"type", "object"},
+          {"description", "the value from an image: clamp(factor ⊗ channel(sample(image, uv)), the parameter's range)"},
+          {"required", json::array({"texture"})},
+          {"additionalProperties", false},
+          {"properties",
+           {{"texture", {{"type", "string"}, {"minLength", 1}, {"description", "image file, relative to this file"}}},
+            {"channel", {{"enum", channels}, {"default", color ? "rgb" : "r"}}},
+            {"uv", {{"enum", json::array({0, 1})}, {"default", 0}}},
+            {"colorspace", {{"enum", json::array({"srgb", "linear"})}, {"default", color ? "srgb" : "linear"}}},
+            {"filter", {{"enum", json::array({"nearest", "bilinear"})}, {"default", "bilinear"}}},
+            {"wrap", {{"oneOf", json::array({wrap, {{"type", "array"}, {"items", wrap}, {"minItems", 2}, {"maxItems", 2}}})}}},
+            {"factor", factor},
+            {"transform",
+             {{"type", "object"},
+              {"additionalProperties", false},
+              {"properties", {{"offset", pair}, {"scale", pair}, {"rotation", {{"type", "number"}}}}}}}}}};
+}
+
+json texture_schema(bool color) { return {{"$ref", color ? "#/$defs/texture_color" : "#/$defs/texture_number"}}; }
+
+json texture_schema_defs() {
+  return {{"texture_color", texture_schema_body(true)}, {"texture_number", texture_schema_body(false)}};
+}
+
+std::array<double, 3> texture_value(const Value& val, const Range& range, double u, double v, bool* fragile) {
+  const TextureRef& t = *val.texture;
+  auto uv = t.transform(u, v);
+  if (fragile && t.sampler.filter == TextureFilter::Nearest) {
+    const int size[2] = {t.texels->width, t.texels->height};
+    for (int k = 0; k < 2; ++k) {
+      double x = uv[size_t(k)] * size[k];
+      double to_edge = std::fabs(x - std::round(x)) / size[k];
+      if (to_edge < kTexelEdgeMargin) *fragile = true;
+    }
+  }
+  auto s = sample(*t.texels, t.sampler, uv[0], uv[1]);
+  static const std::string channels = "rgba";
+  std::array<double, 3> out{};
+  for (int k = 0; k < 3; ++k) {
+    double x = t.channel == "rgb" ? s[size_t(k)] : s[channels.find(t.channel[0])];
+    out[size_t(k)] = val.rgb[size_t(k)] * x;
+  }
+  auto b = texture_bounds(range);
+  for (double& x : out) x = std::min(std::max(x, b[0]), b[1]);
+  return out;
+}
+
+}  // namespace facet

@@ -1,0 +1,70 @@
+// facet — a material parameter that comes from an image (docs/textures.md).
+//
+//   "color": {"texture": "bricks.png", "colorspace": "srgb", "filter": "bilinear",
+//             "wrap": "repeat", "uv": 0, "channel": "rgb", "factor": [1, 1, 1],
+//             "transform": {"offset": [0, 0], "scale": [1, 1], "rotation": 0}}
+//
+// value(u, v) = clamp(factor ⊗ channel(sample(image, uv′)), the parameter's range),
+// uv′ = KHR_texture_transform's offset + R(rotation) · (scale ⊗ uv); core/texture.h
+// holds the sampling rule.
+#pragma once
+
+#include <array>
+#include <memory>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "catalog/catalog.h"
+#include "core/diagnostics.h"
+#include "core/texture.h"
+
+namespace facet {
+
+struct TextureRef {
+  std::string file;     // as the material wrote it
+  std::string path;     // resolved against the material file's folder
+  std::string channel;  // "rgb" (colours only), "r", "g", "b" or "a"
+  int uv = 0;           // the texture coordinate set: 0 or 1
+  std::array<double, 2> offset{0, 0}, scale{1, 1};
+  double rotation = 0;  // radians
+  std::string colorspace;  // "srgb" or "linear"
+  Sampler sampler;
+  std::shared_ptr<const Texels> texels;
+
+  bool has_transform() const { return offset != std::array<double, 2>{0, 0} || scale != std::array<double, 2>{1, 1} || rotation != 0; }
+  // KHR_texture_transform's uv′ (its example "the lower left quadrant, rotated clockwise
+  // 90°" fixes the rotation's sense: u′ = cos·s_u·u + sin·s_v·v + o_u, v′ = −sin·s_u·u + cos·s_v·v + o_v).
+  std::array<double, 2> transform(double u, double v) const;
+};
+
+// The value a texel maps to is clamped to the parameter's range; an open bound a
+// (as α > 0) clamps to a + kTextureOpenMargin.
+inline constexpr double kTextureOpenMargin = 1e-3;
+// The bounds a texture value is clamped to: [lo, hi] (hi may be +∞).
+std::array<double, 2> texture_bounds(const Range& r);
+
+// {"texture": …} for parameter `p` (texturable), given at `path` of a document read
+// from `file` (relative image paths are resolved against its folder). Problems go
+// to `sink`; the image is decoded here, so a missing or bad image is reported at
+// `path`.texture.
+std::optional<Value> parse_texture_value(const nlohmann::json& j, const std::string& path, const ParamDef& p,
+                                         DiagnosticSink& sink);
+// The JSON of a textured value (every key written out).
+nlohmann::json texture_json(const Value& v);
+// The JSON Schema of {"texture": …}: a $ref into the material schema's $defs, which
+// texture_schema_defs() holds.
+nlohmann::json texture_schema(bool color);
+nlohmann::json texture_schema_defs();
+
+// A nearest-filtered lookup closer than this (in texture coordinates) to a texel's edge
+// reads one texel or its neighbour as the target's rounding goes: such pixels are
+// left out of comparisons, as grazing shadow rays are.
+inline constexpr double kTexelEdgeMargin = 1e-4;
+
+// The parameter's value at texture coordinates (u, v) (the set the texture names):
+// for a Number parameter the three lanes are equal. `fragile`, if given, is set where
+// the lookup lies within kTexelEdgeMargin of a nearest-filtered texel's edge.
+std::array<double, 3> texture_value(const Value& v, const Range& range, double u, double v_, bool* fragile = nullptr);
+
+}  // namespace facet

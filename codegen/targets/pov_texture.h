@@ -1,0 +1,39 @@
+// facet — textured parameters on POV-Ray's function route (docs/textures.md).
+// Private to codegen/targets (pov.cpp, pov_functions.cpp).
+//
+// POV-Ray reads each image through `image_map`, but facet hands it its own decoded
+// texels: a binary PPM of 16 bits a channel beside the scene (k/255 and k/65535 are
+// both whole multiples of 1/65535, so every texel is exact), its alpha in a PGM where a
+// parameter reads it, each with the row of zeros on top that POV-Ray's PPM reader needs
+// (pov_mesh.h). Without `interpolate` an image_map returns the nearest texel, so read at
+// a texel's centre it returns that texel's value, and the file's row j lies at
+// y = 1 − (j + 1 + ½)/(H + 1) (POV-Ray puts the first row at the top, y = 1). The
+// texel functions Facet_Texel{k}_R, _G, _B, _A(I, J) wrap the indices and decode sRGB;
+// Facet_Sample_<parameter>(S, T) (IR, printed like every function) applies the
+// transform, the filter, the factor and the clamp.
+#pragma once
+
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "core/ir.h"
+#include "targets/texture_code.h"
+
+namespace facet::targets {
+
+struct PovTexture {
+  TextureCall call;
+  int image = 0;         // k of Facet_Texel{k}_…: the scene's images, counted from 0
+  std::string file;      // the PPM beside the scene
+  std::string alpha;     // the PGM of its alpha, or "" where no parameter reads it
+};
+
+// The declarations of texture k's image functions and texel readers.
+std::string pov_texture_declarations(const PovTexture& t);
+// The PPM (alpha: the PGM of the alpha channel) of t's texels.
+void write_pov_texture_image(std::ostream& out, const Texels& t, bool alpha);
+// Facet_Sample_<name>(S, T): the textured parameter's value at texture coordinates (S, T).
+ir::FunctionPtr pov_sample_function(const PovTexture& t);
+
+}  // namespace facet::targets

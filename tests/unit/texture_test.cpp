@@ -1,0 +1,203 @@
+// docs/textures.md: the sampling rule, written out once more by hand on small images
+// whose texels are known, and every way a texture can be given wrong.
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include "catalog/material.h"
+#include "catalog/program.h"
+#include "catalog/texture.h"
+#include "core/diagnostics.h"
+#include "core/io.h"
+#include "core/texture.h"
+#include "reference/interpreter.h"
+#include "test_support.h"
+
+namespace facet {
+namespace {
+
+namespace fs = std::filesystem;
+const fs::path kSource = FACET_SOURCE_DIR;
+
+// A 3×2 image, texel (i, j) = ((i + 1)/4, (j + 1)/4, (i + j)/8, 1): every texel distinct.
+Texels three_by_two() {
+  Texels t;
+  t.width = 3;
+  t.height = 2;
+  t.channels = 4;
+  for (int j = 0; j < 2; ++j)
+    for (int i = 0; i < 3; ++i) t.rgba.insert(t.rgba.end(), {(i + 1) / 4.0f, (j + 1) / 4.0f, (i + j) / 8.0f, 1.0f});
+  return t;
+}
+
+TEST(Texture, WrapModesOnTexelIndices) {
+  // repeat: i mod 3; clamp: [0, 2]; mirror: 0 1 2 2 1 0 0 1 2 …
+  const int repeat[] = {1, 2, 0, 1, 2, 0, 1};  // i = −2 … 4
+  const int clamp[] = {0, 0, 0, 1, 2, 2, 2};
+  const int mirror[] = {1, 0, 0, 1, 2, 2, 1};
+  for (int i = -2; i <= 4; ++i) {
+    EXPECT_EQ(wrap_index(i, 3, TextureWrap::Repeat), repeat[i + 2]) << i;
+    EXPECT_EQ(wrap_index(i, 3, TextureWrap::Clamp), clamp[i + 2]) << i;
+    EXPECT_EQ(wrap_index(i, 3, TextureWrap::Mirror), mirror[i + 2]) << i;
+  }
+}
+
+TEST(Texture, NearestReadsTheTexelUnderTheCoordinateRowZeroAtTheTop) {
+  Texels t = three_by_two();
+  Sampler s;
+  s.filter = TextureFilter::Nearest;
+  // (u, v) = (0.5, 0.25): column 1, row 0 (the top row: v grows down the picture).
+  auto c = sample(t, s, 0.5, 0.25);
+  EXPECT_DOUBLE_EQ(c[0], 0.5);
+  EXPECT_DOUBLE_EQ(c[1], 0.25);
+  c = sample(t, s, 0.99, 0.99);  // the last texel
+  EXPECT_DOUBLE_EQ(c[0], 0.75);
+  EXPECT_DOUBLE_EQ(c[1], 0.5);
+  c = sample(t, s, 1.0 / 3.0 + 1e-12, 0.0);  // just past the first column's right edge
+  EXPECT_DOUBLE_EQ(c[0], 0.5);
+}
+
+TEST(Texture, BilinearIsExactAtTexelCentresAndLinearBetweenThem) {
+  Texels t = three_by_two();
+  Sampler s;
+  s.wrap = {TextureWrap::Clamp, TextureWrap::Clamp};
+  for (int j = 0; j < 2; ++j)
+    for (int i = 0; i < 3; ++i) {
+      auto c = sample(t, s, (i + 0.5) / 3, (j + 0.5) / 2);
+      EXPECT_NEAR(c[0], (i + 1) / 4.0, 1e-7) << i << "," << j;
+      EXPECT_NEAR(c[1], (j + 1) / 4.0, 1e-7) << i << "," << j;
+    }
+  // Halfway between the centres of (0, 0) and (1, 1): the mean of the four texels.
+  auto c = sample(t, s, 1.0 / 3.0, 0.5);
+  EXPECT_NEAR(c[0], (0.25 + 0.5) / 2, 1e-7);
+  EXPECT_NEAR(c[1], (0.25 + 0.5) / 2, 1e-7);
+  EXPECT_NEAR(c[2], (0 + 1 + 1 + 2) / 32.0, 1e-7);
+}
+
+TEST(Texture, SrgbIsDecodedPerTexelBeforeTheBlend) {
+  Texels t = three_by_two();
+  Sampler s;
+  s.srgb = true;
+  s.wrap = {TextureWrap::Clamp, TextureWrap::Clamp};
+  auto c = sample(t, s, 1.0 / 3.0, 0.25);  // halfway between texels (0, 0) and (1, 0)
+  EXPECT_NEAR(c[0], (srgb_to_linear(0.25) + srgb_to_linear(0.5)) / 2, 1e-7);
+  EXPECT_NEAR(c[3], 1.0, 0);  // alpha is not decoded
+  EXPECT_DOUBLE_EQ(srgb_to_linear(0.04045), 0.04045 / 12.92);
+  EXPECT_NEAR(srgb_to_linear(0.5), std::pow(0.555 / 1.055, 2.4), 1e-15);
+}
+
+TEST(Texture, TransformFollowsKhrTextureTransformsExample) {
+  // KHR_texture_transform's README: offset [0, 1], rotation π/2, scale ½ shows "the lower
+  // left quadrant of the source image, rotated clockwise 90°": uv (0, 0) → (0, 1) (the
+  // picture's bottom-left), (1, 1) → (½, ½), (1, 0) → (0, ½).
+  TextureRef r;
+  r.offset = {0, 1};
+  r.rotation = M_PI / 2;
+  r.scale = {0.5, 0.5};
+  auto a = r.transform(0, 0), b = r.transform(1, 1), c = r.transform(1, 0);
+  EXPECT_NEAR(a[0], 0, 1e-15);
+  EXPECT_NEAR(a[1], 1, 1e-15);
+  EXPECT_NEAR(b[0], 0.5, 1e-15);
+  EXPECT_NEAR(b[1], 0.5, 1e-15);
+  EXPECT_NEAR(c[0], 0, 1e-15);
+  EXPECT_NEAR(c[1], 0.5, 1e-15);
+}
+
+TEST(Texture, ExamplesDecodeTheirImagesAndBecomeInputs) {
+  Material m = load_material((kSource / "examples/textured/textured_ggx.json").string());
+  MaterialProgram p = compile(m);
+  ASSERT_EQ(p.textured.size(), 2u);
+  // The lobes' own parameters first, then the colours k_d, k_s.
+  EXPECT_EQ(p.textured[0].key, "specular.alpha");
+  EXPECT_EQ(p.textured[1].key, "diffuse.color");
+  EXPECT_TRUE(p.uses("specular_alpha"));
+  EXPECT_TRUE(p.is_textured("diffuse_color"));
+  const Texels& t = *p.textured[0].value.texture->texels;
+  EXPECT_EQ(t.bits, 16);
+  EXPECT_EQ(t.width, 32);
+  // The reference's value is the rule's: clamp(factor ⊗ sample, range).
+  Reference ref(m);
+  ShadingInputs in;
+  ref.sample_textures({{{0.3, 0.6}, {0.3, 0.6}}}, in);
+  Sampler s = p.textured[0].value.texture->sampler;
+  EXPECT_NEAR(in.textured[0][0], sample(t, s, 0.3, 0.6)[0], 1e-15);
+}
+
+TEST(Texture, ValuesAreClampedToTheParametersRange) {
+  Range positive = Range::positive(), unit = Range::closed(0, 1);
+  EXPECT_DOUBLE_EQ(texture_bounds(positive)[0], kTextureOpenMargin);
+  EXPECT_TRUE(std::isinf(texture_bounds(positive)[1]));
+  EXPECT_DOUBLE_EQ(texture_bounds(unit)[1], 1.0);
+  // A black texel for GGX's α > 0 gives α = 0.001, not 0.
+  const std::string dir = test::scratch("texture", "").string();
+  std::string png = (fs::path(dir) / "black.png").string();
+  // 1×1 black RGB PNG.
+  const unsigned char black[] = {0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a, 0x00, 0x00, 0x00, 0x0d, 0x49, 0x48,
+                                 0x44, 0x52, 0x00, 0x00, 0x00, 0x01, 0x00, 0x00, 0x00, 0x01, 0x08, 0x02, 0x00, 0x00,
+                                 0x00, 0x90, 0x77, 0x53, 0xde, 0x00, 0x00, 0x00, 0x0c, 0x49, 0x44, 0x41, 0x54, 0x08,
+                                 0xd7, 0x63, 0x60, 0x60, 0x60, 0x00, 0x00, 0x00, 0x04, 0x00, 0x01, 0x27, 0x34, 0x27,
+                                 0x0a, 0x00, 0x00, 0x00, 0x00, 0x49, 0x45, 0x4e, 0x44, 0xae, 0x42, 0x60, 0x82};
+  write_file_atomic(png, std::string(reinterpret_cast<const char*>(black), sizeof black));
+  Material m = parse_material(nlohmann::json::parse(R"({"specular": {"model": "ggx", "alpha": {"texture": "black.png"}}})"),
+                              (fs::path(dir) / "m.json").string());
+  Reference ref(m);
+  ShadingInputs in;
+  ref.sample_textures({{{0.5, 0.5}, {0.5, 0.5}}}, in);
+  EXPECT_DOUBLE_EQ(in.textured[0][0], kTextureOpenMargin);
+}
+
+// Each bad texture is an InputError naming the material file and the key path.
+void expect_error(const std::string& material, const std::string& key, const std::string& words) {
+  const std::string dir = test::scratch("texture", "").string();
+  const std::string file = (fs::path(dir) / "bad.json").string();
+  try {
+    parse_material(nlohmann::json::parse(material), file);
+    ADD_FAILURE() << "accepted: " << material;
+  } catch (const InputError& e) {
+    ASSERT_FALSE(e.diagnostics().empty());
+    bool found = false;
+    for (const auto& d : e.diagnostics())
+      if (d.path == key && d.file == file && d.message.find(words) != std::string::npos) found = true;
+    EXPECT_TRUE(found) << material << " → " << e.what();
+  }
+}
+
+TEST(Texture, BadTexturesNameTheFileAndKey) {
+  const std::string dir = test::scratch("texture", "").string();
+  write_file_atomic((fs::path(dir) / "not_an_image.png").string(), "this is text, not a PNG");
+  write_file_atomic((fs::path(dir) / "empty.png").string(), "");
+  // PNG headers claiming 16385×16 and 16000×16000 texels: refused before anything is decoded.
+  auto header = [](int w, int h) {
+    std::string s("\x89PNG\r\n\x1a\n\0\0\0\x0d" "IHDR", 16);
+    for (int x : {w, h}) s += {char(x >> 24), char((x >> 16) & 255), char((x >> 8) & 255), char(x & 255)};
+    return s + std::string("\x08\x02\0\0\0\0\0\0\0", 9);
+  };
+  write_file_atomic((fs::path(dir) / "wide.png").string(), header(16385, 16));
+  write_file_atomic((fs::path(dir) / "huge.png").string(), header(16000, 16000));
+  auto with = [&](const std::string& value) { return fmt::format(R"({{"diffuse": {{"model": "lambert", "color": {}}}}})", value); };
+  expect_error(with(R"({"texture": "missing.png"})"), "diffuse.color.texture", "missing.png");
+  expect_error(with(R"({"texture": "not_an_image.png"})"), "diffuse.color.texture", "not an image");
+  expect_error(with(R"({"texture": "empty.png"})"), "diffuse.color.texture", "empty");
+  expect_error(with(R"({"texture": "wide.png"})"), "diffuse.color.texture", "16385×16");
+  expect_error(with(R"({"texture": "huge.png"})"), "diffuse.color.texture", "1 GiB");
+  expect_error(with(R"({"texture": ""})"), "diffuse.color.texture", "file name");
+  expect_error(with(R"({"filter": "nearest"})"), "diffuse.color.texture", "missing");
+  expect_error(with(R"({"texture": "a.png", "filter": "trilinear"})"), "diffuse.color.filter", "nearest");
+  expect_error(with(R"({"texture": "a.png", "wrap": "border"})"), "diffuse.color.wrap", "mirror");
+  expect_error(with(R"({"texture": "a.png", "wrap": ["clamp", 3]})"), "diffuse.color.wrap[1]", "repeat");
+  expect_error(with(R"({"texture": "a.png", "uv": 2})"), "diffuse.color.uv", "0 or 1");
+  expect_error(with(R"({"texture": "a.png", "factor": -1})"), "diffuse.color.factor", "≥ 0");
+  expect_error(with(R"({"texture": "a.png", "transform": {"scale": [1]}})"), "diffuse.color.transform.scale", "two");
+  expect_error(with(R"({"texture": "a.png", "transform": {"skew": 1}})"), "diffuse.color.transform.skew", "unknown");
+  expect_error(with(R"({"texture": "a.png", "colour": "srgb"})"), "diffuse.color.colour", "colorspace");
+  expect_error(R"({"specular": {"model": "ggx", "alpha": {"texture": "a.png", "channel": "rgb"}}})",
+               "specular.alpha.channel", "\"r\"");
+  // Parameters that are not shading parameters take no image.
+  expect_error(R"({"diffuse": {"model": "lambert"}, "tangent_axis": {"texture": "a.png"}})", "tangent_axis", "vector");
+}
+
+}  // namespace
+}  // namespace facet
