@@ -287,6 +287,11 @@ Inputs load_inputs(ValidateOptions& o) {
     in.materials.push_back(m);
     in.keys.push_back(identifier(m.name));
   }
+  for (const auto& s : in.scenes) {
+    if (s.has_own_materials()) check_texture_sets(s, nullptr);
+    else
+      for (const auto& m : in.materials) check_texture_sets(s, &m);
+  }
   return in;
 }
 

@@ -81,7 +81,9 @@ std::string ParamDef::allowed() const {
       return s;
     }
     case ParamKind::String: return "a non-empty string";
-    case ParamKind::Points: return nonzero ? "an array of [x, y, z], none of them zero" : "an array of [x, y, z]";
+    case ParamKind::Points:
+      if (arity == 2) return "an array of [u, v]";
+      return nonzero ? "an array of [x, y, z], none of them zero" : "an array of [x, y, z]";
     case ParamKind::Triangles: return "an array of [a, b, c], indices of distinct vertices";
     case ParamKind::Index: return by_name ? "an index (a whole number ≥ 0) or a name" : "an index (a whole number ≥ 0)";
     case ParamKind::Object: {

@@ -90,6 +90,7 @@ struct ParamDef {
   bool every_lobe = false;           // one of the parameters every diffuse and specular lobe takes (color, toon)
   bool by_name = false;              // Index: a name is allowed as well as an index
   bool texturable = false;           // Number, Color: may come from an image ({"texture": …})
+  int arity = 3;                     // Points: numbers an element (2: texture coordinates [u, v])
   std::string allowed() const;       // what the error messages say is allowed
 };
 

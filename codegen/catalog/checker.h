@@ -122,19 +122,22 @@ class Checker {
     out.points.reserve(j.size());
     for (size_t i = 0; i < j.size(); ++i) {
       const json& e = j[i];
-      if (!e.is_array() || e.size() != 3) {
-        bad(i, "expected three numbers, found " + (e.is_array() ? fmt::format("{} values", e.size()) : json_type_name(e)));
+      const size_t arity = p.kind == ParamKind::Points ? size_t(p.arity) : 3;
+      if (!e.is_array() || e.size() != arity) {
+        bad(i, fmt::format("expected {} numbers, found {}", arity == 2 ? "two" : "three",
+                           e.is_array() ? fmt::format("{} values", e.size()) : json_type_name(e)));
         continue;
       }
       std::array<double, 3> v{};
       bool ok = true;
-      for (size_t k = 0; k < 3; ++k) {
+      for (size_t k = 0; k < arity; ++k) {
         if (!e[k].is_number() || !std::isfinite(e[k].get<double>())) ok = false;
         else v[k] = e[k].get<double>();
         if (ok && p.kind == ParamKind::Triangles && (!e[k].is_number_integer() || v[k] < 0)) ok = false;
       }
       if (!ok) {
-        bad(i, p.kind == ParamKind::Triangles ? "expected three non-negative integers" : "expected three finite numbers");
+        bad(i, p.kind == ParamKind::Triangles ? "expected three non-negative integers"
+                                              : fmt::format("expected {} finite numbers", arity == 2 ? "two" : "three"));
         continue;
       }
       if (p.kind == ParamKind::Points && p.nonzero && v[0] == 0 && v[1] == 0 && v[2] == 0) {

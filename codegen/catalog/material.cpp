@@ -199,7 +199,8 @@ json param_schema(const ParamDef& p) {
     case ParamKind::Triangles: {
       json item = {{"type", p.kind == ParamKind::Points ? "number" : "integer"}};
       if (p.kind == ParamKind::Triangles) item["minimum"] = 0;
-      s = {{"type", "array"}, {"items", {{"type", "array"}, {"items", item}, {"minItems", 3}, {"maxItems", 3}}}};
+      const int n = p.kind == ParamKind::Points ? p.arity : 3;
+      s = {{"type", "array"}, {"items", {{"type", "array"}, {"items", item}, {"minItems", n}, {"maxItems", n}}}};
       break;
     }
     case ParamKind::Index: {

@@ -186,14 +186,20 @@ void add_scene_vocabulary(std::vector<ModelDef>& all) {
                 list("normals", "a normal per vertex, world space", ParamKind::Points, true),
                 list("triangles", "vertex indices, counter-clockwise seen from the normals' side",
                      ParamKind::Triangles),
+                list("texcoords", "texture coordinates set 0 per vertex, [u, v] (glTF's TEXCOORD_0: v down the "
+                                  "picture; docs/textures.md)", ParamKind::Points),
+                list("texcoords1", "texture coordinates set 1 per vertex (glTF's TEXCOORD_1)", ParamKind::Points),
                 text("gltf", "a glTF 2.0 file (.gltf or .glb), relative to the scene file"),
                 index("mesh", "the glTF file's mesh: its index in \"meshes\" or its name", true),
                 index("node", "the glTF file's node: its index in \"nodes\" or its name; its mesh in its world "
                               "transform", true),
                 index("primitive", "the index of one primitive of the mesh; absent: every triangle primitive",
                       false)};
-    for (auto& p : m.params) p.required = false;  // the forms say which keys a mesh needs
-    m.forms = {{"inline arrays", {"positions", "normals", "triangles"}, {}},
+    for (auto& p : m.params) {
+      p.required = false;  // the forms say which keys a mesh needs
+      if (p.name == "texcoords" || p.name == "texcoords1") p.arity = 2;
+    }
+    m.forms = {{"inline arrays", {"positions", "normals", "triangles"}, {"texcoords", "texcoords1"}},
                {"a glTF file's mesh", {"gltf", "mesh"}, {"primitive"}},
                {"a glTF file's node", {"gltf", "node"}, {"primitive"}}};
     m.object_type = ObjectType::Mesh;

@@ -209,7 +209,9 @@ std::optional<Value> parse_texture_value(const json& j, const std::string& path,
 json texture_json(const Value& v) {
   const TextureRef& t = *v.texture;
   static const char* wraps[] = {"repeat", "clamp", "mirror"};
-  json j = {{"texture", t.file},
+  // The image's absolute path: the JSON may be written anywhere (a scene, a glTF file's
+  // FACET_material) and must read back the same image.
+  json j = {{"texture", std::filesystem::absolute(t.path).lexically_normal().string()},
             {"channel", t.channel},
             {"uv", t.uv},
             {"colorspace", t.colorspace},

@@ -27,6 +27,23 @@ struct GenerateArgs {
   bool json = false;  // --json: print what was generated as one JSON object
 };
 
+// The files beside the scene first, the scene last: a scene is never left reading a missing
+// file; on a failure the side files written are removed.
+void write_outputs(const PovOutput& pov, const std::string& code, const std::string& output, bool to_stdout) {
+  std::vector<std::string> written;
+  try {
+    for (const auto& f : pov.files) {
+      const std::string path = (fs::path(output).parent_path() / f.name).string();
+      write_file_atomic(path, f.write);
+      written.push_back(path);
+    }
+    if (!to_stdout) write_file_atomic(output, code);
+  } catch (...) {
+    for (const auto& w : written) fs::remove(w);
+    throw;
+  }
+}
+
 int run_generate(const GenerateArgs& a) {
   auto target = parse_target(a.target);  // CLI11 already checked the name
   std::optional<Scene> scene;
@@ -36,6 +53,7 @@ int run_generate(const GenerateArgs& a) {
                                                                    "unless every object of --scene has its own")
                                           : load_optional_material(a.material, std::nullopt,
                                                                    "for --target " + a.target + (a.library ? " --library" : ""));
+  if (scene) check_texture_sets(*scene, m ? &*m : nullptr);
   bool to_stdout = a.output.empty() || a.output == "-";
   const PovRoute route = *parse_pov_route(a.pov_route);  // CLI11 checked the name
   std::string code;
@@ -56,6 +74,13 @@ int run_generate(const GenerateArgs& a) {
     if (!a.json)  // the JSON carries them
       for (const auto& r : pov.plan.routes) std::cerr << "facet: " << r << "\n";
     code = std::move(pov.code);
+  } else if (*target == Target::Pov) {  // --library: a textured material's images beside it
+    const fs::path out(to_stdout ? "facet.inc" : a.output);
+    pov = generate_pov_library(*m, a.material, route, out.stem().string());
+    if (!pov.files.empty() && to_stdout)
+      throw InputError({Diagnostic{a.material, "", "its library reads " + pov.files.front().name +
+                                                       " beside it (a texture's texels): give -o FILE.inc"}});
+    code = std::move(pov.code);
   } else {
     GenerateOptions o;
     o.target = *target;
@@ -65,21 +90,7 @@ int run_generate(const GenerateArgs& a) {
     o.pov_route = route;
     code = generate(*m, o);
   }
-  // The files beside the scene first, the scene last: a scene is never left reading a missing file.
-  std::vector<std::string> written;
-  auto write_all = [&] {
-    try {
-      for (const auto& f : pov.files) {
-        const std::string path = (fs::path(a.output).parent_path() / f.name).string();
-        write_file_atomic(path, f.write);
-        written.push_back(path);
-      }
-      if (!to_stdout) write_file_atomic(a.output, code);
-    } catch (...) {
-      for (const auto& w : written) fs::remove(w);
-      throw;
-    }
-  };
+  auto write_all = [&] { write_outputs(pov, code, a.output, to_stdout); };
   if (a.json) {
     using ojson = nlohmann::ordered_json;  // keys in the documented order
     ojson j = {{"target", a.target}, {"output", to_stdout ? ojson() : ojson(a.output)}};

@@ -71,6 +71,7 @@ int run_render(const RenderArgs& a) {
   const bool reference = find_renderer(a.renderer)->reference;
   Scene scene = load_scene(a.scene);
   std::optional<Material> m = load_optional_material(a.material, scene, "unless every object of --scene has its own");
+  check_texture_sets(scene, m ? &*m : nullptr);
   // The reference first: what the others are compared with, and the exposure POV-Ray needs.
   Render ref = m ? render_reference(*m, scene, w, h) : render_reference(scene, w, h);
   Image image = ref.image;

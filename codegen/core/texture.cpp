@@ -22,6 +22,14 @@ std::string stb_reason() { return stbi_failure_reason() ? stbi_failure_reason() 
 std::shared_ptr<const Texels> decode_texels(const std::string& bytes, const std::string& name) {
   if (bytes.empty()) throw IoError(name + ": the image is empty (0 bytes)");
   if (bytes.size() > size_t(std::numeric_limits<int>::max())) throw IoError(name + ": the image file is over 2 GiB");
+  // stb_image also reads PNM, HDR and Softimage PIC, which facet does not offer: Debian's
+  // stb_image crashes on some truncated PNMs (found by the fuzzer), so they never reach it.
+  const bool pnm = bytes.size() >= 2 && bytes[0] == 'P' && bytes[1] >= '1' && bytes[1] <= '7';
+  const bool hdr = bytes.compare(0, 2, "#?") == 0;
+  const bool pic = bytes.compare(0, 4, "\x53\x80\xf6\x34", 4) == 0;
+  if (pnm || hdr || pic)
+    throw IoError(name + ": a " + (pnm ? "PNM" : hdr ? "Radiance HDR" : "Softimage PIC") +
+                  " image, which facet does not read; allowed: PNG, JPEG, TGA, BMP, PSD, GIF");
   const auto* data = reinterpret_cast<const stbi_uc*>(bytes.data());
   const int size = int(bytes.size());
   int w = 0, h = 0, n = 0;
@@ -36,12 +44,25 @@ std::shared_ptr<const Texels> decode_texels(const std::string& bytes, const std:
                               name, w, h, bytes_decoded / kMaxTextureBytes, kMaxTextureSide));
   auto t = std::make_shared<Texels>();
   t->path = name;
-  t->bits = stbi_is_16_bit_from_memory(data, size) ? 16 : 8;
-  // Every file read as 16 bits: stb_image widens 8-bit k to 257·k, so k/255 = 257·k/65535 exactly.
-  stbi_us* px = stbi_load_16_from_memory(data, size, &t->width, &t->height, &t->channels, 4);
+  // 16 bits a channel from PNGs only: stb_image's 16-bit path for other formats (a PPM whose
+  // maxval is over 255) returns a buffer of 8-bit size, which the fuzzer found read past its end.
+  static const char kPng[] = "\x89PNG\r\n\x1a\n";
+  const bool png = bytes.compare(0, 8, kPng, 8) == 0;
+  t->bits = png && stbi_is_16_bit_from_memory(data, size) ? 16 : 8;
+  int width = 0, height = 0;
+  void* px = t->bits == 16 ? static_cast<void*>(stbi_load_16_from_memory(data, size, &width, &height, &t->channels, 4))
+                           : static_cast<void*>(stbi_load_from_memory(data, size, &width, &height, &t->channels, 4));
   if (!px) throw IoError(name + ": cannot decode the image (" + stb_reason() + ")");
-  t->rgba.resize(size_t(t->width) * size_t(t->height) * 4);
-  for (size_t i = 0; i < t->rgba.size(); ++i) t->rgba[i] = float(px[i] / 65535.0);
+  if (width != w || height != h) {
+    stbi_image_free(px);
+    throw IoError(fmt::format("{}: the image's header says {}×{} texels, its data {}×{}", name, w, h, width, height));
+  }
+  t->width = width;
+  t->height = height;
+  t->rgba.resize(size_t(width) * size_t(height) * 4);
+  for (size_t i = 0; i < t->rgba.size(); ++i)
+    t->rgba[i] = t->bits == 16 ? float(static_cast<const stbi_us*>(px)[i] / 65535.0)
+                               : float(static_cast<const stbi_uc*>(px)[i] / 255.0);
   stbi_image_free(px);
   return t;
 }

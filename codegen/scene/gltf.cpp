@@ -623,13 +623,14 @@ class Exporter {
         used_.insert(kObjectExt);
         break;
     }
-    node.mesh = add_mesh(o.name, material, pos, nor, idx);
+    node.mesh = add_mesh(o.name, material, pos, nor, idx, o.type == Object::Type::Mesh ? o.mesh.get() : nullptr);
     add_node(node);
   }
 
-  // A one-primitive triangle mesh of float32 positions and normals.
+  // A one-primitive triangle mesh of float32 positions and normals (and `source`'s texture
+  // coordinates as TEXCOORD_0/1, where it has them).
   int add_mesh(const std::string& name, int material, const std::vector<Vec3>& pos, const std::vector<Vec3>& nor,
-               const std::vector<uint32_t>& idx) {
+               const std::vector<uint32_t>& idx, const Mesh* source = nullptr) {
     std::vector<float> fp, fn;
     std::vector<double> lo(3, INFINITY), hi(3, -INFINITY);
     for (const auto& p : pos)
@@ -650,6 +651,14 @@ class Exporter {
                                              TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TARGET_ARRAY_BUFFER);
     prim.indices = add_accessor(idx.data(), idx.size() * 4, idx.size(), TINYGLTF_TYPE_SCALAR,
                                 TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+    for (size_t set = 0; source && set < 2; ++set) {
+      if (source->texcoords[set].empty()) continue;
+      std::vector<float> st;
+      for (const auto& c : source->texcoords[set]) st.insert(st.end(), {float(c[0]), float(c[1])});
+      prim.attributes["TEXCOORD_" + std::to_string(set)] =
+          add_accessor(st.data(), st.size() * 4, st.size() / 2, TINYGLTF_TYPE_VEC2, TINYGLTF_COMPONENT_TYPE_FLOAT,
+                       TINYGLTF_TARGET_ARRAY_BUFFER);
+    }
     tinygltf::Mesh mesh;
     mesh.name = name;
     mesh.primitives.push_back(prim);

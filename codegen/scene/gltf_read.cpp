@@ -98,7 +98,10 @@ AccessorView Reader::view(int index, const std::string& path, int type) const {
   if (v.byteOffset > size || v.byteLength > size - v.byteOffset)
     fail(vpath, fmt::format("bytes {} to {} lie past the end of buffer {} ({} bytes)", v.byteOffset,
                             uint64_t(v.byteOffset) + v.byteLength, v.buffer, size));
-  if (a.type != type) fail(apath, type == TINYGLTF_TYPE_VEC3 ? "expected VEC3 of FLOAT" : "indices must be SCALAR");
+  if (a.type != type)
+    fail(apath, type == TINYGLTF_TYPE_VEC3   ? "expected VEC3 of FLOAT"
+                : type == TINYGLTF_TYPE_VEC2 ? "expected VEC2 (texture coordinates)"
+                                             : "indices must be SCALAR");
   int component_size = tinygltf::GetComponentSizeInBytes(uint32_t(a.componentType));
   if (component_size <= 0) fail(apath, "has an unknown componentType");
   const size_t elem = size_t(component_size) * size_t(tinygltf::GetNumComponentsInType(uint32_t(type)));
@@ -119,6 +122,31 @@ AccessorView Reader::vec3(int index, const std::string& path) const {
   AccessorView a = view(index, path, TINYGLTF_TYPE_VEC3);
   if (a.component != TINYGLTF_COMPONENT_TYPE_FLOAT) fail(fmt::format("accessors[{}]", index), "expected VEC3 of FLOAT");
   return a;
+}
+
+AccessorView Reader::vec2(int index, const std::string& path) const {
+  AccessorView a = view(index, path, TINYGLTF_TYPE_VEC2);
+  const bool normalized = m_.accessors[size_t(index)].normalized;
+  if (a.component != TINYGLTF_COMPONENT_TYPE_FLOAT &&
+      !(normalized && (a.component == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+                       a.component == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT)))
+    fail(fmt::format("accessors[{}]", index), "texture coordinates must be FLOAT or normalized unsigned bytes or shorts");
+  return a;
+}
+
+std::array<double, 2> Reader::vec2_at(const AccessorView& a, size_t i) const {
+  const unsigned char* e = a.data + i * a.stride;
+  if (a.component == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE) return {e[0] / 255.0, e[1] / 255.0};
+  if (a.component == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT) {
+    uint16_t v[2];
+    std::memcpy(v, e, sizeof v);
+    return {v[0] / 65535.0, v[1] / 65535.0};
+  }
+  float f[2];
+  std::memcpy(f, e, sizeof f);
+  if (!std::isfinite(f[0]) || !std::isfinite(f[1]))
+    fail(fmt::format("accessors[{}]", a.accessor), fmt::format("element {} is not finite", i));
+  return {f[0], f[1]};
 }
 
 AccessorView Reader::indices(int index, const std::string& path) const {
@@ -199,6 +227,15 @@ PrimitivePlan plan_primitive(const Reader& r, const tinygltf::Primitive& prim, c
     if (p.normals.count != p.positions.count)
       r.fail(path + ".attributes.NORMAL", "has a different count from POSITION");
   }
+  for (size_t set = 0; set < 2; ++set) {
+    const std::string key = "TEXCOORD_" + std::to_string(set);
+    auto tc = prim.attributes.find(key);
+    p.has_texcoords[set] = tc != prim.attributes.end();
+    if (!p.has_texcoords[set]) continue;
+    p.texcoords[set] = r.vec2(tc->second, path + ".attributes." + key);
+    if (p.texcoords[set].count != p.positions.count)
+      r.fail(path + ".attributes." + key, "has a different count from POSITION");
+  }
   p.has_indices = prim.indices >= 0;
   if (p.has_indices) p.indices = r.indices(prim.indices, path + ".indices");
   size_t corners = p.has_indices ? p.indices.count : p.positions.count;
@@ -226,6 +263,8 @@ void smooth(const Reader& r, const PrimitivePlan& p, const Mat4& world, Mesh& me
   for (size_t i = 0; i < p.positions.count; ++i) {
     mesh.positions.push_back(world.point(r.vec3_at(p.positions, i)));
     mesh.normals.push_back(world.normal(r.vec3_at(p.normals, i)));
+    for (size_t set = 0; set < 2; ++set)
+      if (p.has_texcoords[set]) mesh.texcoords[set].push_back(r.vec2_at(p.texcoords[set], i));
   }
   for (size_t t = 0; t < p.size.triangles; ++t) {
     uint32_t a = corner(r, p, 3 * t), b = corner(r, p, 3 * t + 1), c = corner(r, p, 3 * t + 2);
@@ -248,6 +287,12 @@ void flat(const Reader& r, const PrimitivePlan& p, const Mat4& world, Mesh& mesh
     uint32_t base = uint32_t(mesh.positions.size());
     mesh.positions.insert(mesh.positions.end(), {a, b, c});
     mesh.normals.insert(mesh.normals.end(), {n, n, n});
+    for (size_t set = 0; set < 2; ++set) {
+      if (!p.has_texcoords[set]) continue;
+      uint32_t k[3] = {corner(r, p, 3 * t), corner(r, p, 3 * t + 1), corner(r, p, 3 * t + 2)};
+      if (flip) std::swap(k[1], k[2]);
+      for (uint32_t v : k) mesh.texcoords[set].push_back(r.vec2_at(p.texcoords[set], v));
+    }
     mesh.triangles.push_back({base, base + 1, base + 2});
   }
 }
@@ -260,11 +305,25 @@ void append_primitive(const Reader& r, const PrimitivePlan& p, const Mat4& world
   mesh.positions.reserve(first + p.size.vertices);
   mesh.normals.reserve(first + p.size.vertices);
   mesh.triangles.reserve(mesh.triangles.size() + p.size.triangles);
+  // A set some primitives of the mesh have and others lack is (0, 0) on the others, said in a note.
+  for (size_t set = 0; set < 2; ++set)
+    if (!p.has_texcoords[set] && !mesh.texcoords[set].empty())
+      notes.push_back(fmt::format("{}: no TEXCOORD_{}, which other primitives of its mesh have; (0, 0) taken", p.path, set));
   if (p.has_normals) {
     smooth(r, p, world, mesh);
   } else {
     notes.push_back(p.path + ": no NORMAL; flat normals computed");
     flat(r, p, world, mesh);
+  }
+  for (size_t set = 0; set < 2; ++set) {
+    auto& tc = mesh.texcoords[set];
+    if (tc.empty() || tc.size() == mesh.positions.size()) continue;
+    if (p.has_texcoords[set] && tc.size() < mesh.positions.size()) {  // earlier primitives lacked it
+      notes.push_back(fmt::format("{}: TEXCOORD_{}, which earlier primitives of its mesh lack; (0, 0) taken there",
+                                  p.path, set));
+      tc.insert(tc.begin(), mesh.positions.size() - tc.size(), {0.0, 0.0});
+    } else
+      tc.resize(mesh.positions.size(), {0.0, 0.0});
   }
   for (size_t i = first; i < mesh.positions.size(); ++i)
     if (!finite(mesh.positions[i]) || !finite(mesh.normals[i]))

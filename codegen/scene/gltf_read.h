@@ -57,7 +57,10 @@ class Reader {
   // Accessor `index` (named at `path`): VEC3 of FLOAT, or unsigned SCALAR indices.
   AccessorView vec3(int index, const std::string& path) const;
   AccessorView indices(int index, const std::string& path) const;
+  // VEC2 of FLOAT, or of normalized unsigned bytes or shorts (glTF's TEXCOORD_n).
+  AccessorView vec2(int index, const std::string& path) const;
   Vec3 vec3_at(const AccessorView& a, size_t i) const;  // fails on a non-finite element
+  std::array<double, 2> vec2_at(const AccessorView& a, size_t i) const;
   static uint32_t index_at(const AccessorView& a, size_t i);
 
   // The parent of every node (−1: none, kSeveral: more than one), from the children lists.
@@ -90,6 +93,8 @@ struct PrimitivePlan {
   std::string path, where;
   AccessorView positions, normals, indices;
   bool has_normals = false, has_indices = false;
+  std::array<AccessorView, 2> texcoords;  // TEXCOORD_0, TEXCOORD_1
+  std::array<bool, 2> has_texcoords{false, false};
   MeshSize size;  // at most: zero-area (flat) and degenerate triangles are dropped
 };
 

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "catalog/checker.h"
+#include "catalog/program.h"
 #include "scene/gltf.h"
 
 namespace facet {
@@ -128,6 +129,14 @@ std::shared_ptr<Mesh> mesh_of(const ModelSpec& o, const std::string& path, Diagn
   if (m->normals.size() != m->positions.size())
     sink.error(join_path(path, "normals"), fmt::format("has {} normals for {} positions; allowed: one per position",
                                                        m->normals.size(), m->positions.size()));
+  const char* sets[] = {"texcoords", "texcoords1"};
+  for (size_t set = 0; set < 2; ++set) {
+    if (!o.given.count(sets[set])) continue;
+    for (const auto& st : o.at(sets[set]).points) m->texcoords[set].push_back({st[0], st[1]});
+    if (m->texcoords[set].size() != m->positions.size())
+      sink.error(join_path(path, sets[set]), fmt::format("has {} coordinates for {} positions; allowed: one per position",
+                                                         m->texcoords[set].size(), m->positions.size()));
+  }
   const auto& tris = o.at("triangles").points;
   for (size_t i = 0; i < tris.size(); ++i) {
     std::array<uint32_t, 3> t{};
@@ -374,6 +383,26 @@ Scene load_scene(const std::string& name_or_path) {
 
 // Parsed once: OSL and POV-Ray generation ask for it on every material, and
 // parsing and checking it took a quarter of generate()'s time.
+void check_texture_sets(const Scene& s, const Material* fallback) {
+  std::vector<Diagnostic> problems;
+  for (size_t i = 0; i < s.objects.size(); ++i) {
+    const Object& o = s.objects[i];
+    if (o.type != Object::Type::Mesh) continue;
+    if (o.material.empty() && !fallback) continue;  // reported where the material is needed
+    const Material& m = s.material_of(i, fallback);
+    for (const auto& t : compile(m).textured) {
+      const size_t set = size_t(t.value.texture->uv);
+      if (!o.mesh->texcoords[set].empty()) continue;
+      problems.push_back({s.source, index_path("objects", i),
+                          fmt::format("mesh \"{}\" has no texture coordinates set {} ({}), which material \"{}\" "
+                                      "reads at {}.uv",
+                                      o.name, set, set == 0 ? "texcoords, glTF's TEXCOORD_0" : "texcoords1, glTF's TEXCOORD_1",
+                                      m.name, t.key)});
+    }
+  }
+  if (!problems.empty()) throw InputError(problems);
+}
+
 Scene default_scene() {
   static const Scene single = load_scene("single");
   return single;
@@ -404,7 +433,11 @@ json mesh_json(const Object& o, const std::string& scene_file) {
   for (const auto& p : o.mesh->positions) pos.push_back(p.array());
   for (const auto& n : o.mesh->normals) nor.push_back(n.array());
   for (const auto& t : o.mesh->triangles) tri.push_back(t);
-  return {{"type", "mesh"}, {"name", o.name}, {"positions", pos}, {"normals", nor}, {"triangles", tri}};
+  json oj = {{"type", "mesh"}, {"name", o.name}, {"positions", pos}, {"normals", nor}, {"triangles", tri}};
+  const char* sets[] = {"texcoords", "texcoords1"};
+  for (size_t set = 0; set < 2; ++set)
+    if (!o.mesh->texcoords[set].empty()) oj[sets[set]] = o.mesh->texcoords[set];
+  return oj;
 }
 
 }  // namespace

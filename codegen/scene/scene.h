@@ -164,6 +164,11 @@ nlohmann::json to_json(const Scene& s);
 nlohmann::json to_json(const Scene& s, const std::string& scene_file);
 nlohmann::json scene_schema();
 
+// Every mesh whose material reads a texture coordinate set (a textured parameter's "uv")
+// has that set; else InputError naming the scene file, the object and the material's key.
+// `fallback` shades the objects without a material of their own.
+void check_texture_sets(const Scene& s, const Material* fallback);
+
 // The default validation scene: one unit sphere, a camera and one point light.
 Scene default_scene();
 

@@ -120,9 +120,6 @@ std::string route_line(const Object& o, bool native, bool table) {
 }  // namespace
 
 PovPlan pov_plan(const Scene& s, const Material* fallback, PovRoute route) {
-  for (size_t i = 0; i < s.objects.size(); ++i)
-    if (s.objects[i].type == Object::Type::Mesh)
-      require_untextured(s.material_of(i, fallback), "POV-Ray (on a mesh: object \"" + s.objects[i].name + "\")");
   PovPlan plan;
   if (route == PovRoute::Exact) plan.reason = "--pov-route exact: function pigments for every object";
   for (size_t i = 0; i < s.objects.size() && plan.reason.empty(); ++i) {
@@ -267,9 +264,11 @@ void PovScene::register_mesh_files() {
                         write_pov_mesh_include(out, *mesh, o, name, !numbered, numbered, insets);
                       }});
     if (!numbered) continue;
-    data_[o] = pov_mesh_data(*mesh, fmt::format("{}_mesh{}.ppm", stem_, o));
+    const bool textured = shading(o).textured();
+    data_[o] = pov_mesh_data(*mesh, fmt::format("{}_mesh{}.ppm", stem_, o), textured);
     routes_[o] += fmt::format("; POV-Ray reads its positions from {} to within {:.2g} and normals to within {:.2g}",
                               data_[o].file, data_[o].position_error, data_[o].normal_error);
+    if (textured) routes_[o] += fmt::format(", texture coordinates to within {:.2g}", data_[o].texcoord_error);
     files_.push_back({data_[o].file, [mesh, d = data_[o]](std::ostream& out) { write_pov_mesh_image(out, *mesh, d); }});
   }
 }
@@ -345,12 +344,19 @@ std::string PovScene::library() {
     std::vector<ir::Expr> args = {var("x"), var("y"), var("z")};
     for (const char* n : {"NX", "NY", "NZ"}) args.push_back(ir::call(declared(n, 3), {var("x"), var("y"), var("z")}));
     for (const char* n : {"Lp.x", "Lp.y", "Lp.z", "E.x", "E.y", "E.z"}) args.push_back(var(n));
-    return ir::call(declared("Facet_Point_Shade" + sh.suffix(ch), 12), args);
+    if (sh.textured())
+      for (const char* n : {"S0", "T0", "S1", "T1"}) args.push_back(ir::call(declared(n, 3), {var("x"), var("y"), var("z")}));
+    return ir::call(declared("Facet_Point_Shade" + sh.suffix(ch), args.size()), args);
   };
   p.factors = [](int) { return std::vector<ir::Expr>{var("Scale")}; };
   return render_template("pov/library_functions.pov",
                          {{"header", header()},
                           {"functions", functions()},
+                          {"uv_doc", sh.textured() ? "//   * its texture coordinates sets 0 and 1 as functions of (x, y, z): S0, T0, S1, T1 "
+                                                     "(glTF's: v down the picture; docs/textures.md);\n"
+                                                   : ""},
+                          {"signature", sh.textured() ? "NX, NY, NZ, S0, T0, S1, T1, LightPosition, Eye, Scale"
+                                                      : "NX, NY, NZ, LightPosition, Eye, Scale"},
                           {"shade", point_shade()},
                           {"pigment", indented(pov_pigment(sh.printer, sh.dependent, p, kPovWidth - 2), 2)}});
 }
@@ -552,13 +558,23 @@ std::string pov_code_alone(const PovOutput& out) {
 
 }  // namespace
 
+PovOutput generate_pov_library(const Material& m, const std::string& source, PovRoute route, const std::string& stem) {
+  const Scene s = default_scene();  // PovScene keeps a reference: it must outlive it
+  targets::PovScene scene(s, &m, source, route, stem);
+  PovOutput out;
+  out.code = scene.library();
+  out.files = std::move(scene.files());
+  out.plan = scene.plan();
+  return out;
+}
+
 std::string generate_pov_scene(const Scene& s, const Material* fallback, const std::string& source) {
   return pov_code_alone(generate_pov_files(s, fallback, source, PovRoute::Auto, "facet"));
 }
 
 std::string generate_pov(const Material& m, const GenerateOptions& o) {
   Scene s = o.scene ? *o.scene : default_scene();
-  if (o.library) return targets::PovScene(s, &m, o.source, o.pov_route).library();
+  if (o.library) return pov_code_alone(generate_pov_library(m, o.source, o.pov_route, "facet"));
   return pov_code_alone(generate_pov_files(s, &m, o.source, o.pov_route, "facet"));
 }
 

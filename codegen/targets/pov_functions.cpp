@@ -200,7 +200,10 @@ ir::FunctionPtr PovScene::object_function(size_t o, size_t i, const ir::Function
     Triple M = lets(fb, "Mx", "My", "Mz", {ir::call(data("MX"), at), ir::call(data("MY"), at),
                                            ir::call(data("MZ"), at)});
     Expr len = fb.let("Len", length3(M));
-    return fb.returns(ir::call(light, args({hit, M / len})));
+    if (shading(o).textured())
+      uv = {fb.let("S0", ir::call(data("S0"), at)), fb.let("T0", ir::call(data("T0"), at)),
+            fb.let("S1", ir::call(data("S1"), at)), fb.let("T1", ir::call(data("T1"), at))};
+    return fb.returns(ir::call(light, with(args({hit, M / len}), uv)));
   }
   // Sphere: n = (P − C)/|P − C|, which holds for the shrunken copies too.
   Triple radial = P - obj.center;
@@ -486,8 +489,9 @@ std::string PovScene::point_shade() {
   Triple light = params(fb, "Px", "Py", "Pz"), eye = params(fb, "Ex", "Ey", "Ez");
   Triple to_light = {light.x - P.x, light.y - P.y, light.z - P.z}, to_eye = {eye.x - P.x, eye.y - P.y, eye.z - P.z};
   Triple L = lets(fb, "Lx", "Ly", "Lz", to_light), V = lets(fb, "Vx", "Vy", "Vz", to_eye);
+  const std::vector<Expr> uv = uv_params(fb, sh);  // a textured material's coordinates
   Expr d = fb.let("D", length3(to_light)), dv = fb.let("Dv", length3(to_eye));
-  ir::FunctionPtr f = fb.returns(ir::call(sh.reflect, args({N, L / d, V / dv})));
+  ir::FunctionPtr f = fb.returns(ir::call(sh.reflect, with(args({N, L / d, V / dv}), uv)));
   sh.printer.add_own(f);
   return sh.printer.function(f);
 }

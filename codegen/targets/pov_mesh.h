@@ -38,20 +38,24 @@ struct PovMeshData {
   std::string file;   // the image's name, beside the scene
   int blocks = 0;     // triangles (2 × 2 blocks) a row: the image is 2·blocks texels wide
   int plane_rows = 0; // rows of each of the four planes; the image is 4·plane_rows high
-  // Component c (0–2 the position's x, y, z, 3–5 the normal's) = offset[c] + step[c] · code.
-  std::array<double, 6> offset{}, step{};
+  // Component c (0–2 the position's x, y, z, 3–5 the normal's, and with texture coordinates
+  // 6–9 u₀, v₀, u₁, v₁, 10–11 unused) = offset[c] + step[c] · code.
+  int components = 6;  // 12 with texture coordinates: two more pairs of planes
+  std::array<double, 12> offset{}, step{};
   // How far a value POV-Ray reads may be from the mesh's own, at most: positions in
   // scene units, normal components (the codes' step and float32's rounding of the blend).
-  double position_error = 0, normal_error = 0;
+  double position_error = 0, normal_error = 0, texcoord_error = 0;
   int width() const { return 2 * blocks; }
+  int planes() const { return 2 * components / 3; }
   // The four planes and, at the top, a row of zeros: POV-Ray's PPM reader takes a byte 13
   // right after the header for the end of the header's line (IStream::getline reads "\n\r"
   // as one line break), so the first pixel's first byte must not be 13.
-  int height() const { return 4 * plane_rows + 1; }
+  int height() const { return planes() * plane_rows + 1; }
 };
 
-// The data image's layout and precision for mesh `m`, named `file`.
-PovMeshData pov_mesh_data(const Mesh& m, const std::string& file);
+// The data image's layout and precision for mesh `m`, named `file`; with `texcoords`, its
+// texture coordinates too (two more planes, read by Facet_Mesh{o}_S0, _T0, _S1, _T1).
+PovMeshData pov_mesh_data(const Mesh& m, const std::string& file, bool texcoords = false);
 // The image itself (binary PPM, 16 bits a channel), a row at a time.
 void write_pov_mesh_image(std::ostream& out, const Mesh& m, const PovMeshData& d);
 // The functions that read it for object o: Facet_Mesh{o}_PX … _PZ (the hit point)

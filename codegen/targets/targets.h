@@ -82,6 +82,9 @@ struct PovOutput {
 // `stem` starts the files' names (the scene file's own stem, say).
 PovOutput generate_pov_files(const Scene& s, const Material* fallback, const std::string& source, PovRoute route,
                              const std::string& stem);
+// The POV-Ray library (--library) of `m` and the files it reads beside it (a textured
+// material's images), named from `stem`.
+PovOutput generate_pov_library(const Material& m, const std::string& source, PovRoute route, const std::string& stem);
 // The POV-Ray scene of a whole scene with its objects' own materials; throws
 // std::invalid_argument when it needs files beside it (use generate_pov_files).
 std::string generate_pov_scene(const Scene& s, const Material* fallback, const std::string& source);

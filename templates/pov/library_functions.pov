@@ -3,7 +3,7 @@
 //   * the object's unit normal as three functions of (x, y, z), world space (texture after transforms);
 //   * the light: a point light's position (attenuation and spot go into the pigment);
 //   * the eye position.
-// Facet_Pigment_Point(NX, NY, NZ, LightPosition, Eye, Scale) builds the pigment for one point light;
+{{uv_doc}}// Facet_Pigment_Point({{signature}}) builds the pigment for one point light;
 // light the object with that light alone (light_group) and finish { Facet_Finish }. Scale: the pigment
 // is exact up to 1/Scale (use the light's brightest channel).
 
@@ -11,6 +11,6 @@
 // ---- The point light's pigment
 {{shade}}
 #declare Facet_Finish = finish { ambient 0 emission 0 diffuse 1 brilliance 0 specular 0 phong 0 }
-#macro Facet_Pigment_Point(NX, NY, NZ, LightPosition, Eye, Scale)
+#macro Facet_Pigment_Point({{signature}})
   #local Lp = LightPosition; #local E = Eye;
 {{pigment}}#end

@@ -20,6 +20,14 @@ GLTF_KEYS = ['asset', 'version', '2.0', 'scenes', 'scene', 'nodes', 'children', 
              'ambient', 'data:application/octet-stream;base64,']
 
 
+TEXTURE_KEYS = ['texture', 'channel', 'uv', 'transform', 'offset', 'scale', 'rotation', 'colorspace', 'srgb',
+                'linear', 'filter', 'nearest', 'bilinear', 'wrap', 'repeat', 'clamp', 'mirror', 'factor', 'rgb',
+                'r', 'g', 'b', 'a', '../textures/checker.png', '../textures/roughness16.png', 'texcoords',
+                'texcoords1']
+IMAGE_TOKENS = ['\x89PNG\r\n\x1a\n', 'IHDR', 'IDAT', 'IEND', 'PLTE', 'tRNS', 'gAMA', 'sRGB', '\xff\xd8\xff',
+                'P5', 'P6', 'BM', 'GIF89a', '8BPS', '\x00\x00\x00\x0d']
+
+
 def names(catalog, sections):
     out = set()
     for section in sections:
@@ -41,7 +49,8 @@ def escape(word):
         elif ' ' <= ch <= '~':
             out += ch
         else:
-            out += ''.join('\\x%02X' % b for b in ch.encode())
+            # Image signatures are bytes: a character below 256 is that byte.
+            out += ''.join('\\x%02X' % b for b in (ch.encode('latin-1') if ord(ch) < 256 else ch.encode()))
     return '"' + out + '"'
 
 
@@ -57,12 +66,13 @@ def main():
     catalog = json.load(sys.stdin)
     shading = ['diffuse', 'specular', 'fresnel', 'geometry', 'modifier']
     material = names(catalog, shading) | {'model', 'name', 'ambient', 'emission', 'diffuse', 'specular',
-                                          'tangent_axis', '$schema'}
+                                          'tangent_axis', '$schema'} | set(TEXTURE_KEYS)
     scene = material | names(catalog, ['camera', 'object', 'light', 'attenuation']) | {
         'camera', 'objects', 'lights', 'materials', 'material', 'attenuation'}
     write(folder + '/material.dict', material | set(JSON_TOKENS))
     write(folder + '/scene.dict', scene | set(JSON_TOKENS))
     write(folder + '/gltf.dict', set(GLTF_KEYS) | material | set(JSON_TOKENS) | {'glTF', 'JSON', 'BIN\x00'})
+    write(folder + '/texture.dict', set(IMAGE_TOKENS))
 
 
 if __name__ == '__main__':

@@ -111,8 +111,8 @@ TEST(Cli, AFailedWriteLeavesThePreviousOutputIntactAndNoTemporary) {
 }
 
 // A textured material generates GLSL and OSL that sample its images, and a POV-Ray scene
-// with its images beside it; on a mesh POV-Ray does not sample images yet (issue 12) and
-// refuses it naming the file and each textured key, exit 1, writing nothing.
+// with its images beside it; a scene whose mesh lacks the coordinate set a textured
+// parameter reads is refused, naming the file, the object and the key, exit 1, nothing written.
 TEST(Cli, TexturedMaterialsGenerateForEveryTarget) {
   const std::string material = (kSource / "examples/textured/textured_ggx.json").string();
   fs::path frag = scratch("textured.frag");
@@ -131,20 +131,21 @@ TEST(Cli, TexturedMaterialsGenerateForEveryTarget) {
   ASSERT_EQ(pov.exit_code, 0) << pov.output;
   EXPECT_TRUE(fs::exists(dir / "t_texture0.ppm"));
   EXPECT_TRUE(fs::exists(dir / "t_texture1.ppm"));
-  // On a mesh: refused.
+  // A mesh without the texture coordinate set a textured parameter reads: refused.
   const fs::path scene = scratch("textured_mesh.json");
   write_file_atomic(scene.string(), R"({"camera": {"position": [0, 0, 4], "look_at": [0, 0, 0]},
     "lights": [{"type": "point", "position": [2, 2, 2]}],
     "objects": [{"type": "mesh", "name": "tri", "positions": [[0, 0, 0], [1, 0, 0], [0, 1, 0]],
                  "normals": [[0, 0, 1], [0, 0, 1], [0, 0, 1]], "triangles": [[0, 1, 2]]}]})");
-  const fs::path out = scratch("textured_mesh.pov");
-  ProcessResult r = facet({"generate", material, "--scene", scene.string(), "--target", "pov", "-o", out.string()});
-  EXPECT_EQ(r.exit_code, 1);
-  EXPECT_NE(r.output.find("textured_ggx.json"), std::string::npos) << r.output;
-  EXPECT_NE(r.output.find("diffuse.color"), std::string::npos) << r.output;
-  EXPECT_NE(r.output.find("specular.alpha"), std::string::npos) << r.output;
-  EXPECT_NE(r.output.find("tri"), std::string::npos) << r.output;
-  EXPECT_FALSE(fs::exists(out));
+  for (const char* target : {"pov", "glsl"}) {
+    const fs::path out = scratch(std::string("textured_mesh.") + target);
+    ProcessResult r = facet({"generate", material, "--scene", scene.string(), "--target", target, "-o", out.string()});
+    EXPECT_EQ(r.exit_code, 1) << target;
+    EXPECT_NE(r.output.find("textured_mesh.json: objects[0]"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("mesh \"tri\" has no texture coordinates set 0"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("specular.alpha"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(out)) << target;
+  }
 }
 
 TEST(Cli, GenerateWritesTheFile) {

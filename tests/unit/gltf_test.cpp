@@ -100,6 +100,26 @@ TEST(Gltf, MeshSceneRoundTrip) {
                    scratch("three_meshes.gltf").string());
 }
 
+// TEXCOORD_0 and TEXCOORD_1 out and back in (float32), and the textured picture the same.
+TEST(Gltf, TextureCoordinatesRoundTrip) {
+  Material m = load_material((kSource / "examples/textured/textured_cook_torrance.json").string());  // sets 0 and 1
+  Scene s = load_scene((kSource / "tests/scenes/textured_mesh.json").string());
+  const std::string file = scratch("textured_mesh.glb").string();
+  check_round_trip(s, &m, file);
+  std::vector<std::string> notes;
+  Scene back = import_gltf(file, GltfImportOptions{}, notes);
+  const Mesh& a = *s.objects[0].mesh;
+  const Mesh* b = nullptr;
+  for (const auto& o : back.objects)
+    if (o.name == s.objects[0].name) b = o.mesh.get();
+  ASSERT_NE(b, nullptr);
+  for (size_t set = 0; set < 2; ++set) {
+    ASSERT_EQ(b->texcoords[set].size(), a.texcoords[set].size()) << set;
+    for (size_t i = 0; i < a.texcoords[set].size(); ++i)
+      for (size_t k = 0; k < 2; ++k) EXPECT_EQ(b->texcoords[set][i][k], double(float(a.texcoords[set][i][k])));
+  }
+}
+
 TEST(Gltf, ExportedCameraHasAValidFarPlane) {
   // glTF 2.0: zfar, when present, is greater than znear (0 made Blender clip the whole scene).
   std::string path = scratch("camera.gltf").string();

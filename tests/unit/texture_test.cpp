@@ -169,6 +169,8 @@ TEST(Texture, BadTexturesNameTheFileAndKey) {
   const std::string dir = test::scratch("texture", "").string();
   write_file_atomic((fs::path(dir) / "not_an_image.png").string(), "this is text, not a PNG");
   write_file_atomic((fs::path(dir) / "empty.png").string(), "");
+  // A truncated PPM (maxval 760) that crashed Debian's stb_image when the fuzzer found it.
+  write_file_atomic((fs::path(dir) / "truncated.ppm").string(), "P6\n7661\n760\n");
   // PNG headers claiming 16385×16 and 16000×16000 texels: refused before anything is decoded.
   auto header = [](int w, int h) {
     std::string s("\x89PNG\r\n\x1a\n\0\0\0\x0d" "IHDR", 16);
@@ -181,6 +183,7 @@ TEST(Texture, BadTexturesNameTheFileAndKey) {
   expect_error(with(R"({"texture": "missing.png"})"), "diffuse.color.texture", "missing.png");
   expect_error(with(R"({"texture": "not_an_image.png"})"), "diffuse.color.texture", "not an image");
   expect_error(with(R"({"texture": "empty.png"})"), "diffuse.color.texture", "empty");
+  expect_error(with(R"({"texture": "truncated.ppm"})"), "diffuse.color.texture", "PNM");
   expect_error(with(R"({"texture": "wide.png"})"), "diffuse.color.texture", "16385×16");
   expect_error(with(R"({"texture": "huge.png"})"), "diffuse.color.texture", "1 GiB");
   expect_error(with(R"({"texture": ""})"), "diffuse.color.texture", "file name");

@@ -424,6 +424,15 @@ def add_mesh(bpy, scene, obj_desc, material, index):
     # that into visible error on a dense mesh (Ward, 131,480 triangles: 5.8e-3 with Cycles' N, 1.8e-5 with these).
     attribute = mesh.attributes.new("facet_normal", "FLOAT_VECTOR", "POINT")
     attribute.data.foreach_set("vector", np.asarray(normals, dtype=np.float32).ravel())
+    # Texture coordinates, per corner as Blender keeps them, v up: Blender's v = 1 − glTF's v.
+    for set_index, key in enumerate(("texcoords", "texcoords1")):
+        if key not in obj_desc:
+            continue
+        st = np.asarray(obj_desc[key], dtype=np.float64)
+        corners = np.asarray(obj_desc["triangles"], dtype=np.int64).ravel()
+        uv = np.stack([st[corners, 0], 1.0 - st[corners, 1]], axis=1)
+        layer = mesh.uv_layers.new(name=f"facet_uv{set_index}")
+        layer.data.foreach_set("uv", uv.astype(np.float32).ravel())
     mesh.materials.append(material)
     obj = bpy.data.objects.new(obj_desc.get("name") or f"mesh_{index}", mesh)
     obj.pass_index = MESH_INDEX
@@ -494,17 +503,21 @@ def enable_oslquery(bpy):
 # from the shading point in object space (add_sphere, add_plane). Facet's (x, y, z) is
 # Blender's (x, −z, y).
 FACET_UV_OSL = """\
-shader facet_uv(float kind = 0, vector mesh_uv = 0, output vector uv = 0)
+shader facet_uv(float kind = 0, vector mesh_uv = 0, vector mesh_uv1 = 0, output vector uv = 0,
+                output vector uv1 = 0)
 {
     point q = transform("object", P);
     if (kind == %d) {
         vector d = normalize(q);
         float x = d[0], y = d[2], z = -d[1];
         uv = vector(0.5 + atan2(x, z) / M_2PI, 1 - acos(clamp(y, -1, 1)) / M_PI, 0);
+        uv1 = uv;
     } else if (kind == %d) {
         uv = vector(0.5 + q[0] / 2, 0.5 + q[1] / 2, 0);
+        uv1 = uv;
     } else {
         uv = mesh_uv;
+        uv1 = mesh_uv1;
     }
 }
 """ % (SPHERE_INDEX, SQUARE_INDEX)
@@ -525,10 +538,11 @@ def link_texture_coordinates(bpy, nt, script):
         return "the harness's texture coordinate shader did not compile: " + "; ".join(reports)
     info = nt.nodes.new("ShaderNodeObjectInfo")
     nt.links.new(info.outputs["Object Index"], node.inputs["kind"])
-    uvmap = nt.nodes.new("ShaderNodeUVMap")
-    nt.links.new(uvmap.outputs["UV"], node.inputs["mesh_uv"])
-    for name in ("facet_uv0", "facet_uv1"):
-        nt.links.new(node.outputs["uv"], script.inputs[name])
+    for k, (into, out) in enumerate((("mesh_uv", "uv"), ("mesh_uv1", "uv1"))):
+        uvmap = nt.nodes.new("ShaderNodeUVMap")
+        uvmap.uv_map = f"facet_uv{k}"  # add_mesh's layers
+        nt.links.new(uvmap.outputs["UV"], node.inputs[into])
+        nt.links.new(node.outputs[out], script.inputs[f"facet_uv{k}"])
     return ""
 
 
