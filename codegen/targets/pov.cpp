@@ -343,7 +343,7 @@ std::string PovScene::library() {
   p.radiance = [&](int ch) {
     std::vector<ir::Expr> args = {var("x"), var("y"), var("z")};
     for (const char* n : {"NX", "NY", "NZ"}) args.push_back(ir::call(declared(n, 3), {var("x"), var("y"), var("z")}));
-    for (const char* n : {"Lp.x", "Lp.y", "Lp.z", "E.x", "E.y", "E.z"}) args.push_back(var(n));
+    for (const char* n : {"Facet_Lx", "Facet_Ly", "Facet_Lz", "Facet_Ex", "Facet_Ey", "Facet_Ez"}) args.push_back(var(n));
     if (sh.textured())
       for (const char* n : {"S0", "T0", "S1", "T1"}) args.push_back(ir::call(declared(n, 3), {var("x"), var("y"), var("z")}));
     return ir::call(declared("Facet_Point_Shade" + sh.suffix(ch), args.size()), args);

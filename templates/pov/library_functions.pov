@@ -12,5 +12,7 @@
 {{shade}}
 #declare Facet_Finish = finish { ambient 0 emission 0 diffuse 1 brilliance 0 specular 0 phong 0 }
 #macro Facet_Pigment_Point({{signature}})
-  #local Lp = LightPosition; #local E = Eye;
+  // Floats: a function may read a float identifier but not a vector's component.
+  #local Facet_Lx = LightPosition.x; #local Facet_Ly = LightPosition.y; #local Facet_Lz = LightPosition.z;
+  #local Facet_Ex = Eye.x; #local Facet_Ey = Eye.y; #local Facet_Ez = Eye.z;
 {{pigment}}#end
