@@ -73,9 +73,11 @@ void add_terms(std::vector<ModelDef>& all) {
                       "Replaces the power of phong and blinn_phong (\"approximation\": \"schlick\")."));
   // Ambient and emission
   all.push_back(entry("term", "ambient", "Ambient", "", "m_a ⊗ A",
-                      "The material's ambient colour times the scene's ambient colour A, added unlit."));
+                      "The material's ambient colour times the scene's ambient colour A, added unlit. m_a may come "
+                      "from an image (\"ambient\": {\"texture\": …}; docs/textures.md), clamped at 0."));
   all.push_back(entry("term", "emission", "Emission", "", "m_e",
-                      "Radiance the surface emits by itself, added unlit."));
+                      "Radiance the surface emits by itself, added unlit. m_e may come from an image "
+                      "(\"emission\": {\"texture\": …}; docs/textures.md), clamped at 0."));
 }
 
 namespace {

@@ -130,9 +130,11 @@ def _material_keys(schema):
             default = [float(default)] * 3
         if not (isinstance(default, list) and len(default) == 3):
             continue  # not a three-number key: nothing the panel can edit
-        # A colour may be written as one grey number (the schema's oneOf number/array);
+        # A colour may be written as one grey number (the schema's oneOf number/array),
+        # and a texturable one also as an image (anyOf: that oneOf, or {"texture": …});
         # a vector is only ever an array.
-        kind = "color" if "oneOf" in prop else "vector"
+        forms = [prop] + list(prop.get("anyOf", []))
+        kind = "color" if any("oneOf" in f for f in forms) else "vector"
         keys.append(MaterialKey(name=name, kind=kind, default=tuple(float(x) for x in default),
                                 doc=prop.get("description", "")))
     return keys
