@@ -1,6 +1,6 @@
 """A Blender material's facet settings <-> facet's material JSON."""
 
-from ..core import UserError, props as plan_mod
+from ..core import UserError, props as plan_mod, textures
 from . import properties, state
 
 
@@ -29,9 +29,16 @@ def from_json(material, data):
     catalog, plan = state.require()
     values = plan_mod.material_from_json(catalog, plan, data)   # everything computed first,
     properties.write(material.facet, plan, values)              # then written in one go
+    material.facet_textures = ""
 
 
 def set_lobes(material, result):
     """Sets the facet settings from a core.convert.Result (Blender BSDF mapping)."""
     catalog, plan = state.require()
     properties.write(material.facet, plan, plan_mod.conversion_values(catalog, plan, result))
+    material.facet_textures = textures.dumps(result.textures) if result.textures else ""
+
+
+def texture_bindings(material):
+    """The textures Convert Blender Material found (core/textures.py bindings)."""
+    return textures.loads(getattr(material, "facet_textures", ""), material.name)

@@ -200,6 +200,31 @@ def write_atomic(path, data):
             os.remove(tmp)
 
 
+def write_all_atomic(folder, files):
+    """Writes {file name: bytes} into `folder`: every file first to a temporary name beside
+    it, then all renamed in the order given (put the file that names the others last).
+    When a write fails, nothing is renamed and the temporaries are removed."""
+    if not os.path.isdir(folder):
+        raise UserError(f"cannot write into '{folder}': the folder does not exist")
+    staged = []
+    try:
+        for name, data in files.items():
+            target = os.path.join(folder, name)
+            tmp = temp_path_beside(target)
+            staged.append((tmp, target))
+            with open(tmp, "wb") as f:
+                f.write(data.encode("utf-8") if isinstance(data, str) else data)
+            _give_ordinary_permissions(tmp)
+        for tmp, target in staged:
+            os.replace(tmp, target)
+    except OSError as e:
+        raise UserError(f"cannot write into '{folder}': {e.strerror or e}")
+    finally:
+        for tmp, _ in staged:
+            if os.path.exists(tmp):
+                os.remove(tmp)
+
+
 def generate_to(exe, path, args, replace=None, describe=None):
     """Runs `facet generate ... -o TMP/NAME` and moves what it wrote onto `path` (and,
     for a POV-Ray scene whose meshes read data images, those beside it) when facet

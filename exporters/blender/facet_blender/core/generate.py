@@ -22,6 +22,12 @@ def safe_name(name):
     return re.sub(r"[^A-Za-z0-9_.-]+", "_", name).strip("._") or "material"
 
 
+def supports_normal_map(exe):
+    """Whether this facet's material files have the "normal_map" key (facet schema)."""
+    schema = cli.material_schema(exe)
+    return isinstance(schema, dict) and "normal_map" in schema.get("properties", {})
+
+
 def osl_text_name(name):
     """The name of the Text that holds a material's generated OSL."""
     return f"facet_{safe_name(name)}.osl"

@@ -186,7 +186,13 @@ def triangle_corners(vertices, loops, polygons, corner_normals, smooth, face_nor
     return triangles, normals
 
 
-def mesh_objects(name, matrix, positions, triangles, corner_normals, materials):
+def texcoord(uv):
+    """facet's (glTF's) texture coordinate of a Blender UV: v runs down the picture in
+    facet, up in Blender (docs/textures.md; /work/texconv/FINDINGS.md B4), so v = 1 − v_b."""
+    return [float(uv[0]), 1.0 - float(uv[1])]
+
+
+def mesh_objects(name, matrix, positions, triangles, corner_normals, materials, corner_uvs=None):
     """facet mesh objects (one per material) of one Blender mesh.
 
     positions:       [(x, y, z), ...] local vertex positions
@@ -195,6 +201,9 @@ def mesh_objects(name, matrix, positions, triangles, corner_normals, materials):
     corner_normals:  [((nx, ny, nz), (..), (..)), ...] per triangle, local space: the
                      per-corner normals of smooth faces, the face normal of flat faces
     materials:       [material name, ...] per triangle
+    corner_uvs:      None, or per triangle three corners' tuples of Blender UVs ((u, v) of
+                     the UV maps the triangle's material reads: set 0, then set 1), written
+                     as facet's "texcoords" and "texcoords1" with v = 1 − v_blender
 
     Positions go to world space through `matrix` (4x4 rows), normals through its
     inverse transpose. A vertex is split where its corners' normals differ. A mirroring
@@ -204,12 +213,15 @@ def mesh_objects(name, matrix, positions, triangles, corner_normals, materials):
     flip = det3(matrix) < 0.0
     out = {}   # material -> [index map, positions, normals, triangles]
     world = {}
-    for tri, normals, material in zip(triangles, corner_normals, materials):
+    uvs_of = {}      # material -> [texcoords, texcoords1]
+    for t, (tri, normals, material) in enumerate(zip(triangles, corner_normals, materials)):
         entry = out.setdefault(material, [{}, [], [], []])
         index, pos, nor, tris = entry
         corners = []
-        for v, n in zip(tri, normals):
-            key = (v, tuple(n))
+        uv_corners = corner_uvs[t] if corner_uvs is not None else (None, None, None)
+        for v, n, uv in zip(tri, normals, uv_corners):
+            uv = tuple(tuple(x) for x in uv) if uv else ()
+            key = (v, tuple(n), uv)
             i = index.get(key)
             if i is None:
                 if v not in world:
@@ -222,13 +234,19 @@ def mesh_objects(name, matrix, positions, triangles, corner_normals, materials):
                 i = index[key] = len(pos)
                 pos.append(to_facet(world[v]))
                 nor.append(to_facet(wn))
+                sets = uvs_of.setdefault(material, [[] for _ in uv])
+                for k, c in enumerate(uv):
+                    sets[k].append(texcoord(c))
             corners.append(i)
         tris.append([corners[0], corners[2], corners[1]] if flip else corners)
     objects = []
     for material, (_, pos, nor, tris) in out.items():
-        objects.append({"type": "mesh",
-                        "name": name if len(out) == 1 else f"{name}.{material}",
-                        "material": material, "positions": pos, "normals": nor, "triangles": tris})
+        obj = {"type": "mesh", "name": name if len(out) == 1 else f"{name}.{material}",
+               "material": material, "positions": pos, "normals": nor}
+        for key, coords in zip(("texcoords", "texcoords1"), uvs_of.get(material, ())):
+            obj[key] = coords
+        obj["triangles"] = tris
+        objects.append(obj)
     return objects
 
 
