@@ -35,7 +35,7 @@ import zlib
 import bpy
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from blender_scene import add_uv_sphere, link, point_sampled_cycles  # noqa: E402  (the tests' shared scene building)
+from blender_scene import add_uv_map, add_uv_sphere, link, point_sampled_cycles, sphere_uvs  # noqa: E402  (the tests' shared scene building)
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ADDON_ROOT = os.path.dirname(HERE)          # exporters/blender: holds facet_blender/
@@ -1566,6 +1566,146 @@ def test_gltf_scene_osl_matches_reference():
     compare(got, ref, ids, "glTF scene, Cycles OSL vs reference of the exported scene")
     original = facet_reference(None, gltf_original_scene(), w, h, "gltf_original")
     compare(got, original, ids, "glTF scene, Cycles OSL vs reference of the glTF file (facet import-gltf)")
+
+
+# ============================================================================ tests: textures
+
+TEX = 8     # the test images are TEX × TEX texels
+
+
+def texel_colour(i, j):
+    """An 8-bit colour for texel (i, j), j = 0 the TOP row: a checker whose red grows to
+    the right and blue down the picture, so that a flipped or shifted picture differs."""
+    bright = (i + j) % 2 == 0
+    return (round(40 + 200 * i / (TEX - 1)) / 255.0, (220 if bright else 30) / 255.0,
+            round(20 + 210 * j / (TEX - 1)) / 255.0)
+
+
+def make_image(name, colour=texel_colour, colorspace="sRGB", save_as=None, pack=False):
+    """A TEX × TEX byte image whose texels are colour(i, j) (j from the top); saved as a PNG
+    file (`save_as`), packed into the .blend, or left generated."""
+    image = bpy.data.images.new(name, TEX, TEX, alpha=False, float_buffer=False)
+    image.colorspace_settings.name = colorspace      # first: it regenerates a generated image's pixels
+    pixels = []
+    for jb in range(TEX):                  # Blender's pixels: bottom row first
+        for i in range(TEX):
+            pixels.extend(colour(i, TEX - 1 - jb) + (1.0,))
+    image.pixels = pixels
+    if save_as:
+        image.filepath_raw = save_as
+        image.file_format = "PNG"
+        image.save()
+        image.source = "FILE"
+    if pack:
+        image.pack()
+    check(abs(image.pixels[4 * (TEX * TEX - TEX)] - colour(0, 0)[0]) < 1e-6, f"image {name}: pixels not kept")
+    return image
+
+
+def set_extension(node, extension):
+    try:
+        node.extension = extension
+    except TypeError:                      # Blender 3.4 has no MIRROR
+        node.extension = "EXTEND"
+
+
+def image_node(nodes, links, image, interpolation="Closest", extension="REPEAT", uv_map="UVMap", mapping=None):
+    tex = nodes.new("ShaderNodeTexImage")
+    tex.image, tex.interpolation = image, interpolation
+    set_extension(tex, extension)
+    uv = nodes.new("ShaderNodeUVMap")
+    uv.uv_map = uv_map
+    if mapping:
+        m = nodes.new("ShaderNodeMapping")
+        m.vector_type = "POINT"
+        for key, value in mapping.items():
+            m.inputs[key].default_value = value
+        links.new(uv.outputs["UV"], m.inputs["Vector"])
+        links.new(m.outputs["Vector"], tex.inputs["Vector"])
+    else:
+        links.new(uv.outputs["UV"], tex.inputs["Vector"])
+    return tex
+
+
+def textured_objects(sphere_mat, floor_mat):
+    ball = add_uv_sphere("Ball", (0.0, 0.0, 1.0), 1.0, 48, 24, True, sphere_mat)
+    add_uv_map(ball, sphere_uvs)
+    ball.rotation_euler = (0.0, 0.0, math.radians(-110))        # the picture's middle towards the camera
+    floor = add_quad("Floor", 3.0, material=floor_mat)
+    add_uv_map(floor, lambda corners: [((x + 3.0) / 6.0, (y + 3.0) / 6.0) for x, y, _ in corners])
+    add_camera((0.6, -6.5, 3.2), (0.0, 0.0, 0.7), 40.0)
+    bpy.context.view_layer.update()
+
+
+def diffuse_textured(name, image, **kw):
+    def build(nodes, links, out):
+        d = nodes.new("ShaderNodeBsdfDiffuse")
+        d.inputs["Roughness"].default_value = 0.0
+        links.new(image_node(nodes, links, image, **kw).outputs["Color"], d.inputs["Color"])
+        links.new(d.outputs[0], out.inputs["Surface"])
+    return node_material(name, build)
+
+
+FLOOR_MAPPING = {"Location": (0.1, 0.3, 0.0), "Rotation": (0.0, 0.0, 0.4), "Scale": (1.5, 2.0, 1.0)}
+
+
+def texture_scene(w, h):
+    """Two Diffuse BSDFs (roughness 0: exactly Lambert) with image colours: the sphere an
+    sRGB PNG file, repeat; the floor a generated Non-Color image through a Mapping node
+    (rotation, scale, offset), mirrored. A sun from behind the camera (no terminator)."""
+    checker = make_image("Checker", save_as=work("checker_source.png"))
+    swapped = make_image("Swapped", lambda i, j: texel_colour(j, i)[::-1], colorspace="Non-Color")
+    ball = diffuse_textured("BallTex", checker)
+    floor = diffuse_textured("FloorTex", swapped, extension="MIRROR", mapping=FLOOR_MAPPING)
+    textured_objects(ball, floor)
+    add_light("SUN", (0.0, 0.0, 5.0), 2.5, rotation=(math.radians(50), 0.0, math.radians(10)))
+    scene = bpy.context.scene
+    scene.render.resolution_x, scene.render.resolution_y = w, h
+    return ball, floor
+
+
+def over_tolerance(got, ref, mask):
+    return sum(1 for j in range(len(ref)) for i in range(len(ref[0])) if interior(mask, i, j)
+               and any(abs(got[j][i][c] - ref[j][i][c]) > TOL * max(1.0, abs(ref[j][i][c])) for c in range(3)))
+
+
+@test()
+def test_textures_land_where_cycles_puts_them():
+    """The v-flip proof: Cycles' own Image Texture nodes (Closest; an sRGB file on a UV
+    sphere, a generated Non-Color image through a Mapping node, mirrored, on a plane)
+    rendered by Cycles equal facet's reference render of the scene the add-on exports
+    (texcoords v = 1 − v_blender, the Mapping node as a transform, the generated image
+    written from its pixels). With the flip left out the same comparison fails."""
+    from facet_blender.core import scene as core_scene
+    w, h = 64, 48
+    ball, floor = texture_scene(w, h)
+    for mat in (ball, floor):
+        reports = expect_ok("convert_material", mat)
+        check(any("textured by" in m for _, m in reports), f"{mat.name}: no texture found: {reports}")
+    path = work("textured.json")
+    expect_ok("export_scene", None, filepath=path)
+    exported = read_json(path)
+    kd = exported["materials"]["FloorTex"]["diffuse"]["color"]
+    check(isinstance(kd, dict) and kd.get("transform") and kd.get("wrap") in ("mirror", "clamp"),
+          f"the floor's colour should be a transformed texture: {kd}")
+    for m in exported["materials"].values():
+        name = m["diffuse"]["color"]["texture"]
+        check(not os.path.isabs(name) and os.path.isfile(work(name)), f"texture {name} not beside the scene")
+    got = cycles_render(work("textured_cycles.exr"), w, h)
+    ids = reference_ids(exported, w, h, "textured")
+    ref = facet_reference(None, exported, w, h, "textured")
+    compare(got, ref, ids, "Image Texture nodes, Cycles vs facet reference of the exported scene")
+
+    real = core_scene.texcoord
+    try:
+        core_scene.texcoord = lambda uv: [float(uv[0]), float(uv[1])]       # the flip left out
+        expect_ok("export_scene", None, filepath=work("textured_unflipped.json"))
+    finally:
+        core_scene.texcoord = real
+    wrong = facet_reference(None, read_json(work("textured_unflipped.json")), w, h, "textured_unflipped")
+    bad = over_tolerance(got, wrong, ids)
+    info(f"without the v flip: {bad} interior pixels over the tolerance")
+    check(bad > 100, f"the unflipped export should fail the comparison; only {bad} pixels differ")
 
 
 # ============================================================================ tests: Blender materials, render_povray vs facet
