@@ -89,7 +89,10 @@ class FACET_OT_export_material(_MaterialOperator, ExportHelper, bpy.types.Operat
     def run(self, context):
         mat = context_material(context)
         exe = preferences.facet_exe(context)
-        generate.export_material(exe, material_mod.to_json(mat), mat.name, self.filepath)
+        data, files, _, notes = textured_files(exe, mat)
+        generate.export_material(exe, data, mat.name, self.filepath, files)
+        for note in notes:
+            self.report_("WARNING", note)
         self.report_("INFO", f"Exported material '{mat.name}' to {self.filepath}")
 
 
@@ -148,7 +151,10 @@ class FACET_OT_export_glsl(_MaterialOperator, ExportHelper, bpy.types.Operator):
     def run(self, context):
         mat = context_material(context)
         exe = preferences.facet_exe(context)
-        generate.code_to(exe, material_mod.to_json(mat), mat.name, self.filepath, self.dialect, self.library)
+        data, files, _, notes = textured_files(exe, mat)
+        generate.code_to(exe, data, mat.name, self.filepath, self.dialect, self.library, files)
+        for note in notes:
+            self.report_("WARNING", note)
         self.report_("INFO", f"Wrote {self.dialect}{' library' if self.library else ''} of '{mat.name}' "
                              f"to {self.filepath}")
 
@@ -192,18 +198,28 @@ def texture_folder(material):
     return folder, [f"material '{material.name}': the .blend is not saved; its texture files are in {folder}"]
 
 
-def textured_material(exe, mat):
-    """(material JSON with its textures as absolute files, UV map names of sets 0 and 1,
-    notes) for generating code from one material."""
+def textured_files(exe, mat):
+    """(material JSON naming its texture images relatively, {file name: bytes} of those
+    images, UV map names of sets 0 and 1, notes) of one material."""
     data = material_mod.to_json(mat)
     bindings = material_mod.texture_bindings(mat)
     if not bindings:
-        return data, [], []
-    names, files, notes = images.texture_files({mat.name: bindings})
-    data, more = textures.apply(data, bindings, names[mat.name], generate.supports_normal_map(exe))
+        return data, {}, [], []
+    normal_maps = generate.supports_normal_map(exe)
+    names, files, notes = images.texture_files({mat.name: textures.exported(bindings, normal_maps)})
+    data, more = textures.apply(data, bindings, names[mat.name], normal_maps)
+    return data, files, textures.uv_maps(bindings, mat.name), notes + more
+
+
+def textured_material(exe, mat):
+    """(material JSON with its textures as absolute files, UV map names of sets 0 and 1,
+    notes) for generating OSL: the images are written to `texture_folder`."""
+    data, files, uv_maps, notes = textured_files(exe, mat)
+    if not files:
+        return data, uv_maps, notes
     folder, where = texture_folder(mat)
     cli.write_all_atomic(folder, files)
-    return textures.absolute(data, folder), textures.uv_maps(bindings, mat.name), notes + more + where
+    return textures.absolute(data, folder), uv_maps, notes + where
 
 
 # ----------------------------------------------------------------------------- Blender nodes -> facet

@@ -213,7 +213,8 @@ def full_scene(context, supports_normal_map=True):
         raise UserError(f"scene '{scene.name}' has no mesh objects to export")
     materials = {}
     bindings = {name: material_mod.texture_bindings(used[name]) for name in sorted(used)}
-    names, files, more = images.texture_files({n: b for n, b in bindings.items() if b})
+    names, files, more = images.texture_files({n: textures.exported(b, supports_normal_map)
+                                               for n, b in bindings.items() if b})
     notes += more
     for name in sorted(used):
         materials[name], more = textures.apply(material_mod.to_json(used[name]), bindings[name],

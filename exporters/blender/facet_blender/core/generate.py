@@ -50,12 +50,16 @@ def check_material(exe, data, label):
         cli.validate_material(exe, path, {path: label})
 
 
-def export_material(exe, data, name, path):
-    """Writes the material file `path` once facet accepted `data`."""
+def export_material(exe, data, name, path, files=None):
+    """Writes the material file `path` once facet accepted `data`; `files` ({name: bytes},
+    the texture images it names relatively) go beside it, written before it."""
     with tempfile.TemporaryDirectory(prefix="facet-") as tmp:
+        if files:
+            cli.write_all_atomic(tmp, files)
         temp, replace = write_material_temp(tmp, data, name)
         cli.validate_material(exe, temp, replace)
-    cli.write_atomic(path, cli.dump_json(data))
+    cli.write_all_atomic(os.path.dirname(os.path.abspath(path)),
+                         dict(files or {}, **{os.path.basename(path): cli.dump_json(data)}))
 
 
 def read_material(exe, path):
@@ -71,11 +75,16 @@ def read_material(exe, path):
         raise UserError(f"cannot read {path}: {e}")
 
 
-def code_to(exe, data, name, path, target, library=False):
-    """`facet generate --target TARGET [--library]` of the material into `path`."""
+def code_to(exe, data, name, path, target, library=False, files=None):
+    """`facet generate --target TARGET [--library]` of the material into `path`; the
+    texture images it names relatively (`files`, {name: bytes}) are written beside it."""
     with tempfile.TemporaryDirectory(prefix="facet-") as tmp:
+        if files:
+            cli.write_all_atomic(tmp, files)
         temp, replace = write_material_temp(tmp, data, name)
         cli.generate_to(exe, path, [temp, "--target", target] + (["--library"] if library else []), replace)
+    if files:
+        cli.write_all_atomic(os.path.dirname(os.path.abspath(path)), files)
 
 
 def osl_shader(exe, data, name, scene, scene_name):

@@ -268,12 +268,14 @@ def normal_map_of(src, ctx):
         ctx.note("approximate", f"{ctx.where(src)}: its tangents come from UV map '{src.get('uv_map')}', the "
                                 f"image from '{spec['uv_map']}'; facet uses the image's")
     if strength != 1.0:
-        # Cycles (intern/cycles/kernel/svm/normal.h, svm_node_normal_map): for strength ≠ 1,
-        # N = normalize(N_geometric + (N_mapped − N_geometric)·strength); glTF's scale multiplies
-        # the tangent-space x and y before normalizing. Equal at 1 (and 0) only.
-        ctx.note("approximate", f"{ctx.where(src)}: Strength {strength:.3g}: Blender blends the mapped normal "
-                                f"with the surface's, facet (glTF's normalTexture.scale) scales its x and y; "
-                                f"equal only at Strength 1")
+        # Cycles 4.5 (kernel/svm/tex_coord.h, svm_node_normal_map, as shipped in bpy 4.5's
+        # addons_core/cycles/source): tangent-space c = 2·rgb − 1 becomes (s·c_x, s·c_y,
+        # mix(1, c_z, clamp(s, 0, 1))) before normalizing; glTF's normalTexture.scale gives
+        # (s·c_x, s·c_y, c_z). (Cycles 3.x blended world-space normals instead:
+        # normalize(N + (N_mapped − N)·s).) The two agree at s = 1 only.
+        ctx.note("approximate", f"{ctx.where(src)}: Strength {strength:.3g}: Blender scales the tangent-space "
+                                f"x and y and blends z towards 1, facet (glTF's normalTexture.scale) scales x and "
+                                f"y only; equal only at Strength 1")
     else:
         ctx.note("exact", f"{ctx.where(src)}: tangent-space normal map, Strength 1 -> normal_map")
     spec.pop("colorspace", None)
@@ -324,6 +326,12 @@ def uv_maps(bindings, material=""):
         raise UserError(f"material '{material}': its textures read {len(names)} UV maps "
                         f"({', '.join(repr(n or 'the active render one') for n in names)}); facet meshes have two")
     return names
+
+
+def exported(bindings, supports_normal_map=True):
+    """The bindings whose images an export writes (a facet without "normal_map" takes no
+    normal map; `apply` says so)."""
+    return [b for b in bindings if supports_normal_map or b["path"][0] != "normal_map"]
 
 
 def file_key(b):
