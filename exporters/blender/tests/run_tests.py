@@ -1789,7 +1789,7 @@ def test_textured_principled_exports_and_renders_like_reference():
     exported = read_json(work("principled.json"))
     materials = exported["materials"]
     spec = materials["BallPrincipled"]["specular"]
-    check(spec["alpha"]["channel"] == "r" and spec["alpha"]["texture"] == "RoughMap_square.png",
+    check(spec["alpha"]["channel"] == "r" and spec["alpha"]["texture"] == "rough_source_square.png",
           f"α should be the baked square of the roughness map's green: {spec['alpha']}")
     names = {materials["BallPrincipled"]["diffuse"]["color"]["texture"], spec["alpha"]["texture"],
              materials["FloorPrincipled"]["diffuse"]["color"]["texture"]}
@@ -1872,6 +1872,47 @@ def test_texture_warnings_and_missing_images():
     expect_error("export_scene", None, ["material 'Vanishing'", "image 'Checker'", "vanishing.png"],
                  filepath=work("vanishing_scene.json"))
     check_equal(sorted(os.listdir(WORK)), before, "files in the export folder after a failed export")
+
+
+def texture_objects(data, path=()):
+    """{key path: texture object} of a material JSON."""
+    out = {}
+    for key, value in data.items():
+        if isinstance(value, dict) and "texture" in value:
+            out[path + (key,)] = value
+        elif isinstance(value, dict):
+            out.update(texture_objects(value, path + (key,)))
+    return out
+
+
+@test()
+def test_textured_example_materials_round_trip():
+    """examples/textured/*.json: Import loads the images and keeps the textures; Export
+    Material writes them back (the images beside the file, named relatively, facet's keys
+    as they were, uv written out), and a second round trip changes nothing."""
+    folder = os.path.join(REPO, "examples", "textured")
+    names = sorted(f for f in os.listdir(folder) if f.endswith(".json"))
+    check(len(names) >= 3, f"too few textured examples in {folder}")
+    os.makedirs(work("textured_rt"))
+    for file in names:
+        original = read_json(os.path.join(folder, file))
+        mat = bpy.data.materials.new(original["name"])
+        expect_ok("import_material", mat, filepath=os.path.join(folder, file))
+        out = work(os.path.join("textured_rt", file))
+        expect_ok("export_material", mat, filepath=out)
+        exported = read_json(out)
+        want = texture_objects(original)
+        got = texture_objects(exported)
+        check_equal(sorted(got), sorted(want), f"{file}: textured parameters")
+        for path, tex in want.items():
+            expected = dict(tex, texture=os.path.basename(tex["texture"]), uv=tex.get("uv", 0))
+            check_equal(got[path], expected, f"{file}: {'.'.join(path)}")
+            check(os.path.isfile(work(os.path.join("textured_rt", got[path]["texture"]))), "image beside the file")
+        again = bpy.data.materials.new(original["name"] + "_again")
+        expect_ok("import_material", again, filepath=out)
+        expect_ok("export_material", again, filepath=out + ".2.json")
+        check_equal(dict(read_json(out + ".2.json"), name=exported["name"]), exported, f"{file}: second round trip")
+    info(f"{len(names)} textured example materials round-tripped")
 
 
 # ============================================================================ tests: Blender materials, render_povray vs facet

@@ -103,7 +103,9 @@ def texture_files(bindings_by_material, taken=None):
                     raise UserError(f"material '{material}': its texture image '{b['spec']['image']}' is gone "
                                     f"(run Convert Blender Material again)")
                 data, ext, space = _produce(image, b, material, notes)
-                name = textures.file_name(image.name, ext, b.get("derive"), taken)
+                path = image.filepath_raw or image.filepath
+                base = os.path.splitext(os.path.basename(path))[0] if path else image.name
+                name = textures.file_name(base or image.name, ext, b.get("derive"), taken)
                 files[name] = data
                 by_key[key] = (name, space)
             names[key] = by_key[key]

@@ -116,7 +116,8 @@ class FACET_OT_import_material(_FacetOperator, ImportHelper, bpy.types.Operator)
             if obj is not None and hasattr(obj.data, "materials"):
                 obj.data.materials.append(mat)
                 obj.active_material_index = len(obj.material_slots) - 1
-        material_mod.from_json(mat, data)
+        for note in material_mod.from_json(mat, data, os.path.dirname(os.path.abspath(self.filepath))):
+            self.report_("WARNING", note)
         self.report_("INFO", f"Imported facet material '{data.get('name', '?')}' into "
                              f"{'new ' if created else ''}material '{mat.name}'")
 

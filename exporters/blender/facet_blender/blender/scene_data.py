@@ -134,7 +134,12 @@ def _mesh_data(obj, mesh):
 def _uv_layer(mesh, name, obj_name, material):
     """Per-loop UVs (flat list) of the named UV map ("" is the active render one)."""
     layers = mesh.uv_layers
-    layer = layers.get(name) if name else next((l for l in layers if l.active_render), layers.active)
+    if name.startswith("#") and name[1:].isdigit():        # a material file's set k: the k-th UV map
+        k = int(name[1:])
+        layer = layers[k] if k < len(layers) else None
+        name = f"number {k + 1}"
+    else:
+        layer = layers.get(name) if name else next((l for l in layers if l.active_render), layers.active)
     if layer is None:
         raise UserError(f"object '{obj_name}' has no UV map " + (f"'{name}'" if name else "at all")
                         + f", which the textures of material '{material}' read: add it, or change the "

@@ -300,6 +300,37 @@ def binding(path, model, spec, factor=None, derive=None):
     return b
 
 
+def split(material_json):
+    """(the material JSON with every {"texture": …} replaced by its factor, or left out so
+    that the default applies, [(key path, texture object), …]): what a material file's
+    textures become in the add-on (numbers in the panel, bindings beside them)."""
+    found = []
+
+    def walk(node, path):
+        out = {}
+        for key, value in node.items():
+            if isinstance(value, dict) and "texture" in value:
+                found.append((path + [key], value))
+                if "factor" in value and key != "normal_map":
+                    out[key] = value["factor"]
+            elif isinstance(value, dict):
+                out[key] = walk(value, path + [key])
+            else:
+                out[key] = value
+        return out
+    return walk(material_json, []), found
+
+
+def binding_of_json(path, tex, model, image_name):
+    """The binding of a texture object read from a material file (`split`). Its UV set is
+    kept as "" (set 0: the mesh's active render UV map) or "#1" (the mesh's second UV map)."""
+    spec = {"image": image_name, "uv_map": "#1" if tex.get("uv", 0) == 1 else ""}
+    for key in ("channel", "colorspace", "filter", "wrap", "transform", "green", "strength"):
+        if key in tex:
+            spec[key] = tex[key]
+    return binding(path, model, spec, tex.get("factor"))
+
+
 def dumps(bindings):
     return json.dumps(bindings, sort_keys=True)
 
@@ -322,6 +353,9 @@ def uv_maps(bindings, material=""):
         name = b["spec"].get("uv_map", "")
         if name not in names:
             names.append(name)
+    if "#1" in names:                     # a material file's set 1 stays set 1
+        names = [n for n in names if n != "#1"]
+        names = (names or [""]) + ["#1"]
     if len(names) > 2:
         raise UserError(f"material '{material}': its textures read {len(names)} UV maps "
                         f"({', '.join(repr(n or 'the active render one') for n in names)}); facet meshes have two")
@@ -363,17 +397,23 @@ def apply(material_json, bindings, files, supports_normal_map=True):
         name, space = files[file_key(b)]
         spec = b["spec"]
         tex = {"texture": name}
-        if section != "normal_map":
-            tex["channel"] = spec["channel"]
-            tex["colorspace"] = space or spec["colorspace"]
-            if b.get("derive"):
-                tex["channel"] = "rgb" if spec["channel"] == "rgb" or b["derive"].get("rgb") else "r"
-                tex["colorspace"] = "linear"
-        tex["filter"], tex["wrap"], tex["uv"] = spec["filter"], spec["wrap"], names.index(spec.get("uv_map", ""))
+        for key in ("channel", "colorspace"):
+            if section != "normal_map" and spec.get(key) is not None:
+                tex[key] = spec[key]
+        if space and section != "normal_map":
+            tex["colorspace"] = space
+        if b.get("derive"):
+            tex["channel"] = "rgb" if spec.get("channel") == "rgb" or b["derive"].get("rgb") else "r"
+            tex["colorspace"] = "linear"
+        for key in ("filter", "wrap"):
+            if spec.get(key) is not None:
+                tex[key] = spec[key]
+        tex["uv"] = names.index(spec.get("uv_map", ""))
         if spec.get("transform"):
             tex["transform"] = spec["transform"]
-        if section == "normal_map":
-            tex["green"], tex["strength"] = spec["green"], spec["strength"]
+        for key in ("green", "strength"):
+            if section == "normal_map" and spec.get(key) is not None:
+                tex[key] = spec[key]
         if b.get("factor") is not None:
             tex["factor"] = b["factor"]
         target = data

@@ -350,3 +350,24 @@ def test_facet_reads_what_apply_writes(facet, tmp_path):
     assert "facet_texture_diffuse_color" in text and "facet_texture_specular_alpha" in text
     absolute = textures.absolute(data, "/x")
     assert absolute["diffuse"]["color"]["texture"] == os.path.join("/x", "checker.png")
+
+
+def test_a_material_files_textures_round_trip():
+    """split + binding_of_json + apply give back the file's texture objects (uv written out)."""
+    tex_kd = {"texture": "../textures/checker.png", "filter": "nearest", "wrap": "mirror", "factor": 0.8,
+              "transform": {"offset": [0.1, 0.2], "scale": [3, 2], "rotation": 0.5}}
+    tex_alpha = {"texture": "r16.png", "wrap": ["clamp", "repeat"], "channel": "g", "uv": 1}
+    data = {"name": "T", "diffuse": {"model": "lambert", "color": tex_kd},
+            "specular": {"model": "ggx", "alpha": tex_alpha, "fresnel": {"model": "schlick", "f0": 0.04}}}
+    numbers, found = textures.split(data)
+    assert numbers["diffuse"] == {"model": "lambert", "color": 0.8}
+    assert numbers["specular"] == {"model": "ggx", "fresnel": {"model": "schlick", "f0": 0.04}}
+    bindings = [textures.binding_of_json(path, tex, numbers[path[0]]["model"], os.path.basename(tex["texture"]))
+                for path, tex in found]
+    files = {textures.file_key(b): (b["spec"]["image"], None) for b in bindings}
+    again, notes = textures.apply(dict(numbers, diffuse={"model": "lambert", "color": [1, 1, 1]},
+                                       specular={"model": "ggx", "alpha": 0.5}), bindings, files)
+    assert not notes
+    assert again["diffuse"]["color"] == dict(tex_kd, texture="checker.png", uv=0)
+    assert again["specular"]["alpha"] == dict(tex_alpha, texture="r16.png")
+    assert textures.uv_maps(bindings) == ["", "#1"]
