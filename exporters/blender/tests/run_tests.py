@@ -1682,6 +1682,9 @@ def test_textures_land_where_cycles_puts_them():
     for mat in (ball, floor):
         reports = expect_ok("convert_material", mat)
         check(any("textured by" in m for _, m in reports), f"{mat.name}: no texture found: {reports}")
+    from facet_blender.blender.ui import FACET_PT_material
+    labels = [entry[1] for entry in draw_panel(FACET_PT_material, ball) if entry[0] == "label"]
+    check(any("diffuse.color" in t and "image 'Checker'" in t for t in labels), f"the panel shows no texture: {labels}")
     path = work("textured.json")
     expect_ok("export_scene", None, filepath=path)
     exported = read_json(path)
