@@ -1757,7 +1757,9 @@ def principled_texture_scene(w, h):
     sRGB PNG file), a roughness map through Separate Color (a packed Non-Color image) and
     a Normal Map node (a generated Non-Color image) on a UV sphere; a Principled floor
     whose Base Color is a generated image through a Mapping node."""
-    checker = make_image("Checker", save_as=work("checker_source.png"))
+    os.makedirs(work("src"), exist_ok=True)
+    # Named like the export's own render (principled.png): its copy must take another name.
+    checker = make_image("Checker", save_as=work("src/principled.png"))
     rough = make_image("RoughMap", roughness_colour, "Non-Color", save_as=work("rough_source.png"), pack=True)
     os.remove(work("rough_source.png"))                  # only the packed copy is left
     normals = make_image("Normals", normal_colour, "Non-Color")
@@ -1794,6 +1796,8 @@ def test_textured_principled_exports_and_renders_like_reference():
     spec = materials["BallPrincipled"]["specular"]
     check(spec["alpha"]["channel"] == "r" and spec["alpha"]["texture"] == "rough_source_square.png",
           f"α should be the baked square of the roughness map's green: {spec['alpha']}")
+    check_equal(materials["BallPrincipled"]["diffuse"]["color"]["texture"], "principled_2.png",
+                "an image named like the render, beside the .pov")
     names = {materials["BallPrincipled"]["diffuse"]["color"]["texture"], spec["alpha"]["texture"],
              materials["FloorPrincipled"]["diffuse"]["color"]["texture"]}
     if facet_has_normal_map():

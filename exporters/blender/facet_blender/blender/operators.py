@@ -261,7 +261,8 @@ class FACET_OT_export_scene(_FacetOperator, ExportHelper, bpy.types.Operator):
 
     def run(self, context):
         exe = preferences.facet_exe(context)
-        data, notes, files = scene_data.full_scene(context, generate.supports_normal_map(exe))
+        data, notes, files = scene_data.full_scene(context, generate.supports_normal_map(exe),
+                                                   [os.path.basename(self.filepath)])
         folder = os.path.dirname(os.path.abspath(self.filepath))
         # The images first, the scene that names them last.
         cli.write_all_atomic(folder, dict(files, **{os.path.basename(self.filepath): cli.dump_json(data)}))
@@ -304,9 +305,10 @@ class FACET_OT_export_pov(_FacetOperator, ExportHelper, bpy.types.Operator):
         exe = preferences.facet_exe(context)
         pov.require_scene_support(exe)
         # names a material without settings; reads every image before anything is written
-        data, notes, files = scene_data.full_scene(context, generate.supports_normal_map(exe))
-        povray_path = preferences.povray_exe(context) if self.render else None
         stem = os.path.splitext(self.filepath)[0]
+        reserved = [os.path.basename(stem) + ext for ext in (".pov", ".png", ".json")]
+        data, notes, files = scene_data.full_scene(context, generate.supports_normal_map(exe), reserved)
+        povray_path = preferences.povray_exe(context) if self.render else None
         plan = pov.generate_scene(exe, data, context.scene.name, self.filepath, files)   # facet's pass count
         beside = dict(files)
         if self.save_scene:

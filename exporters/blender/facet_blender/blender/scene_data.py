@@ -200,10 +200,10 @@ def objects_json(depsgraph, materials):
     return objects, notes
 
 
-def full_scene(context, supports_normal_map=True):
+def full_scene(context, supports_normal_map=True, reserved=()):
     """(facet scene JSON with materials and meshes, notes, texture files) of the whole
     scene; the texture files ({file name: bytes}) go beside the scene file, which names
-    them relatively.
+    them relatively, under names other than `reserved` (what else the export writes).
 
     Raises a UserError naming the first material without facet settings."""
     scene = context.scene
@@ -219,7 +219,8 @@ def full_scene(context, supports_normal_map=True):
     materials = {}
     bindings = {name: material_mod.texture_bindings(used[name]) for name in sorted(used)}
     names, files, more = images.texture_files({n: textures.exported(b, supports_normal_map)
-                                               for n, b in bindings.items() if b})
+                                               for n, b in bindings.items() if b},
+                                              {r.lower() for r in reserved})
     notes += more
     for name in sorted(used):
         materials[name], more = textures.apply(material_mod.to_json(used[name]), bindings[name],
