@@ -131,8 +131,8 @@ def _mesh_data(obj, mesh):
     return positions, triangles, normals, slots, loops
 
 
-def _uv_layer(mesh, name, obj_name, material):
-    """Per-loop UVs (flat list) of the named UV map ("" is the active render one)."""
+def _find_uv_layer(mesh, name, obj_name, material):
+    """The named UV map ("" the active render one, "#k" the k-th) or a UserError naming it."""
     layers = mesh.uv_layers
     if name.startswith("#") and name[1:].isdigit():        # a material file's set k: the k-th UV map
         k = int(name[1:])
@@ -144,6 +144,12 @@ def _uv_layer(mesh, name, obj_name, material):
         raise UserError(f"object '{obj_name}' has no UV map " + (f"'{name}'" if name else "at all")
                         + f", which the textures of material '{material}' read: add it, or change the "
                           f"UV Map node and convert the material again")
+    return layer
+
+
+def _uv_layer(mesh, name, obj_name, material):
+    """Per-loop UVs (flat list) of the named UV map."""
+    layer = _find_uv_layer(mesh, name, obj_name, material)
     values = [0.0] * (2 * len(mesh.loops))
     layer.data.foreach_get("uv", values)
     return values
@@ -166,7 +172,36 @@ def _corner_uvs(mesh, obj_name, loops, slot_names):
     return out
 
 
-def objects_json(depsgraph, materials):
+def _corner_tangents(mesh, obj_name, loops, slot_materials, supports_normal_map):
+    """Per triangle, None or its corners' (MikkTSpace tangent, bitangent sign) for the UV
+    map of its material's normal map (Mesh.calc_tangents)."""
+    per_uv, out = {}, []
+    for t, material in enumerate(slot_materials):
+        bindings = textures.exported(material_mod.texture_bindings(material), supports_normal_map)
+        normal = next((b for b in bindings if b["path"] == ["normal_map"]), None)
+        if normal is None:
+            out.append(None)
+            continue
+        name = normal["spec"].get("uv_map", "")
+        if name not in per_uv:
+            layer = _find_uv_layer(mesh, name, obj_name, material.name)
+            try:
+                mesh.calc_tangents(uvmap=layer.name)
+            except RuntimeError as e:
+                raise UserError(f"object '{obj_name}': the normal map of material '{material.name}' needs "
+                                f"tangents, which Blender cannot compute here ({e}); triangulate its n-gons")
+            tangents = [0.0] * (3 * len(mesh.loops))
+            signs = [0.0] * len(mesh.loops)
+            mesh.loops.foreach_get("tangent", tangents)
+            mesh.loops.foreach_get("bitangent_sign", signs)
+            per_uv[name] = (tangents, signs)
+        tangents, signs = per_uv[name]
+        out.append(tuple((tangents[3 * l], tangents[3 * l + 1], tangents[3 * l + 2], signs[l])
+                         for l in loops[3 * t:3 * t + 3]))
+    return out
+
+
+def objects_json(depsgraph, materials, supports_normal_map=False):
     """(facet mesh objects, notes). `materials` collects name -> Blender material of
     every material used (their facet settings are checked by the caller)."""
     objects, notes = [], []
@@ -191,10 +226,12 @@ def objects_json(depsgraph, materials):
                 materials[mat.name] = mat.original if hasattr(mat, "original") else mat
                 names.append(mat.name)
                 used_materials.append(materials[mat.name])
-            uvs = None
+            uvs = tangents = None
             if any(material_mod.texture_bindings(m) for m in set(used_materials)):
                 uvs = _corner_uvs(mesh, name, loops, used_materials)
-            objects.extend(core_scene.mesh_objects(name, _rows(matrix), positions, triangles, normals, names, uvs))
+                tangents = _corner_tangents(mesh, name, loops, used_materials, supports_normal_map)
+            objects.extend(core_scene.mesh_objects(name, _rows(matrix), positions, triangles, normals, names, uvs,
+                                                   tangents))
         finally:
             obj.to_mesh_clear()
     return objects, notes
@@ -212,7 +249,7 @@ def full_scene(context, supports_normal_map=True, reserved=()):
     ambient, more = world_ambient(scene)
     notes += more
     used = {}
-    objects, more = objects_json(depsgraph, used)
+    objects, more = objects_json(depsgraph, used, supports_normal_map)
     notes += more
     if not objects:
         raise UserError(f"scene '{scene.name}' has no mesh objects to export")

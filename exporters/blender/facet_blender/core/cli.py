@@ -138,6 +138,25 @@ def scene_support(schema):
     return "materials" in props, "mesh" in _object_types(props.get("objects", {}))
 
 
+def mesh_keys(schema):
+    """The keys a scene schema allows on a mesh (the objects whose properties have
+    "texcoords"), merged over its variants."""
+    found = set()
+
+    def walk(node):
+        if isinstance(node, dict):
+            props = node.get("properties")
+            if isinstance(props, dict) and "texcoords" in props:
+                found.update(props)
+            for value in node.values():
+                walk(value)
+        elif isinstance(node, list):
+            for value in node:
+                walk(value)
+    walk(schema)
+    return found
+
+
 def _object_types(node):
     """Every value a `"type": {"const": ...}` (or enum) allows anywhere under `node`."""
     found = set()

@@ -23,9 +23,13 @@ def safe_name(name):
 
 
 def supports_normal_map(exe):
-    """Whether this facet's material files have the "normal_map" key (facet schema)."""
+    """Whether this facet takes a Blender material's normal map: its material files have
+    the "normal_map" key and its scene meshes carry "tangents" (facet schema, facet schema
+    --scene); a facet with normal maps on its shapes only refuses a normal-mapped mesh."""
     schema = cli.material_schema(exe)
-    return isinstance(schema, dict) and "normal_map" in schema.get("properties", {})
+    if not (isinstance(schema, dict) and "normal_map" in schema.get("properties", {})):
+        return False
+    return "tangents" in cli.mesh_keys(cli.scene_schema(exe))
 
 
 def osl_text_name(name):

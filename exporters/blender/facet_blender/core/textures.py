@@ -386,8 +386,9 @@ def apply(material_json, bindings, files, supports_normal_map=True):
         path = b["path"]
         section = path[0]
         if section == "normal_map" and not supports_normal_map:
-            notes.append(f"material '{data.get('name')}': this facet has no 'normal_map' key (facet schema); "
-                         f"its normal map (image '{b['spec']['image']}') is not exported")
+            notes.append(f"material '{data.get('name')}': this facet cannot take its normal map (image "
+                         f"'{b['spec']['image']}'): its schemas lack the material key 'normal_map' or mesh "
+                         f"'tangents'; the normal map is not exported")
             continue
         if len(path) > 1 and (section not in data or data[section].get("model") != b.get("model")):
             notes.append(f"material '{data.get('name')}': the texture of {'.'.join(path)} was made for the "

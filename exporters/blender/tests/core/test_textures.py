@@ -244,7 +244,7 @@ def test_normal_map_left_out_for_a_facet_without_the_key():
     r = map_surface(principled({"Normal": normal_map()}), "Old")
     data, notes = textures.apply({"name": "Old", "diffuse": {"model": "lambert", "color": [1, 1, 1]}}, r.textures,
                                  {textures.file_key(r.textures[0]): ("bumps.png", None)}, supports_normal_map=False)
-    assert "normal_map" not in data and "no 'normal_map' key" in notes[0]
+    assert "normal_map" not in data and "cannot take its normal map" in notes[0]
 
 
 # ----------------------------------------------------------------------------- apply, UV sets
@@ -371,3 +371,19 @@ def test_a_material_files_textures_round_trip():
     assert again["diffuse"]["color"] == dict(tex_kd, texture="checker.png", uv=0)
     assert again["specular"]["alpha"] == dict(tex_alpha, texture="r16.png")
     assert textures.uv_maps(bindings) == ["", "#1"]
+
+
+def test_mesh_tangents_go_to_world_space_and_mirroring_flips_w():
+    positions = [(0, 0, 0), (1, 0, 0), (1, 1, 0)]
+    n = ((0.0, 0.0, 1.0),) * 3
+    uvs = [(((0.0, 0.0),), ((1.0, 0.0),), ((1.0, 1.0),))]
+    tangent = [((1.0, 0.0, 0.0, 1.0),) * 3]
+    rot_z = [[0.0, -2.0, 0, 0], [2.0, 0.0, 0, 0], [0, 0, 2.0, 0], [0, 0, 0, 1.0]]      # 90° about Z, scale 2
+    (obj,) = scene.mesh_objects("T", rot_z, positions, [(0, 1, 2)], [n], ["M"], uvs, tangent)
+    # Blender's +X turned to +Y, in facet's axes (x, z, −y): (0, 0, −1); w kept.
+    assert [pytest.approx(c, abs=1e-12) for c in obj["tangents"][0]] == [0.0, 0.0, -1.0, 1.0]
+    mirror = [[-1.0, 0, 0, 0], [0, 1.0, 0, 0], [0, 0, 1.0, 0], [0, 0, 0, 1.0]]
+    (obj,) = scene.mesh_objects("T", mirror, positions, [(0, 1, 2)], [n], ["M"], uvs, tangent)
+    assert obj["tangents"][0] == [-1.0, 0.0, -0.0, -1.0]                                # B = w (N × T) kept
+    (obj,) = scene.mesh_objects("T", mirror, positions, [(0, 1, 2)], [n], ["M"], uvs, [None])
+    assert "tangents" not in obj
