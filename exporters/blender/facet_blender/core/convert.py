@@ -25,8 +25,10 @@ radiance as Cycles for a point or sun light of radius 0 (see scene.py for the un
 | Mix Shader (Fac f, a, b)                  | a's colours × (1−f), b's colours × f               | as exact as a and b |
 | anything else                             | refused: "no Diffuse, Glossy or Principled BSDF feeds the Material Output" | |
 
-Colours are linear RGB in both; a socket that is linked to other nodes (a texture)
-cannot be followed: its unlinked value is used and the mapping reported approximate.
+Colours are linear RGB in both. A socket fed by an Image Texture (directly, or through
+Separate Color, Mapping and UV Map nodes) and a Normal Map node become textured
+parameters (`Result.textures`, see textures.py); a socket linked to anything else is
+named in a warning (material, node name and type) and its unlinked value is used.
 """
 
 from . import UserError, textures
