@@ -230,15 +230,16 @@ def glossy_bsdf(node, weight, result):
     return lobe
 
 
-def _dielectric_f0(node, base):
-    """Principled's dielectric reflectance at normal incidence, per Blender version."""
+def _dielectric_f0(node, base, unit=False):
+    """Principled's dielectric reflectance at normal incidence, per Blender version; with
+    `unit`, per unit of Specular IOR Level (4.x) / Specular (3.x), in which it is linear."""
     if node.has("Specular IOR Level"):            # Blender 4.x
         ior = float(node.get("IOR", 1.5))
-        level = float(node.get("Specular IOR Level", 0.5))
+        level = 1.0 if unit else float(node.get("Specular IOR Level", 0.5))
         tint = _rgb(node.get("Specular Tint", (1.0, 1.0, 1.0))) if node.has("Specular Tint") else [1.0] * 3
         f0 = ((ior - 1.0) / (ior + 1.0)) ** 2 * 2.0 * max(level, 0.0)
         return [f0 * t for t in tint]
-    specular = float(node.get("Specular", 0.5))   # Blender 2.8-3.x
+    specular = 1.0 if unit else float(node.get("Specular", 0.5))   # Blender 2.8-3.x
     tint = float(node.get("Specular Tint", 0.0)) if node.has("Specular Tint") else 0.0
     lum = sum(c * k for c, k in zip(base, LUMINANCE))
     ctint = [c / lum for c in base] if lum > 0.0 else [1.0] * 3
@@ -255,6 +256,26 @@ _PRINCIPLED_IGNORED = (
 )
 
 
+def _specular_level_texture(node, result, base, metallic, spec_model, maps):
+    """f0 = level·F0₁·(1 − Metallic) + Base·Metallic from a Specular IOR Level (4.x) or
+    Specular (3.x) image, F0₁ the dielectric f0 per unit level: baked (affine per texel)."""
+    name = "Specular IOR Level" if node.has("Specular IOR Level") else "Specular"
+    level_tex = maps[3]
+    if not level_tex or not spec_model:
+        return
+    if maps[0] or maps[1]:
+        result.note(APPROXIMATE, f"{node.label}: {name} is an image as well as Base Color or Metallic; f0 needs "
+                                 f"their product per texel, which the add-on does not bake: the unlinked "
+                                 f"{name} is used")
+        return
+    unit = _dielectric_f0(node, base, unit=True)
+    _bind(result, ("specular", "fresnel", "f0"), spec_model, level_tex,
+          derive={"op": "affine", "scale": [u * (1.0 - metallic) for u in unit],
+                  "offset": [b * metallic for b in base], "rgb": True})
+    result.note(EXACT, f"{node.label}: f0 = {name}·F0·(1−Metallic) + Base·Metallic baked from image "
+                       f"'{level_tex['image']}'")
+
+
 def _principled_textures(node, result, weight, base, metallic, transmission, f0_dielectric, spec_model, maps):
     """The bindings of a Principled BSDF's Base Color, Metallic and Roughness images.
 
@@ -262,7 +283,7 @@ def _principled_textures(node, result, weight, base, metallic, transmission, f0_
     one image and constants are exact (a factor, or an affine function baked into a
     derived image); Base and Metallic both images would need their product: the Base
     image is used with the unlinked Metallic, and that is reported."""
-    base_tex, metal_tex, rough_tex = maps
+    base_tex, metal_tex, rough_tex = maps[:3]
     keep = (1.0 - transmission) * weight
     if base_tex and metal_tex:
         result.note(APPROXIMATE, f"{node.label}: Base Color and Metallic are both images; k_d = Base·(1−Metallic) "
@@ -299,7 +320,8 @@ def _principled_textures(node, result, weight, base, metallic, transmission, f0_
 def principled_bsdf(node, weight, result):
     """(diffuse lobe, specular lobe, emission) of a Principled BSDF."""
     maps = (node.texture("Base Color", "color"), node.texture("Metallic", "number"),
-            node.texture("Roughness", "number"))
+            node.texture("Roughness", "number"),
+            node.texture("Specular IOR Level" if node.has("Specular IOR Level") else "Specular", "number"))
     base = _rgb(node.get("Base Color", (0.8, 0.8, 0.8)))
     metallic = min(max(float(node.get("Metallic", 0.0)), 0.0), 1.0)
     roughness = min(max(float(node.get("Roughness", 0.5)), 0.0), 1.0)
@@ -340,6 +362,7 @@ def principled_bsdf(node, weight, result):
                                  + (" (Cycles' metals use the F82-tint Fresnel)" if metallic > 0.0 else ""))
     _principled_textures(node, result, weight, base, metallic, transmission, f0_dielectric,
                          specular["model"] if specular else None, maps)
+    _specular_level_texture(node, result, base, metallic, specular["model"] if specular else None, maps)
     if diffuse["model"] != "lambert":
         for b in result.textures:
             if b["path"] == ["diffuse", "color"] and b["model"] == "lambert":

@@ -387,3 +387,19 @@ def test_mesh_tangents_go_to_world_space_and_mirroring_flips_w():
     assert obj["tangents"][0] == [-1.0, 0.0, -0.0, -1.0]                                # B = w (N × T) kept
     (obj,) = scene.mesh_objects("T", mirror, positions, [(0, 1, 2)], [n], ["M"], uvs, [None])
     assert "tangents" not in obj
+
+
+@pytest.mark.parametrize("inputs, unit", [({"IOR": 1.5, "Specular IOR Level": 0.5}, 0.08),     # 4.x: 2·0.04
+                                          ({"Specular": 0.5, "Specular Tint": 0.0}, 0.08)])    # 3.x: 0.08
+def test_a_specular_level_image_bakes_f0(inputs, unit):
+    name = "Specular IOR Level" if "IOR" in inputs else "Specular"
+    values = {"Base Color": [0.8, 0.4, 0.2, 1.0], "Metallic": 0.25, "Roughness": 0.5}
+    values.update(inputs)
+    node = {"type": "BSDF_PRINCIPLED", "name": "P", "distribution": "GGX", "inputs": values, "linked": [name],
+            "sources": {name: tex_image(image("spec", "Non-Color"))}}
+    r = map_surface(node, "Spec")
+    (b,) = r.textures
+    assert b["path"] == ["specular", "fresnel", "f0"] and b["spec"]["channel"] == "r"
+    assert b["derive"]["scale"] == pytest.approx([unit * 0.75] * 3)
+    assert b["derive"]["offset"] == pytest.approx([0.2, 0.1, 0.05])
+    assert not any("unlinked value" in m for m in messages(r))
