@@ -1609,7 +1609,8 @@ def set_extension(node, extension):
         node.extension = "EXTEND"
 
 
-def image_node(nodes, links, image, interpolation="Closest", extension="REPEAT", uv_map="UVMap", mapping=None):
+def image_node(nodes, links, image, interpolation="Closest", extension="REPEAT", uv_map="UVMap", mapping=None,
+               mapping_type="POINT"):
     tex = nodes.new("ShaderNodeTexImage")
     tex.image, tex.interpolation = image, interpolation
     set_extension(tex, extension)
@@ -1617,7 +1618,7 @@ def image_node(nodes, links, image, interpolation="Closest", extension="REPEAT",
     uv.uv_map = uv_map
     if mapping:
         m = nodes.new("ShaderNodeMapping")
-        m.vector_type = "POINT"
+        m.vector_type = mapping_type
         for key, value in mapping.items():
             m.inputs[key].default_value = value
         links.new(uv.outputs["UV"], m.inputs["Vector"])
@@ -1651,11 +1652,13 @@ FLOOR_MAPPING = {"Location": (0.1, 0.3, 0.0), "Rotation": (0.0, 0.0, 0.4), "Scal
 
 def texture_scene(w, h):
     """Two Diffuse BSDFs (roughness 0: exactly Lambert) with image colours: the sphere an
-    sRGB PNG file, repeat; the floor a generated Non-Color image through a Mapping node
+    sRGB PNG file, repeat, through a Texture-type Mapping node; the floor a generated Non-Color image through a Mapping node
     (rotation, scale, offset), mirrored. A sun from behind the camera (no terminator)."""
     checker = make_image("Checker", save_as=work("checker_source.png"))
     swapped = make_image("Swapped", lambda i, j: texel_colour(j, i)[::-1], colorspace="Non-Color")
-    ball = diffuse_textured("BallTex", checker)
+    ball = diffuse_textured("BallTex", checker, mapping_type="TEXTURE",
+                            mapping={"Location": (0.05, -0.1, 0.0), "Rotation": (0.0, 0.0, 0.2),
+                                     "Scale": (0.8, 0.8, 1.0)})
     floor = diffuse_textured("FloorTex", swapped, extension="MIRROR", mapping=FLOOR_MAPPING)
     textured_objects(ball, floor)
     add_light("SUN", (0.0, 0.0, 5.0), 2.5, rotation=(math.radians(50), 0.0, math.radians(10)))
@@ -1674,7 +1677,7 @@ def test_textures_land_where_cycles_puts_them():
     """The v-flip proof: Cycles' own Image Texture nodes (Closest; an sRGB file on a UV
     sphere, a generated Non-Color image through a Mapping node, mirrored, on a plane)
     rendered by Cycles equal facet's reference render of the scene the add-on exports
-    (texcoords v = 1 − v_blender, the Mapping node as a transform, the generated image
+    (texcoords v = 1 − v_blender, the Mapping nodes (Point, Texture) as transforms, the generated image
     written from its pixels). With the flip left out the same comparison fails."""
     from facet_blender.core import scene as core_scene
     w, h = 64, 48
@@ -1691,6 +1694,8 @@ def test_textures_land_where_cycles_puts_them():
     kd = exported["materials"]["FloorTex"]["diffuse"]["color"]
     check(isinstance(kd, dict) and kd.get("transform") and kd.get("wrap") in ("mirror", "clamp"),
           f"the floor's colour should be a transformed texture: {kd}")
+    check(exported["materials"]["BallTex"]["diffuse"]["color"].get("transform"),
+          "the sphere's Texture-type Mapping node should be a transform")
     for m in exported["materials"].values():
         name = m["diffuse"]["color"]["texture"]
         check(not os.path.isabs(name) and os.path.isfile(work(name)), f"texture {name} not beside the scene")

@@ -90,19 +90,30 @@ def mapping_transform(src):
         u′ = cos θ s_u u + sin θ s_v v + (L_u − sin θ s_v)
         v′ = −sin θ s_u u + cos θ s_v v + (1 − cos θ s_v − L_v),
     KHR_texture_transform's form with rotation θ, scale (s_u, s_v) and that offset.
-    Vector mapping is Point without L. Rotations about X or Y, and the Texture and
-    Normal types, have no such form."""
+    (Cycles 4.5, kernel/svm/mapping_util.h, svm_mapping.) Vector mapping is Point without
+    L; Texture mapping, R(−θ)(uv − L)/S, is Point's
+    inverse (exact when the scale is uniform or θ = 0). Rotations about X or Y, other
+    Texture mappings and the Normal type have no such form."""
     kind = src.get("vector_type", "POINT")
-    if kind not in ("POINT", "VECTOR") or src.get("linked"):
+    if kind not in ("POINT", "VECTOR", "TEXTURE") or src.get("linked"):
         return None
     inputs = src.get("inputs", {})
-    loc = list(inputs.get("Location", (0.0, 0.0, 0.0)))
-    rot = list(inputs.get("Rotation", (0.0, 0.0, 0.0)))
-    scale = list(inputs.get("Scale", (1.0, 1.0, 1.0)))
+    loc = [float(x) for x in inputs.get("Location", (0.0, 0.0, 0.0))]
+    rot = [float(x) for x in inputs.get("Rotation", (0.0, 0.0, 0.0))]
+    scale = [float(x) for x in inputs.get("Scale", (1.0, 1.0, 1.0))]
     if rot[0] != 0.0 or rot[1] != 0.0:
         return None
     if kind == "VECTOR":
         loc = [0.0, 0.0, 0.0]
+    if kind == "TEXTURE":
+        # Texture is the inverse: out = R(−θ)(uv − L) / S. With a uniform scale (or no
+        # rotation) that is Point with scale 1/S, rotation −θ, location −R(−θ)L / S.
+        if 0.0 in scale[:2] or (rot[2] != 0.0 and scale[0] != scale[1]):
+            return None
+        c, s = math.cos(-rot[2]), math.sin(-rot[2])
+        loc = [-(c * loc[0] - s * loc[1]) / scale[0], -(s * loc[0] + c * loc[1]) / scale[1], 0.0]
+        rot = [0.0, 0.0, -rot[2]]
+        scale = [1.0 / scale[0], 1.0 / scale[1], 1.0]
     theta, su, sv = float(rot[2]), float(scale[0]), float(scale[1])
     s, c = math.sin(theta), math.cos(theta)
     out = {"offset": [float(loc[0]) - s * sv, 1.0 - c * sv - float(loc[1])], "scale": [su, sv], "rotation": theta}

@@ -195,6 +195,23 @@ def test_mapping_node_is_khr_texture_transform_in_facets_v_down(loc, rot_z, scal
         assert khr((u, v), t) == pytest.approx((bu, 1.0 - bv), abs=1e-12)  # sampled at facet's v = 1 − v_b
 
 
+@pytest.mark.parametrize("loc, rot_z, scale", [((0.1, 0.2, 0.0), 0.0, (2.0, 3.0, 1.0)),
+                                               ((0.3, -0.4, 0.0), 0.7, (1.5, 1.5, 1.0))])
+def test_texture_mapping_is_the_inverse(loc, rot_z, scale):
+    src = {"type": "MAPPING", "vector_type": "TEXTURE",
+           "inputs": {"Location": list(loc), "Rotation": [0.0, 0.0, rot_z], "Scale": list(scale)}}
+    t = textures.mapping_transform(src)
+    c, s = math.cos(rot_z), math.sin(rot_z)
+    rng = random.Random(2)
+    for _ in range(50):
+        u, v = rng.uniform(-1, 2), rng.uniform(-1, 2)
+        x, y = u - loc[0], (1.0 - v) - loc[1]                              # Blender: R(−θ)(uv − L) / S
+        bu, bv = (c * x + s * y) / scale[0], (-s * x + c * y) / scale[1]
+        assert khr((u, v), t) == pytest.approx((bu, 1.0 - bv), abs=1e-12)
+    assert textures.mapping_transform(dict(src, inputs=dict(src["inputs"], Scale=[1.0, 2.0, 1.0],
+                                                              Rotation=[0.0, 0.0, 0.3]))) is None
+
+
 def test_mapping_without_an_exact_transform_is_reported():
     src = {"type": "MAPPING", "name": "Mapping", "output": "Vector", "vector_type": "POINT",
            "inputs": {"Location": [0, 0, 0], "Rotation": [0.5, 0, 0], "Scale": [1, 1, 1]}, "linked": [],
