@@ -1737,10 +1737,16 @@ def normal_colour(i, j):
     return tuple(round(255 * (0.5 + 0.5 * c)) / 255.0 for c in (x, y, z))
 
 
-def principled_textured(name, base_image, rough_image=None, normal_image=None, roughness=0.6, mapping=None):
+def principled_textured(name, base_image, rough_image=None, normal_image=None, roughness=0.6, mapping=None,
+                        emission_image=None):
     def build(nodes, links, out):
         p = nodes.new("ShaderNodeBsdfPrincipled")
         p.inputs["Roughness"].default_value = roughness
+        if emission_image:
+            emission = "Emission Color" if BLENDER >= (4, 0, 0) else "Emission"
+            links.new(image_node(nodes, links, emission_image).outputs["Color"], p.inputs[emission])
+            p.inputs[emission].default_value = (0.02, 0.02, 0.02, 1.0)
+            p.inputs["Emission Strength"].default_value = 0.15
         links.new(image_node(nodes, links, base_image, mapping=mapping).outputs["Color"], p.inputs["Base Color"])
         if rough_image:
             sep = nodes.new("ShaderNodeSeparateColor" if BLENDER >= (3, 3, 0) else "ShaderNodeSeparateRGB")
@@ -1767,7 +1773,8 @@ def principled_texture_scene(w, h):
     """Acceptance 4 of issue 12: a Principled BSDF with an image-textured Base Color (an
     sRGB PNG file), a roughness map through Separate Color (a packed Non-Color image) and
     a Normal Map node (a generated Non-Color image) on a UV sphere; a Principled floor
-    whose Base Color is a generated image through a Mapping node."""
+    whose Base Color is a generated image through a Mapping node, and whose Emission Color
+    is the sphere's image."""
     os.makedirs(work("src"), exist_ok=True)
     # Named like the export's own render (principled.png): its copy must take another name.
     checker = make_image("Checker", save_as=work("src/principled.png"))
@@ -1776,7 +1783,7 @@ def principled_texture_scene(w, h):
     normals = make_image("Normals", normal_colour, "Non-Color")
     swapped = make_image("Swapped", lambda i, j: texel_colour(j, i)[::-1], colorspace="Non-Color")
     ball = principled_textured("BallPrincipled", checker, rough, normals)
-    floor = principled_textured("FloorPrincipled", swapped, mapping=FLOOR_MAPPING)
+    floor = principled_textured("FloorPrincipled", swapped, mapping=FLOOR_MAPPING, emission_image=checker)
     textured_objects(ball, floor)
     add_light("POINT", (1.5, -4.0, 4.0), 500.0)
     add_light("SUN", (0.0, 0.0, 5.0), 1.0, rotation=(math.radians(50), 0.0, math.radians(10)))
@@ -1819,6 +1826,15 @@ def test_textured_principled_exports_and_renders_like_reference():
         check(any(level == "WARNING" and "cannot take its normal map" in m and "BallPrincipled" in m for level, m in reports),
               f"the normal map left out must be reported: {reports}")
         info("this facet takes no normal map on meshes: it is reported and left out (end-to-end check off)")
+    from facet_blender.core import generate
+    if "emission" in generate.texturable_material_keys(OPTS.facet):
+        glow = materials["FloorPrincipled"]["emission"]
+        check(isinstance(glow, dict) and glow["factor"] == 0.15 and glow["texture"] == "principled_2.png",
+              f"the floor's emission should be the image × strength: {glow}")
+    else:
+        check(any(level == "WARNING" and "emission map" in m and "FloorPrincipled" in m for level, m in reports),
+              f"the emission map left out must be reported: {reports}")
+        info("this facet takes no emission map: it is reported and left out (end-to-end check off)")
     for name in names:
         check(not os.path.isabs(name) and os.path.isfile(work(name)), f"texture {name} not beside the .pov")
     check(facet_has_normal_map() or not os.path.exists(work("Normals.png")), "a normal map left out was written")

@@ -206,9 +206,9 @@ def textured_files(exe, mat):
     bindings = material_mod.texture_bindings(mat)
     if not bindings:
         return data, {}, [], []
-    normal_maps = generate.supports_normal_map(exe)
-    names, files, notes = images.texture_files({mat.name: textures.exported(bindings, normal_maps)})
-    data, more = textures.apply(data, bindings, names[mat.name], normal_maps)
+    keys = generate.texturable_material_keys(exe)
+    names, files, notes = images.texture_files({mat.name: textures.exported(bindings, keys)})
+    data, more = textures.apply(data, bindings, names[mat.name], keys)
     return data, files, textures.uv_maps(bindings, mat.name), notes + more
 
 
@@ -261,7 +261,7 @@ class FACET_OT_export_scene(_FacetOperator, ExportHelper, bpy.types.Operator):
 
     def run(self, context):
         exe = preferences.facet_exe(context)
-        data, notes, files = scene_data.full_scene(context, generate.supports_normal_map(exe),
+        data, notes, files = scene_data.full_scene(context, generate.texturable_material_keys(exe),
                                                    [os.path.basename(self.filepath)])
         folder = os.path.dirname(os.path.abspath(self.filepath))
         # The images first, the scene that names them last.
@@ -307,7 +307,7 @@ class FACET_OT_export_pov(_FacetOperator, ExportHelper, bpy.types.Operator):
         # names a material without settings; reads every image before anything is written
         stem = os.path.splitext(self.filepath)[0]
         reserved = [os.path.basename(stem) + ext for ext in (".pov", ".png", ".json")]
-        data, notes, files = scene_data.full_scene(context, generate.supports_normal_map(exe), reserved)
+        data, notes, files = scene_data.full_scene(context, generate.texturable_material_keys(exe), reserved)
         povray_path = preferences.povray_exe(context) if self.render else None
         plan = pov.generate_scene(exe, data, context.scene.name, self.filepath, files)   # facet's pass count
         beside = dict(files)

@@ -172,12 +172,12 @@ def _corner_uvs(mesh, obj_name, loops, slot_names):
     return out
 
 
-def _corner_tangents(mesh, obj_name, loops, slot_materials, supports_normal_map):
+def _corner_tangents(mesh, obj_name, loops, slot_materials, material_keys):
     """Per triangle, None or its corners' (MikkTSpace tangent, bitangent sign) for the UV
     map of its material's normal map (Mesh.calc_tangents)."""
     per_uv, out = {}, []
     for t, material in enumerate(slot_materials):
-        bindings = textures.exported(material_mod.texture_bindings(material), supports_normal_map)
+        bindings = textures.exported(material_mod.texture_bindings(material), material_keys)
         normal = next((b for b in bindings if b["path"] == ["normal_map"]), None)
         if normal is None:
             out.append(None)
@@ -201,7 +201,7 @@ def _corner_tangents(mesh, obj_name, loops, slot_materials, supports_normal_map)
     return out
 
 
-def objects_json(depsgraph, materials, supports_normal_map=False):
+def objects_json(depsgraph, materials, material_keys=None):
     """(facet mesh objects, notes). `materials` collects name -> Blender material of
     every material used (their facet settings are checked by the caller)."""
     objects, notes = [], []
@@ -229,7 +229,7 @@ def objects_json(depsgraph, materials, supports_normal_map=False):
             uvs = tangents = None
             if any(material_mod.texture_bindings(m) for m in set(used_materials)):
                 uvs = _corner_uvs(mesh, name, loops, used_materials)
-                tangents = _corner_tangents(mesh, name, loops, used_materials, supports_normal_map)
+                tangents = _corner_tangents(mesh, name, loops, used_materials, material_keys)
             objects.extend(core_scene.mesh_objects(name, _rows(matrix), positions, triangles, normals, names, uvs,
                                                    tangents))
         finally:
@@ -237,7 +237,7 @@ def objects_json(depsgraph, materials, supports_normal_map=False):
     return objects, notes
 
 
-def full_scene(context, supports_normal_map=True, reserved=()):
+def full_scene(context, material_keys=None, reserved=()):
     """(facet scene JSON with materials and meshes, notes, texture files) of the whole
     scene; the texture files ({file name: bytes}) go beside the scene file, which names
     them relatively, under names other than `reserved` (what else the export writes).
@@ -249,19 +249,19 @@ def full_scene(context, supports_normal_map=True, reserved=()):
     ambient, more = world_ambient(scene)
     notes += more
     used = {}
-    objects, more = objects_json(depsgraph, used, supports_normal_map)
+    objects, more = objects_json(depsgraph, used, material_keys)
     notes += more
     if not objects:
         raise UserError(f"scene '{scene.name}' has no mesh objects to export")
     materials = {}
     bindings = {name: material_mod.texture_bindings(used[name]) for name in sorted(used)}
-    names, files, more = images.texture_files({n: textures.exported(b, supports_normal_map)
+    names, files, more = images.texture_files({n: textures.exported(b, material_keys)
                                                for n, b in bindings.items() if b},
                                               {r.lower() for r in reserved})
     notes += more
     for name in sorted(used):
         materials[name], more = textures.apply(material_mod.to_json(used[name]), bindings[name],
-                                               names.get(name, {}), supports_normal_map)
+                                               names.get(name, {}), material_keys)
         notes += more
     lights, more = lights_json(depsgraph)
     notes += more

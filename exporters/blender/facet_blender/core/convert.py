@@ -368,14 +368,17 @@ def principled_bsdf(node, weight, result):
             if b["path"] == ["diffuse", "color"] and b["model"] == "lambert":
                 b["model"] = diffuse["model"]
 
-    # Emission: radiance, the same on both sides.
+    # Emission: radiance, the same on both sides; an image × Strength where facet takes
+    # emission maps (the export checks; elsewhere the unlinked colour is used, and said).
+    strength_value = float(node.inputs.get("Emission Strength", 1.0))
     for name in ("Emission Color", "Emission"):
-        if name in node.linked and name in node.sources:
-            ctx = textures.Context(result.material_name, f"{node.label}: {name}", result.note)
-            if textures.texture_of(node.sources[name], "color", ctx) is not None:
-                result.note(IGNORED, f"material '{result.material_name}': {node.label}: {name} is an image; facet's "
-                                     f"emission takes no texture: its unlinked value is used")
-            node.textured.add(name)
+        if name in node.inputs:
+            emission_tex = node.texture(name, "color")
+            if emission_tex:
+                _bind(result, ("emission",), None, emission_tex, strength_value * weight)
+                result.note(EXACT, f"{node.label}: emission = image '{emission_tex['image']}' × Emission Strength "
+                                   f"(an emission map, where facet takes one)")
+            break
     color = node.first(("Emission Color", "Emission"), (0.0, 0.0, 0.0))
     strength = float(node.get("Emission Strength", 1.0)) if node.has("Emission Strength") else 1.0
     emission = _scale(_rgb(color), strength * weight)

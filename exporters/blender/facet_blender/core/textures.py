@@ -373,10 +373,14 @@ def uv_maps(bindings, material=""):
     return names
 
 
-def exported(bindings, supports_normal_map=True):
-    """The bindings whose images an export writes (a facet without "normal_map" takes no
-    normal map; `apply` says so)."""
-    return [b for b in bindings if supports_normal_map or b["path"][0] != "normal_map"]
+MATERIAL_KEYS = ("normal_map", "emission", "ambient")   # material-level keys a texture may fill
+
+
+def exported(bindings, material_keys=None):
+    """The bindings whose images an export writes: a material-level one (normal_map,
+    emission) only where this facet takes it (`material_keys`; None: all); `apply` says
+    what it leaves out."""
+    return [b for b in bindings if len(b["path"]) > 1 or material_keys is None or b["path"][0] in material_keys]
 
 
 def file_key(b):
@@ -385,21 +389,25 @@ def file_key(b):
             if b.get("derive") else None)
 
 
-def apply(material_json, bindings, files, supports_normal_map=True):
+def apply(material_json, bindings, files, material_keys=None):
     """The material JSON with its textured parameters; returns (JSON, notes).
 
     `files` maps `file_key(b)` to (relative file name, colour space override or None).
-    A binding whose lobe model changed since the conversion is left out and noted."""
+    A binding whose lobe model changed since the conversion, or of a material-level key
+    this facet takes no texture on (`material_keys`, None: all), is left out and noted."""
     data = json.loads(json.dumps(material_json))
     notes = []
     names = uv_maps(bindings, data.get("name", ""))
     for b in bindings:
         path = b["path"]
         section = path[0]
-        if section == "normal_map" and not supports_normal_map:
-            notes.append(f"material '{data.get('name')}': this facet cannot take its normal map (image "
-                         f"'{b['spec']['image']}'): its schemas lack the material key 'normal_map' or mesh "
-                         f"'tangents'; the normal map is not exported")
+        if len(path) == 1 and material_keys is not None and section not in material_keys:
+            what = {"normal_map": "its normal map", "emission": "an emission map"}.get(section, f"a {section} map")
+            needs = ("the material key 'normal_map' or mesh 'tangents'" if section == "normal_map"
+                     else f"a texture on '{section}'")
+            notes.append(f"material '{data.get('name')}': this facet cannot take {what} (image "
+                         f"'{b['spec']['image']}'): its schemas lack {needs}; it is not exported"
+                         + ("" if section == "normal_map" else ", the unlinked value is"))
             continue
         if len(path) > 1 and (section not in data or data[section].get("model") != b.get("model")):
             notes.append(f"material '{data.get('name')}': the texture of {'.'.join(path)} was made for the "

@@ -257,11 +257,21 @@ def test_normal_map_other_strengths_spaces_and_bump_are_reported():
     assert any("should be Non-Color" in m for m in messages(r, APPROXIMATE))
 
 
-def test_normal_map_left_out_for_a_facet_without_the_key():
-    r = map_surface(principled({"Normal": normal_map()}), "Old")
-    data, notes = textures.apply({"name": "Old", "diffuse": {"model": "lambert", "color": [1, 1, 1]}}, r.textures,
-                                 {textures.file_key(r.textures[0]): ("bumps.png", None)}, supports_normal_map=False)
-    assert "normal_map" not in data and "cannot take its normal map" in notes[0]
+def test_material_level_maps_left_out_for_a_facet_without_them():
+    emission = tex_image(image("glow"))
+    r = map_surface(principled({"Normal": normal_map(), "Emission Color": emission},
+                               **{"Emission Color": [0.1, 0.2, 0.3, 1.0], "Emission Strength": 2.0}), "Old")
+    assert sorted(b["path"][0] for b in r.textures) == ["emission", "normal_map"]
+    assert r.emission == pytest.approx([0.2, 0.4, 0.6])          # the unlinked colour × strength, as a fallback
+    files = {textures.file_key(b): (b["spec"]["image"] + ".png", None) for b in r.textures}
+    material = {"name": "Old", "diffuse": {"model": "lambert", "color": [1, 1, 1]}, "emission": r.emission}
+    data, notes = textures.apply(material, r.textures, files, material_keys=set())
+    assert "normal_map" not in data and data["emission"] == r.emission
+    assert any("cannot take its normal map" in n for n in notes) and any("emission map" in n for n in notes)
+    assert textures.exported(r.textures, set()) == []
+    data, notes = textures.apply(material, r.textures, files, material_keys={"emission", "normal_map"})
+    assert not notes and data["emission"] == {"texture": "glow.png", "channel": "rgb", "colorspace": "srgb",
+                                              "filter": "nearest", "wrap": "repeat", "uv": 0, "factor": 2.0}
 
 
 # ----------------------------------------------------------------------------- apply, UV sets
