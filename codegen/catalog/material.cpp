@@ -25,6 +25,14 @@ ParamDef material_color(const char* name, const char* doc) {
   return p;
 }
 
+// m_a and m_e: colours ≥ 0, each may come from an image.
+ParamDef material_term_param(const char* name) {
+  ParamDef p = material_color(name, std::string(name) == "ambient" ? "m_a, multiplied by the scene's ambient colour"
+                                                                    : "m_e, emitted radiance");
+  p.texturable = true;
+  return p;
+}
+
 ParamDef tangent_axis_param() {
   ParamDef p;
   p.name = "tangent_axis";
@@ -61,8 +69,14 @@ Material parse_material(const json& doc, const std::string& file) {
                                     val.is_string() ? "an empty string" : json_type_name(val)));
       else m.name = val.get<std::string>();
     } else if (key == "ambient" || key == "emission") {
-      auto c = check.color(val, key, material_color(key.c_str(), ""));
-      if (c) (key == "ambient" ? m.ambient : m.emission) = *c;
+      const bool ambient = key == "ambient";
+      if (val.is_object()) {  // {"texture": …}: factor ⊗ the image's value
+        auto v = parse_texture_value(val, key, material_term_param(key.c_str()), sink);
+        if (v) (ambient ? m.ambient : m.emission) = v->rgb, (ambient ? m.ambient_texture : m.emission_texture) = v->texture;
+      } else {
+        auto c = check.color(val, key, material_color(key.c_str(), ""));
+        if (c) (ambient ? m.ambient : m.emission) = *c;
+      }
     } else if (key == "tangent_axis") {
       auto v = check.vector(val, key, tangent_axis_param());
       if (v) m.tangent_axis = *v;
@@ -82,6 +96,14 @@ Material parse_material(const json& doc, const std::string& file) {
 }
 
 Material load_material(const std::string& path) { return parse_material(read_json_file(path), path); }
+
+Value material_term(const Material& m, bool ambient) {
+  Value v;
+  v.kind = ParamKind::Color;
+  v.rgb = ambient ? m.ambient : m.emission;
+  v.texture = ambient ? m.ambient_texture : m.emission_texture;
+  return v;
+}
 
 Material lobe_material(const ModelSpec& spec, const std::string& name) {
   Material m;
@@ -158,8 +180,8 @@ json default_json(const ParamDef& p) {
 json to_json(const Material& m) {
   json j = json::object();
   j["name"] = m.name;
-  j["ambient"] = m.ambient;
-  j["emission"] = m.emission;
+  j["ambient"] = value_json(material_term(m, true));
+  j["emission"] = value_json(material_term(m, false));
   if (m.diffuse) j["diffuse"] = spec_json(*m.diffuse, true);
   if (m.specular) j["specular"] = spec_json(*m.specular, true);
   j["tangent_axis"] = m.tangent_axis;
@@ -293,10 +315,7 @@ json material_schema() {
     for (const auto* m : section(sec)) alts.push_back(model_schema(*m, "model"));
     lobes[sec] = {{"oneOf", alts}, {"description", std::string("the ") + sec + " lobe"}};
   }
-  json color = param_schema(material_color("color", ""));
-  json ambient = color, emission = color;
-  ambient["description"] = "m_a, multiplied by the scene's ambient colour";
-  emission["description"] = "m_e, emitted radiance";
+  json ambient = param_schema(material_term_param("ambient")), emission = param_schema(material_term_param("emission"));
   json props = {{"$schema", {{"type", "string"}}},
                 {"name", {{"type", "string"}, {"minLength", 1}, {"description", "the material's name"}}},
                 {"ambient", ambient},

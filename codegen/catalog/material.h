@@ -2,6 +2,7 @@
 #pragma once
 
 #include <array>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -18,8 +19,11 @@ using RGB = std::array<double, 3>;
 struct Material {
   std::string name;    // from the file, or the file's stem
   std::string source;  // the file it was read from ("" when built in code)
+  // m_a and m_e: the colours, or, where `ambient_texture` / `emission_texture` is set, the
+  // factor of the image's value (catalog/texture.h; docs/textures.md).
   RGB ambient{0, 0, 0};
   RGB emission{0, 0, 0};
+  std::shared_ptr<const TextureRef> ambient_texture, emission_texture;
   std::optional<ModelSpec> diffuse;
   std::optional<ModelSpec> specular;
   RGB tangent_axis{0, 1, 0};
@@ -33,6 +37,9 @@ Material load_material(const std::string& path);
 // A material of one lobe: `spec` as the diffuse or the specular lobe (by its
 // model's section), nothing else, named `name`. The sweep, the physics checks,
 // the cost table and the docs build their materials with it.
+// m_a or m_e (`ambient`) as a parameter value: its colour, or its image and factor.
+Value material_term(const Material& m, bool ambient);
+
 Material lobe_material(const ModelSpec& spec, const std::string& name);
 // One material per lobe model of the catalog (every diffuse and specular model),
 // the lobe alone at its defaults, named after the model, in catalog order: what

@@ -106,6 +106,14 @@ MaterialProgram compile(const Material& m) {
   // One comparison of the smaller cosine rather than two and an ||: the same test.
   p.reflectance = fb.returns(ir::select(ir::min(fb.arg("NoL"), fb.arg("NoV")) <= 0.0, horizon_zero, sum));
   for (const auto& param : p.reflectance->params) p.inputs.push_back(param.name);
+  // m_a and m_e from images: sampled like the lobes' parameters, read by the shading
+  // itself (m_a ⊗ A + m_e), not by the reflectance.
+  for (bool ambient : {true, false}) {
+    Value v = material_term(m, ambient);
+    if (v.texture)
+      p.textured.push_back({ambient ? kAmbientInput : kEmissionInput, ambient ? "ambient" : "emission", ir::Type::Color,
+                            v, Range::non_negative()});
+  }
   return p;
 }
 

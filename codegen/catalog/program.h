@@ -10,6 +10,11 @@
 
 namespace facet {
 
+// The names of m_a and m_e where they come from images: textured inputs that the
+// reflectance does not read (MaterialProgram::textured), the names every target gives them.
+inline constexpr const char* kAmbientInput = "material_ambient";
+inline constexpr const char* kEmissionInput = "material_emission";
+
 struct MaterialProgram {
   Material material;
   ir::FunctionPtr diffuse;      // rho_diffuse(inputs…), or null
@@ -18,6 +23,7 @@ struct MaterialProgram {
   std::vector<std::string> inputs;  // reflectance's parameters: input_order()'s, then `textured`'s
   // The parameters that come from images, each an input of reflectance (and of the
   // lobe that reads it) whose value the target samples at the shading point.
+  // m_a and m_e, where they come from images, come last (kAmbientInput, kEmissionInput).
   std::vector<TexturedInput> textured;
 
   bool uses(const std::string& input) const;

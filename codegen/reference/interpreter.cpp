@@ -282,6 +282,19 @@ bool Reference::sample_textures(const std::array<std::array<double, 2>, 2>& uv, 
   return fragile;
 }
 
+RGB Reference::emitted(const ShadingInputs& in, const RGB& scene_ambient) const {
+  const Material& m = program_.material;
+  RGB ambient = m.ambient, emission = m.emission;
+  const auto& textured = program_.textured;
+  for (size_t i = 0; i < textured.size(); ++i) {
+    if (textured[i].name == kAmbientInput) ambient = in.textured[i];
+    if (textured[i].name == kEmissionInput) emission = in.textured[i];
+  }
+  RGB L;
+  for (size_t c = 0; c < 3; ++c) L[c] = ambient[c] * scene_ambient[c] + emission[c];
+  return L;
+}
+
 RGB Reference::reflectance(const ShadingInputs& in) const { return call(reflectance_, in); }
 
 RGB Reference::reflectance(const Vec3& n, const Vec3& l, const Vec3& v, const Vec3& t) const {

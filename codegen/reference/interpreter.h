@@ -62,6 +62,8 @@ class Reference {
   // The values of the textured parameters at texture coordinates uv[0] (set 0) and uv[1] (set 1).
   // True where a nearest-filtered lookup lies on a texel's edge (catalog/texture.h).
   bool sample_textures(const std::array<std::array<double, 2>, 2>& uv, ShadingInputs& in) const;
+  // m_a ⊗ A + m_e, with m_a and m_e at the point where `in`'s textures were sampled.
+  RGB emitted(const ShadingInputs& in, const RGB& scene_ambient) const;
   // k_d ⊗ ρ_d + k_s ⊗ ρ_s, zero below the horizon. Unit vectors; t ⟂ n.
   RGB reflectance(const Vec3& n, const Vec3& l, const Vec3& v, const Vec3& t) const;
   RGB reflectance(const Vec3& n, const Vec3& l, const Vec3& v) const;  // tangent rule

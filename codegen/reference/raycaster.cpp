@@ -116,8 +116,6 @@ void shade_pixel(const Scene& s, const std::vector<const Reference*>& shading, d
   Vec3 n = obj.normal_at(p, h.hit);
   Vec3 v = -dir;
   Vec3 t = tangent_rule(n, Vec3(m.tangent_axis));
-  RGB L;
-  for (int c = 0; c < 3; ++c) L[c] = m.ambient[c] * s.ambient[c] + m.emission[c];
   // The textured parameters' values at this point, once for every light.
   ShadingInputs textured;
   bool grazing = false;
@@ -130,6 +128,7 @@ void shade_pixel(const Scene& s, const std::vector<const Reference*>& shading, d
       grazing = grazing || std::hypot(d.x, d.z) < 1e-3 || (d.z < 0 && std::fabs(d.x) < kTexelEdgeMargin * 2 * M_PI);
     }
   }
+  RGB L = ref.emitted(textured, s.ambient);
   for (const auto& light : s.lights) {
     Vec3 l;
     double d;

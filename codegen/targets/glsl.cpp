@@ -114,8 +114,9 @@ GlslParts glsl_parts(const MaterialProgram& p, Target dialect, const std::string
   auto add_constant = [&](const std::string& type, const std::string& name, const std::string& value) {
     constants += fmt::format("const {} {} = {};\n", type, name, value);
   };
-  add_constant("vec3", "material_ambient", printer.color_literal(m.ambient));
-  add_constant("vec3", "material_emission", printer.color_literal(m.emission));
+  // m_a and m_e: constants, or globals facet_sample_textures() sets (kAmbientInput, kEmissionInput).
+  if (!m.ambient_texture) add_constant("vec3", kAmbientInput, printer.color_literal(m.ambient));
+  if (!m.emission_texture) add_constant("vec3", kEmissionInput, printer.color_literal(m.emission));
   add_constant("vec3", "tangent_axis", printer.color_literal(normalize(Vec3(m.tangent_axis)).array()));
   for (const auto& c : p.constants()) {
     add_constant(printer.type(c->type), c->name,

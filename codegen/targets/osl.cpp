@@ -120,6 +120,7 @@ OslTextures osl_textures(const targets::CPrinter& pr, const MaterialProgram& p, 
     std::string hi = c.color ? "color(" + pr.literal(c.hi) + ")" : pr.literal(c.hi);
     value = std::isfinite(c.hi) ? fmt::format("clamp({}, {}, {})", value, lo, hi) : fmt::format("max({}, {})", value, lo);
     out.samples += fmt::format("    {} {} = {};\n", type, c.name, value);
+    if (!p.uses(c.name)) continue;  // m_a or m_e: read by the shader, not by facet_reflect
     out.reflect_params += ", " + type + " " + c.name;
     out.reflect_args += ", " + c.name;
   }
@@ -199,8 +200,9 @@ std::string generate_osl(const Material& m, const GenerateOptions& o) {
   auto color_value = [&](const RGB& c) { return pr.color_literal(c); };
   for (const auto& c : pr.free_constants(p.reflectance))
     params.add(pr.type(c->type), c->name, c->type == ir::Type::Color ? color_value(c->value) : pr.literal(c->value[0]));
-  params.add("color", "material_ambient", color_value(m.ambient), "m_a");
-  params.add("color", "material_emission", color_value(m.emission), "m_e");
+  // m_a and m_e: parameters, or locals sampled from their images (kAmbientInput, kEmissionInput).
+  if (!m.ambient_texture) params.add("color", kAmbientInput, color_value(m.ambient), "m_a");
+  if (!m.emission_texture) params.add("color", kEmissionInput, color_value(m.emission), "m_e");
   params.add("vector", "tangent_axis", triple(pr, "vector", to_blender(normalize(Vec3(m.tangent_axis)))));
   params.add("color", "ambient_light", color_value(scene.ambient), "the scene's ambient colour A");
 

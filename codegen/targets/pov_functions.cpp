@@ -169,12 +169,31 @@ ir::FunctionPtr PovScene::light_function(PovShading& sh, size_t i, const ir::Fun
   return f;
 }
 
-// Facet_Object{o}_Light{i}{suffix}: `light` (light i) on object o, which takes (x, y, z):
+// {P}Facet_Emission(x, y, z, n, S0, T0, S1, T1): m_a ⊗ A + m_e, either from its image (the
+// sampling function of its textured input) or its colour; called like a light function.
+ir::FunctionPtr PovScene::emission_function(PovShading& sh) {
+  ir::FunctionBuilder fb("Facet_Emission", "");
+  params(fb, "x", "y", "z");
+  params(fb, "Nx", "Ny", "Nz");
+  const std::vector<Expr> uv = uv_params(fb, sh);
+  auto term = [&](const char* input, const RGB& c) -> Expr {
+    auto t = sh.samples.find(input);
+    if (t == sh.samples.end()) return ir::color(c[0], c[1], c[2]);
+    const size_t set = size_t(t->second.second);
+    return ir::call(t->second.first, {uv[2 * set], uv[2 * set + 1]});
+  };
+  const RGB& A = s_.ambient;
+  Expr ambient = term(kAmbientInput, sh.material->ambient) * ir::color(A[0], A[1], A[2]);
+  ir::FunctionPtr f = fb.returns(ambient + term(kEmissionInput, sh.material->emission));
+  sh.printer.add_own(f);
+  return f;
+}
+
+// `name`: `light` (a light's, or the emission's function) on object o, which takes (x, y, z):
 // the hit point on spheres and squares, uv_mapping's point on meshes.
-ir::FunctionPtr PovScene::object_function(size_t o, size_t i, const ir::FunctionPtr& light,
-                                          const std::string& suffix) {
+ir::FunctionPtr PovScene::object_function(size_t o, const std::string& name, const ir::FunctionPtr& light) {
   const Object& obj = s_.objects[o];
-  ir::FunctionBuilder fb(fmt::format("Facet_Object{}_Light{}{}", o, i, suffix), "");
+  ir::FunctionBuilder fb(name, "");
   Triple P = params(fb, "x", "y", "z");
   // docs/textures.md: the shapes' texture coordinates (the same in both sets).
   std::vector<Expr> uv;
@@ -254,13 +273,20 @@ void PovScene::build_scaffolding() {
                               "{:.2g} % of the cells (highlights and grazing angles: docs/povray-meshes.md)",
                               e.worst, 100 * e.share_over);
   }
+  for (auto& sh : shadings_)
+    if (sh->material->ambient_texture || sh->material->emission_texture) sh->emission_function = emission_function(*sh);
   for (size_t o = 0; o < s_.objects.size(); ++o) {
     objects_.emplace_back(s_.lights.size());
-    if (table_[o]) continue;  // the table's leaves call Facet_Table{i}
     const PovShading& sh = shading(o);
+    emissions_.push_back(sh.emission_function ? object_function(o, fmt::format("Facet_Object{}_Emission", o),
+                                                                sh.emission_function)
+                                              : nullptr);
+    if (table_[o]) continue;  // the table's leaves call Facet_Table{i}
     for (size_t i = 0; i < s_.lights.size(); ++i) {
-      if (sh.lobes.empty()) objects_[o][i].push_back(object_function(o, i, sh.lights[i], ""));
-      for (const auto& lobe : sh.lobes) objects_[o][i].push_back(object_function(o, i, lobe.lights[i], lobe.suffix));
+      const std::string name = fmt::format("Facet_Object{}_Light{}", o, i);
+      if (sh.lobes.empty()) objects_[o][i].push_back(object_function(o, name, sh.lights[i]));
+      for (const auto& lobe : sh.lobes)
+        objects_[o][i].push_back(object_function(o, name + lobe.suffix, lobe.lights[i]));
     }
   }
 }
@@ -291,9 +317,12 @@ std::string PovScene::functions(bool objects) {
     for (const auto& f : ir::dependencies(roots))
       if (!is_scaffold(*f) && printed.insert(f.get()).second) terms += sh->printer.function(f) + "\n";
   }
-  for (const auto& sh : shadings_)
-    for (const auto& f : ir::dependencies(reflect_roots(*sh, objects)))
+  for (const auto& sh : shadings_) {
+    std::vector<ir::FunctionPtr> roots = reflect_roots(*sh, objects);
+    if (objects && sh->emission_function) roots.push_back(sh->emission_function);
+    for (const auto& f : ir::dependencies(roots))
       if (is_scaffold(*f) && !is_declared(*f)) frames += sh->printer.function(f);
+  }
   return render_template("pov/functions.pov", {{"constants", constants}, {"terms", terms},
                                                {"frames", texture_declarations() + frames}});
 }
@@ -317,9 +346,11 @@ std::string PovScene::lights() {
   }
   for (size_t o = 0; o < s_.objects.size(); ++o)
     if (s_.objects[o].type == Object::Type::Mesh) objects += mesh_declarations(o);  // the data functions first
-  for (size_t o = 0; o < s_.objects.size(); ++o)
+  for (size_t o = 0; o < s_.objects.size(); ++o) {
     for (const auto& parts : objects_[o])
       for (const auto& f : parts) objects += shading(o).printer.function(f);
+    if (emissions_[o]) objects += shading(o).printer.function(emissions_[o]);
+  }
   return render_template("pov/lights.pov", {{"functions", functions}, {"objects", objects}});
 }
 
@@ -437,9 +468,28 @@ std::string PovScene::lit(size_t o, size_t i, double weight, double t, double sh
                 mods);
 }
 
-// Object o with its emission m_a ⊗ A + m_e, × weight, with transmit t.
+// Object o with its emission m_a ⊗ A + m_e, × weight, with transmit t: a colour, or where
+// m_a or m_e comes from an image a function pigment holding min(E · exposure, 1), which the
+// finish's emission scales back.
 std::string PovScene::emitting(size_t o, double weight, double t, double shrink, const std::string& mods) {
-  return object(o, shrink, emission_texture(shading(o).emission(s_), weight, t), mods);
+  const PovShading& sh = shading(o);
+  if (!emissions_[o]) return object(o, shrink, emission_texture(sh.emission(s_), weight, t), mods);
+  const RGB e = sh.emission(s_);  // the factors: a channel they hold at 0 stays black
+  PovPigment p;
+  p.weight = weight;
+  p.transmit = t;
+  p.radiance = [&](int) { return ir::call(emissions_[o], {var("x"), var("y"), var("z")}); };
+  p.factors = [&](int ch) -> std::vector<Expr> {
+    if (e[size_t(ch)] == 0 && sh.printer.channel_dependent(emissions_[o])) return {};
+    return {var("Facet_Exposure")};
+  };
+  const char* mapping = s_.objects[o].type == Object::Type::Mesh ? "  uv_mapping\n" : "";
+  const size_t width = kPovWidth - indent_ - 4;
+  return object(o, shrink,
+                "texture {\n" + std::string(mapping) +
+                    indented(pov_pigment(sh.printer, sh.printer.channel_dependent(emissions_[o]), p, width), 2) +
+                    "  finish { ambient 0 emission Facet_Exposure diffuse 0 specular 0 phong 0 }\n}\n",
+                mods);
 }
 
 // Pass `item`: light `item` alone, or after the lights the emission alone.

@@ -43,6 +43,9 @@ struct PovShading {
   // Textured parameters (pov_texture.h): input name → Facet_Sample_<name>(S, T) and the
   // coordinate set it reads. Non-empty: the scaffolding's functions take S0, T0, S1, T1.
   std::map<std::string, std::pair<ir::FunctionPtr, int>> samples;
+  // {P}Facet_Emission(x, y, z, n, S0, T0, S1, T1) = m_a ⊗ A + m_e where m_a or m_e comes from an
+  // image (null otherwise: the emission is a colour, emission_texture()).
+  ir::FunctionPtr emission_function;
   bool textured() const { return !samples.empty(); }
   int channels() const { return dependent ? 3 : 1; }
   std::string suffix(int ch) const;
@@ -97,7 +100,9 @@ class PovScene {
   std::string texture_declarations() const;
   ir::FunctionPtr reflect_function(PovShading& sh, const ir::FunctionPtr& reflectance, const std::string& suffix);
   ir::FunctionPtr light_function(PovShading& sh, size_t i, const ir::FunctionPtr& reflect, const std::string& suffix);
-  ir::FunctionPtr object_function(size_t o, size_t i, const ir::FunctionPtr& light, const std::string& suffix);
+  ir::FunctionPtr emission_function(PovShading& sh);
+  // `name`(x, y, z): `light` (a function of the point, its normal and its texture coordinates) on object o.
+  ir::FunctionPtr object_function(size_t o, const std::string& name, const ir::FunctionPtr& light);
   // Constants, terms and frames; `objects`: those the scene's objects call (lobe by lobe
   // where PovShading::lobes), else the whole reflectance's (the library, the sweep).
   std::string functions(bool objects = false);
@@ -123,6 +128,7 @@ class PovScene {
   std::vector<size_t> shading_of_;
   // [o][i]: Facet_Object{o}_Light{i}, or one function per lobe (PovShading::lobes).
   std::vector<std::vector<std::vector<ir::FunctionPtr>>> objects_;
+  std::vector<ir::FunctionPtr> emissions_;  // [o]: Facet_Object{o}_Emission where its emission is textured
   std::string stem_;
   std::vector<PovMeshData> data_;      // [o]: a mesh's data image on the function route
   std::vector<PovTexture> textures_;   // the images textured parameters read

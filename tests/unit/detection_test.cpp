@@ -512,5 +512,65 @@ TEST(SweepDetection, PovFaultAtTheHorizonIsCounted) {
   EXPECT_EQ(c.nan, horizon_cells(kSweepGrid));  // POV-Ray counts every bad channel as NaN
 }
 
+// Ambient and emission maps (docs/textures.md): each image dropped — its factor taken for
+// the colour — fails on every renderer, while the generated code passes. One material,
+// examples/textured/textured_emission.json, on the shadows scene.
+TEST(Detection, EmissionAndAmbientMapsFailWhenDropped) {
+  const std::string example = "textured_emission";
+  struct Wrong {
+    const char* what;
+    std::string from, to;
+  };
+  auto check = [&](const std::string& renderer, const std::string& good, const std::vector<Wrong>& wrongs,
+                   const std::function<std::string(const std::string&, const Wrong&)>& make) {
+    Fixture f = fixture(example, renderer, "textured", "shadows");
+    std::vector<RenderJob> jobs = {f.job};
+    jobs[0].code_override = good;
+    for (const auto& w : wrongs) {
+      jobs.push_back(f.job);
+      jobs.back().code_override = make(good, w);
+    }
+    // One batch (one Blender process) where jobs have their own names; POV-Ray's code reads
+    // images named after its job, so there each job is rendered alone under the same name.
+    std::vector<RenderOutcome> r;
+    if (renderer == "pov") {
+      for (const auto& j : jobs) r.push_back(render_one(renderer, j));
+    } else {
+      for (size_t k = 1; k < jobs.size(); ++k) jobs[k].material->name = fmt::format("{}_wrong_{}", example, k);
+      r = make_renderer(renderer)->render(jobs);
+    }
+    ASSERT_EQ(r.size(), jobs.size());
+    for (size_t k = 0; k < r.size(); ++k) {
+      ComparisonRow row = judged(f, r[k]);
+      const char* what = k == 0 ? "right" : wrongs[k - 1].what;
+      std::cout << renderer << ", " << what << ": " << row.metrics.over << " pixels over, worst "
+                << row.metrics.max_excess << "\n";
+      if (k == 0) EXPECT_TRUE(row.pass) << renderer << ": " << row.metrics.max_excess;
+      else EXPECT_FALSE(row.pass) << renderer << ", " << what << ": " << row.metrics.max_excess;
+    }
+  };
+  auto once = [](const std::string& code, const Wrong& w) { return inject(code, w.from, w.to); };
+  auto all = [](const std::string& code, const Wrong& w) { return inject_all(code, w.from, w.to); };
+  Fixture f = fixture(example, "glsl", "textured", "shadows");
+  check("glsl", GlRenderer::fragment_source(f.material),
+        {{"emission map dropped", "    material_emission = ", "    material_emission = vec3(0.6, 0.4, 0.3) + 0.0 * "},
+         {"ambient map dropped", "    material_ambient = ", "    material_ambient = vec3(4.0) + 0.0 * "}},
+        once);
+  GenerateOptions o;
+  o.target = Target::Osl;
+  o.scene = f.scene;
+  check("osl", generate(f.material, o),
+        {{"emission map dropped", "color material_emission = ", "color material_emission = color(0.6, 0.4, 0.3) + 0 * "},
+         {"ambient map dropped", "color material_ambient = ", "color material_ambient = color(4.0) + 0 * "}},
+        once);
+  // POV-Ray: the renderer reads the images beside the code it wrote, so the code is generated under its file names.
+  Fixture p = fixture(example, "pov", "textured", "shadows");
+  PovOutput pov = generate_pov_files(p.scene, &p.material, example, PovRoute::Auto, job_name(p.job));
+  check("pov", pov.code,
+        {{"emission map dropped", "+ Facet_Sample_material_emission_R(S0, T0)", "+ 0.6"},
+         {"ambient map dropped", "Facet_Sample_material_ambient(S0, T0)*", "4*"}},
+        all);
+}
+
 }  // namespace
 }  // namespace facet

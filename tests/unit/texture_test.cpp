@@ -200,6 +200,41 @@ TEST(Texture, BadTexturesNameTheFileAndKey) {
                "specular.alpha.channel", "\"r\"");
   // Parameters that are not shading parameters take no image.
   expect_error(R"({"diffuse": {"model": "lambert"}, "tangent_axis": {"texture": "a.png"}})", "tangent_axis", "vector");
+  // m_a and m_e take an image, checked like any other.
+  expect_error(R"({"diffuse": {"model": "lambert"}, "emission": {"texture": "missing.png"}})", "emission.texture",
+               "missing.png");
+  expect_error(R"({"diffuse": {"model": "lambert"}, "ambient": {"texture": "a.png", "channel": "x"}})",
+               "ambient.channel", "\"rgb\"");
+}
+
+// m_a and m_e from images: inputs after the lobes', read by the shading, not by the
+// reflectance; the reference's emitted light is m_a(u, v) ⊗ A + m_e(u, v); the canonical
+// JSON writes the image back.
+TEST(Texture, AmbientAndEmissionMapsAreSampledForTheShading) {
+  Material m = load_material((kSource / "examples/textured/textured_emission.json").string());
+  MaterialProgram p = compile(m);
+  ASSERT_EQ(p.textured.size(), 2u);
+  EXPECT_EQ(p.textured[0].name, kAmbientInput);
+  EXPECT_EQ(p.textured[1].key, "emission");
+  EXPECT_FALSE(p.uses(kAmbientInput));
+  EXPECT_FALSE(p.uses(kEmissionInput));
+  Reference ref(m);
+  ShadingInputs in;
+  const double u = 0.3, v = 0.6;
+  ref.sample_textures({{{u, v}, {u, v}}}, in);
+  const RGB A = {0.1, 0.2, 0.3};
+  RGB e = ref.emitted(in, A);
+  for (size_t c = 0; c < 3; ++c) {
+    double a = texture_value(p.textured[0].value, Range::non_negative(), u, v)[c];
+    double em = texture_value(p.textured[1].value, Range::non_negative(), u, v)[c];
+    EXPECT_NEAR(e[c], a * A[c] + em, 1e-15);
+    EXPECT_GT(em, 0);
+  }
+  Material back = parse_material(to_json(m), m.source);
+  ASSERT_TRUE(back.emission_texture && back.ambient_texture);
+  EXPECT_TRUE(fs::equivalent(back.emission_texture->path, m.emission_texture->path));
+  EXPECT_EQ(back.emission, m.emission);
+  EXPECT_EQ(back.ambient, m.ambient);
 }
 
 }  // namespace
