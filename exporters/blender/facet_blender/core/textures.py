@@ -52,6 +52,7 @@ import sys
 import zlib
 
 from . import UserError
+from .coords import clean_float, clean_vector
 
 FILTERS = {"Closest": "nearest", "Linear": "bilinear", "Cubic": "bilinear", "Smart": "bilinear"}
 WRAPS = {"REPEAT": "repeat", "EXTEND": "clamp", "MIRROR": "mirror", "CLIP": "clamp"}
@@ -434,8 +435,9 @@ def apply(material_json, bindings, files, material_keys=None):
         for key in ("green", "strength"):
             if section == "normal_map" and spec.get(key) is not None:
                 tex[key] = spec[key]
-        if b.get("factor") is not None:
-            tex["factor"] = b["factor"]
+        if b.get("factor") is not None:      # Blender's float32 values written as typed
+            f = b["factor"]
+            tex["factor"] = clean_vector(f) if isinstance(f, (list, tuple)) else clean_float(f)
         target = data
         for key in path[:-1]:
             target = target.setdefault(key, {})
