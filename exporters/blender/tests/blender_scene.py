@@ -71,3 +71,35 @@ def point_sampled_cycles(scene, seed=0):
     scene.view_settings.look = "None"
     scene.view_settings.exposure = 0.0
     scene.view_settings.gamma = 1.0
+
+
+def add_uv_map(obj, uv_of_face, name="UVMap"):
+    """A UV map on a mesh object: `uv_of_face(positions)` gives the (u, v) of each corner
+    of a face from its vertices' local positions (Blender's UV: v up)."""
+    mesh = obj.data
+    layer = mesh.uv_layers.new(name=name)
+    for poly in mesh.polygons:
+        corners = [tuple(mesh.vertices[mesh.loops[l].vertex_index].co) for l in poly.loop_indices]
+        for l, uv in zip(poly.loop_indices, uv_of_face(corners)):
+            layer.data[l].uv = uv
+    return layer
+
+
+def sphere_uvs(corners):
+    """Longitude/latitude UVs of a face of a sphere centred on its origin: u = φ/2π from +X
+    towards +Y, v = 1 − θ/π (v = 1 at the +Z pole); a face across the seam gets u > 1,
+    and a pole corner the mean u of the others."""
+    out = []
+    for x, y, z in corners:
+        r = math.sqrt(x * x + y * y + z * z)
+        u = (math.atan2(y, x) / (2.0 * math.pi)) % 1.0
+        pole = math.hypot(x, y) < 1e-6 * r
+        out.append([None if pole else u, 1.0 - math.acos(max(-1.0, min(1.0, z / r))) / math.pi])
+    us = [u for u, _ in out if u is not None]
+    if us and max(us) - min(us) > 0.5:
+        us = [u + 1.0 if u < 0.5 else u for u in us]
+        for c in out:
+            if c[0] is not None and c[0] < 0.5:
+                c[0] += 1.0
+    mean = sum(us) / len(us) if us else 0.0
+    return [(mean if u is None else u, v) for u, v in out]

@@ -94,7 +94,8 @@ class ImportHooks:
         if exe is None:
             return
         core_gltf.check_material(exe, data, where, blender_material.name)
-        material_mod.from_json(blender_material, data)
+        for note in material_mod.from_json(blender_material, data):
+            _log(gltf, "WARNING", note)
         _log(gltf, "INFO", f"material '{blender_material.name}': facet settings from {where} "
                            f"({core_gltf.MATERIAL_EXTENSION})")
 

@@ -1,5 +1,7 @@
 """A material's node tree read into the plain description core/convert.py maps."""
 
+import bpy
+
 from ..core import UserError
 from ..core.convert import NOTHING_TO_MAP
 
@@ -31,6 +33,64 @@ def _from_link(socket, depth=0):
     return describe(node, depth)
 
 
+def _image_desc(image):
+    if image is None:
+        return None
+    import os
+    filepath = bpy.path.abspath(image.filepath, library=image.library) if image.filepath else ""
+    return {"name": image.name, "colorspace": image.colorspace_settings.name, "source": image.source,
+            "filepath": filepath, "packed": image.packed_file is not None,
+            "exists": bool(filepath) and os.path.isfile(filepath), "is_float": bool(image.is_float)}
+
+
+def _socket_values(node):
+    values, linked = {}, []
+    for socket in node.inputs:
+        value = _value(socket)
+        if value is not None:
+            values.setdefault(socket.name, value)
+        if socket.is_linked:
+            linked.append(socket.name)
+    return values, linked
+
+
+def source(socket, depth=0):
+    """The plain description of what feeds a (non-shader) input socket, following
+    reroutes, for core/textures.py; None when nothing does."""
+    if depth > 64:
+        raise UserError("the shader node tree is too deep (a cycle?)")
+    if not socket.is_linked:
+        return None
+    link = socket.links[0]
+    if getattr(link, "is_muted", False) or not link.is_valid:
+        return None
+    node = link.from_node
+    if node.type == "REROUTE":
+        return source(node.inputs[0], depth + 1)
+    desc = {"type": "MUTED" if getattr(node, "mute", False) else node.type, "name": node.name,
+            "output": link.from_socket.name}
+    if node.type == "TEX_IMAGE":
+        desc.update(image=_image_desc(node.image), interpolation=node.interpolation,
+                    extension=node.extension, projection=node.projection,
+                    links={"Vector": source(node.inputs["Vector"], depth + 1)})
+    elif node.type in ("SEPARATE_COLOR", "SEPRGB"):
+        desc["mode"] = getattr(node, "mode", "RGB")
+        desc["links"] = {node.inputs[0].name: source(node.inputs[0], depth + 1)}
+    elif node.type == "MAPPING":
+        desc["vector_type"] = node.vector_type
+        desc["inputs"], linked = _socket_values(node)
+        desc["linked"] = [n for n in linked if n != "Vector"]
+        desc["links"] = {"Vector": source(node.inputs["Vector"], depth + 1)}
+    elif node.type == "UVMAP":
+        desc["uv_map"] = node.uv_map
+    elif node.type == "NORMAL_MAP":
+        desc.update(space=node.space, uv_map=node.uv_map)
+        desc["inputs"], linked = _socket_values(node)
+        desc["linked"] = [n for n in linked if n != "Color"]
+        desc["links"] = {"Color": source(node.inputs["Color"], depth + 1)}
+    return desc
+
+
 def describe(node, depth=0):
     desc = {"type": node.type, "name": node.name, "inputs": {}, "linked": []}
     if getattr(node, "mute", False):
@@ -49,8 +109,11 @@ def describe(node, depth=0):
         if value is None:
             continue
         desc["inputs"].setdefault(socket.name, value)
-        if socket.is_linked:
+        if socket.is_linked and socket.name not in desc["linked"]:
             desc["linked"].append(socket.name)
+            src = source(socket, depth + 1)
+            if src is not None:
+                desc.setdefault("sources", {})[socket.name] = src
     if node.type in SHADER_COMBINERS:
         desc["shaders"] = shaders
     return desc

@@ -25,9 +25,9 @@ import bpy
 from bpy.props import BoolProperty, EnumProperty, FloatProperty, StringProperty
 from bpy_extras.io_utils import ExportHelper, ImportHelper
 
-from ..core import UserError, cli, generate, pov, povray
-from ..core.convert import map_surface
-from . import material as material_mod, nodes, osl, preferences, scene_data, state
+from ..core import UserError, cli, generate, pov, povray, textures
+from ..core.convert import IGNORED, map_surface
+from . import images, material as material_mod, nodes, osl, preferences, scene_data, state
 
 LAST_REPORTS = []
 
@@ -89,7 +89,10 @@ class FACET_OT_export_material(_MaterialOperator, ExportHelper, bpy.types.Operat
     def run(self, context):
         mat = context_material(context)
         exe = preferences.facet_exe(context)
-        generate.export_material(exe, material_mod.to_json(mat), mat.name, self.filepath)
+        data, files, _, notes = textured_files(exe, mat)
+        generate.export_material(exe, data, mat.name, self.filepath, files)
+        for note in notes:
+            self.report_("WARNING", note)
         self.report_("INFO", f"Exported material '{mat.name}' to {self.filepath}")
 
 
@@ -113,7 +116,8 @@ class FACET_OT_import_material(_FacetOperator, ImportHelper, bpy.types.Operator)
             if obj is not None and hasattr(obj.data, "materials"):
                 obj.data.materials.append(mat)
                 obj.active_material_index = len(obj.material_slots) - 1
-        material_mod.from_json(mat, data)
+        for note in material_mod.from_json(mat, data, os.path.dirname(os.path.abspath(self.filepath))):
+            self.report_("WARNING", note)
         self.report_("INFO", f"Imported facet material '{data.get('name', '?')}' into "
                              f"{'new ' if created else ''}material '{mat.name}'")
 
@@ -148,7 +152,10 @@ class FACET_OT_export_glsl(_MaterialOperator, ExportHelper, bpy.types.Operator):
     def run(self, context):
         mat = context_material(context)
         exe = preferences.facet_exe(context)
-        generate.code_to(exe, material_mod.to_json(mat), mat.name, self.filepath, self.dialect, self.library)
+        data, files, _, notes = textured_files(exe, mat)
+        generate.code_to(exe, data, mat.name, self.filepath, self.dialect, self.library, files)
+        for note in notes:
+            self.report_("WARNING", note)
         self.report_("INFO", f"Wrote {self.dialect}{' library' if self.library else ''} of '{mat.name}' "
                              f"to {self.filepath}")
 
@@ -168,14 +175,52 @@ class FACET_OT_generate_osl(_MaterialOperator, bpy.types.Operator):
         catalog, _ = state.require()
         exe = preferences.facet_exe(context)
         scene_json, notes = scene_data.lights_scene(context, catalog)
-        osl_text = generate.osl_shader(exe, material_mod.to_json(mat), mat.name, scene_json, context.scene.name)
-        osl.install(mat, osl_text, generate.osl_text_name(mat.name))
+        data, uv_maps, more = textured_material(exe, mat)
+        notes += more
+        osl_text = generate.osl_shader(exe, data, mat.name, scene_json, context.scene.name)
+        osl.install(mat, osl_text, generate.osl_text_name(mat.name), uv_maps)
         osl.configure_scene(context.scene)
         lights = len(scene_json["lights"])
         for note in notes:
             self.report_("WARNING", note)
         self.report_("INFO", f"Generated OSL for '{mat.name}' lit by {lights} light{'s' * (lights != 1)} "
                              f"(regenerate after moving lights); scene set to Cycles, CPU, OSL")
+
+
+def texture_folder(material):
+    """Where Generate OSL writes a material's texture files: //facet_textures/<material>
+    beside the saved .blend, else a new temporary folder."""
+    if bpy.data.filepath:
+        folder = os.path.join(bpy.path.abspath("//facet_textures"), generate.safe_name(material.name))
+        os.makedirs(folder, exist_ok=True)
+        return folder, []
+    import tempfile
+    folder = tempfile.mkdtemp(prefix="facet-textures-")
+    return folder, [f"material '{material.name}': the .blend is not saved; its texture files are in {folder}"]
+
+
+def textured_files(exe, mat):
+    """(material JSON naming its texture images relatively, {file name: bytes} of those
+    images, UV map names of sets 0 and 1, notes) of one material."""
+    data = material_mod.to_json(mat)
+    bindings = material_mod.texture_bindings(mat)
+    if not bindings:
+        return data, {}, [], []
+    keys = generate.texturable_material_keys(exe)
+    names, files, notes = images.texture_files({mat.name: textures.exported(bindings, keys)})
+    data, more = textures.apply(data, bindings, names[mat.name], keys)
+    return data, files, textures.uv_maps(bindings, mat.name), notes + more
+
+
+def textured_material(exe, mat):
+    """(material JSON with its textures as absolute files, UV map names of sets 0 and 1,
+    notes) for generating OSL: the images are written to `texture_folder`."""
+    data, files, uv_maps, notes = textured_files(exe, mat)
+    if not files:
+        return data, uv_maps, notes
+    folder, where = texture_folder(mat)
+    cli.write_all_atomic(folder, files)
+    return textures.absolute(data, folder), uv_maps, notes + where
 
 
 # ----------------------------------------------------------------------------- Blender nodes -> facet
@@ -189,9 +234,15 @@ class FACET_OT_convert_material(_MaterialOperator, bpy.types.Operator):
     def run(self, context):
         mat = context_material(context)
         state.require()
-        result = map_surface(nodes.surface_description(mat))
+        result = map_surface(nodes.surface_description(mat), mat.name)
         material_mod.set_lobes(mat, result)
-        self.report_("INFO", f"Converted '{mat.name}' to {result.headline()}:\n" + "\n".join(result.summary()))
+        for level, message in result.notes:
+            if level == IGNORED:
+                self.report_("WARNING", message)
+        images_used = sorted({b["spec"]["image"] for b in result.textures})
+        self.report_("INFO", f"Converted '{mat.name}' to {result.headline()}"
+                             + (f", textured by {', '.join(repr(i) for i in images_used)}" if images_used else "")
+                             + ":\n" + "\n".join(result.summary()))
 
 
 # ----------------------------------------------------------------------------- scenes
@@ -209,8 +260,12 @@ class FACET_OT_export_scene(_FacetOperator, ExportHelper, bpy.types.Operator):
         return context.scene is not None
 
     def run(self, context):
-        data, notes = scene_data.full_scene(context)
-        cli.write_atomic(self.filepath, cli.dump_json(data))
+        exe = preferences.facet_exe(context)
+        data, notes, files = scene_data.full_scene(context, generate.texturable_material_keys(exe),
+                                                   [os.path.basename(self.filepath)])
+        folder = os.path.dirname(os.path.abspath(self.filepath))
+        # The images first, the scene that names them last.
+        cli.write_all_atomic(folder, dict(files, **{os.path.basename(self.filepath): cli.dump_json(data)}))
         for note in notes:
             self.report_("WARNING", note)
         self.report_("INFO", f"Exported scene '{context.scene.name}' ({len(data['objects'])} meshes, "
@@ -248,13 +303,18 @@ class FACET_OT_export_pov(_FacetOperator, ExportHelper, bpy.types.Operator):
 
     def run(self, context):
         exe = preferences.facet_exe(context)
-        data, notes = scene_data.full_scene(context)       # names a material without settings
         pov.require_scene_support(exe)
-        povray_path = preferences.povray_exe(context) if self.render else None
+        # names a material without settings; reads every image before anything is written
         stem = os.path.splitext(self.filepath)[0]
-        plan = pov.generate_scene(exe, data, context.scene.name, self.filepath)   # facet's pass count
+        reserved = [os.path.basename(stem) + ext for ext in (".pov", ".png", ".json")]
+        data, notes, files = scene_data.full_scene(context, generate.texturable_material_keys(exe), reserved)
+        povray_path = preferences.povray_exe(context) if self.render else None
+        plan = pov.generate_scene(exe, data, context.scene.name, self.filepath, files)   # facet's pass count
+        beside = dict(files)
         if self.save_scene:
-            cli.write_atomic(stem + ".json", cli.dump_json(data))
+            beside[os.path.basename(stem) + ".json"] = cli.dump_json(data)
+        if beside:     # the images the scene names, beside the .pov (and the scene, last)
+            cli.write_all_atomic(os.path.dirname(os.path.abspath(self.filepath)), beside)
         for note in notes:
             self.report_("WARNING", note)
         message = f"Exported scene '{context.scene.name}' to {self.filepath}"

@@ -89,7 +89,26 @@ def _compile(tree, text):
     return script
 
 
-def install(material, osl_text, text_name):
+UV_NODE_NAME = "facet UV"
+
+
+def _link_uv_maps(tree, script, uv_maps):
+    """UV Map nodes (one per texture coordinate set the shader reads) into the shader's
+    facet_uv0 / facet_uv1 inputs; Cycles exports a mesh's UV map only when a node asks."""
+    for node in [n for n in tree.nodes if n.type == "UVMAP" and n.name.startswith(UV_NODE_NAME)]:
+        tree.nodes.remove(node)
+    for k, name in enumerate(uv_maps):
+        socket = script.inputs.get(f"facet_uv{k}")
+        if socket is None:
+            continue
+        node = tree.nodes.new("ShaderNodeUVMap")
+        node.name = node.label = f"{UV_NODE_NAME} {k}"
+        node.uv_map = name
+        node.location = (script.location.x - 250, script.location.y - 150 * k)
+        tree.links.new(node.outputs["UV"], socket)
+
+
+def install(material, osl_text, text_name, uv_maps=()):
     """Compiles `osl_text` in a new Script node of `material` and wires its "Out" to the
     Material Output's Surface, replacing an earlier facet OSL node.
 
@@ -132,6 +151,7 @@ def install(material, osl_text, text_name):
     output = _output_node(tree)
     script.location = (output.location.x - 300, output.location.y)
     tree.links.new(script.outputs["Out"], output.inputs["Surface"])
+    _link_uv_maps(tree, script, uv_maps)
     if hasattr(material, "cycles") and hasattr(material.cycles, "emission_sampling"):
         # The shader emits the lit result; it is not a light source for other objects.
         material.cycles.emission_sampling = "NONE"

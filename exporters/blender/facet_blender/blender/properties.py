@@ -61,6 +61,10 @@ def register_plan(material_plan):
         bpy.types.Material.facet = bpy.props.PointerProperty(
             type=classes[material_plan.name], name="facet",
             description="facet material settings (diffuse and specular models of the facet catalog)")
+        bpy.types.Material.facet_textures = bpy.props.StringProperty(
+            name="facet Textures", default="", options={"HIDDEN"},
+            description="The images of the facet parameters that Convert Blender Material found "
+                        "(core/textures.py bindings, JSON); exported with the scene")
     except Exception:
         unregister_classes(registered)
         raise
@@ -70,6 +74,8 @@ def register_plan(material_plan):
 def unregister_classes(registered):
     if hasattr(bpy.types.Material, "facet"):
         del bpy.types.Material.facet
+    if hasattr(bpy.types.Material, "facet_textures"):
+        del bpy.types.Material.facet_textures
     for cls in reversed(registered):
         try:
             bpy.utils.unregister_class(cls)

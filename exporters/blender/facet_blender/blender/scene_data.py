@@ -6,8 +6,8 @@ normals, windings) is in core/scene.py.
 
 import bpy
 
-from ..core import UserError, scene as core_scene
-from . import material as material_mod
+from ..core import UserError, scene as core_scene, textures
+from . import images, material as material_mod
 
 MESH_TYPES = {"MESH", "CURVE", "SURFACE", "META", "FONT"}
 
@@ -128,10 +128,80 @@ def _mesh_data(obj, mesh):
     mesh.polygons.foreach_get("normal", face_normal)
 
     triangles, normals = core_scene.triangle_corners(verts, loops, polys, corner, smooth, face_normal)
-    return positions, triangles, normals, slots
+    return positions, triangles, normals, slots, loops
 
 
-def objects_json(depsgraph, materials):
+def _find_uv_layer(mesh, name, obj_name, material):
+    """The named UV map ("" the active render one, "#k" the k-th) or a UserError naming it."""
+    layers = mesh.uv_layers
+    if name.startswith("#") and name[1:].isdigit():        # a material file's set k: the k-th UV map
+        k = int(name[1:])
+        layer = layers[k] if k < len(layers) else None
+        name = f"number {k + 1}"
+    else:
+        layer = layers.get(name) if name else next((l for l in layers if l.active_render), layers.active)
+    if layer is None:
+        raise UserError(f"object '{obj_name}' has no UV map " + (f"'{name}'" if name else "at all")
+                        + f", which the textures of material '{material}' read: add it, or change the "
+                          f"UV Map node and convert the material again")
+    return layer
+
+
+def _uv_layer(mesh, name, obj_name, material):
+    """Per-loop UVs (flat list) of the named UV map."""
+    layer = _find_uv_layer(mesh, name, obj_name, material)
+    values = [0.0] * (2 * len(mesh.loops))
+    layer.data.foreach_get("uv", values)
+    return values
+
+
+def _corner_uvs(mesh, obj_name, loops, slot_names):
+    """Per triangle, its corners' UVs of the UV maps its material's textures read."""
+    per_material, layers, out = {}, {}, []
+    for t, material in enumerate(slot_names):
+        maps = per_material.get(material.name)
+        if maps is None:
+            maps = per_material[material.name] = textures.uv_maps(material_mod.texture_bindings(material),
+                                                                  material.name)
+        data = []
+        for name in maps:
+            if name not in layers:
+                layers[name] = _uv_layer(mesh, name, obj_name, material.name)
+            data.append(layers[name])
+        out.append(tuple(tuple((d[2 * l], d[2 * l + 1]) for d in data) for l in loops[3 * t:3 * t + 3]))
+    return out
+
+
+def _corner_tangents(mesh, obj_name, loops, slot_materials, material_keys):
+    """Per triangle, None or its corners' (MikkTSpace tangent, bitangent sign) for the UV
+    map of its material's normal map (Mesh.calc_tangents)."""
+    per_uv, out = {}, []
+    for t, material in enumerate(slot_materials):
+        bindings = textures.exported(material_mod.texture_bindings(material), material_keys)
+        normal = next((b for b in bindings if b["path"] == ["normal_map"]), None)
+        if normal is None:
+            out.append(None)
+            continue
+        name = normal["spec"].get("uv_map", "")
+        if name not in per_uv:
+            layer = _find_uv_layer(mesh, name, obj_name, material.name)
+            try:
+                mesh.calc_tangents(uvmap=layer.name)
+            except RuntimeError as e:
+                raise UserError(f"object '{obj_name}': the normal map of material '{material.name}' needs "
+                                f"tangents, which Blender cannot compute here ({e}); triangulate its n-gons")
+            tangents = [0.0] * (3 * len(mesh.loops))
+            signs = [0.0] * len(mesh.loops)
+            mesh.loops.foreach_get("tangent", tangents)
+            mesh.loops.foreach_get("bitangent_sign", signs)
+            per_uv[name] = (tangents, signs)
+        tangents, signs = per_uv[name]
+        out.append(tuple((tangents[3 * l], tangents[3 * l + 1], tangents[3 * l + 2], signs[l])
+                         for l in loops[3 * t:3 * t + 3]))
+    return out
+
+
+def objects_json(depsgraph, materials, material_keys=None):
     """(facet mesh objects, notes). `materials` collects name -> Blender material of
     every material used (their facet settings are checked by the caller)."""
     objects, notes = [], []
@@ -144,9 +214,9 @@ def objects_json(depsgraph, materials):
         try:
             if mesh is None or not mesh.polygons:
                 continue
-            positions, triangles, normals, slot_of = _mesh_data(obj, mesh)
+            positions, triangles, normals, slot_of, loops = _mesh_data(obj, mesh)
             slots = [s.material for s in obj.material_slots]
-            names = []
+            names, used_materials = [], []
             for slot in slot_of:
                 mat = slots[slot] if slot < len(slots) else None
                 if mat is None:
@@ -155,14 +225,22 @@ def objects_json(depsgraph, materials):
                                     + ": give it a material with facet settings")
                 materials[mat.name] = mat.original if hasattr(mat, "original") else mat
                 names.append(mat.name)
-            objects.extend(core_scene.mesh_objects(name, _rows(matrix), positions, triangles, normals, names))
+                used_materials.append(materials[mat.name])
+            uvs = tangents = None
+            if any(material_mod.texture_bindings(m) for m in set(used_materials)):
+                uvs = _corner_uvs(mesh, name, loops, used_materials)
+                tangents = _corner_tangents(mesh, name, loops, used_materials, material_keys)
+            objects.extend(core_scene.mesh_objects(name, _rows(matrix), positions, triangles, normals, names, uvs,
+                                                   tangents))
         finally:
             obj.to_mesh_clear()
     return objects, notes
 
 
-def full_scene(context):
-    """(facet scene JSON with materials and meshes, notes) of the whole scene.
+def full_scene(context, material_keys=None, reserved=()):
+    """(facet scene JSON with materials and meshes, notes, texture files) of the whole
+    scene; the texture files ({file name: bytes}) go beside the scene file, which names
+    them relatively, under names other than `reserved` (what else the export writes).
 
     Raises a UserError naming the first material without facet settings."""
     scene = context.scene
@@ -171,16 +249,23 @@ def full_scene(context):
     ambient, more = world_ambient(scene)
     notes += more
     used = {}
-    objects, more = objects_json(depsgraph, used)
+    objects, more = objects_json(depsgraph, used, material_keys)
     notes += more
     if not objects:
         raise UserError(f"scene '{scene.name}' has no mesh objects to export")
     materials = {}
+    bindings = {name: material_mod.texture_bindings(used[name]) for name in sorted(used)}
+    names, files, more = images.texture_files({n: textures.exported(b, material_keys)
+                                               for n, b in bindings.items() if b},
+                                              {r.lower() for r in reserved})
+    notes += more
     for name in sorted(used):
-        materials[name] = material_mod.to_json(used[name])
+        materials[name], more = textures.apply(material_mod.to_json(used[name]), bindings[name],
+                                               names.get(name, {}), material_keys)
+        notes += more
     lights, more = lights_json(depsgraph)
     notes += more
-    return core_scene.scene(scene.name, cam, ambient, lights, objects, materials), notes
+    return core_scene.scene(scene.name, cam, ambient, lights, objects, materials), notes, files
 
 
 def lights_scene(context, catalog):

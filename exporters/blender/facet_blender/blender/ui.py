@@ -75,6 +75,20 @@ class FACET_PT_material(bpy.types.Panel):
         layout.operator("facet.convert_material", text="From Blender Nodes", icon="NODETREE")
         if not material_mod.has_settings(mat):
             layout.label(text="Enable facet (the box in this panel's header) to edit facet settings")
+            return
+        try:
+            bindings = material_mod.texture_bindings(mat)
+        except Exception as e:  # noqa: BLE001 - a panel must draw
+            bindings = []
+            layout.label(text=str(e), icon="ERROR")
+        if bindings:
+            box = layout.box()
+            box.label(text="Textures (exported with the material; the values below stand in for them):",
+                      icon="TEXTURE")
+            for b in bindings:
+                where = ".".join(b["path"]) + (f" ({b['model']})" if b.get("model") else "")
+                baked = f", {b['derive']['op']} baked" if b.get("derive") else ""
+                box.label(text=f"{where} <- image '{b['spec']['image']}'{baked}")
 
 
 class _LobePanel:

@@ -119,6 +119,15 @@ def _model(section, data):
                  cycles=data.get("cycles"), pov=data.get("pov"))
 
 
+def _allows_number(prop):
+    """Whether a schema (or one of its oneOf/anyOf alternatives) accepts a plain number."""
+    if not isinstance(prop, dict):
+        return False
+    if prop.get("type") == "number":
+        return True
+    return any(_allows_number(p) for key in ("oneOf", "anyOf") for p in prop.get(key, ()))
+
+
 def _material_keys(schema):
     """ambient/emission/tangent_axis (and whatever facet adds later) from `facet schema`."""
     keys = []
@@ -130,11 +139,9 @@ def _material_keys(schema):
             default = [float(default)] * 3
         if not (isinstance(default, list) and len(default) == 3):
             continue  # not a three-number key: nothing the panel can edit
-        # A colour may be written as one grey number (the schema's oneOf number/array),
-        # and a texturable one also as an image (anyOf: that oneOf, or {"texture": …});
-        # a vector is only ever an array.
-        forms = [prop] + list(prop.get("anyOf", []))
-        kind = "color" if any("oneOf" in f for f in forms) else "vector"
+        # A colour may be written as one grey number (the schema's oneOf number/array, which
+        # an anyOf with a texture object may wrap); a vector is only ever an array.
+        kind = "color" if _allows_number(prop) else "vector"
         keys.append(MaterialKey(name=name, kind=kind, default=tuple(float(x) for x in default),
                                 doc=prop.get("description", "")))
     return keys

@@ -138,6 +138,25 @@ def scene_support(schema):
     return "materials" in props, "mesh" in _object_types(props.get("objects", {}))
 
 
+def mesh_keys(schema):
+    """The keys a scene schema allows on a mesh (the objects whose properties have
+    "texcoords"), merged over its variants."""
+    found = set()
+
+    def walk(node):
+        if isinstance(node, dict):
+            props = node.get("properties")
+            if isinstance(props, dict) and "texcoords" in props:
+                found.update(props)
+            for value in node.values():
+                walk(value)
+        elif isinstance(node, list):
+            for value in node:
+                walk(value)
+    walk(schema)
+    return found
+
+
 def _object_types(node):
     """Every value a `"type": {"const": ...}` (or enum) allows anywhere under `node`."""
     found = set()
@@ -198,6 +217,31 @@ def write_atomic(path, data):
     finally:
         if os.path.exists(tmp):
             os.remove(tmp)
+
+
+def write_all_atomic(folder, files):
+    """Writes {file name: bytes} into `folder`: every file first to a temporary name beside
+    it, then all renamed in the order given (put the file that names the others last).
+    When a write fails, nothing is renamed and the temporaries are removed."""
+    if not os.path.isdir(folder):
+        raise UserError(f"cannot write into '{folder}': the folder does not exist")
+    staged = []
+    try:
+        for name, data in files.items():
+            target = os.path.join(folder, name)
+            tmp = temp_path_beside(target)
+            staged.append((tmp, target))
+            with open(tmp, "wb") as f:
+                f.write(data.encode("utf-8") if isinstance(data, str) else data)
+            _give_ordinary_permissions(tmp)
+        for tmp, target in staged:
+            os.replace(tmp, target)
+    except OSError as e:
+        raise UserError(f"cannot write into '{folder}': {e.strerror or e}")
+    finally:
+        for tmp, _ in staged:
+            if os.path.exists(tmp):
+                os.remove(tmp)
 
 
 def generate_to(exe, path, args, replace=None, describe=None):

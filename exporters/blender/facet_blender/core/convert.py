@@ -25,11 +25,13 @@ radiance as Cycles for a point or sun light of radius 0 (see scene.py for the un
 | Mix Shader (Fac f, a, b)                  | a's colours × (1−f), b's colours × f               | as exact as a and b |
 | anything else                             | refused: "no Diffuse, Glossy or Principled BSDF feeds the Material Output" | |
 
-Colours are linear RGB in both; a socket that is linked to other nodes (a texture)
-cannot be followed: its unlinked value is used and the mapping reported approximate.
+Colours are linear RGB in both. A socket fed by an Image Texture (directly, or through
+Separate Color, Mapping and UV Map nodes) and a Normal Map node become textured
+parameters (`Result.textures`, see textures.py); a socket linked to anything else is
+named in a warning (material, node name and type) and its unlinked value is used.
 """
 
-from . import UserError
+from . import UserError, textures
 
 EXACT, APPROXIMATE, IGNORED = "exact", "approximate", "ignored"
 NOTHING_TO_MAP = "no Diffuse, Glossy or Principled BSDF feeds the Material Output"
@@ -44,6 +46,8 @@ class Result:
         self.specular = None
         self.emission = None
         self.notes = []
+        self.textures = []          # textures.binding(...) of the textured parameters
+        self.material_name = ""     # the Blender material's name, for messages
 
     def note(self, level, message):
         self.notes.append((level, message))
@@ -92,6 +96,9 @@ class _Node:
         self.label = desc.get("name") or desc.get("type")
         self.inputs = desc.get("inputs", {})
         self.linked = set(desc.get("linked", ()))
+        self.sources = desc.get("sources", {})
+        self.textured = set()       # inputs whose texture the caller maps
+        self.reported = set()       # linked inputs already named in a note
 
     def has(self, name):
         return name in self.inputs
@@ -99,10 +106,35 @@ class _Node:
     def get(self, name, default=None):
         if name not in self.inputs:
             return default
-        if name in self.linked:
-            self.result.note(APPROXIMATE, f"{self.label}: input '{name}' is linked to other nodes; "
-                                          f"its unlinked value {self._fmt(self.inputs[name])} is used")
+        if name in self.linked and name not in self.textured and name not in self.reported:
+            self.reported.add(name)
+            src = self.sources.get(name)
+            by = f" (node {textures.node_label(src)})" if src else ""
+            where = f"material '{self.result.material_name}': " if self.result.material_name else ""
+            self.result.note(IGNORED if src else APPROXIMATE,
+                             f"{where}{self.label}: input '{name}' is linked to other nodes{by}; "
+                             f"its unlinked value {self._fmt(self.inputs[name])} is used")
         return self.inputs[name]
+
+    def texture(self, name, want):
+        """The texture spec of a linked input (textures.texture_of), or None: unlinked, or
+        nothing facet can map (then a warning names the node, and `get` adds that the
+        unlinked value is used)."""
+        if name not in self.linked or name not in self.sources:
+            return None
+        ctx = textures.Context(self.result.material_name, f"{self.label}: {name}", self.result.note)
+        spec = textures.texture_of(self.sources[name], want, ctx)
+        self.reported.add(name)          # texture_of warned when it could not map it
+        if spec is not None:
+            self.textured.add(name)
+        return spec
+
+    def normal_map(self):
+        """The normal_map binding spec of the node's Normal input, or None."""
+        if "Normal" not in self.sources:
+            return None
+        ctx = textures.Context(self.result.material_name, f"{self.label}: Normal", self.result.note)
+        return textures.normal_map_of(self.sources["Normal"], ctx)
 
     def first(self, names, default=None):
         """The value of the first input of `names` the node has (3.x vs 4.x names)."""
@@ -120,15 +152,41 @@ class _Node:
 
 # ----------------------------------------------------------------------------- single nodes
 
+def _bind(result, path, model, spec, factor=None, derive=None):
+    result.textures.append(textures.binding(path, model, spec, factor, derive))
+
+
+def _texture_exactness(result, node, what):
+    result.note(EXACT, f"{node.label}: {what} from its image (the texel as Cycles reads it: Closest filter, "
+                       f"or Linear on a Non-Color image)")
+
+
 def diffuse_bsdf(node, weight, result):
+    color_tex = node.texture("Color", "color")
+    rough_tex = node.texture("Roughness", "number")
     color = _scale(_rgb(node.get("Color", (0.8, 0.8, 0.8))), weight)
     roughness = float(node.get("Roughness", 0.0))
-    if roughness <= 0.0:
+    model = "oren_nayar" if (roughness > 0.0 or rough_tex) else "lambert"
+    if color_tex:
+        _bind(result, ("diffuse", "color"), model, color_tex, weight if weight != 1.0 else None)
+        _texture_exactness(result, node, "colour")
+    if model == "lambert":
         result.note(EXACT, f"{node.label} -> lambert (Cycles' diffuse is ρ/π, facet's Lambert the same lobe)")
         return {"model": "lambert", "color": color}
-    result.note(APPROXIMATE, f"{node.label} (Roughness {roughness:.3g}) -> oren_nayar sigma {roughness:.3g} "
-                             f"(Cycles uses Fujii's improved Oren–Nayar, facet the 1994 qualitative model)")
-    return {"model": "oren_nayar", "color": color, "sigma": roughness}
+    if rough_tex:
+        _bind(result, ("diffuse", "sigma"), model, rough_tex)
+    result.note(APPROXIMATE, f"{node.label} (Roughness {'image' if rough_tex else f'{roughness:.3g}'}) -> oren_nayar "
+                             f"sigma = Roughness (Cycles uses Fujii's improved Oren–Nayar, facet the 1994 "
+                             f"qualitative model)")
+    return {"model": "oren_nayar", "color": color, "sigma": roughness if roughness > 0.0 else 0.5}
+
+
+def _alpha_texture(result, node, section, model, rough_tex):
+    """α = Roughness² baked from a roughness image."""
+    _bind(result, (section, "alpha" if model == "ggx" else "m"), model, rough_tex, derive={"op": "square"})
+    result.note(APPROXIMATE, f"{node.label}: {'alpha' if model == 'ggx' else 'm'} = Roughness² baked per texel "
+                             f"from image '{rough_tex['image']}' into a derived image (Cycles squares after "
+                             f"filtering: equal with Closest)")
 
 
 def _microfacet(node, result, distribution, roughness, color, fresnel, what):
@@ -153,24 +211,35 @@ def _microfacet(node, result, distribution, roughness, color, fresnel, what):
 
 
 def glossy_bsdf(node, weight, result):
+    color_tex = node.texture("Color", "color")
+    rough_tex = node.texture("Roughness", "number")
     color = _scale(_rgb(node.get("Color", (0.8, 0.8, 0.8))), weight)
     roughness = float(node.get("Roughness", 0.5))
+    if rough_tex and roughness <= 0.0:
+        roughness = 0.5               # the lobe exists; its α comes from the image
     anisotropy = float(node.get("Anisotropy", 0.0)) if node.has("Anisotropy") else 0.0
     if anisotropy:
         result.note(IGNORED, f"{node.label}: Anisotropy {anisotropy:.3g} is ignored (isotropic lobe)")
-    return _microfacet(node, result, node.desc.get("distribution", "GGX"), roughness, color,
+    lobe = _microfacet(node, result, node.desc.get("distribution", "GGX"), roughness, color,
                        {"model": "none"}, f"{node.label} ({node.desc.get('distribution', 'GGX')})")
+    if lobe and color_tex:
+        _bind(result, ("specular", "color"), lobe["model"], color_tex, weight if weight != 1.0 else None)
+        _texture_exactness(result, node, "colour")
+    if lobe and rough_tex:
+        _alpha_texture(result, node, "specular", lobe["model"], rough_tex)
+    return lobe
 
 
-def _dielectric_f0(node, base):
-    """Principled's dielectric reflectance at normal incidence, per Blender version."""
+def _dielectric_f0(node, base, unit=False):
+    """Principled's dielectric reflectance at normal incidence, per Blender version; with
+    `unit`, per unit of Specular IOR Level (4.x) / Specular (3.x), in which it is linear."""
     if node.has("Specular IOR Level"):            # Blender 4.x
         ior = float(node.get("IOR", 1.5))
-        level = float(node.get("Specular IOR Level", 0.5))
+        level = 1.0 if unit else float(node.get("Specular IOR Level", 0.5))
         tint = _rgb(node.get("Specular Tint", (1.0, 1.0, 1.0))) if node.has("Specular Tint") else [1.0] * 3
         f0 = ((ior - 1.0) / (ior + 1.0)) ** 2 * 2.0 * max(level, 0.0)
         return [f0 * t for t in tint]
-    specular = float(node.get("Specular", 0.5))   # Blender 2.8-3.x
+    specular = 1.0 if unit else float(node.get("Specular", 0.5))   # Blender 2.8-3.x
     tint = float(node.get("Specular Tint", 0.0)) if node.has("Specular Tint") else 0.0
     lum = sum(c * k for c, k in zip(base, LUMINANCE))
     ctint = [c / lum for c in base] if lum > 0.0 else [1.0] * 3
@@ -187,11 +256,77 @@ _PRINCIPLED_IGNORED = (
 )
 
 
+def _specular_level_texture(node, result, base, metallic, spec_model, maps):
+    """f0 = level·F0₁·(1 − Metallic) + Base·Metallic from a Specular IOR Level (4.x) or
+    Specular (3.x) image, F0₁ the dielectric f0 per unit level: baked (affine per texel)."""
+    name = "Specular IOR Level" if node.has("Specular IOR Level") else "Specular"
+    level_tex = maps[3]
+    if not level_tex or not spec_model:
+        return
+    if maps[0] or maps[1]:
+        result.note(APPROXIMATE, f"{node.label}: {name} is an image as well as Base Color or Metallic; f0 needs "
+                                 f"their product per texel, which the add-on does not bake: the unlinked "
+                                 f"{name} is used")
+        return
+    unit = _dielectric_f0(node, base, unit=True)
+    _bind(result, ("specular", "fresnel", "f0"), spec_model, level_tex,
+          derive={"op": "affine", "scale": [u * (1.0 - metallic) for u in unit],
+                  "offset": [b * metallic for b in base], "rgb": True})
+    result.note(EXACT, f"{node.label}: f0 = {name}·F0·(1−Metallic) + Base·Metallic baked from image "
+                       f"'{level_tex['image']}'")
+
+
+def _principled_textures(node, result, weight, base, metallic, transmission, f0_dielectric, spec_model, maps):
+    """The bindings of a Principled BSDF's Base Color, Metallic and Roughness images.
+
+    k_d = Base·(1−Metallic)·(1−Transmission)·w and f0 = F0·(1−Metallic) + Base·Metallic:
+    one image and constants are exact (a factor, or an affine function baked into a
+    derived image); Base and Metallic both images would need their product: the Base
+    image is used with the unlinked Metallic, and that is reported."""
+    base_tex, metal_tex, rough_tex = maps[:3]
+    keep = (1.0 - transmission) * weight
+    if base_tex and metal_tex:
+        result.note(APPROXIMATE, f"{node.label}: Base Color and Metallic are both images; k_d = Base·(1−Metallic) "
+                                 f"and f0 = mix(F0, Base, Metallic) need their product per texel, which the add-on "
+                                 f"does not bake: Base Color's image with the unlinked Metallic {metallic:.3g} is used")
+        metal_tex = None
+    if base_tex:
+        _bind(result, ("diffuse", "color"), "lambert", base_tex, (1.0 - metallic) * keep)
+        _texture_exactness(result, node, "Base Color")
+    elif metal_tex:
+        c = [b * keep for b in base]            # k_d = c·(1 − m)
+        _bind(result, ("diffuse", "color"), "lambert", metal_tex,
+              derive={"op": "affine", "scale": [-x for x in c], "offset": c, "rgb": True})
+        result.note(EXACT, f"{node.label}: k_d = Base·(1−Metallic) baked from image '{metal_tex['image']}'")
+    if spec_model:
+        d = f0_dielectric
+        if base_tex and metallic > 0.0:
+            spec = dict(base_tex)
+            if metallic == 1.0:
+                _bind(result, ("specular", "fresnel", "f0"), spec_model, spec)
+            else:
+                _bind(result, ("specular", "fresnel", "f0"), spec_model, spec,
+                      derive={"op": "affine", "scale": [metallic] * 3, "offset": [x * (1.0 - metallic) for x in d],
+                              "rgb": True})
+            result.note(EXACT, f"{node.label}: f0 = mix(F0, Base, Metallic) from image '{spec['image']}'")
+        elif metal_tex:
+            _bind(result, ("specular", "fresnel", "f0"), spec_model, metal_tex,
+                  derive={"op": "affine", "scale": [b - x for b, x in zip(base, d)], "offset": list(d), "rgb": True})
+            result.note(EXACT, f"{node.label}: f0 = mix(F0, Base, Metallic) baked from image '{metal_tex['image']}'")
+        if rough_tex:
+            _alpha_texture(result, node, "specular", spec_model, rough_tex)
+
+
 def principled_bsdf(node, weight, result):
     """(diffuse lobe, specular lobe, emission) of a Principled BSDF."""
+    maps = (node.texture("Base Color", "color"), node.texture("Metallic", "number"),
+            node.texture("Roughness", "number"),
+            node.texture("Specular IOR Level" if node.has("Specular IOR Level") else "Specular", "number"))
     base = _rgb(node.get("Base Color", (0.8, 0.8, 0.8)))
     metallic = min(max(float(node.get("Metallic", 0.0)), 0.0), 1.0)
     roughness = min(max(float(node.get("Roughness", 0.5)), 0.0), 1.0)
+    if maps[2] and roughness <= 0.0:
+        roughness = 0.5               # the lobe exists; its α comes from the image
     transmission = float(node.first(("Transmission Weight", "Transmission"), 0.0))
     for names, off, what in _PRINCIPLED_IGNORED:
         for n in names:
@@ -225,8 +360,25 @@ def principled_bsdf(node, weight, result):
         result.note(APPROXIMATE, f"{node.label} -> fresnel schlick f0 = mix(dielectric f0, Base, Metallic) = "
                                  f"({', '.join(f'{x:.4g}' for x in f0)})"
                                  + (" (Cycles' metals use the F82-tint Fresnel)" if metallic > 0.0 else ""))
+    _principled_textures(node, result, weight, base, metallic, transmission, f0_dielectric,
+                         specular["model"] if specular else None, maps)
+    _specular_level_texture(node, result, base, metallic, specular["model"] if specular else None, maps)
+    if diffuse["model"] != "lambert":
+        for b in result.textures:
+            if b["path"] == ["diffuse", "color"] and b["model"] == "lambert":
+                b["model"] = diffuse["model"]
 
-    # Emission: radiance, the same on both sides.
+    # Emission: radiance, the same on both sides; an image × Strength where facet takes
+    # emission maps (the export checks; elsewhere the unlinked colour is used, and said).
+    strength_value = float(node.inputs.get("Emission Strength", 1.0))
+    for name in ("Emission Color", "Emission"):
+        if name in node.inputs:
+            emission_tex = node.texture(name, "color")
+            if emission_tex:
+                _bind(result, ("emission",), None, emission_tex, strength_value * weight)
+                result.note(EXACT, f"{node.label}: emission = image '{emission_tex['image']}' × Emission Strength "
+                                   f"(an emission map, where facet takes one)")
+            break
     color = node.first(("Emission Color", "Emission"), (0.0, 0.0, 0.0))
     strength = float(node.get("Emission Strength", 1.0)) if node.has("Emission Strength") else 1.0
     emission = _scale(_rgb(color), strength * weight)
@@ -236,6 +388,29 @@ def principled_bsdf(node, weight, result):
 
 
 # ----------------------------------------------------------------------------- the tree
+
+def _normal_map(node, result):
+    spec = node.normal_map()
+    node.textured.add("Normal")
+    if spec is None:
+        return
+    if any(b["path"] == ["normal_map"] for b in result.textures):
+        if not any(b["path"] == ["normal_map"] and b["spec"] == spec for b in result.textures):
+            result.note(APPROXIMATE, f"material '{result.material_name}': {node.label}: a second, different normal map; "
+                                     f"facet's material has one: the first is used")
+        return
+    _bind(result, ("normal_map",), None, spec)
+
+
+def _unmapped_inputs(node, result):
+    """Every other linked input is named in a warning: its unlinked value is used."""
+    for name in sorted(node.linked - node.textured - node.reported):
+        src = node.sources.get(name)
+        if src is None:
+            continue
+        ctx = textures.Context(result.material_name, f"{node.label}: {name}", result.note)
+        result.note(IGNORED, f"{ctx.where(src)}: this input is not mapped to facet; its unlinked value is used")
+
 
 def _terms(desc, weight, result, out):
     """Flattens Add/Mix Shader trees into (weight, node description) terms."""
@@ -255,7 +430,7 @@ def _terms(desc, weight, result, out):
         out.append((weight, desc))
 
 
-def map_surface(surface):
+def map_surface(surface, material=""):
     """Maps the shader tree feeding the Material Output's Surface onto facet lobes.
 
     `surface` is None (nothing linked) or a node description:
@@ -268,6 +443,7 @@ def map_surface(surface):
     Returns a Result; raises UserError when nothing maps or the lobes do not fit one
     facet material (one diffuse and one specular lobe)."""
     result = Result()
+    result.material_name = material
     terms = []
     _terms(surface, 1.0, result, terms)
     handled = {"BSDF_DIFFUSE", "BSDF_GLOSSY", "BSDF_PRINCIPLED"}
@@ -297,6 +473,8 @@ def map_surface(surface):
             result.emission = emission
         if weight != 1.0:
             result.note(EXACT, f"{node.label}: Mix Shader weight {weight:.4g} -> colours scaled by it")
+        _normal_map(node, result)
+        _unmapped_inputs(node, result)
     if result.diffuse is None and result.specular is None:
         raise UserError(f"nothing facet can render remains: {'; '.join(m for _, m in result.notes)}")
     return result

@@ -22,6 +22,29 @@ def safe_name(name):
     return re.sub(r"[^A-Za-z0-9_.-]+", "_", name).strip("._") or "material"
 
 
+def supports_normal_map(exe):
+    """Whether this facet takes a Blender material's normal map: its material files have
+    the "normal_map" key and its scene meshes carry "tangents" (facet schema, facet schema
+    --scene); a facet with normal maps on its shapes only refuses a normal-mapped mesh."""
+    schema = cli.material_schema(exe)
+    if not (isinstance(schema, dict) and "normal_map" in schema.get("properties", {})):
+        return False
+    return "tangents" in cli.mesh_keys(cli.scene_schema(exe))
+
+
+def texturable_material_keys(exe):
+    """The material-level keys (normal_map, emission, ambient) this facet takes a texture
+    on: normal_map where `supports_normal_map`, the others where the material schema
+    lets them be a texture object."""
+    import json as json_mod
+    schema = cli.material_schema(exe)
+    props = schema.get("properties", {}) if isinstance(schema, dict) else {}
+    keys = {k for k in ("emission", "ambient") if "texture" in json_mod.dumps(props.get(k, {}))}
+    if supports_normal_map(exe):
+        keys.add("normal_map")
+    return keys
+
+
 def osl_text_name(name):
     """The name of the Text that holds a material's generated OSL."""
     return f"facet_{safe_name(name)}.osl"
@@ -44,12 +67,16 @@ def check_material(exe, data, label):
         cli.validate_material(exe, path, {path: label})
 
 
-def export_material(exe, data, name, path):
-    """Writes the material file `path` once facet accepted `data`."""
+def export_material(exe, data, name, path, files=None):
+    """Writes the material file `path` once facet accepted `data`; `files` ({name: bytes},
+    the texture images it names relatively) go beside it, written before it."""
     with tempfile.TemporaryDirectory(prefix="facet-") as tmp:
+        if files:
+            cli.write_all_atomic(tmp, files)
         temp, replace = write_material_temp(tmp, data, name)
         cli.validate_material(exe, temp, replace)
-    cli.write_atomic(path, cli.dump_json(data))
+    cli.write_all_atomic(os.path.dirname(os.path.abspath(path)),
+                         dict(files or {}, **{os.path.basename(path): cli.dump_json(data)}))
 
 
 def read_material(exe, path):
@@ -65,11 +92,16 @@ def read_material(exe, path):
         raise UserError(f"cannot read {path}: {e}")
 
 
-def code_to(exe, data, name, path, target, library=False):
-    """`facet generate --target TARGET [--library]` of the material into `path`."""
+def code_to(exe, data, name, path, target, library=False, files=None):
+    """`facet generate --target TARGET [--library]` of the material into `path`; the
+    texture images it names relatively (`files`, {name: bytes}) are written beside it."""
     with tempfile.TemporaryDirectory(prefix="facet-") as tmp:
+        if files:
+            cli.write_all_atomic(tmp, files)
         temp, replace = write_material_temp(tmp, data, name)
         cli.generate_to(exe, path, [temp, "--target", target] + (["--library"] if library else []), replace)
+    if files:
+        cli.write_all_atomic(os.path.dirname(os.path.abspath(path)), files)
 
 
 def osl_shader(exe, data, name, scene, scene_name):

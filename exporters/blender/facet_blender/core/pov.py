@@ -61,10 +61,14 @@ def require_scene_support(exe):
                         "with per-object materials and meshes yet (facet schema --scene); update facet")
 
 
-def generate_scene(exe, scene, scene_name, pov_path):
+def generate_scene(exe, scene, scene_name, pov_path, files=None):
     """Writes the POV-Ray scene of a facet scene (JSON data whose objects carry their own
-    materials) to `pov_path`; returns its Plan. Nothing is written when facet refuses."""
+    materials) to `pov_path`; returns its Plan. Nothing is written when facet refuses.
+    `files` ({name: bytes}, the texture images the scene names relatively) are put
+    beside the scene facet reads; facet writes the texels it uses beside the .pov."""
     with tempfile.TemporaryDirectory(prefix="facet-") as tmp:
+        if files:
+            cli.write_all_atomic(tmp, files)
         scene_path = os.path.join(tmp, "scene.json")
         cli.write_atomic(scene_path, cli.dump_json(scene))
         return cli.generate_to(exe, pov_path, ["--target", "pov", "--scene", scene_path],

@@ -186,7 +186,23 @@ def triangle_corners(vertices, loops, polygons, corner_normals, smooth, face_nor
     return triangles, normals
 
 
-def mesh_objects(name, matrix, positions, triangles, corner_normals, materials):
+def texcoord(uv):
+    """facet's (glTF's) texture coordinate of a Blender UV: v runs down the picture in
+    facet, up in Blender (docs/textures.md; /work/texconv/FINDINGS.md B4), so v = 1 − v_b."""
+    return [float(uv[0]), 1.0 - float(uv[1])]
+
+
+def world_tangent(matrix, tangent, flip):
+    """facet's [x, y, z, w] of a Blender corner tangent (local T, bitangent sign)."""
+    try:
+        t = normalize(transform_direction(matrix, tangent[:3]))
+    except ValueError:
+        t = [1.0, 0.0, 0.0]
+    return to_facet(t) + [-float(tangent[3]) if flip else float(tangent[3])]
+
+
+def mesh_objects(name, matrix, positions, triangles, corner_normals, materials, corner_uvs=None,
+                 corner_tangents=None):
     """facet mesh objects (one per material) of one Blender mesh.
 
     positions:       [(x, y, z), ...] local vertex positions
@@ -195,6 +211,14 @@ def mesh_objects(name, matrix, positions, triangles, corner_normals, materials):
     corner_normals:  [((nx, ny, nz), (..), (..)), ...] per triangle, local space: the
                      per-corner normals of smooth faces, the face normal of flat faces
     materials:       [material name, ...] per triangle
+    corner_uvs:      None, or per triangle three corners' tuples of Blender UVs ((u, v) of
+                     the UV maps the triangle's material reads: set 0, then set 1), written
+                     as facet's "texcoords" and "texcoords1" with v = 1 − v_blender
+    corner_tangents: None, or per triangle None (its material has no normal map) or three
+                     corners' (t_x, t_y, t_z, sign): Blender's MikkTSpace tangent (local) and
+                     bitangent sign, B = sign·(N × T), written as facet's "tangents"
+                     [x, y, z, w] (glTF's TANGENT): T to world space and facet's axes, w the
+                     sign, negated by a mirroring matrix (N × T flips under a reflection)
 
     Positions go to world space through `matrix` (4x4 rows), normals through its
     inverse transpose. A vertex is split where its corners' normals differ. A mirroring
@@ -204,12 +228,17 @@ def mesh_objects(name, matrix, positions, triangles, corner_normals, materials):
     flip = det3(matrix) < 0.0
     out = {}   # material -> [index map, positions, normals, triangles]
     world = {}
-    for tri, normals, material in zip(triangles, corner_normals, materials):
+    uvs_of = {}      # material -> [texcoords, texcoords1]
+    tangents_of = {}  # material -> tangents
+    for t, (tri, normals, material) in enumerate(zip(triangles, corner_normals, materials)):
         entry = out.setdefault(material, [{}, [], [], []])
         index, pos, nor, tris = entry
         corners = []
-        for v, n in zip(tri, normals):
-            key = (v, tuple(n))
+        uv_corners = corner_uvs[t] if corner_uvs is not None else (None, None, None)
+        tangent_corners = (corner_tangents[t] if corner_tangents is not None else None) or (None, None, None)
+        for v, n, uv, tangent in zip(tri, normals, uv_corners, tangent_corners):
+            uv = tuple(tuple(x) for x in uv) if uv else ()
+            key = (v, tuple(n), uv, tuple(tangent) if tangent else None)
             i = index.get(key)
             if i is None:
                 if v not in world:
@@ -222,13 +251,26 @@ def mesh_objects(name, matrix, positions, triangles, corner_normals, materials):
                 i = index[key] = len(pos)
                 pos.append(to_facet(world[v]))
                 nor.append(to_facet(wn))
+                sets = uvs_of.setdefault(material, [[] for _ in uv])
+                for k, c in enumerate(uv):
+                    sets[k].append(texcoord(c))
+                if tangent:
+                    tangents_of.setdefault(material, []).append(world_tangent(matrix, tangent, flip))
             corners.append(i)
         tris.append([corners[0], corners[2], corners[1]] if flip else corners)
     objects = []
     for material, (_, pos, nor, tris) in out.items():
-        objects.append({"type": "mesh",
-                        "name": name if len(out) == 1 else f"{name}.{material}",
-                        "material": material, "positions": pos, "normals": nor, "triangles": tris})
+        obj = {"type": "mesh", "name": name if len(out) == 1 else f"{name}.{material}",
+               "material": material, "positions": pos, "normals": nor}
+        for key, coords in zip(("texcoords", "texcoords1"), uvs_of.get(material, ())):
+            obj[key] = coords
+        if material in tangents_of:
+            if len(tangents_of[material]) != len(pos):
+                raise UserError(f"object '{name}': material '{material}' has a normal map but not every "
+                                f"vertex has a tangent")
+            obj["tangents"] = tangents_of[material]
+        obj["triangles"] = tris
+        objects.append(obj)
     return objects
 
 

@@ -1,0 +1,432 @@
+"""core/textures.py (and its use in convert.py and scene.py): Image Texture and Normal Map
+nodes as plain descriptions -> facet's textured parameters, derived images, PNG files."""
+
+import json
+import math
+import os
+import random
+import subprocess
+
+import pytest
+
+from facet_blender.core import UserError, scene, textures
+from facet_blender.core.convert import APPROXIMATE, EXACT, IGNORED, map_surface
+from support import read_png
+
+
+def image(name="checker", colorspace="sRGB", **kw):
+    desc = {"name": name, "colorspace": colorspace, "source": "FILE", "filepath": f"/textures/{name}.png",
+            "packed": False, "exists": True, "is_float": False}
+    desc.update(kw)
+    return desc
+
+
+def tex_image(img, output="Color", interpolation="Closest", extension="REPEAT", vector=None, name="Image Texture"):
+    return {"type": "TEX_IMAGE", "name": name, "output": output, "image": img, "interpolation": interpolation,
+            "extension": extension, "projection": "FLAT", "links": {"Vector": vector}}
+
+
+def separate(src, output):
+    return {"type": "SEPARATE_COLOR", "name": "Separate Color", "output": output, "mode": "RGB",
+            "links": {"Color": src}}
+
+
+def principled(sources, **inputs):
+    values = {"Base Color": [0.8, 0.8, 0.8, 1.0], "Metallic": 0.0, "Roughness": 0.5,
+              "IOR": 1.5, "Specular IOR Level": 0.5}
+    values.update(inputs)
+    return {"type": "BSDF_PRINCIPLED", "name": "Principled BSDF", "distribution": "GGX", "inputs": values,
+            "linked": sorted(sources), "sources": sources}
+
+
+def messages(result, level=None):
+    return [m for lv, m in result.notes if level is None or lv == level]
+
+
+UV = {"type": "UVMAP", "name": "UV Map", "output": "UV", "uv_map": "UVMap"}
+
+
+def checker_and_roughness():
+    return principled({
+        "Base Color": tex_image(image(), vector=UV),
+        "Roughness": separate(tex_image(image("rough", "Non-Color"), "Color", "Linear", "EXTEND"), "Green")})
+
+
+# ----------------------------------------------------------------------------- mapping
+
+def test_base_color_and_roughness_map_to_bindings():
+    r = map_surface(checker_and_roughness(), "Textured")
+    by_path = {tuple(b["path"]): b for b in r.textures}
+    assert set(by_path) == {("diffuse", "color"), ("specular", "alpha")}
+    kd = by_path[("diffuse", "color")]
+    assert kd["model"] == "lambert" and kd["factor"] == pytest.approx(1.0)
+    assert kd["spec"] == {"image": "checker", "uv_map": "UVMap", "colorspace": "srgb", "filter": "nearest",
+                          "wrap": "repeat", "channel": "rgb"}
+    alpha = by_path[("specular", "alpha")]
+    assert alpha["derive"] == {"op": "square"} and alpha["model"] == "ggx"
+    assert alpha["spec"] == {"image": "rough", "uv_map": "", "colorspace": "linear", "filter": "bilinear",
+                             "wrap": "clamp", "channel": "g"}
+    # No "linked ... unlinked value is used" for inputs that became textures.
+    assert not any("unlinked value" in m for m in messages(r))
+    assert any("Roughness² baked" in m for m in messages(r, APPROXIMATE))
+
+
+def test_metallic_factor_and_f0_of_a_textured_base():
+    r = map_surface(principled({"Base Color": tex_image(image())}, Metallic=0.25), "M")
+    by_path = {tuple(b["path"]): b for b in r.textures}
+    assert by_path[("diffuse", "color")]["factor"] == pytest.approx(0.75)          # Base·(1 − Metallic)
+    f0 = by_path[("specular", "fresnel", "f0")]
+    assert f0["derive"] == {"op": "affine", "scale": [0.25] * 3, "offset": [pytest.approx(0.03)] * 3, "rgb": True}
+
+
+def test_two_images_in_a_product_are_reported_approximate():
+    r = map_surface(principled({"Base Color": tex_image(image()),
+                                "Metallic": tex_image(image("metal", "Non-Color"))}, Metallic=0.5), "Both")
+    assert any("both images" in m for m in messages(r, APPROXIMATE))
+    assert [b["path"] for b in r.textures] == [["diffuse", "color"], ["specular", "fresnel", "f0"]]
+
+
+@pytest.mark.parametrize("setting, value, key, expected, level, words", [
+    ("interpolation", "Cubic", "filter", "bilinear", APPROXIMATE, "Cubic interpolation"),
+    ("interpolation", "Smart", "filter", "bilinear", APPROXIMATE, "Smart interpolation"),
+    ("interpolation", "Linear", "filter", "bilinear", APPROXIMATE, "filters an sRGB image before"),
+    ("extension", "EXTEND", "wrap", "clamp", None, ""),
+    ("extension", "MIRROR", "wrap", "mirror", None, ""),
+    ("extension", "CLIP", "wrap", "clamp", APPROXIMATE, "CLIP")])
+def test_image_texture_settings(setting, value, key, expected, level, words):
+    src = tex_image(image(), **{setting: value})
+    r = map_surface(principled({"Base Color": src}), "S")
+    assert r.textures[0]["spec"][key] == expected
+    if level:
+        assert any(words in m and "'Image Texture' (TEX_IMAGE)" in m and "material 'S'" in m
+                   for m in messages(r, level)), r.notes
+    else:
+        assert not messages(r, APPROXIMATE) or all("Image Texture" not in m for m in messages(r, APPROXIMATE))
+
+
+@pytest.mark.parametrize("space, expected", [("sRGB", "srgb"), ("Non-Color", "linear"), ("Linear Rec.709", "linear"),
+                                             ("Linear", "linear"), ("Raw", "linear")])
+def test_colour_spaces(space, expected):
+    r = map_surface(principled({"Base Color": tex_image(image(colorspace=space))}), "C")
+    assert r.textures[0]["spec"]["colorspace"] == expected
+
+
+def test_alpha_output_and_colour_to_number():
+    r = map_surface(principled({"Roughness": tex_image(image("r", "Non-Color"), "Alpha")}), "A")
+    assert r.textures[0]["spec"]["channel"] == "a"
+    r = map_surface(principled({"Roughness": tex_image(image("r", "Non-Color"))}), "L")
+    assert r.textures[0]["spec"]["channel"] == "r"
+    assert any("luminance" in m for m in messages(r, APPROXIMATE))
+
+
+@pytest.mark.parametrize("kind, name", [("TEX_NOISE", "Noise Texture"), ("TEX_VORONOI", "Voronoi Texture"),
+                                        ("TEX_CHECKER", "Checker Texture"), ("MATH", "Math"),
+                                        ("VERTEX_COLOR", "Color Attribute"), ("VALTORGB", "Color Ramp")])
+def test_unmappable_nodes_are_named_in_a_warning(kind, name):
+    r = map_surface(principled({"Base Color": {"type": kind, "name": name, "output": "Color"}}), "Procedural")
+    warnings = messages(r, IGNORED)
+    assert any(f"'{name}' ({kind})" in m and "material 'Procedural'" in m and "Base Color" in m for m in warnings), \
+        r.notes
+    assert not r.textures
+
+
+def test_unmappable_input_of_an_image_is_named():
+    geo = {"type": "TEX_COORD", "name": "Texture Coordinate", "output": "Generated"}
+    r = map_surface(principled({"Base Color": tex_image(image(), vector=geo)}), "Gen")
+    assert any("'Texture Coordinate' (TEX_COORD)" in m and "not a UV map" in m for m in messages(r, IGNORED))
+    assert not r.textures
+
+
+def test_other_linked_inputs_are_named():
+    r = map_surface(principled({"Coat Weight": {"type": "MATH", "name": "Math.001", "output": "Value"}},
+                               **{"Coat Weight": 0.0}), "Coat")
+    assert any("'Math.001' (MATH)" in m and "Coat Weight" in m for m in messages(r, IGNORED)), r.notes
+
+
+def test_a_missing_image_file_is_an_error_naming_material_and_node():
+    src = tex_image(image(exists=False, filepath="/nowhere/checker.png"), name="Albedo")
+    with pytest.raises(UserError) as e:
+        map_surface(principled({"Base Color": src}), "Painted")
+    assert "material 'Painted'" in str(e.value) and "'Albedo' (TEX_IMAGE)" in str(e.value) \
+        and "/nowhere/checker.png" in str(e.value)
+    # A packed image needs no file.
+    map_surface(principled({"Base Color": tex_image(image(exists=False, packed=True))}), "Packed")
+
+
+def test_diffuse_and_glossy_textures():
+    d = {"type": "BSDF_DIFFUSE", "name": "Diffuse BSDF", "inputs": {"Color": [1, 1, 1, 1], "Roughness": 0.0},
+         "linked": ["Color"], "sources": {"Color": tex_image(image())}}
+    r = map_surface(d, "D")
+    assert r.diffuse["model"] == "lambert" and r.textures[0]["path"] == ["diffuse", "color"] and r.exact
+    g = {"type": "BSDF_GLOSSY", "name": "Glossy BSDF", "distribution": "BECKMANN",
+         "inputs": {"Color": [1, 1, 1, 1], "Roughness": 0.0}, "linked": ["Roughness"],
+         "sources": {"Roughness": tex_image(image("r", "Non-Color"))}}
+    r = map_surface(g, "G")
+    assert r.specular["model"] == "beckmann" and r.textures[0]["path"] == ["specular", "m"]
+
+
+# ----------------------------------------------------------------------------- Mapping node
+
+def blender_mapping(uv_b, loc, rot_z, scale):
+    """Blender's Point mapping in Blender UV: Rz(θ)(S ⊙ uv) + L."""
+    x, y = uv_b[0] * scale[0], uv_b[1] * scale[1]
+    c, s = math.cos(rot_z), math.sin(rot_z)
+    return (c * x - s * y + loc[0], s * x + c * y + loc[1])
+
+
+def khr(uv, t):
+    """KHR_texture_transform as docs/textures.md writes it."""
+    r, (su, sv), (ou, ov) = t["rotation"], t["scale"], t["offset"]
+    u, v = uv
+    return (math.cos(r) * su * u + math.sin(r) * sv * v + ou, -math.sin(r) * su * u + math.cos(r) * sv * v + ov)
+
+
+@pytest.mark.parametrize("loc, rot_z, scale", [((0.1, 0.2, 0.0), 0.0, (2.0, 3.0, 1.0)),
+                                               ((0.3, -0.4, 5.0), 0.7, (1.5, 0.5, 1.0)),
+                                               ((0.0, 0.0, 0.0), -1.2, (1.0, 1.0, 1.0))])
+def test_mapping_node_is_khr_texture_transform_in_facets_v_down(loc, rot_z, scale):
+    src = {"type": "MAPPING", "vector_type": "POINT",
+           "inputs": {"Location": list(loc), "Rotation": [0.0, 0.0, rot_z], "Scale": list(scale)}}
+    t = textures.mapping_transform(src)
+    rng = random.Random(1)
+    for _ in range(50):
+        u, v = rng.uniform(-1, 2), rng.uniform(-1, 2)
+        bu, bv = blender_mapping((u, 1.0 - v), loc, rot_z, scale)        # Blender's v_b = 1 − v
+        assert khr((u, v), t) == pytest.approx((bu, 1.0 - bv), abs=1e-12)  # sampled at facet's v = 1 − v_b
+
+
+@pytest.mark.parametrize("loc, rot_z, scale", [((0.1, 0.2, 0.0), 0.0, (2.0, 3.0, 1.0)),
+                                               ((0.3, -0.4, 0.0), 0.7, (1.5, 1.5, 1.0))])
+def test_texture_mapping_is_the_inverse(loc, rot_z, scale):
+    src = {"type": "MAPPING", "vector_type": "TEXTURE",
+           "inputs": {"Location": list(loc), "Rotation": [0.0, 0.0, rot_z], "Scale": list(scale)}}
+    t = textures.mapping_transform(src)
+    c, s = math.cos(rot_z), math.sin(rot_z)
+    rng = random.Random(2)
+    for _ in range(50):
+        u, v = rng.uniform(-1, 2), rng.uniform(-1, 2)
+        x, y = u - loc[0], (1.0 - v) - loc[1]                              # Blender: R(−θ)(uv − L) / S
+        bu, bv = (c * x + s * y) / scale[0], (-s * x + c * y) / scale[1]
+        assert khr((u, v), t) == pytest.approx((bu, 1.0 - bv), abs=1e-12)
+    assert textures.mapping_transform(dict(src, inputs=dict(src["inputs"], Scale=[1.0, 2.0, 1.0],
+                                                              Rotation=[0.0, 0.0, 0.3]))) is None
+
+
+def test_mapping_without_an_exact_transform_is_reported():
+    src = {"type": "MAPPING", "name": "Mapping", "output": "Vector", "vector_type": "POINT",
+           "inputs": {"Location": [0, 0, 0], "Rotation": [0.5, 0, 0], "Scale": [1, 1, 1]}, "linked": [],
+           "links": {"Vector": UV}}
+    r = map_surface(principled({"Base Color": tex_image(image(), vector=src)}), "Tilted")
+    assert any("'Mapping' (MAPPING)" in m and "KHR_texture_transform" in m for m in messages(r, APPROXIMATE))
+    assert "transform" not in r.textures[0]["spec"]
+    src = dict(src, inputs={"Location": [0.25, 0, 0], "Rotation": [0, 0, 0], "Scale": [2, 2, 1]})
+    r = map_surface(principled({"Base Color": tex_image(image(), vector=src)}), "Moved")
+    assert r.textures[0]["spec"]["transform"] == {"offset": [0.25, -1.0], "scale": [2.0, 2.0], "rotation": 0.0}
+    assert r.textures[0]["spec"]["uv_map"] == "UVMap"
+
+
+# ----------------------------------------------------------------------------- normal maps
+
+def normal_map(strength=1.0, space="TANGENT", colorspace="Non-Color"):
+    return {"type": "NORMAL_MAP", "name": "Normal Map", "output": "Normal", "space": space, "uv_map": "",
+            "inputs": {"Strength": strength}, "linked": [],
+            "links": {"Color": tex_image(image("bumps", colorspace), interpolation="Linear")}}
+
+
+def test_normal_map_strength_1_is_exact():
+    r = map_surface(principled({"Normal": normal_map()}), "Bumpy")
+    (b,) = [b for b in r.textures if b["path"] == ["normal_map"]]
+    assert b["spec"] == {"image": "bumps", "uv_map": "", "filter": "bilinear", "wrap": "repeat",
+                         "green": "up", "strength": 1.0}
+    assert any("Strength 1 -> normal_map" in m for m in messages(r, EXACT))
+    data, notes = textures.apply({"name": "Bumpy", "diffuse": {"model": "lambert", "color": [1, 1, 1]}},
+                                 r.textures, {textures.file_key(b): ("bumps.png", None)})
+    assert data["normal_map"] == {"texture": "bumps.png", "filter": "bilinear", "wrap": "repeat", "uv": 0,
+                                  "green": "up", "strength": 1.0} and not notes
+
+
+def test_normal_map_other_strengths_spaces_and_bump_are_reported():
+    r = map_surface(principled({"Normal": normal_map(0.5)}), "Half")
+    assert any("Strength 0.5" in m and "equal only at Strength 1" in m for m in messages(r, APPROXIMATE))
+    assert r.textures[0]["spec"]["strength"] == 0.5
+    r = map_surface(principled({"Normal": normal_map(space="OBJECT")}), "Obj")
+    assert not r.textures and any("OBJECT space" in m for m in messages(r, IGNORED))
+    r = map_surface(principled({"Normal": {"type": "BUMP", "name": "Bump", "output": "Normal"}}), "Bump")
+    assert not r.textures and any("'Bump' (BUMP)" in m and "Bump nodes" in m for m in messages(r, IGNORED))
+    r = map_surface(principled({"Normal": normal_map(colorspace="sRGB")}), "Srgb")
+    assert any("should be Non-Color" in m for m in messages(r, APPROXIMATE))
+
+
+def test_material_level_maps_left_out_for_a_facet_without_them():
+    emission = tex_image(image("glow"))
+    r = map_surface(principled({"Normal": normal_map(), "Emission Color": emission},
+                               **{"Emission Color": [0.1, 0.2, 0.3, 1.0], "Emission Strength": 2.0}), "Old")
+    assert sorted(b["path"][0] for b in r.textures) == ["emission", "normal_map"]
+    assert r.emission == pytest.approx([0.2, 0.4, 0.6])          # the unlinked colour × strength, as a fallback
+    files = {textures.file_key(b): (b["spec"]["image"] + ".png", None) for b in r.textures}
+    material = {"name": "Old", "diffuse": {"model": "lambert", "color": [1, 1, 1]}, "emission": r.emission}
+    data, notes = textures.apply(material, r.textures, files, material_keys=set())
+    assert "normal_map" not in data and data["emission"] == r.emission
+    assert any("cannot take its normal map" in n for n in notes) and any("emission map" in n for n in notes)
+    assert textures.exported(r.textures, set()) == []
+    data, notes = textures.apply(material, r.textures, files, material_keys={"emission", "normal_map"})
+    assert not notes and data["emission"] == {"texture": "glow.png", "channel": "rgb", "colorspace": "srgb",
+                                              "filter": "nearest", "wrap": "repeat", "uv": 0, "factor": 2.0}
+
+
+# ----------------------------------------------------------------------------- apply, UV sets
+
+def test_apply_writes_facets_texture_objects():
+    r = map_surface(checker_and_roughness(), "Textured")
+    files = {textures.file_key(b): (f"{b['spec']['image']}.png", None) for b in r.textures}
+    material = {"name": "Textured", "diffuse": r.diffuse, "specular": r.specular}
+    data, notes = textures.apply(material, r.textures, files)
+    assert not notes
+    assert data["diffuse"]["color"] == {"texture": "checker.png", "channel": "rgb", "colorspace": "srgb",
+                                        "filter": "nearest", "wrap": "repeat", "uv": 0, "factor": 1.0}
+    # The roughness image reads the active render map (""), the second set; α is the baked image's r.
+    assert data["specular"]["alpha"] == {"texture": "rough.png", "channel": "r", "colorspace": "linear",
+                                         "filter": "bilinear", "wrap": "clamp", "uv": 1}
+    assert textures.uv_maps(r.textures) == ["UVMap", ""]
+    # A lobe whose model changed since the conversion keeps its numbers, and says so.
+    data, notes = textures.apply(dict(material, specular={"model": "phong", "color": [1, 1, 1], "n": 10}),
+                                 r.textures, files)
+    assert data["specular"] == {"model": "phong", "color": [1, 1, 1], "n": 10}
+    assert "made for the specular model ggx" in notes[0]
+
+
+def test_more_than_two_uv_maps_are_refused():
+    bindings = [textures.binding(["diffuse", "color"], "lambert", {"image": "a", "uv_map": n}) for n in "xyz"]
+    with pytest.raises(UserError, match="material 'Three': its textures read 3 UV maps"):
+        textures.uv_maps(bindings, "Three")
+
+
+def test_mesh_texcoords_flip_v_and_split_vertices():
+    positions = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0)]
+    tris = [(0, 1, 2), (0, 2, 3)]
+    n = ((0.0, 0.0, 1.0),) * 3
+    # Vertex 0 and 2 have different UVs in the two triangles (a seam): split.
+    uvs = [(((0.0, 0.0),), ((1.0, 0.0),), ((1.0, 1.0),)), (((0.5, 0.0),), ((1.0, 1.0),), ((0.0, 0.75),))]
+    (obj,) = scene.mesh_objects("Quad", [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]], positions, tris,
+                                [n, n], ["M", "M"], uvs)
+    assert len(obj["positions"]) == 5 and "texcoords1" not in obj
+    assert obj["texcoords"] == [[0.0, 1.0], [1.0, 1.0], [1.0, 0.0], [0.5, 1.0], [0.0, 0.25]]   # v = 1 − v_b
+    (plain,) = scene.mesh_objects("Quad", [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]], positions, tris,
+                                  [n, n], ["M", "M"])
+    assert "texcoords" not in plain and len(plain["positions"]) == 4
+
+
+# ----------------------------------------------------------------------------- pixels and files
+
+def test_pixels_png_puts_blenders_bottom_row_last(tmp_path):
+    # 2×2, Blender's order: bottom row first. Top-left texel red, bottom-right blue.
+    bottom = [0.0, 1.0, 0.0, 1.0, 0.0, 0.0, 1.0, 1.0]
+    top = [1.0, 0.0, 0.0, 1.0, 128 / 255, 128 / 255, 128 / 255, 1.0]
+    data = textures.pixels_png(2, 2, bottom + top)
+    # support.read_png reads RGB; bake an identity affine to get RGB and check the order.
+    rgb = textures.bake(2, 2, bottom + top, {"channel": "rgb", "colorspace": "linear"},
+                        {"op": "affine", "scale": [1, 1, 1], "offset": [0, 0, 0]}, False)
+    path = tmp_path / "t.png"
+    path.write_bytes(rgb)
+    w, h, depth, samples = read_png(str(path))
+    assert (w, h, depth) == (2, 2, 16)
+    assert samples == [65535, 0, 0, 128 * 257, 128 * 257, 128 * 257, 0, 65535, 0, 0, 0, 65535]
+    assert data[:8] == b"\x89PNG\r\n\x1a\n" and data[25] == 6          # colour type 6: RGBA
+
+
+def test_bake_square_and_srgb(tmp_path):
+    px = [0.5, 0.25, 0.0, 1.0]
+    png = textures.bake(1, 1, px, {"channel": "g", "colorspace": "linear"}, {"op": "square"}, False)
+    path = tmp_path / "s.png"
+    path.write_bytes(png)
+    assert read_png(str(path))[3] == [round(0.0625 * 65535)] * 3
+    png = textures.bake(1, 1, px, {"channel": "r", "colorspace": "srgb"}, {"op": "square"}, False)
+    path.write_bytes(png)
+    assert read_png(str(path))[3] == [round(textures.srgb_decode(0.5) ** 2 * 65535)] * 3
+    png = textures.bake(1, 1, px, {"channel": "r", "colorspace": "srgb"}, {"op": "square"}, True)   # float: linear
+    path.write_bytes(png)
+    assert read_png(str(path))[3] == [round(0.25 * 65535)] * 3
+
+
+def test_file_names_are_unique():
+    taken = set()
+    assert textures.file_name("checker.png", ".png", None, taken) == "checker.png"
+    assert textures.file_name("Checker", ".png", None, taken) == "Checker_2.png"
+    assert textures.file_name("checker", ".png", {"op": "square"}, taken) == "checker_square.png"
+    assert textures.file_name("a/b c", ".jpg", None, taken) == "a_b_c.jpg"
+
+
+def test_facet_reads_what_apply_writes(facet, tmp_path):
+    """The material JSON and the baked PNGs are accepted by facet (facet generate)."""
+    r = map_surface(checker_and_roughness(), "Textured")
+    files = {}
+    px = [v for k in range(16) for v in ((k % 2) * 1.0, (k // 4) / 3.0, 0.5, 1.0)]
+    for b in r.textures:
+        name = f"{b['spec']['image']}.png"
+        data = textures.bake(4, 4, px, b["spec"], b["derive"], False) if b.get("derive") else \
+            textures.pixels_png(4, 4, px)
+        (tmp_path / name).write_bytes(data)
+        files[textures.file_key(b)] = (name, None)
+    data, _ = textures.apply({"name": "Textured", "diffuse": r.diffuse, "specular": r.specular}, r.textures, files)
+    path = tmp_path / "m.json"
+    path.write_text(json.dumps(data))
+    proc = subprocess.run([facet, "generate", str(path), "--target", "osl", "-o", str(tmp_path / "m.osl")],
+                          stderr=subprocess.PIPE, text=True)
+    assert proc.returncode == 0, proc.stderr
+    text = (tmp_path / "m.osl").read_text()
+    assert "facet_texture_diffuse_color" in text and "facet_texture_specular_alpha" in text
+    absolute = textures.absolute(data, "/x")
+    assert absolute["diffuse"]["color"]["texture"] == os.path.join("/x", "checker.png")
+
+
+def test_a_material_files_textures_round_trip():
+    """split + binding_of_json + apply give back the file's texture objects (uv written out)."""
+    tex_kd = {"texture": "../textures/checker.png", "filter": "nearest", "wrap": "mirror", "factor": 0.8,
+              "transform": {"offset": [0.1, 0.2], "scale": [3, 2], "rotation": 0.5}}
+    tex_alpha = {"texture": "r16.png", "wrap": ["clamp", "repeat"], "channel": "g", "uv": 1}
+    data = {"name": "T", "diffuse": {"model": "lambert", "color": tex_kd},
+            "specular": {"model": "ggx", "alpha": tex_alpha, "fresnel": {"model": "schlick", "f0": 0.04}}}
+    numbers, found = textures.split(data)
+    assert numbers["diffuse"] == {"model": "lambert", "color": 0.8}
+    assert numbers["specular"] == {"model": "ggx", "fresnel": {"model": "schlick", "f0": 0.04}}
+    bindings = [textures.binding_of_json(path, tex, numbers[path[0]]["model"], os.path.basename(tex["texture"]))
+                for path, tex in found]
+    files = {textures.file_key(b): (b["spec"]["image"], None) for b in bindings}
+    again, notes = textures.apply(dict(numbers, diffuse={"model": "lambert", "color": [1, 1, 1]},
+                                       specular={"model": "ggx", "alpha": 0.5}), bindings, files)
+    assert not notes
+    assert again["diffuse"]["color"] == dict(tex_kd, texture="checker.png", uv=0)
+    assert again["specular"]["alpha"] == dict(tex_alpha, texture="r16.png")
+    assert textures.uv_maps(bindings) == ["", "#1"]
+
+
+def test_mesh_tangents_go_to_world_space_and_mirroring_flips_w():
+    positions = [(0, 0, 0), (1, 0, 0), (1, 1, 0)]
+    n = ((0.0, 0.0, 1.0),) * 3
+    uvs = [(((0.0, 0.0),), ((1.0, 0.0),), ((1.0, 1.0),))]
+    tangent = [((1.0, 0.0, 0.0, 1.0),) * 3]
+    rot_z = [[0.0, -2.0, 0, 0], [2.0, 0.0, 0, 0], [0, 0, 2.0, 0], [0, 0, 0, 1.0]]      # 90° about Z, scale 2
+    (obj,) = scene.mesh_objects("T", rot_z, positions, [(0, 1, 2)], [n], ["M"], uvs, tangent)
+    # Blender's +X turned to +Y, in facet's axes (x, z, −y): (0, 0, −1); w kept.
+    assert [pytest.approx(c, abs=1e-12) for c in obj["tangents"][0]] == [0.0, 0.0, -1.0, 1.0]
+    mirror = [[-1.0, 0, 0, 0], [0, 1.0, 0, 0], [0, 0, 1.0, 0], [0, 0, 0, 1.0]]
+    (obj,) = scene.mesh_objects("T", mirror, positions, [(0, 1, 2)], [n], ["M"], uvs, tangent)
+    assert obj["tangents"][0] == [-1.0, 0.0, -0.0, -1.0]                                # B = w (N × T) kept
+    (obj,) = scene.mesh_objects("T", mirror, positions, [(0, 1, 2)], [n], ["M"], uvs, [None])
+    assert "tangents" not in obj
+
+
+@pytest.mark.parametrize("inputs, unit", [({"IOR": 1.5, "Specular IOR Level": 0.5}, 0.08),     # 4.x: 2·0.04
+                                          ({"Specular": 0.5, "Specular Tint": 0.0}, 0.08)])    # 3.x: 0.08
+def test_a_specular_level_image_bakes_f0(inputs, unit):
+    name = "Specular IOR Level" if "IOR" in inputs else "Specular"
+    values = {"Base Color": [0.8, 0.4, 0.2, 1.0], "Metallic": 0.25, "Roughness": 0.5}
+    values.update(inputs)
+    node = {"type": "BSDF_PRINCIPLED", "name": "P", "distribution": "GGX", "inputs": values, "linked": [name],
+            "sources": {name: tex_image(image("spec", "Non-Color"))}}
+    r = map_surface(node, "Spec")
+    (b,) = r.textures
+    assert b["path"] == ["specular", "fresnel", "f0"] and b["spec"]["channel"] == "r"
+    assert b["derive"]["scale"] == pytest.approx([unit * 0.75] * 3)
+    assert b["derive"]["offset"] == pytest.approx([0.2, 0.1, 0.05])
+    assert not any("unlinked value" in m for m in messages(r))
