@@ -63,6 +63,11 @@ const TextureUse& bake_grid(const Pbr& p, const GltfImages& images, const std::s
                 fmt::format("reads other texture coordinates (set or KHR_texture_transform) than {}; facet bakes k_d "
                             "and f0 texel by texel from both and needs them to agree",
                             p.base_map->key));
+  if (p.mr_map && (p.mr_map->sampler.filter != p.base_map->sampler.filter ||
+                   p.mr_map->sampler.wrap != p.base_map->sampler.wrap))
+    notes.push_back(fmt::format("{}: the metallic–roughness and base colour maps have different samplers; the baked "
+                                "k_d and f0 are read with the base colour map's, α with the metallic–roughness map's",
+                                mpath));
   if (p.mr_map && (p.mr_map->texels->width != p.base_map->texels->width ||
                    p.mr_map->texels->height != p.base_map->texels->height))
     notes.push_back(fmt::format("{}: the metallic–roughness map ({}×{}) and the base colour map ({}×{}) differ in "

@@ -1,11 +1,12 @@
 """Writes textured glTF files with Blender's own glTF exporter (pip bpy), for facet's import tests.
 
-    python gltf_textured_blender.py OUT_FOLDER
+    python gltf_textured_blender.py OUT_FOLDER [SIDE]
 
 A UV sphere and a plane seen by a camera, no lights (facet adds its headlight), each with a Principled BSDF whose Base Color comes from an
 Image Texture and whose Metallic and Roughness come from one image through a Separate
 Color node (G → Roughness, B → Metallic, as glTF packs them). The images are made here
-(numpy), no asset is read. Writes:
+(numpy, SIDE texels a side, 8 by default: a larger SIDE measures the import's cost), no
+asset is read. Writes:
 
   OUT/textured.glb            GLB, the images embedded (what Blender users export)
   OUT/external/textured.gltf  .gltf with its images as external files beside it
@@ -57,11 +58,10 @@ def material(name, base, mr, base_interpolation, mr_interpolation):
     return m
 
 
-def make_images(folder):
-    n = 8
+def make_images(folder, n):
     j, i = np.mgrid[0:n, 0:n]
     checker = np.zeros((n, n, 4))
-    checker[..., 0] = np.where((i + j) % 2 == 0, 0.85, 0.15)
+    checker[..., 0] = np.where((i * 8 // n + j * 8 // n) % 2 == 0, 0.85, 0.15)
     checker[..., 1] = 0.2 + 0.6 * i / (n - 1)
     checker[..., 2] = 0.2 + 0.6 * j / (n - 1)
     checker[..., 3] = 1
@@ -73,9 +73,9 @@ def make_images(folder):
     return image("checker", checker, "sRGB", folder), image("metal_rough", mr, "Non-Color", folder)
 
 
-def build_scene(folder):
+def build_scene(folder, side):
     bpy.ops.wm.read_factory_settings(use_empty=True)
-    base, mr = make_images(folder)
+    base, mr = make_images(folder, side)
     bpy.ops.mesh.primitive_uv_sphere_add(segments=48, ring_count=24, radius=1, location=(0, 0.5, 1.0))
     bpy.ops.object.shade_smooth()
     sphere = bpy.context.active_object
@@ -130,7 +130,7 @@ def main():
     out = os.path.abspath(sys.argv[1])
     sources = os.path.join(out, "sources")
     os.makedirs(sources, exist_ok=True)
-    build_scene(sources)
+    build_scene(sources, int(sys.argv[2]) if len(sys.argv) > 2 else 8)
     export(os.path.join(out, "textured.glb"), "GLB")
     external = os.path.join(out, "external", "textured.gltf")
     export(external, "GLTF_SEPARATE")

@@ -356,6 +356,24 @@ TEST(GltfTextures, BaseColourMapIsTheLambertColourTimesItsFactor) {
   EXPECT_EQ(back.materials.begin()->second.diffuse->at("color").texture->texels->rgba, src.rgba);
 }
 
+TEST(GltfTextures, ExternalImageIsReferencedWhereItIs) {
+  // "my image.png" beside the glTF, its URI percent-encoded; the scene is written one folder down.
+  const fs::path folder = scratch("external");
+  fs::remove_all(folder);
+  fs::create_directories(folder / "out");
+  write_file_atomic((folder / "my image.png").string(), small_png());
+  json g = textured_triangle(json::array({{{"uri", "my%20image.png"}}}));
+  write_file_atomic((folder / "ext.gltf").string(), g.dump());
+  GltfImportOptions o;
+  o.output = (folder / "out/scene.json").string();
+  std::vector<std::string> notes;
+  std::vector<GltfImportFile> files;
+  Scene s = import_gltf((folder / "ext.gltf").string(), o, notes, &files);
+  EXPECT_TRUE(files.empty()) << "an external image is not copied";
+  json written = to_json(s, o.output);
+  EXPECT_EQ(written["materials"]["m"]["diffuse"]["color"]["texture"], "../my image.png");
+}
+
 TEST(GltfTextures, MetallicRoughnessMapIsBakedTexelByTexel) {
   // The map: G = roughness, B = metallic; metallic 1 and roughness 0.8 as factors.
   std::vector<uint8_t> rgb;
