@@ -148,10 +148,11 @@ std::string gltf_path(const std::string& p, const std::string& camera, const std
 // of each part, and checked in one go at the end: one checker for every source.
 class Importer {
  public:
-  Importer(const tinygltf::Model& model, const std::string& path, const GltfImportOptions& options,
-           std::vector<std::string>& notes)
+  // External images are read from `folder` (none with an empty one).
+  Importer(const tinygltf::Model& model, const std::string& path, const std::string& folder,
+           const GltfImportOptions& options, std::vector<std::string>& notes)
       : model_(model), reader_(model, path), path_(path), options_(options), notes_(notes),
-        images_(model, path, options.output, notes), keys_(model.materials.size()), on_path_(model.nodes.size(), false) {}
+        images_(model, path, folder, options.output, notes), keys_(model.materials.size()), on_path_(model.nodes.size(), false) {}
 
   std::vector<GltfImportFile>& files() { return images_.files(); }
 
@@ -829,7 +830,8 @@ std::vector<GltfImportFile> used_files(const Scene& s, std::vector<GltfImportFil
 Scene import_gltf(const std::string& path, const GltfImportOptions& options, std::vector<std::string>& notes,
                   std::vector<GltfImportFile>* files) {
   tinygltf::Model model = gltf_detail::load_model_file(path, notes);
-  Importer importer(model, path, options, notes);
+  const std::string folder = fs::path(path).parent_path().string();
+  Importer importer(model, path, folder.empty() ? "." : folder, options, notes);
   Scene s = importer.read();
   if (files) *files = used_files(s, importer.files());
   return s;
@@ -839,7 +841,7 @@ Scene import_gltf_data(const std::string& data, bool binary, const std::string& 
                        const GltfImportOptions& options, std::vector<std::string>& notes,
                        std::vector<GltfImportFile>* files) {
   tinygltf::Model model = gltf_detail::load_model(data, binary, path, folder, notes);
-  Importer importer(model, path, options, notes);
+  Importer importer(model, path, folder, options, notes);
   Scene s = importer.read();
   if (files) *files = used_files(s, importer.files());
   return s;

@@ -72,9 +72,13 @@ bool TextureUse::same_mapping(const TextureUse& o) const {
   return uv == o.uv && spec.value("transform", json()) == o.spec.value("transform", json());
 }
 
-GltfImages::GltfImages(const tinygltf::Model& model, std::string gltf_path, const std::string& output,
-                       std::vector<std::string>& notes)
-    : model_(model), path_(std::move(gltf_path)), notes_(notes), mipmap_noted_(model.samplers.size(), false) {
+GltfImages::GltfImages(const tinygltf::Model& model, std::string gltf_path, std::string folder,
+                       const std::string& output, std::vector<std::string>& notes)
+    : model_(model),
+      path_(std::move(gltf_path)),
+      source_folder_(std::move(folder)),
+      notes_(notes),
+      mipmap_noted_(model.samplers.size(), false) {
   fs::path out = output.empty() ? fs::path(path_).replace_extension(".json") : fs::path(output);
   folder_ = (fs::absolute(out.parent_path().empty() ? fs::path(".") : out.parent_path()) /
              (out.stem().string() + ".textures"))
@@ -120,8 +124,10 @@ TextureUse GltfImages::texture(int index, int tex_coord, const std::string& exte
   use.uv = tex_coord;
   use.spec = {{"texture", image_file(t.source, key + ".index")},
               {"filter", use.sampler.filter == TextureFilter::Nearest ? "nearest" : "bilinear"},
-              {"wrap", json::array({wrap_name(t.sampler >= 0 ? model_.samplers[size_t(t.sampler)].wrapS : 10497),
-                                    wrap_name(t.sampler >= 0 ? model_.samplers[size_t(t.sampler)].wrapT : 10497)})}};
+              {"wrap", json::array({wrap_name(t.sampler >= 0 ? model_.samplers[size_t(t.sampler)].wrapS
+                                                             : TINYGLTF_TEXTURE_WRAP_REPEAT),
+                                    wrap_name(t.sampler >= 0 ? model_.samplers[size_t(t.sampler)].wrapT
+                                                             : TINYGLTF_TEXTURE_WRAP_REPEAT)})}};
   json tt = extension_of(extensions_json, "KHR_texture_transform");
   if (tt.is_object()) {
     auto pair = [&](const char* k, double d) {
@@ -194,9 +200,10 @@ std::string GltfImages::embedded_file(int image, const std::string& bytes, const
 
 // An image beside the glTF file (its URI relative to the file's folder, percent-decoded).
 std::string GltfImages::external_file(int image, const std::string& uri, const std::string& key) {
-  const std::string folder = fs::path(path_).parent_path().string();
+  if (source_folder_.empty())
+    fail(key, fmt::format("images[{}].uri \"{}\" is an external file, and an import from memory reads none", image, uri));
   fs::path file = fs::path(percent_decoded(uri));
-  if (file.is_relative()) file = fs::path(folder.empty() ? "." : folder) / file;
+  if (file.is_relative()) file = fs::path(source_folder_) / file;
   const std::string abs = fs::absolute(file).lexically_normal().string();
   if (!fs::is_regular_file(abs))
     fail(key, fmt::format("images[{}].uri \"{}\" is not there ({}); an external image must sit where its URI says, "

@@ -46,9 +46,10 @@ struct TextureUse {
 
 class GltfImages {
  public:
-  // `output`: the scene file the import will write (empty: beside the glTF file, as
-  // `<gltf stem>.json`); its folder and stem place the extracted and baked images.
-  GltfImages(const tinygltf::Model& model, std::string gltf_path, const std::string& output,
+  // External images are read from `folder` (none with an empty one: an import from
+  // memory). `output`: the scene file the import will write (empty: beside the glTF
+  // file, as `<gltf stem>.json`); its folder and stem place the extracted and baked images.
+  GltfImages(const tinygltf::Model& model, std::string gltf_path, std::string folder, const std::string& output,
              std::vector<std::string>& notes);
 
   // The textureInfo at glTF key path `key` ("materials[0].pbrMetallicRoughness.baseColorTexture");
@@ -69,7 +70,7 @@ class GltfImages {
   Sampler sampler_of(int sampler, const std::string& key);
 
   const tinygltf::Model& model_;
-  std::string path_, folder_;  // the glTF file; where its images are written
+  std::string path_, source_folder_, folder_;  // the glTF file; its external images' folder; where images are written
   std::vector<std::string>& notes_;
   std::map<int, std::string> image_paths_;
   std::vector<GltfImportFile> files_;

@@ -374,6 +374,23 @@ TEST(GltfTextures, ExternalImageIsReferencedWhereItIs) {
   EXPECT_EQ(written["materials"]["m"]["diffuse"]["color"]["texture"], "../my image.png");
 }
 
+TEST(GltfTextures, ImportFromMemoryReadsNoExternalImage) {
+  // What the fuzzer relies on: bytes from anywhere touch no file, even one that is there.
+  const fs::path folder = scratch("memory");
+  fs::create_directories(folder);
+  write_file_atomic((folder / "there.png").string(), small_png());
+  const std::string data = textured_triangle(json::array({{{"uri", (folder / "there.png").string()}}})).dump();
+  std::vector<std::string> notes;
+  try {
+    (void)import_gltf_data(data, false, "memory.gltf", "", {}, notes);
+    ADD_FAILURE() << "an external image was read";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("an import from memory reads none"), std::string::npos) << e.what();
+  }
+  Scene s = import_gltf_data(data, false, "memory.gltf", folder.string(), {}, notes);  // with a folder it is read
+  EXPECT_TRUE(s.materials.begin()->second.diffuse->at("color").texture);
+}
+
 TEST(GltfTextures, MetallicRoughnessMapIsBakedTexelByTexel) {
   // The map: G = roughness, B = metallic; metallic 1 and roughness 0.8 as factors.
   std::vector<uint8_t> rgb;
