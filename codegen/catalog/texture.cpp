@@ -225,6 +225,23 @@ json texture_json(const Value& v) {
   return j;
 }
 
+json relative_textures(json j, const std::string& folder) {
+  if (j.is_array()) {
+    for (auto& e : j) e = relative_textures(std::move(e), folder);
+  } else if (j.is_object()) {
+    for (auto& [key, e] : j.items())
+      if (key == "texture" && e.is_string()) {
+        namespace fs = std::filesystem;
+        const fs::path base = fs::absolute(folder.empty() ? fs::path(".") : fs::path(folder)).lexically_normal();
+        const fs::path rel = fs::absolute(e.get<std::string>()).lexically_normal().lexically_relative(base);
+        if (!rel.empty()) e = rel.generic_string();
+      } else {
+        e = relative_textures(std::move(e), folder);
+      }
+  }
+  return j;
+}
+
 static json texture_schema_body(bool color) {
   json wrap = {{"enum", kWraps}};
   json channels = color ? json::array({"rgb", "r", "g", "b", "a"}) : json::array({"r", "g", "b", "a"});

@@ -50,8 +50,11 @@ std::array<double, 2> texture_bounds(const Range& r);
 // `path`.texture.
 std::optional<Value> parse_texture_value(const nlohmann::json& j, const std::string& path, const ParamDef& p,
                                          DiagnosticSink& sink);
-// The JSON of a textured value (every key written out).
+// The JSON of a textured value (every key written out); the image's absolute path.
 nlohmann::json texture_json(const Value& v);
+// `j` (a material's JSON, or any JSON holding some) with every {"texture": PATH}'s
+// image path written relative to `folder`: for a file written there, which reads it back.
+nlohmann::json relative_textures(nlohmann::json j, const std::string& folder);
 // The JSON Schema of {"texture": …}: a $ref into the material schema's $defs, which
 // texture_schema_defs() holds.
 nlohmann::json texture_schema(bool color);

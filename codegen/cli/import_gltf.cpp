@@ -24,15 +24,24 @@ bool gi_inline = false;
 int run_import_gltf() {
   GltfImportOptions opt;
   if (!gi_default.empty()) opt.default_material = load_material(gi_default);
+  opt.output = gi_out;
   std::vector<std::string> notes;
-  Scene s = import_gltf(gi_in, opt, notes);
+  std::vector<GltfImportFile> files;  // the images the glTF held and those baked, then the scene: all or none
+  Scene s = import_gltf(gi_in, opt, notes, &files);
   for (const auto& n : notes) std::cerr << "note: " << n << "\n";
   if (gi_inline) {
     size_t triangles = 0;
     for (const auto& o : s.objects) triangles += o.mesh ? o.mesh->triangles.size() : 0;
     if (triangles >= 500'000) progress(fmt::format("writing {}: {} triangles inline", gi_out, triangles));
   }
-  write_file_atomic(gi_out, (gi_inline ? to_json(s) : to_json(s, gi_out)).dump(1) + "\n");
+  json doc = to_json(s, gi_out);
+  if (gi_inline) {  // the arrays themselves, the materials' images still relative to the scene file
+    json materials = doc.value("materials", json());
+    doc = to_json(s);
+    if (!materials.is_null()) doc["materials"] = materials;
+  }
+  files.push_back({gi_out, doc.dump(1) + "\n"});
+  write_import_files(files);
   fmt::print(stderr, "{}: {} objects, {} materials, {} lights\n", gi_out, s.objects.size(), s.materials.size(),
              s.lights.size());
   return 0;
@@ -51,7 +60,10 @@ Command import_gltf_command(CLI::App& app) {
       "Meshes (node transforms applied), the first perspective camera, KHR_lights_punctual lights and the\n"
       "materials: FACET_material exactly, else metallic–roughness as GGX (α = roughness², separable Smith,\n"
       "Schlick f0 = mix(0.04, base, metallic)) over Lambert (base · (1 − metallic)). What is approximate or\n"
-      "ignored is printed.\n"
+      "ignored is printed. baseColorTexture and metallicRoughnessTexture become textured parameters; the images\n"
+      "a GLB or data URI holds, and those the import bakes (α, k_d, f0 where the mapping is not a plain factor), are\n"
+      "written to OUTPUT_STEM.textures/ beside the scene; external images are referenced where they are. A glTF\n"
+      "without lights gets a headlight (a point light at the camera), as the notes say.\n"
       "The scene file references the glTF file's triangles rather than copying them, so it stays a few kB:\n"
       "each mesh object is {\"type\": \"mesh\", \"gltf\": FILE, \"node\": N} (\"primitive\": P where the node's mesh\n"
       "has several), FILE relative to the scene file; facet reads the node's mesh in its world transform.\n"

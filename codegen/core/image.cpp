@@ -2,7 +2,9 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <cstring>
+#include <limits>
 #include <fstream>
 #include <sstream>
 
@@ -10,6 +12,9 @@
 #include <stb_image_write.h>
 
 #include "core/io.h"
+
+// Debian's libstb exports stb_image_write's zlib compressor without declaring it.
+extern "C" unsigned char* stbi_zlib_compress(unsigned char* data, int data_len, int* out_len, int quality);
 
 namespace facet {
 
@@ -98,6 +103,68 @@ std::string encode_png(int width, int height, const std::vector<uint8_t>& rgb8, 
   if (!stbi_write_png_to_func(append, &data, width, height, 3, rgb8.data(), width * 3))
     throw IoError(path + ": cannot encode the PNG");
   return data;
+}
+
+namespace {
+
+uint32_t png_crc(const std::string& bytes) {
+  static uint32_t table[256] = {};
+  if (!table[1])
+    for (uint32_t n = 0; n < 256; ++n) {
+      uint32_t c = n;
+      for (int k = 0; k < 8; ++k) c = c & 1 ? 0xEDB88320u ^ (c >> 1) : c >> 1;
+      table[n] = c;
+    }
+  uint32_t c = 0xFFFFFFFFu;
+  for (unsigned char b : bytes) c = table[(c ^ b) & 0xFF] ^ (c >> 8);
+  return c ^ 0xFFFFFFFFu;
+}
+
+void put_u32(std::string& out, uint32_t v) {
+  for (int s = 24; s >= 0; s -= 8) out.push_back(char((v >> s) & 0xFF));
+}
+
+// A PNG chunk (PNG specification §5.3): length, type, data, CRC of type and data.
+void png_chunk(std::string& out, const char* type, const std::string& data) {
+  put_u32(out, uint32_t(data.size()));
+  std::string body = std::string(type, 4) + data;
+  out += body;
+  put_u32(out, png_crc(body));
+}
+
+}  // namespace
+
+std::string encode_png16(int width, int height, int channels, const std::vector<uint16_t>& values,
+                         const std::string& path) {
+  if (width <= 0 || height <= 0 || (channels != 1 && channels != 3) ||
+      values.size() != size_t(width) * size_t(height) * size_t(channels))
+    throw IoError(path + ": cannot encode the PNG (its size and its values disagree)");
+  const size_t row = size_t(width) * size_t(channels) * 2 + 1;
+  if (row * size_t(height) > size_t(std::numeric_limits<int>::max()))
+    throw IoError(path + ": cannot encode the PNG (over 2 GiB)");
+  std::vector<unsigned char> raw(row * size_t(height));
+  for (size_t j = 0; j < size_t(height); ++j) {
+    unsigned char* r = &raw[j * row];
+    r[0] = 0;  // filter: none
+    for (size_t i = 0; i < row / 2; ++i) {
+      const uint16_t v = values[j * (row / 2) + i];
+      r[1 + 2 * i] = uint8_t(v >> 8);  // big-endian samples
+      r[2 + 2 * i] = uint8_t(v & 0xFF);
+    }
+  }
+  int zlen = 0;
+  unsigned char* z = stbi_zlib_compress(raw.data(), int(raw.size()), &zlen, 8);
+  if (!z) throw IoError(path + ": cannot encode the PNG (compression failed)");
+  std::string idat(reinterpret_cast<const char*>(z), size_t(zlen));
+  std::free(z);
+  std::string out("\x89PNG\r\n\x1a\n", 8), ihdr;
+  put_u32(ihdr, uint32_t(width));
+  put_u32(ihdr, uint32_t(height));
+  ihdr += std::string{char(16), char(channels == 3 ? 2 : 0), 0, 0, 0};  // depth, colour type, compression, filter, interlace
+  png_chunk(out, "IHDR", ihdr);
+  png_chunk(out, "IDAT", idat);
+  png_chunk(out, "IEND", "");
+  return out;
 }
 
 }  // namespace facet

@@ -31,5 +31,9 @@ Image read_png(const std::string& path);
 void write_png_preview(const std::string& path, const Image& img, float scale = 1.0f, bool srgb = true);
 // The bytes of an 8-bit RGB PNG (rows from the top); `path` only names it in the IoError.
 std::string encode_png(int width, int height, const std::vector<uint8_t>& rgb8, const std::string& path);
+// The bytes of a 16-bit PNG of `channels` 1 (grey) or 3 (RGB) values a pixel, rows from the
+// top, without colour chunks (its values are data: k/65535 as stb_image reads them back).
+std::string encode_png16(int width, int height, int channels, const std::vector<uint16_t>& values,
+                         const std::string& path);
 
 }  // namespace facet

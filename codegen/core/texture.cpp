@@ -67,15 +67,34 @@ std::shared_ptr<const Texels> decode_texels(const std::string& bytes, const std:
   return t;
 }
 
+namespace {
+
+struct TexelCache {
+  std::mutex mutex;
+  std::map<std::string, std::shared_ptr<const Texels>> by_path;
+};
+
+TexelCache& texel_cache() {
+  static TexelCache cache;
+  return cache;
+}
+
+}  // namespace
+
 std::shared_ptr<const Texels> load_texels(const std::string& path) {
-  static std::mutex mutex;
-  static std::map<std::string, std::shared_ptr<const Texels>> cache;
-  std::lock_guard<std::mutex> lock(mutex);
-  auto it = cache.find(path);
-  if (it != cache.end()) return it->second;
+  TexelCache& cache = texel_cache();
+  std::lock_guard<std::mutex> lock(cache.mutex);
+  auto it = cache.by_path.find(path);
+  if (it != cache.by_path.end()) return it->second;
   auto t = decode_texels(read_file(path), path);
-  cache[path] = t;
+  cache.by_path[path] = t;
   return t;
+}
+
+void remember_texels(const std::string& path, std::shared_ptr<const Texels> t) {
+  TexelCache& cache = texel_cache();
+  std::lock_guard<std::mutex> lock(cache.mutex);
+  cache.by_path[path] = std::move(t);
 }
 
 int wrap_index(int i, int size, TextureWrap w) {

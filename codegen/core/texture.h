@@ -36,6 +36,10 @@ inline constexpr double kMaxTextureBytes = 1024.0 * 1024.0 * 1024.0;
 std::shared_ptr<const Texels> load_texels(const std::string& path);
 // The same from bytes in memory (a GLB's embedded image, a data URI); `name` names it in errors.
 std::shared_ptr<const Texels> decode_texels(const std::string& bytes, const std::string& name);
+// Puts `t` in load_texels's cache under `path`: an image decoded from memory (a glTF's
+// embedded image, an image baked by the import) that is to be written at `path` reads
+// as that file before it is written.
+void remember_texels(const std::string& path, std::shared_ptr<const Texels> t);
 
 enum class TextureFilter { Nearest, Bilinear };
 enum class TextureWrap { Repeat, Clamp, Mirror };

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <functional>
 #include <limits>
 #include <map>
 #include <memory>
@@ -19,6 +20,8 @@
 #include "core/vec.h"
 #define TINYGLTF_IMPLEMENTATION  // the one translation unit with tinygltf's code
 #include "scene/gltf_read.h"
+#include "scene/gltf_images.h"
+#include "catalog/texture.h"
 
 namespace facet {
 
@@ -45,40 +48,8 @@ json extension(const std::string& extensions_json, const char* name) {
   return all[name];
 }
 
-// ---------------------------------------------------------------- materials
-
 std::array<double, 3> rgb3(const std::vector<double>& v, double fallback) {
   return {v.size() > 0 ? v[0] : fallback, v.size() > 1 ? v[1] : fallback, v.size() > 2 ? v[2] : fallback};
-}
-
-// glTF metallic–roughness onto the catalog (see gltf.h).
-json pbr_material(const tinygltf::Material& g, const std::string& path, std::vector<std::string>& notes) {
-  const auto& pbr = g.pbrMetallicRoughness;
-  auto base = rgb3(pbr.baseColorFactor, 1);
-  double metal = pbr.metallicFactor, rough = pbr.roughnessFactor;
-  json m = {{"name", g.name.empty() ? path : g.name}};
-  RGB kd, f0;
-  for (int c = 0; c < 3; ++c) {
-    kd[size_t(c)] = base[size_t(c)] * (1 - metal);
-    f0[size_t(c)] = 0.04 * (1 - metal) + base[size_t(c)] * metal;
-  }
-  if (kd[0] + kd[1] + kd[2] > 0) m["diffuse"] = {{"model", "lambert"}, {"color", kd}};
-  m["specular"] = {{"model", "ggx"},
-                   {"alpha", std::max(rough * rough, 1e-4)},
-                   {"geometry", "smith_ggx"},
-                   {"fresnel", {{"model", "schlick"}, {"f0", f0}}}};
-  auto e = rgb3(g.emissiveFactor, 0);
-  json strength = extension(g.extensions_json_string, "KHR_materials_emissive_strength");
-  double k = strength.is_object() ? strength.value("emissiveStrength", 1.0) : 1.0;
-  if (e[0] + e[1] + e[2] > 0) m["emission"] = {e[0] * k, e[1] * k, e[2] * k};
-  if (pbr.baseColorTexture.index >= 0 || pbr.metallicRoughnessTexture.index >= 0 || g.normalTexture.index >= 0 ||
-      g.emissiveTexture.index >= 0 || g.occlusionTexture.index >= 0)
-    notes.push_back(path + ": textures are ignored; the material uses its factors");
-  if (g.alphaMode != "OPAQUE" && !g.alphaMode.empty())
-    notes.push_back(path + ": alphaMode " + g.alphaMode + " is ignored (facet's surfaces are opaque)");
-  if (metal < 1 && kd[0] + kd[1] + kd[2] > 0)
-    notes.push_back(path + ": approximate: glTF weights a dielectric's diffuse by (1 − F); the catalog's Lambert does not");
-  return m;
 }
 
 // ---------------------------------------------------------------- export helpers
@@ -177,10 +148,13 @@ std::string gltf_path(const std::string& p, const std::string& camera, const std
 // of each part, and checked in one go at the end: one checker for every source.
 class Importer {
  public:
-  Importer(const tinygltf::Model& model, const std::string& path, const GltfImportOptions& options,
-           std::vector<std::string>& notes)
+  // External images are read from `folder` (none with an empty one).
+  Importer(const tinygltf::Model& model, const std::string& path, const std::string& folder,
+           const GltfImportOptions& options, std::vector<std::string>& notes)
       : model_(model), reader_(model, path), path_(path), options_(options), notes_(notes),
-        keys_(model.materials.size()), on_path_(model.nodes.size(), false) {}
+        images_(model, path, folder, options.output, notes), keys_(model.materials.size()), on_path_(model.nodes.size(), false) {}
+
+  std::vector<GltfImportFile>& files() { return images_.files(); }
 
   Scene read() {
     check_required_extensions();
@@ -192,8 +166,10 @@ class Importer {
     for (int root : gscene.nodes) read_node(root, Mat4());
     if (s_.objects.empty()) reader_.fail(fmt::format("scenes[{}]", scene_index), "has no meshes");
     read_meshes();
+    check_texture_coordinates();
     check_gathered_parts();
     if (!have_camera_) frame_camera();
+    if (s_.lights.empty()) add_default_light();
     return std::move(s_);
   }
 
@@ -392,6 +368,7 @@ class Importer {
     key = identifier(g.name.empty() ? fmt::format("material{}", index) : g.name);
     while (used_keys_.count(key)) key += "_";
     used_keys_.insert(key);
+    material_paths_[key] = mpath;
     s_.materials[key] = read_material(g, mpath);
     return key;
   }
@@ -399,15 +376,76 @@ class Importer {
   // facet's own material (FACET_material) exactly, else the metallic–roughness one.
   Material read_material(const tinygltf::Material& g, const std::string& mpath) {
     json ext = extension(g.extensions_json_string, kMaterialExt);
+    std::vector<std::pair<int, std::string>>& sets = texture_sets_[mpath];
+    json m = ext.is_object() && ext.contains("material")
+                 ? own_material(ext, mpath, sets)
+                 : gltf_detail::pbr_material(g, mpath, images_, sets, notes_);
     try {
-      if (ext.is_object() && ext.contains("material")) return parse_material(ext["material"], path_);
-      return parse_material(pbr_material(g, mpath, notes_), path_);
+      return parse_material(m, path_);
     } catch (const InputError& e) {
       std::vector<Diagnostic> ds = e.diagnostics();
       for (auto& d : ds)
         d.path = mpath + ".extensions." + kMaterialExt + ".material" + (d.path.empty() ? "" : "." + d.path);
       throw InputError(ds);
     }
+  }
+
+  // FACET_material's material, each image its "images" names ({"file as the material
+  // names it": glTF image index}, as export_gltf writes) read as the glTF's image.
+  json own_material(const json& ext, const std::string& mpath, std::vector<std::pair<int, std::string>>& sets) {
+    const std::string key = mpath + ".extensions." + kMaterialExt;
+    std::map<std::string, std::string> files;
+    if (ext.contains("images") && ext["images"].is_object())
+      for (const auto& [name, index] : ext["images"].items()) {
+        if (!index.is_number_integer()) reader_.fail(key + ".images." + name, "expected a glTF image index");
+        files[name] = images_.image_file(index.get<int>(), key + ".images." + name);
+      }
+    std::function<void(json&, const std::string&)> visit = [&](json& j, const std::string& at) {
+      if (j.is_object() && j.contains("texture") && j["texture"].is_string()) {
+        auto f = files.find(j["texture"].get<std::string>());
+        if (f != files.end()) j["texture"] = f->second;
+        sets.emplace_back(j.value("uv", 0), at + ".uv");
+        return;
+      }
+      if (j.is_object())
+        for (auto& [k, v] : j.items()) visit(v, at + "." + k);
+      if (j.is_array())
+        for (size_t i = 0; i < j.size(); ++i) visit(j[i], fmt::format("{}[{}]", at, i));
+    };
+    json m = ext["material"];
+    visit(m, key + ".material");
+    return m;
+  }
+
+  // Each mesh has the texture coordinate sets its material's textures read.
+  void check_texture_coordinates() const {
+    for (const auto& o : s_.objects) {
+      if (o.type != Object::Type::Mesh || !o.mesh) continue;
+      auto it = material_paths_.find(o.material);
+      if (it == material_paths_.end()) continue;
+      auto sets = texture_sets_.find(it->second);
+      if (sets == texture_sets_.end()) continue;
+      for (const auto& [set, key] : sets->second)
+        if (set >= 0 && set < 2 && o.mesh->texcoords[size_t(set)].empty())
+          reader_.fail(key, fmt::format("TEXCOORD_{}, which {} ({}) lacks", set, o.name,
+                                        o.reference ? "nodes[" + std::to_string(o.reference->index) + "]" : "a mesh"));
+    }
+  }
+
+  // A glTF without lights (most sample models) would render black: facet adds a
+  // headlight, a point light at the camera without falloff (facet's attenuation
+  // "none"), colour 1: a white Lambert surface facing it shows 1 at any distance. A
+  // viewer's fallback is of this kind (README, "Scenes, meshes and glTF").
+  void add_default_light() {
+    Light l;
+    l.type = Light::Type::Point;
+    l.position = s_.camera.position;
+    l.color = {1, 1, 1};
+    l.attenuation.law = Attenuation::Law::None;
+    s_.lights.push_back(l);
+    notes_.push_back(fmt::format("{}: no lights; facet added a headlight: a point light at the camera ({:.6g}, {:.6g}, "
+                                 "{:.6g}), colour 1, no falloff (a white Lambert surface facing it shows 1)",
+                                 path_, l.position.x, l.position.y, l.position.z));
   }
 
   // The gathered parts through the scene checker; its diagnostics name the glTF's
@@ -473,8 +511,11 @@ class Importer {
   std::vector<size_t> analytic_objects_;                 // indices into s_.objects
   std::string camera_path_, scene_ext_path_;
   bool have_camera_ = false;
+  gltf_detail::GltfImages images_;
   std::vector<std::string> keys_;  // materials by index; only those the primitives use are read
   std::set<std::string> used_keys_;
+  std::map<std::string, std::string> material_paths_;  // facet material key → glTF path
+  std::map<std::string, std::vector<std::pair<int, std::string>>> texture_sets_;  // by glTF path: (set, key)
   std::vector<bool> on_path_;  // the nodes being visited: a cycle is an error
   struct Pending {
     size_t object;  // in s_.objects
@@ -513,8 +554,8 @@ void plane_mesh(const Object& o, std::vector<Vec3>& pos, std::vector<Vec3>& nor,
 // the camera, the lights, each in its own function; then the file.
 class Exporter {
  public:
-  Exporter(const Scene& s, const Material* fallback, std::vector<std::string>& notes)
-      : s_(s), fallback_(fallback), notes_(notes) {
+  Exporter(const Scene& s, const Material* fallback, const std::string& path, std::vector<std::string>& notes)
+      : s_(s), fallback_(fallback), notes_(notes), images_(model_, path, notes) {
     model_.asset.version = "2.0";
     model_.asset.generator = "facet " FACET_VERSION;
     model_.buffers.emplace_back();
@@ -547,7 +588,9 @@ class Exporter {
     std::ostringstream out;
     if (!writer.WriteGltfSceneToStream(&model_, out, /*prettyPrint=*/!binary, binary))
       throw IoError(path + ": tinygltf could not write the glTF");
-    write_file_atomic(path, out.str());
+    std::vector<GltfImportFile> files = images_.files();  // the images copied beside it, then the file
+    files.push_back({path, out.str()});
+    write_import_files(files);
   }
 
  private:
@@ -574,12 +617,26 @@ class Exporter {
     return int(model_.accessors.size() - 1);
   }
 
-  // The full facet description (FACET_material) beside the metallic–roughness fallback.
+  // The full facet description (FACET_material, its images as the glTF's: "images" maps
+  // each file name it uses to one) beside the metallic–roughness fallback, whose base
+  // colour is the diffuse colour's map where that is an sRGB colour map.
   void add_material(const std::string& key, const Material& m) {
     tinygltf::Material g;
     g.name = key;
     fallback_pbr(m, g);
-    g.extensions[kMaterialExt] = value_of({{"material", to_json(m)}});
+    json images = json::object();
+    json own = {{"material", images_.material_images(to_json(m), images)}};
+    if (!images.empty()) own["images"] = images;
+    g.extensions[kMaterialExt] = value_of(own);
+    if (m.diffuse) {
+      const Value& color = m.diffuse->at("color");
+      if (color.texture && color.texture->channel == "rgb" && color.texture->colorspace == "srgb")
+        images_.texture_info(*color.texture, g.pbrMetallicRoughness.baseColorTexture, used_);
+      else if (color.texture)
+        notes_.push_back(fmt::format("materials.{}: its diffuse colour map is not an sRGB colour map; glTF's "
+                                     "baseColorTexture is left out (FACET_material carries it)",
+                                     key));
+    }
     model_.materials.push_back(g);
     material_index_[key] = int(model_.materials.size() - 1);
   }
@@ -745,23 +802,77 @@ class Exporter {
   tinygltf::Scene gscene_;
   std::set<std::string> used_ = {kMaterialExt};
   std::map<std::string, int> material_index_;  // materials by key
+  gltf_detail::GltfImageWriter images_;
 };
 
 }  // namespace
 
-Scene import_gltf(const std::string& path, const GltfImportOptions& options, std::vector<std::string>& notes) {
+namespace {
+
+// The files a scene's materials read: an image every texture was baked from is not written.
+std::vector<GltfImportFile> used_files(const Scene& s, std::vector<GltfImportFile>& files) {
+  std::set<std::string> used;
+  std::function<void(const json&)> visit = [&](const json& j) {
+    if (j.is_object() && j.contains("texture") && j["texture"].is_string())
+      used.insert(fs::absolute(j["texture"].get<std::string>()).lexically_normal().string());
+    if (j.is_structured())
+      for (const auto& e : j) visit(e);
+  };
+  for (const auto& [key, m] : s.materials) visit(to_json(m));
+  std::vector<GltfImportFile> out;
+  for (auto& f : files)
+    if (used.count(fs::absolute(f.path).lexically_normal().string())) out.push_back(std::move(f));
+  return out;
+}
+
+}  // namespace
+
+Scene import_gltf(const std::string& path, const GltfImportOptions& options, std::vector<std::string>& notes,
+                  std::vector<GltfImportFile>* files) {
   tinygltf::Model model = gltf_detail::load_model_file(path, notes);
-  return Importer(model, path, options, notes).read();
+  const std::string folder = fs::path(path).parent_path().string();
+  Importer importer(model, path, folder.empty() ? "." : folder, options, notes);
+  Scene s = importer.read();
+  if (files) *files = used_files(s, importer.files());
+  return s;
 }
 
 Scene import_gltf_data(const std::string& data, bool binary, const std::string& path, const std::string& folder,
-                       const GltfImportOptions& options, std::vector<std::string>& notes) {
+                       const GltfImportOptions& options, std::vector<std::string>& notes,
+                       std::vector<GltfImportFile>* files) {
   tinygltf::Model model = gltf_detail::load_model(data, binary, path, folder, notes);
-  return Importer(model, path, options, notes).read();
+  Importer importer(model, path, folder, options, notes);
+  Scene s = importer.read();
+  if (files) *files = used_files(s, importer.files());
+  return s;
+}
+
+void write_import_files(const std::vector<GltfImportFile>& files) {
+  std::vector<std::string> written;
+  std::vector<fs::path> made;  // folders created, deepest last
+  try {
+    for (const auto& f : files) {
+      fs::path folder = fs::path(f.path).parent_path();
+      std::vector<fs::path> missing;
+      for (fs::path p = folder; !p.empty() && !fs::exists(p); p = p.parent_path()) missing.push_back(p);
+      for (auto it = missing.rbegin(); it != missing.rend(); ++it) {
+        std::error_code ec;
+        if (!fs::create_directory(*it, ec) && ec) throw IoError(it->string() + ": cannot create the folder (" + ec.message() + ")");
+        made.push_back(*it);
+      }
+      write_file_atomic(f.path, f.bytes);
+      written.push_back(f.path);
+    }
+  } catch (const IoError&) {
+    std::error_code ec;
+    for (const auto& w : written) fs::remove(w, ec);
+    for (auto it = made.rbegin(); it != made.rend(); ++it) fs::remove(*it, ec);  // only if empty
+    throw;
+  }
 }
 
 void export_gltf(const Scene& s, const Material* fallback, const std::string& path, std::vector<std::string>& notes) {
-  Exporter exporter(s, fallback, notes);
+  Exporter exporter(s, fallback, path, notes);
   exporter.add_scene();
   exporter.write(path);
 }

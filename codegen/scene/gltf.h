@@ -8,6 +8,9 @@
 //             f0 = mix(0.04, baseColor, metallic)           — exact
 //   diffuse:  Lambert, k_d = baseColor · (1 − metallic)      — exact for metals;
 //             glTF weights a dielectric's diffuse by (1 − F), the catalog does not.
+// Textures: baseColorTexture and metallicRoughnessTexture as textured parameters, baked
+// where the mapping is not a plain factor (scene/gltf_images.h, docs/textures.md); the
+// other maps are named in a note. A file without lights gets a headlight.
 // Lights: C = colour · intensity / π with inverse-square attenuation (candela and
 // lux against facet's "white Lambert at distance 1 shows C") — exact for point
 // and directional lights; spot cones are hard in facet (exact when inner = outer),
@@ -18,7 +21,9 @@
 // states it: each specular lobe's ModelDef::ggx_alpha, and a Fresnel term's
 // normal_reflectance as a conductor's base colour); analytic spheres and planes
 // become meshes plus FACET_object (their exact definition), lights carry
-// FACET_light beside KHR_lights_punctual, the scene's ambient colour FACET_scene.
+// FACET_light beside KHR_lights_punctual, the scene's ambient colour FACET_scene;
+// the materials' images are copied beside a .gltf or held in a .glb (a diffuse sRGB
+// colour map is also the fallback's baseColorTexture).
 // None of the extensions is required: other viewers use the fallback.
 #pragma once
 
@@ -36,16 +41,34 @@ namespace facet {
 struct GltfImportOptions {
   // Shades primitives that have no material; without it they are an error.
   std::optional<Material> default_material;
+  // The scene file the import is for: the images the glTF file holds (GLB buffer views,
+  // data URIs) and those the import bakes go to `<its stem>.textures/` beside it. Empty:
+  // beside the glTF file, as for `<gltf stem>.json`.
+  std::string output;
+};
+
+// A file an import writes beside its scene: an image the glTF file held, or one it baked.
+struct GltfImportFile {
+  std::string path, bytes;
 };
 
 // Throws InputError naming the file and the glTF path of the problem. `notes`
-// receives what was approximate or ignored (textures, alpha modes, spot cones…).
-Scene import_gltf(const std::string& path, const GltfImportOptions& options, std::vector<std::string>& notes);
-// The same from the file's bytes (`binary`: .glb). External buffers are read from
-// `folder`; with an empty `folder` none is read (an error names it), so bytes
+// receives what was approximate or ignored (alpha modes, spot cones, the default
+// light…). The materials' images are decoded and read as the files `files` lists
+// (core/texture.h's cache) before those are written: the caller writes them
+// (write_import_files), or not at all when it passes none.
+Scene import_gltf(const std::string& path, const GltfImportOptions& options, std::vector<std::string>& notes,
+                  std::vector<GltfImportFile>* files = nullptr);
+// The same from the file's bytes (`binary`: .glb). External buffers and images are read
+// from `folder`; with an empty `folder` none is read (an error names it), so bytes
 // from anywhere (the fuzzer's, say) touch no file. `path` names the input in errors.
 Scene import_gltf_data(const std::string& data, bool binary, const std::string& path, const std::string& folder,
-                       const GltfImportOptions& options, std::vector<std::string>& notes);
+                       const GltfImportOptions& options, std::vector<std::string>& notes,
+                       std::vector<GltfImportFile>* files = nullptr);
+// Writes every file (its folder created), each atomically, all or none: on a failure the
+// files already written are removed (and the folders created, if left empty), and IoError
+// names the file.
+void write_import_files(const std::vector<GltfImportFile>& files);
 
 // The glTF meshes one scene file's objects reference (MeshReference), each file read
 // once. Two steps, so that nothing is allocated for a scene over the limit: `add`

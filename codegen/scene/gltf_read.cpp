@@ -418,6 +418,55 @@ void check_external_buffers(const json& doc, const std::string& path, const std:
   }
 }
 
+// An image's encoded bytes as tinygltf hands them over (a data URI's), kept as they are:
+// facet decodes textures itself (core/texture.h). An image in a buffer view is read
+// from its view by the import (scene/gltf_images.cpp), checked there; external files
+// are not read here (TINYGLTF_NO_EXTERNAL_IMAGE).
+bool keep_image_bytes(tinygltf::Image* image, const int, std::string*, std::string*, int, int,
+                      const unsigned char* bytes, int size, void*) {
+  if (image->bufferView < 0 && bytes && size > 0) image->image.assign(bytes, bytes + size);
+  return true;
+}
+
+double number_or(const json& o, const char* key, double fallback) {
+  return o.contains(key) && o[key].is_number() ? o[key].get<double>() : fallback;
+}
+
+// Each image's buffer view inside its buffer, and no data URI empty, named by key
+// before tinygltf takes the image's bytes (it reads a view's bytes unchecked).
+void check_image_sources(const json& doc, const std::string& path) {
+  if (!doc.is_object() || !doc.contains("images") || !doc["images"].is_array()) return;
+  auto fail = [&](const std::string& key, const std::string& message) {
+    throw InputError({{path, key, message, 0, 0}});
+  };
+  const json none = json::array();
+  const json& views = doc.contains("bufferViews") && doc["bufferViews"].is_array() ? doc["bufferViews"] : none;
+  const json& buffers = doc.contains("buffers") && doc["buffers"].is_array() ? doc["buffers"] : none;
+  for (size_t i = 0; i < doc["images"].size(); ++i) {
+    const json& im = doc["images"][i];
+    if (!im.is_object()) continue;
+    if (im.contains("uri") && im["uri"].is_string()) {
+      const std::string uri = im["uri"];
+      if (uri.rfind("data:", 0) == 0 && (uri.find(',') == std::string::npos || uri.find(',') + 1 == uri.size()))
+        fail(fmt::format("images[{}].uri", i), "a data URI that holds no bytes (an empty image)");
+    }
+    if (!im.contains("bufferView") || !im["bufferView"].is_number_integer()) continue;
+    const int64_t v = im["bufferView"];
+    if (v < 0 || size_t(v) >= views.size() || !views[size_t(v)].is_object())
+      fail(fmt::format("images[{}].bufferView", i), fmt::format("names no buffer view ({})", v));
+    const json& view = views[size_t(v)];
+    const double b = number_or(view, "buffer", -1), offset = number_or(view, "byteOffset", 0),
+                 length = number_or(view, "byteLength", 0);
+    if (b < 0 || b >= double(buffers.size()) || !buffers[size_t(b)].is_object())
+      fail(fmt::format("bufferViews[{}].buffer", v), "names no buffer");
+    const double size = number_or(buffers[size_t(b)], "byteLength", 0);
+    if (length <= 0) fail(fmt::format("images[{}].bufferView", i), fmt::format("bufferViews[{}] is empty (an empty image)", v));
+    if (offset < 0 || offset + length > size)
+      fail(fmt::format("images[{}].bufferView", i),
+           fmt::format("bufferViews[{}] ({} bytes from byte {}) reaches past its buffer's {} bytes", v, length, offset, size));
+  }
+}
+
 uint32_t u32(const std::string& data, size_t at) {
   uint32_t v;
   std::memcpy(&v, data.data() + at, 4);
@@ -466,9 +515,12 @@ tinygltf::Model load_model(const std::string& data, bool binary, const std::stri
                            std::vector<std::string>& notes) {
   if (data.size() > std::numeric_limits<unsigned int>::max())
     throw InputError({{path, "", "is larger than 4 GiB, which glTF cannot address", 0, 0}});
-  check_external_buffers(binary ? check_glb(data, path) : parse_json(data, path), path, folder);
+  const json doc = binary ? check_glb(data, path) : parse_json(data, path);
+  check_external_buffers(doc, path, folder);
+  check_image_sources(doc, path);
   tinygltf::TinyGLTF loader;
   loader.SetStoreOriginalJSONForExtrasAndExtensions(true);
+  loader.SetImageLoader(keep_image_bytes, nullptr);
   if (folder.empty()) loader.SetFsCallbacks(no_files());
   tinygltf::Model model;
   std::string err, warn;

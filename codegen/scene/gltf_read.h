@@ -137,8 +137,11 @@ inline constexpr uint64_t kProgressTriangles = 1'000'000;
 
 // Checks a GLB's header and chunks (each inside the file, the buffer the BIN chunk
 // holds no longer than it) and a .gltf's external buffers (each there), naming the
-// key; then loads the bytes with tinygltf, whose warnings become notes. External
-// buffers are read from `folder` (none with an empty one).
+// key, and each image's buffer view inside its buffer and no data URI empty; then loads
+// the bytes with tinygltf, whose warnings become notes. External buffers are read from
+// `folder` (none with an empty one). Images are not decoded: tinygltf keeps a data URI's
+// bytes, a buffer view's stay in the buffer, an external file's URI is kept
+// (scene/gltf_images.h reads them).
 tinygltf::Model load_model(const std::string& data, bool binary, const std::string& path, const std::string& folder,
                            std::vector<std::string>& notes);
 // The file at `path`, read and loaded; its bytes are freed before this returns.

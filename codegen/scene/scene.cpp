@@ -7,6 +7,7 @@
 
 #include "catalog/checker.h"
 #include "catalog/program.h"
+#include "catalog/texture.h"
 #include "scene/gltf.h"
 
 namespace facet {
@@ -452,7 +453,10 @@ json to_json(const Scene& s, const std::string& scene_file) {
   j["ambient"] = s.ambient;
   if (!s.materials.empty()) {
     j["materials"] = json::object();
-    for (const auto& [name, m] : s.materials) j["materials"][name] = to_json(m);
+    // Image paths relative to the file written (absolute in the canonical form, which may go anywhere).
+    const std::string folder = std::filesystem::path(scene_file).parent_path().string();
+    for (const auto& [name, m] : s.materials)
+      j["materials"][name] = scene_file.empty() ? to_json(m) : relative_textures(to_json(m), folder);
   }
   j["objects"] = json::array();
   for (const auto& o : s.objects) {

@@ -160,7 +160,8 @@ nlohmann::json builtin_scene_json(const std::string& name);
 // The canonical JSON form; materials and meshes are written inline.
 nlohmann::json to_json(const Scene& s);
 // The form written to `scene_file`: as to_json, but a mesh with a reference is
-// written as that reference, its file's path relative to `scene_file`'s folder.
+// written as that reference, its file's path relative to `scene_file`'s folder, and
+// the materials' image paths relative to that folder too.
 nlohmann::json to_json(const Scene& s, const std::string& scene_file);
 nlohmann::json scene_schema();
 

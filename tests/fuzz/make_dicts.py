@@ -17,7 +17,11 @@ GLTF_KEYS = ['asset', 'version', '2.0', 'scenes', 'scene', 'nodes', 'children', 
              'roughnessFactor', 'emissiveFactor', 'KHR_lights_punctual', 'lights', 'light', 'intensity', 'color',
              'spot', 'innerConeAngle', 'outerConeAngle', 'range', 'point', 'directional', 'FACET_material',
              'FACET_object', 'FACET_light', 'FACET_scene', 'sphere', 'plane', 'center', 'radius', 'normal', 'size',
-             'ambient', 'data:application/octet-stream;base64,']
+             'ambient', 'data:application/octet-stream;base64,', 'TEXCOORD_0', 'TEXCOORD_1', 'images', 'textures',
+             'samplers', 'source', 'sampler', 'mimeType', 'image/png', 'image/jpeg', 'data:image/png;base64,',
+             'baseColorTexture', 'metallicRoughnessTexture', 'normalTexture', 'emissiveTexture', 'occlusionTexture',
+             'index', 'texCoord', 'KHR_texture_transform', 'magFilter', 'minFilter', 'wrapS', 'wrapT', '9728',
+             '9729', '9987', '10497', '33071', '33648']
 
 
 TEXTURE_KEYS = ['texture', 'channel', 'uv', 'transform', 'offset', 'scale', 'rotation', 'colorspace', 'srgb',

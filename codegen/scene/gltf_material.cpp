@@ -1,0 +1,227 @@
+// glTF metallic–roughness onto the catalog, with its textures (scene/gltf_images.h).
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+#include <fmt/format.h>
+
+#include "scene/gltf_images.h"
+
+namespace facet::gltf_detail {
+
+using nlohmann::json;
+
+namespace {
+
+json extension_of(const std::string& extensions_json, const char* name) {
+  if (extensions_json.empty()) return nullptr;
+  json all = json::parse(extensions_json, nullptr, false);
+  if (!all.is_object() || !all.contains(name)) return nullptr;
+  return all[name];
+}
+
+RGB rgb3(const std::vector<double>& v, double fallback) {
+  return {v.size() > 0 ? v[0] : fallback, v.size() > 1 ? v[1] : fallback, v.size() > 2 ? v[2] : fallback};
+}
+
+uint16_t unorm16(double v) { return uint16_t(std::lround(std::clamp(v, 0.0, 1.0) * 65535)); }
+
+// What a metallic–roughness material is made of, its maps resolved.
+struct Pbr {
+  RGB base{1, 1, 1};
+  double metal = 1, rough = 1;
+  std::optional<TextureUse> base_map, mr_map;  // baseColorTexture (sRGB), metallicRoughnessTexture (linear)
+  std::string name;                            // the facet material's key, for baked images' names
+};
+
+// The linear base colour at texel (i, j) of the grid the bake runs on.
+RGB base_at(const Pbr& p, int i, int j) {
+  if (!p.base_map) return p.base;
+  const float* t = p.base_map->texels->at(i, j);
+  RGB c;
+  for (size_t k = 0; k < 3; ++k) c[k] = p.base[k] * srgb_to_linear(t[k]);
+  return c;
+}
+
+// The metallic value at texel (i, j) of a grid of `w`×`h` (the base colour map's, where
+// there is one): the B channel at the texel itself when the grids are one, else sampled
+// at the grid texel's centre by glTF's rule (both maps read the same coordinates).
+double metal_at(const Pbr& p, int i, int j, int w, int h) {
+  if (!p.mr_map) return p.metal;
+  const Texels& t = *p.mr_map->texels;
+  if (t.width == w && t.height == h) return p.metal * t.at(i, j)[2];
+  return p.metal * sample(t, p.mr_map->sampler, (i + 0.5) / w, (j + 0.5) / h)[2];
+}
+
+// The grid k_d and f0 are baked on: the base colour map's where there is one, else the
+// metallic–roughness map's. Both maps must read the same texture coordinates.
+const TextureUse& bake_grid(const Pbr& p, const GltfImages& images, const std::string& mpath,
+                           std::vector<std::string>& notes) {
+  if (!p.base_map) return *p.mr_map;
+  if (p.mr_map && !p.base_map->same_mapping(*p.mr_map))
+    images.fail(p.mr_map->key + ".texCoord",
+                fmt::format("reads other texture coordinates (set or KHR_texture_transform) than {}; facet bakes k_d "
+                            "and f0 texel by texel from both and needs them to agree",
+                            p.base_map->key));
+  if (p.mr_map && (p.mr_map->sampler.filter != p.base_map->sampler.filter ||
+                   p.mr_map->sampler.wrap != p.base_map->sampler.wrap))
+    notes.push_back(fmt::format("{}: the metallic–roughness and base colour maps have different samplers; the baked "
+                                "k_d and f0 are read with the base colour map's, α with the metallic–roughness map's",
+                                mpath));
+  if (p.mr_map && (p.mr_map->texels->width != p.base_map->texels->width ||
+                   p.mr_map->texels->height != p.base_map->texels->height))
+    notes.push_back(fmt::format("{}: the metallic–roughness map ({}×{}) and the base colour map ({}×{}) differ in "
+                                "size; k_d and f0 are baked at the base colour map's texels, metallic sampled there",
+                                mpath, p.mr_map->texels->width, p.mr_map->texels->height, p.base_map->texels->width,
+                                p.base_map->texels->height));
+  return *p.base_map;
+}
+
+// A linear map of the grid `g` (its sampler, coordinates and transform) holding `file`.
+json baked_spec(const TextureUse& g, const std::string& file, bool color) {
+  json s = g.spec;
+  s["texture"] = file;
+  s["colorspace"] = "linear";
+  if (!color) s["channel"] = "r";
+  return s;
+}
+
+// k_d = base·(1 − metallic) and f0 = 0.04·(1 − metallic) + base·metallic, texel by texel.
+void bake_kd_f0(const Pbr& p, GltfImages& images, json& kd, json& f0, const std::string& mpath,
+                std::vector<std::string>& notes) {
+  const TextureUse& g = bake_grid(p, images, mpath, notes);
+  const int w = g.texels->width, h = g.texels->height;
+  std::vector<uint16_t> kd16(size_t(w) * size_t(h) * 3), f016(kd16.size());
+  for (int j = 0; j < h; ++j)
+    for (int i = 0; i < w; ++i) {
+      const RGB b = base_at(p, i, j);
+      const double m = metal_at(p, i, j, w, h);
+      for (size_t k = 0; k < 3; ++k) {
+        const size_t at = (size_t(j) * size_t(w) + size_t(i)) * 3 + k;
+        kd16[at] = unorm16(b[k] * (1 - m));
+        f016[at] = unorm16(0.04 * (1 - m) + b[k] * m);
+      }
+    }
+  const std::string kd_file = images.bake(p.name + "_kd", w, h, 3, kd16);
+  const std::string f0_file = images.bake(p.name + "_f0", w, h, 3, f016);
+  kd = baked_spec(g, kd_file, true);
+  f0 = baked_spec(g, f0_file, true);
+  notes.push_back(fmt::format("{}: baked k_d = base·(1 − metallic) and f0 = 0.04·(1 − metallic) + base·metallic "
+                              "texel by texel ({}×{}, 16-bit linear) into {} and {}",
+                              mpath, w, h, kd_file, f0_file));
+}
+
+// f0 alone, where metallic is a number strictly between 0 and 1 over a base colour map.
+void bake_f0(const Pbr& p, GltfImages& images, json& f0, const std::string& mpath, std::vector<std::string>& notes) {
+  const TextureUse& g = *p.base_map;
+  const int w = g.texels->width, h = g.texels->height;
+  std::vector<uint16_t> v(size_t(w) * size_t(h) * 3);
+  for (int j = 0; j < h; ++j)
+    for (int i = 0; i < w; ++i) {
+      const RGB b = base_at(p, i, j);
+      for (size_t k = 0; k < 3; ++k)
+        v[(size_t(j) * size_t(w) + size_t(i)) * 3 + k] = unorm16(0.04 * (1 - p.metal) + b[k] * p.metal);
+    }
+  const std::string file = images.bake(p.name + "_f0", w, h, 3, v);
+  f0 = baked_spec(g, file, true);
+  notes.push_back(fmt::format("{}: baked f0 = 0.04·(1 − metallic) + base·metallic texel by texel ({}×{}, 16-bit "
+                              "linear) into {}",
+                              mpath, w, h, file));
+}
+
+// GGX α = max((roughness·G)², 1e-4) texel by texel, from the metallic–roughness map.
+json bake_alpha(const Pbr& p, GltfImages& images, const std::string& mpath, std::vector<std::string>& notes) {
+  const TextureUse& g = *p.mr_map;
+  const int w = g.texels->width, h = g.texels->height;
+  std::vector<uint16_t> v(size_t(w) * size_t(h));
+  for (int j = 0; j < h; ++j)
+    for (int i = 0; i < w; ++i) {
+      const double r = p.rough * g.texels->at(i, j)[1];
+      v[size_t(j) * size_t(w) + size_t(i)] = unorm16(std::max(r * r, 1e-4));
+    }
+  const std::string file = images.bake(p.name + "_alpha", w, h, 1, v);
+  notes.push_back(fmt::format("{}: baked GGX α = (roughness·G)² texel by texel ({}×{}, 16-bit linear) into {}", mpath,
+                              w, h, file));
+  return baked_spec(g, file, false);
+}
+
+// The diffuse colour and Schlick's f0: numbers, a map times a factor, or baked maps.
+void colours(const Pbr& p, GltfImages& images, json& kd, json& f0, const std::string& mpath,
+             std::vector<std::string>& notes) {
+  RGB kd_c, f0_c;
+  for (size_t c = 0; c < 3; ++c) {
+    kd_c[c] = p.base[c] * (1 - p.metal);
+    f0_c[c] = 0.04 * (1 - p.metal) + p.base[c] * p.metal;
+  }
+  kd = kd_c;
+  f0 = f0_c;
+  if (p.mr_map && p.metal > 0) return bake_kd_f0(p, images, kd, f0, mpath, notes);
+  if (!p.base_map) return;
+  kd = p.base_map->spec;  // base · (1 − metallic): the map times a factor, exact
+  kd["colorspace"] = "srgb";
+  kd["factor"] = kd_c;
+  if (p.metal >= 1) {
+    f0 = p.base_map->spec;
+    f0["colorspace"] = "srgb";
+    f0["factor"] = p.base;
+  } else if (p.metal > 0) {
+    bake_f0(p, images, f0, mpath, notes);
+  }
+}
+
+// The textures facet does not import yet, each named on stderr (each becomes a map of
+// the material once its parameter is texturable: emission, the ambient term, a normal map).
+void note_unmapped(const tinygltf::Material& g, const std::string& mpath, std::vector<std::string>& notes) {
+  const std::pair<const char*, int> unmapped[] = {
+      {"emissiveTexture: not imported yet (facet's emission is a colour); the material uses emissiveFactor",
+       g.emissiveTexture.index},
+      {"occlusionTexture: not imported yet (facet's ambient term is a colour); the material ignores it",
+       g.occlusionTexture.index},
+      {"normalTexture: not imported yet (facet has no normal maps yet); the material uses the mesh's normals",
+       g.normalTexture.index},
+  };
+  for (const auto& [what, index] : unmapped)
+    if (index >= 0) notes.push_back(mpath + "." + what);
+}
+
+}  // namespace
+
+json pbr_material(const tinygltf::Material& g, const std::string& mpath, GltfImages& images,
+                  std::vector<std::pair<int, std::string>>& sets, std::vector<std::string>& notes) {
+  const auto& pbr = g.pbrMetallicRoughness;
+  Pbr p;
+  p.base = rgb3(pbr.baseColorFactor, 1);
+  p.metal = pbr.metallicFactor;
+  p.rough = pbr.roughnessFactor;
+  p.name = identifier(g.name.empty() ? mpath : g.name);
+  const std::string pm = mpath + ".pbrMetallicRoughness";
+  if (pbr.baseColorTexture.index >= 0)
+    p.base_map = images.texture(pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord,
+                                pbr.baseColorTexture.extensions_json_string, pm + ".baseColorTexture");
+  if (pbr.metallicRoughnessTexture.index >= 0)
+    p.mr_map = images.texture(pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord,
+                              pbr.metallicRoughnessTexture.extensions_json_string, pm + ".metallicRoughnessTexture");
+  for (const auto* map : {&p.base_map, &p.mr_map})
+    if (*map) sets.emplace_back((*map)->uv, (*map)->key + ".texCoord");
+  json m = {{"name", g.name.empty() ? mpath : g.name}};
+  json kd, f0;
+  colours(p, images, kd, f0, mpath, notes);
+  const bool diffuse = kd.is_object() || kd[0].get<double>() + kd[1].get<double>() + kd[2].get<double>() > 0;
+  if (diffuse) m["diffuse"] = {{"model", "lambert"}, {"color", kd}};
+  m["specular"] = {{"model", "ggx"},
+                   {"alpha", p.mr_map ? bake_alpha(p, images, mpath, notes) : json(std::max(p.rough * p.rough, 1e-4))},
+                   {"geometry", "smith_ggx"},
+                   {"fresnel", {{"model", "schlick"}, {"f0", f0}}}};
+  auto e = rgb3(g.emissiveFactor, 0);
+  json strength = extension_of(g.extensions_json_string, "KHR_materials_emissive_strength");
+  double k = strength.is_object() ? strength.value("emissiveStrength", 1.0) : 1.0;
+  if (e[0] + e[1] + e[2] > 0) m["emission"] = {e[0] * k, e[1] * k, e[2] * k};
+  note_unmapped(g, mpath, notes);
+  if (g.alphaMode != "OPAQUE" && !g.alphaMode.empty())
+    notes.push_back(mpath + ": alphaMode " + g.alphaMode + " is ignored (facet's surfaces are opaque)");
+  if (diffuse && (p.metal < 1 || p.mr_map))
+    notes.push_back(mpath + ": approximate: glTF weights a dielectric's diffuse by (1 − F); the catalog's Lambert does not");
+  return m;
+}
+
+}  // namespace facet::gltf_detail
