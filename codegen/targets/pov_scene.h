@@ -2,6 +2,7 @@
 // frame, the plan, the native route) and pov_functions.cpp (function pigments).
 #pragma once
 
+#include <array>
 #include <functional>
 #include <map>
 #include <memory>
@@ -43,7 +44,10 @@ struct PovShading {
   // Textured parameters (pov_texture.h): input name → Facet_Sample_<name>(S, T) and the
   // coordinate set it reads. Non-empty: the scaffolding's functions take S0, T0, S1, T1.
   std::map<std::string, std::pair<ir::FunctionPtr, int>> samples;
-  bool textured() const { return !samples.empty(); }
+  // A normal map's raw r, g, b at (S, T) of its set (Facet_Sample_normal_map_r, _g, _b), or null.
+  std::array<ir::FunctionPtr, 3> normal_map{};
+  int normal_map_uv = 0;
+  bool textured() const { return !samples.empty() || normal_map[0]; }
   int channels() const { return dependent ? 3 : 1; }
   std::string suffix(int ch) const;
   RGB emission(const Scene& s) const;  // m_a ⊗ A + m_e
