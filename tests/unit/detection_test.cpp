@@ -540,6 +540,22 @@ TEST(Detection, GlslNormalMapFailsWhenWrong) {
   }
 }
 
+// Under a normal map the anisotropic tangent follows the mapped normal (t Gram–Schmidt'd
+// against n′): Ward on the tangent rule's t, left as it was, fails; the generated code passes.
+TEST(Detection, GlslAnisotropicTangentFollowsTheNormalMap) {
+  GlRenderer gl;
+  ASSERT_TRUE(gl.ok()) << gl.error();
+  Fixture f = fixture("textured_normal_ward", "glsl", "textured", "shadows");
+  const std::string good = GlRenderer::fragment_source(f.material);
+  f.job.code_override = good;
+  ComparisonRow right = judged(f, gl.render(f.job));
+  EXPECT_TRUE(right.pass) << right.metrics.max_excess;
+  f.job.code_override = inject(good, "    t = normalize(t - ns * dot(ns, t));\n", "");
+  ComparisonRow bad = judged(f, gl.render(f.job));
+  std::cout << "tangent not following: " << bad.metrics.over << " pixels over, worst " << bad.metrics.max_excess << "\n";
+  EXPECT_FALSE(bad.pass) << bad.metrics.max_excess;
+}
+
 TEST(Detection, OslNormalMapFailsWhenWrong) {
   Fixture f = fixture(kNormalExample, "osl", "textured", "shadows");
   GenerateOptions o;
