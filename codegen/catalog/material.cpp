@@ -45,7 +45,7 @@ ParamDef tangent_axis_param() {
 }
 
 const std::vector<std::string> kMaterialKeys = {"$schema", "name", "ambient", "emission",
-                                                "diffuse", "specular", "tangent_axis"};
+                                                "diffuse", "specular", "tangent_axis", "normal_map"};
 
 }  // namespace
 
@@ -80,6 +80,8 @@ Material parse_material(const json& doc, const std::string& file) {
     } else if (key == "tangent_axis") {
       auto v = check.vector(val, key, tangent_axis_param());
       if (v) m.tangent_axis = *v;
+    } else if (key == "normal_map") {
+      m.normal_map = parse_normal_map(val, key, sink);
     } else if (key == "diffuse" || key == "specular") {
       auto spec = check.model(val, key, key, nullptr);
       if (spec) (key == "diffuse" ? m.diffuse : m.specular) = *spec;
@@ -185,6 +187,7 @@ json to_json(const Material& m) {
   if (m.diffuse) j["diffuse"] = spec_json(*m.diffuse, true);
   if (m.specular) j["specular"] = spec_json(*m.specular, true);
   j["tangent_axis"] = m.tangent_axis;
+  if (m.normal_map) j["normal_map"] = normal_map_json(*m.normal_map);
   return j;
 }
 
@@ -322,7 +325,8 @@ json material_schema() {
                 {"emission", emission},
                 {"diffuse", lobes["diffuse"]},
                 {"specular", lobes["specular"]},
-                {"tangent_axis", param_schema(tangent_axis_param())}};
+                {"tangent_axis", param_schema(tangent_axis_param())},
+                {"normal_map", normal_map_schema()}};
   return {{"$schema", "https://json-schema.org/draft/2020-12/schema"},
           {"$id", "https://facet.invalid/schemas/material.schema.json"},
           {"title", "facet material"},

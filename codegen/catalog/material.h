@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "catalog/catalog.h"
+#include "catalog/texture.h"
 #include "core/diagnostics.h"
 
 namespace facet {
@@ -27,6 +28,9 @@ struct Material {
   std::optional<ModelSpec> diffuse;
   std::optional<ModelSpec> specular;
   RGB tangent_axis{0, 1, 0};
+  // A tangent-space normal map (catalog/texture.h, docs/textures.md): both lobes shade
+  // with the mapped normal.
+  std::optional<NormalMap> normal_map;
 };
 
 // Checks `doc` against the catalog; every problem becomes a Diagnostic naming

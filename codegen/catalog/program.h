@@ -27,7 +27,9 @@ struct MaterialProgram {
   std::vector<TexturedInput> textured;
 
   bool uses(const std::string& input) const;
-  bool has_textures() const { return !textured.empty(); }
+  // Whether the material samples images: textured parameters or a normal map.
+  bool has_textures() const { return !textured.empty() || normal_mapped(); }
+  bool normal_mapped() const { return material.normal_map.has_value(); }
   // Whether `input` (a name of `inputs`) is a textured parameter rather than a dot product.
   bool is_textured(const std::string& input) const;
   bool uses_tangent() const {

@@ -15,6 +15,8 @@ namespace {
 
 const std::vector<std::string> kKeys = {"texture", "channel", "uv", "transform", "colorspace",
                                         "filter", "wrap", "factor"};
+// A normal map's keys: a texture's sampling keys, its convention and strength.
+const std::vector<std::string> kNormalMapKeys = {"texture", "uv", "filter", "wrap", "transform", "green", "strength"};
 const std::vector<std::string> kTransformKeys = {"offset", "scale", "rotation"};
 const std::vector<std::string> kWraps = {"repeat", "clamp", "mirror"};
 
@@ -294,6 +296,92 @@ std::array<double, 3> texture_value(const Value& val, const Range& range, double
   auto b = texture_bounds(range);
   for (double& x : out) x = std::min(std::max(x, b[0]), b[1]);
   return out;
+}
+
+namespace {
+
+// A colour parameter of range [0, 1]: the normal map's texture is read as one (rgb, linear).
+ParamDef normal_map_param() {
+  ParamDef p;
+  p.name = "normal_map";
+  p.kind = ParamKind::Color;
+  p.range = Range::closed(0, 1);
+  return p;
+}
+
+}  // namespace
+
+std::optional<NormalMap> parse_normal_map(const json& j, const std::string& path, DiagnosticSink& sink) {
+  if (!j.is_object()) {
+    sink.error(path, fmt::format("expected a normal map object with keys {}, found {}", quoted(kNormalMapKeys),
+                                 j.dump()));
+    return std::nullopt;
+  }
+  NormalMap m;
+  bool ok = true;
+  json texture = json::object();
+  for (const auto& [key, val] : j.items()) {
+    if (key == "green") {
+      if (val == "up" || val == "down") m.green_down = val == "down";
+      else sink.error(join_path(path, key), "expected \"up\" (OpenGL's, glTF's convention) or \"down\" (DirectX's), found " + val.dump());
+      ok = ok && (val == "up" || val == "down");
+    } else if (key == "strength") {
+      if (val.is_number() && std::isfinite(val.get<double>())) {
+        m.strength = val.get<double>();
+      } else {
+        sink.error(join_path(path, key), "expected a finite number (glTF's normalTexture.scale), found " + val.dump());
+        ok = false;
+      }
+    } else if (std::find(kNormalMapKeys.begin(), kNormalMapKeys.end(), key) != kNormalMapKeys.end()) {
+      texture[key] = val;
+    } else {
+      std::string hint = suggest(key, kNormalMapKeys);
+      sink.error(join_path(path, key),
+                 fmt::format("unknown key of a normal map{}; allowed keys: {} (a normal map is always rgb and linear)",
+                             hint.empty() ? "" : " (did you mean \"" + hint + "\"?)", quoted(kNormalMapKeys)));
+      ok = false;
+    }
+  }
+  texture["colorspace"] = "linear";
+  static const ParamDef param = normal_map_param();
+  std::optional<Value> v = parse_texture_value(texture, path, param, sink);
+  if (!v || !ok) return std::nullopt;
+  m.value = *v;
+  return m;
+}
+
+json normal_map_json(const NormalMap& m) {
+  json j = texture_json(m.value);
+  for (const char* key : {"channel", "colorspace", "factor"}) j.erase(key);
+  j["green"] = m.green_down ? "down" : "up";
+  j["strength"] = m.strength;
+  return j;
+}
+
+json normal_map_schema() {
+  json s = texture_schema_body(true);
+  for (const char* key : {"channel", "colorspace", "factor"}) s["properties"].erase(key);
+  s["description"] = "a tangent-space normal map (glTF 2.0 §3.9.3): n_t = normalize((2·rgb − 1) ⊗ (s, s, 1)), "
+                     "rgb linear; the shading normal normalize(n_t.x·T + n_t.y·B + n_t.z·N), B = w·(N × T)";
+  s["properties"]["green"] = {{"enum", json::array({"up", "down"})},
+                              {"default", "up"},
+                              {"description", "+y up the picture (OpenGL, glTF) or down (DirectX: y negated)"}};
+  s["properties"]["strength"] = {{"type", "number"}, {"default", 1}, {"description", "glTF's normalTexture.scale"}};
+  return s;
+}
+
+std::array<double, 3> normal_map_rgb(const NormalMap& m, double u, double v, bool* fragile) {
+  static const Range unit = normal_map_param().range;
+  return texture_value(m.value, unit, u, v, fragile);
+}
+
+std::array<double, 3> normal_map_tangent_normal(const NormalMap& m, const std::array<double, 3>& rgb) {
+  const double s = m.strength;
+  std::array<double, 3> n = {s * (2 * rgb[0] - 1), s * (2 * rgb[1] - 1) * (m.green_down ? -1 : 1), 2 * rgb[2] - 1};
+  const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  if (len > 0)
+    for (double& x : n) x /= len;
+  return n;
 }
 
 }  // namespace facet

@@ -70,4 +70,28 @@ inline constexpr double kTexelEdgeMargin = 1e-4;
 // the lookup lies within kTexelEdgeMargin of a nearest-filtered texel's edge.
 std::array<double, 3> texture_value(const Value& v, const Range& range, double u, double v_, bool* fragile = nullptr);
 
+// A tangent-space normal map (docs/textures.md, "Normal maps"): a material's top-level
+//   "normal_map": {"texture": …, "uv": 0, "filter": …, "wrap": …, "transform": {…},
+//                  "green": "up" | "down", "strength": 1}
+// sampled by the one rule above, always rgb and linear. Its tangent-space normal is
+// glTF 2.0's (§3.9.3, material.normalTexture): n_t = normalize((2·rgb − 1) ⊗ (s, s, 1)),
+// s the strength (glTF's normalTexture.scale), with y negated first where green is
+// "down" (DirectX's convention; OpenGL's and glTF's is +y up the picture).
+struct NormalMap {
+  Value value;  // its texture (channel "rgb", colour space "linear"); factor 1
+  bool green_down = false;
+  double strength = 1;
+  const TextureRef& texture() const { return *value.texture; }
+};
+
+// The "normal_map" object at `path` (problems to `sink`, the image decoded here).
+std::optional<NormalMap> parse_normal_map(const nlohmann::json& j, const std::string& path, DiagnosticSink& sink);
+nlohmann::json normal_map_json(const NormalMap& m);
+nlohmann::json normal_map_schema();
+// The raw filtered rgb of the map at (u, v) (the set it names, before its transform):
+// what every target samples; `fragile` as texture_value's.
+std::array<double, 3> normal_map_rgb(const NormalMap& m, double u, double v, bool* fragile = nullptr);
+// n_t from that rgb: strength, green and normalisation applied (unit, or 0 for a zero vector).
+std::array<double, 3> normal_map_tangent_normal(const NormalMap& m, const std::array<double, 3>& rgb);
+
 }  // namespace facet

@@ -15,6 +15,12 @@ using nlohmann::json;
 namespace facet::cli {
 namespace {
 
+const char* const kNormalMapDoc =
+    "a material's \"normal_map\": {\"texture\": file, \"uv\", \"filter\", \"wrap\", \"transform\" (as a texture's), "
+    "\"green\": \"up\" (OpenGL, glTF; default) | \"down\" (DirectX), \"strength\": s (glTF's normalTexture.scale, default 1)}: "
+    "a tangent-space normal map, rgb and linear; n_t = normalize((2·rgb − 1) ⊗ (s, s, 1)), both lobes shade with "
+    "normalize(n_t.x·T + n_t.y·B + n_t.z·N), B = w·(N × T) (glTF 2.0 §3.9.3; docs/textures.md)";
+
 json catalog_json() {
   json sections = json::object();
   for (const auto& m : catalog()) {
@@ -47,7 +53,9 @@ json catalog_json() {
     }
     sections[m.section].push_back(mj);
   }
-  return {{"facet", FACET_VERSION}, {"epsilon", kEpsilon}, {"sections", sections}};
+  // A material's top-level keys besides its lobes (docs/textures.md).
+  json material = {{"normal_map", {{"doc", kNormalMapDoc}}}};
+  return {{"facet", FACET_VERSION}, {"epsilon", kEpsilon}, {"sections", sections}, {"material", material}};
 }
 
 int run_models(bool as_json) {
@@ -74,6 +82,7 @@ int run_models(bool as_json) {
     if (!m.forms.empty()) fmt::print("  {:<18}   written as {}\n", "", m.forms_text());
   }
   fmt::print("\nEvery diffuse and specular lobe also takes \"color\" (k_d or k_s, default 1) and \"toon\".\n");
+  fmt::print("A material may also take {}.\n", kNormalMapDoc);
   return 0;
 }
 

@@ -209,6 +209,14 @@ Vec3 tangent_rule(const Vec3& n, const Vec3& axis) {
   return normalize(t);
 }
 
+Vec3 perturb_normal(const Vec3& n, const Vec3& t, double w, const std::array<double, 3>& nt) {
+  const Vec3 T = normalize(t - n * dot(n, t));
+  const Vec3 B = cross(n, T) * w;
+  return normalize(T * nt[0] + B * nt[1] + n * nt[2]);
+}
+
+Vec3 follow_normal(const Vec3& t, const Vec3& mapped) { return normalize(t - mapped * dot(mapped, t)); }
+
 // ---------------------------------------------------------------- Reference
 
 Reference::Reference(const Material& m) : program_(compile(m)) {
@@ -293,6 +301,14 @@ RGB Reference::emitted(const ShadingInputs& in, const RGB& scene_ambient) const 
   RGB L;
   for (size_t c = 0; c < 3; ++c) L[c] = ambient[c] * scene_ambient[c] + emission[c];
   return L;
+}
+
+Vec3 Reference::mapped_normal(const std::array<std::array<double, 2>, 2>& uv, const Vec3& n, const Vec3& t, double w,
+                              bool& fragile) const {
+  const NormalMap& m = *material().normal_map;
+  const auto& st = uv[size_t(m.texture().uv)];
+  const auto rgb = normal_map_rgb(m, st[0], st[1], &fragile);
+  return perturb_normal(n, t, w, normal_map_tangent_normal(m, rgb));
 }
 
 RGB Reference::reflectance(const ShadingInputs& in) const { return call(reflectance_, in); }

@@ -53,6 +53,13 @@ ShadingInputs shading_inputs(const Vec3& n, const Vec3& l, const Vec3& v, const 
 // |axis × n| < ε.
 Vec3 tangent_rule(const Vec3& n, const Vec3& axis);
 
+// The normal map's shading normal (docs/textures.md, "Normal maps"; glTF 2.0 §3.9.3):
+// normalize(nt[0]·T + nt[1]·B + nt[2]·n), T = t Gram–Schmidt'd against n, B = w·(n × T).
+Vec3 perturb_normal(const Vec3& n, const Vec3& t, double w, const std::array<double, 3>& nt);
+// The anisotropic models' tangent under a normal map: t Gram–Schmidt'd against the mapped
+// normal, normalize(t − n′(n′·t)).
+Vec3 follow_normal(const Vec3& t, const Vec3& mapped);
+
 class Reference {
  public:
   explicit Reference(const Material& m);
@@ -64,6 +71,10 @@ class Reference {
   bool sample_textures(const std::array<std::array<double, 2>, 2>& uv, ShadingInputs& in) const;
   // m_a ⊗ A + m_e, with m_a and m_e at the point where `in`'s textures were sampled.
   RGB emitted(const ShadingInputs& in, const RGB& scene_ambient) const;
+  // The material's normal map (it must have one) at texture coordinates `uv`, on the frame n, t, w:
+  // perturb_normal of its n_t. `fragile` as sample_textures's result.
+  Vec3 mapped_normal(const std::array<std::array<double, 2>, 2>& uv, const Vec3& n, const Vec3& t, double w,
+                     bool& fragile) const;
   // k_d ⊗ ρ_d + k_s ⊗ ρ_s, zero below the horizon. Unit vectors; t ⟂ n.
   RGB reflectance(const Vec3& n, const Vec3& l, const Vec3& v, const Vec3& t) const;
   RGB reflectance(const Vec3& n, const Vec3& l, const Vec3& v) const;  // tangent rule

@@ -100,6 +100,40 @@ double scene_scale(const Scene& s) {
   return std::max(r, 1.0);
 }
 
+// The frame a pixel is shaded in: the normal that decides which lights are above the
+// surface (the object's own), the normal and tangent the lobes read (a normal map's), the
+// textured parameters' values, and whether the pixel is fragile (grazing).
+struct ShadingFrame {
+  Vec3 n, shading_n, t;
+  ShadingInputs textured;
+  bool grazing = false;
+};
+
+ShadingFrame shading_frame(const Object& obj, const Reference& ref, const Vec3& p, const Hit& hit, const Vec3& v) {
+  const Material& m = ref.material();
+  ShadingFrame f;
+  f.n = f.shading_n = obj.normal_at(p, hit);
+  f.t = tangent_rule(f.n, Vec3(m.tangent_axis));
+  if (!ref.program().has_textures()) return f;
+  // A texel's edge under nearest filtering, or where a sphere's mapping is not continuous
+  // (the seam u = 0 | 1, the poles), is as fragile as a grazing shadow ray.
+  const auto uv = obj.uv_at(p, hit);
+  f.grazing = ref.sample_textures(uv, f.textured);
+  if (obj.type == Object::Type::Sphere) {
+    Vec3 d = (p - obj.center) / obj.radius;
+    f.grazing = f.grazing || std::hypot(d.x, d.z) < 1e-3 || (d.z < 0 && std::fabs(d.x) < kTexelEdgeMargin * 2 * M_PI);
+  }
+  Vec3 tangent;
+  double w = 1;
+  if (m.normal_map && obj.tangent_at(p, hit, tangent, w)) {
+    f.shading_n = ref.mapped_normal(uv, f.n, tangent, w, f.grazing);
+    f.t = follow_normal(f.t, f.shading_n);
+    // The horizon rule jumps where the mapped normal turns from the eye.
+    f.grazing = f.grazing || std::fabs(dot(f.shading_n, v)) < kNormalMapHorizon;
+  }
+  return f;
+}
+
 // One pixel: the nearest object at its centre, shaded by every light that reaches it.
 void shade_pixel(const Scene& s, const std::vector<const Reference*>& shading, double offset, double close, int x,
                  int y, Render& r) {
@@ -113,33 +147,27 @@ void shade_pixel(const Scene& s, const std::vector<const Reference*>& shading, d
   const Reference& ref = *shading[size_t(h.object)];
   const Material& m = ref.material();
   Vec3 p = s.camera.position + dir * h.hit.t;
-  Vec3 n = obj.normal_at(p, h.hit);
   Vec3 v = -dir;
-  Vec3 t = tangent_rule(n, Vec3(m.tangent_axis));
-  // The textured parameters' values at this point, once for every light.
-  ShadingInputs textured;
-  bool grazing = false;
-  if (ref.program().has_textures()) {
-    // A texel's edge under nearest filtering, or where a sphere's mapping is not continuous
-    // (the seam u = 0 | 1, the poles), is as fragile as a grazing shadow ray.
-    grazing = ref.sample_textures(obj.uv_at(p, h.hit), textured);
-    if (obj.type == Object::Type::Sphere) {
-      Vec3 d = (p - obj.center) / obj.radius;
-      grazing = grazing || std::hypot(d.x, d.z) < 1e-3 || (d.z < 0 && std::fabs(d.x) < kTexelEdgeMargin * 2 * M_PI);
-    }
-  }
-  RGB L = ref.emitted(textured, s.ambient);
+  ShadingFrame f = shading_frame(obj, ref, p, h.hit, v);
+  RGB L = ref.emitted(f.textured, s.ambient);
+  bool grazing = f.grazing;
   for (const auto& light : s.lights) {
     Vec3 l;
     double d;
     light.toward(p, l, d);
     double factor = ref.light_factor(light, l, d);
-    if (!(factor > 0) || dot(n, l) <= 0) continue;
+    // The object's own normal decides whether the light is above the surface (the surface
+    // shadows itself below it, on every renderer); the lobes read the mapped one.
+    if (!(factor > 0) || dot(f.n, l) <= 0) {
+      grazing = grazing || (m.normal_map && factor > 0 && dot(f.n, l) > -kNormalMapHorizon && dot(f.shading_n, l) > 0);
+      continue;
+    }
+    if (m.normal_map && dot(f.n, l) < kNormalMapHorizon && dot(f.shading_n, l) > 0) grazing = true;
     if (blocked(s, h.object, h.hit.triangle, p, l, d, offset, close, grazing)) continue;
-    ShadingInputs in = shading_inputs(n, l, v, t);
-    in.textured = textured.textured;
-    RGB f = ref.reflectance(in);
-    for (int c = 0; c < 3; ++c) L[c] += factor * light.color[c] * f[c];
+    ShadingInputs in = shading_inputs(f.shading_n, l, v, f.t);
+    in.textured = f.textured.textured;
+    RGB rho = ref.reflectance(in);
+    for (int c = 0; c < 3; ++c) L[c] += factor * light.color[c] * rho[c];
   }
   r.grazing[idx] = grazing;
   float* px = r.image.at(x, y);

@@ -29,6 +29,11 @@ inline constexpr double kGrazing = 1e-4;
 // Cycles and OpenGL count them.
 inline constexpr double kCloseBlock = 2e-3;
 
+// Under a normal map the light's reflectance jumps to 0 where the object's own normal
+// turns from the light while the mapped one does not, and where the mapped normal turns
+// from the eye: pixels within this cosine of either are fragile, as grazing shadow rays are.
+inline constexpr double kNormalMapHorizon = 1e-4;
+
 // Objects without a material of their own are shaded with `m`.
 Render render_reference(const Material& m, const Scene& s, int width, int height, int threads = 0);
 // Every object has its own material (Scene::has_own_materials()).

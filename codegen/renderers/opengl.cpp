@@ -268,6 +268,7 @@ std::string GlRenderer::fragment_source(const Material& m) {
   MaterialProgram p = compile(m);
   GlslParts parts = glsl_parts(p, Target::Glsl, m.source);
   std::string sample = p.has_textures() ? "    facet_sample_textures(facet_uv(hit, p, best, 0), facet_uv(hit, p, best, 1));\n" : "";
+  if (p.normal_mapped()) sample += "    facet_uv_tangent = facet_uv_tangent_at(hit, p);\n";
   return "#version 330 core\n" + parts.header + parts.library + parts.lights +
          render_harness("raycast.glsl", {{"sphere", std::to_string(kSphere)},
                                          {"square", std::to_string(kSquare)},
@@ -363,7 +364,7 @@ class MeshTextures {
 class MaterialImages {
  public:
   explicit MaterialImages(const MaterialProgram& p) {
-    for (const auto& c : texture_calls(p)) {
+    for (const auto& c : image_calls(p)) {
       GLuint tex = 0;
       glGenTextures(1, &tex);
       glBindTexture(GL_TEXTURE_2D, tex);

@@ -217,6 +217,27 @@ std::array<std::array<double, 2>, 2> Object::uv_at(const Vec3& p, const Hit& h) 
   return {st, st};
 }
 
+bool Object::tangent_at(const Vec3& p, const Hit&, Vec3& t, double& w) const {
+  w = 1;
+  switch (type) {
+    case Type::Sphere: {
+      // u grows with the longitude atan2(d_x, d_z): ∂d/∂u ∝ (d_z, 0, −d_x). v grows
+      // towards −y, so B = n × t (towards +y, up the picture) and w = +1.
+      const Vec3 d = p - center;
+      t = normalize(Vec3(d.z, 0, -d.x));
+      return true;
+    }
+    case Type::Plane: {
+      // u grows along a, v down b = n × a: t = a, B = n × a = b, w = +1.
+      Vec3 b;
+      plane_axes(t, b);
+      return true;
+    }
+    case Type::Mesh: return false;
+  }
+  return false;
+}
+
 void Object::bounds(Vec3& c, double& r) const {
   switch (type) {
     case Type::Sphere:

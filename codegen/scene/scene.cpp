@@ -391,6 +391,12 @@ void check_texture_sets(const Scene& s, const Material* fallback) {
     if (o.type != Object::Type::Mesh) continue;
     if (o.material.empty() && !fallback) continue;  // reported where the material is needed
     const Material& m = s.material_of(i, fallback);
+    if (m.normal_map)
+      problems.push_back({s.source, index_path("objects", i),
+                          fmt::format("mesh \"{}\": material \"{}\" has a normal_map, and normal maps on meshes "
+                                      "(which need the mesh's tangents) are not supported yet; spheres and squares "
+                                      "take them (docs/textures.md)",
+                                      o.name, m.name)});
     for (const auto& t : compile(m).textured) {
       const size_t set = size_t(t.value.texture->uv);
       if (!o.mesh->texcoords[set].empty()) continue;

@@ -132,6 +132,12 @@ struct Object {
   // are their documented mappings (the same in both sets), a mesh's its vertices'
   // blended barycentrically ((0, 0) for a set it lacks).
   std::array<std::array<double, 2>, 2> uv_at(const Vec3& p, const Hit& h) const;
+  // The tangent frame of texture coordinates at p, for normal maps (docs/textures.md,
+  // "Tangent frames"): t the unit ∂p/∂u, and w = ±1 such that B = w·(n × t) points up
+  // the picture (towards decreasing v, glTF's bitangent rule). A sphere's t is
+  // normalize(d_z, 0, −d_x) (undefined at the poles), a square's its first axis; w = +1
+  // on both. Meshes have no tangents yet: false there.
+  bool tangent_at(const Vec3& p, const Hit& h, Vec3& t, double& w) const;
   // Spheres and squares are convex: they never shadow themselves where n·l > 0.
   bool convex() const { return type != Type::Mesh; }
   // A sphere around the object (for culling and scene scale).

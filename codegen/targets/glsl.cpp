@@ -82,7 +82,7 @@ std::string glsl_textures(const MaterialProgram& p, Target dialect) {
   targets::CPrinter pr({});
   std::string uniforms, globals, samples;
   int binding = 1;  // Vulkan: binding 0 is the scene's uniform block
-  for (const auto& c : texture_calls(p)) {
+  for (const auto& c : image_calls(p)) {
     std::string layout = dialect == Target::Glsl450 ? fmt::format("layout(set = 0, binding = {}) ", binding++) : "";
     uniforms += fmt::format("{}uniform sampler2D facet_texture_{};  // \"{}\", {}×{}\n", layout, c.name, c.file,
                             c.texels->width, c.texels->height);
@@ -100,7 +100,16 @@ std::string glsl_textures(const MaterialProgram& p, Target dialect) {
     value = std::isfinite(c.hi) ? fmt::format("clamp({}, {}, {})", value, lo, hi) : fmt::format("max({}, {})", value, lo);
     samples += fmt::format("    {} = {};\n", c.name, value);
   }
-  return render_template("glsl/textures.glsl", {{"uniforms", uniforms}, {"globals", globals}, {"samples", samples}});
+  std::string mapping;
+  if (const auto& nm = p.material.normal_map) {
+    // catalog/texture.h, NormalMap: n_t from the sampled rgb, then the mapped normal.
+    globals += "// The normal map's frame at the shading point: t the unit ∂p/∂u, w = ±1 (B = w·(n × t)).\n"
+               "vec3 facet_uv_tangent;\nfloat facet_uv_handedness = 1.0;\n";
+    mapping = render_template("glsl/normal_map.glsl", {{"strength", pr.literal(nm->strength)},
+                                                       {"green", nm->green_down ? "-" : ""}});
+  }
+  return render_template("glsl/textures.glsl", {{"uniforms", uniforms}, {"globals", globals}, {"samples", samples}}) +
+         mapping;
 }
 
 }  // namespace
@@ -152,6 +161,10 @@ GlslParts glsl_parts(const MaterialProgram& p, Target dialect, const std::string
                                                         {"arguments", arguments}});
   std::map<std::string, std::string> lights = glsl_light::template_values();  // the light encoding's numbers
   lights["uniforms"] = light_uniforms(dialect);
+  lights["mapping"] = p.normal_mapped() ? "    // The lobes read the normal map's normal and a tangent that follows it.\n"
+                                          "    vec3 ns = facet_normal_mapped(n, facet_uv_tangent, facet_uv_handedness);\n"
+                                          "    t = normalize(t - ns * dot(ns, t));\n"
+                                        : "    vec3 ns = n;\n";
   parts.lights = render_template("glsl/lights.glsl", lights);
   std::string main_in = main_inputs(dialect), sample;
   if (p.has_textures()) {
@@ -160,6 +173,12 @@ GlslParts glsl_parts(const MaterialProgram& p, Target dialect, const std::string
                                           : "in vec2 facet_texcoord0;  // glTF's TEXCOORD_0: v down the picture\n"
                                             "in vec2 facet_texcoord1;\n";
     sample = "    facet_sample_textures(facet_texcoord0, facet_texcoord1);\n";
+  }
+  if (p.normal_mapped()) {
+    main_in += dialect == Target::Glsl450 ? "layout(location = 5) in vec4 facet_texture_tangent;\n"
+                                          : "in vec4 facet_texture_tangent;  // xyz: ∂p/∂u, w: ±1 (glTF's TANGENT)\n";
+    sample += "    facet_uv_tangent = facet_texture_tangent.xyz;\n"
+              "    facet_uv_handedness = facet_texture_tangent.w;\n";
   }
   parts.main = render_template("glsl/main.glsl", {{"inputs", main_in}, {"sample", sample}});
   return parts;

@@ -78,7 +78,7 @@ std::string light_block(const targets::CPrinter& pr, const Light& l, size_t i, S
   const char* kind = l.type == Light::Type::Point ? "point" : l.type == Light::Type::Spot ? "spot" : "directional";
   std::string out = fmt::format("    {{   // light {}: {}\n{}", i, kind, body);
   out += "        if (factor > 0 && dot(Nn, L) > 0 && !(shadows && trace(P, L, \"maxdist\", d)))\n";
-  out += fmt::format("            radiance += factor * {}color * facet_reflect(Nn, L, V, T{});\n    }}\n", id,
+  out += fmt::format("            radiance += factor * {}color * facet_reflect(Ns, L, V, T{});\n    }}\n", id,
                      constant_args);
   return out;
 }
@@ -86,8 +86,23 @@ std::string light_block(const targets::CPrinter& pr, const Light& l, size_t i, S
 // The textured parameters' shader parameters (each image's path), and the statements that
 // sample them at the shading point, before the lights: the locals facet_reflect takes.
 struct OslTextures {
-  std::string params, samples, reflect_params, reflect_args;
+  std::string params, samples, reflect_params, reflect_args, mapping;
 };
+
+// The normal map's statements (catalog/texture.h, NormalMap; glTF 2.0 §3.9.3): Ns, the lobes'
+// normal, from the sampled rgb and the frame facet_uv_tangent, facet_uv_handedness; T follows it.
+std::string osl_normal_mapping(const targets::CPrinter& pr, const NormalMap& m) {
+  return fmt::format(
+      "    // The normal map: n_t = normalize((2·rgb − 1) ⊗ (s, s, 1)){2}; the lobes read\n"
+      "    // Ns = normalize(n_t.x·Tu + n_t.y·Bu + n_t.z·Nn), Tu = ∂p/∂u made ⟂ Nn, Bu = w·(Nn × Tu).\n"
+      "    color nm_c = 2 * normal_map - 1;\n"
+      "    vector nm_t = normalize(vector({0} * nm_c[0], {1}{0} * nm_c[1], nm_c[2]));\n"
+      "    vector Tu = normalize(facet_uv_tangent - Nn * dot(Nn, facet_uv_tangent));\n"
+      "    vector Bu = facet_uv_handedness * cross(Nn, Tu);\n"
+      "    vector Ns = normalize(nm_t[0] * Tu + nm_t[1] * Bu + nm_t[2] * Nn);\n"
+      "    T = normalize(T - Ns * dot(Ns, T));  // the anisotropic tangent follows the mapped normal\n",
+      pr.literal(m.strength), m.green_down ? "-" : "", m.green_down ? ", y negated (green down)" : "");
+}
 
 OslTextures osl_textures(const targets::CPrinter& pr, const MaterialProgram& p, ShaderParams& params) {
   OslTextures out;
@@ -95,7 +110,7 @@ OslTextures osl_textures(const targets::CPrinter& pr, const MaterialProgram& p, 
   out.samples = "    // Textured parameters. facet_uv0/1 are Blender's UV (v up); glTF's t = 1 − v.\n"
                 "    float s0 = facet_uv0[0], t0 = 1 - facet_uv0[1];\n"
                 "    float s1 = facet_uv1[0], t1 = 1 - facet_uv1[1];\n";
-  for (const auto& c : texture_calls(p)) {
+  for (const auto& c : image_calls(p)) {
     std::string file = "facet_texture_" + c.name;
     // An absolute path: Cycles opens it from wherever Blender runs.
     params.add("string", file, "\"" + std::filesystem::absolute(c.texels->path).lexically_normal().string() + "\"",
@@ -120,12 +135,18 @@ OslTextures osl_textures(const targets::CPrinter& pr, const MaterialProgram& p, 
     std::string hi = c.color ? "color(" + pr.literal(c.hi) + ")" : pr.literal(c.hi);
     value = std::isfinite(c.hi) ? fmt::format("clamp({}, {}, {})", value, lo, hi) : fmt::format("max({}, {})", value, lo);
     out.samples += fmt::format("    {} {} = {};\n", type, c.name, value);
+    if (c.name == "normal_map") continue;  // read by the mapping below, not by the lobes
     if (!p.uses(c.name)) continue;  // m_a or m_e: read by the shader, not by facet_reflect
     out.reflect_params += ", " + type + " " + c.name;
     out.reflect_args += ", " + c.name;
   }
   out.params = "    vector facet_uv0 = 0,  // texture coordinates: link a UV Map node (Blender's UV, v up)\n"
                "    vector facet_uv1 = 0,\n";
+  if (p.material.normal_map) {
+    out.params += "    vector facet_uv_tangent = 0,  // the normal map's ∂p/∂u, world space (docs/textures.md, Tangent frames)\n"
+                  "    float facet_uv_handedness = 1,  // w: B = w·(N × T)\n";
+    out.mapping = osl_normal_mapping(pr, *p.material.normal_map);
+  }
   return out;
 }
 
@@ -212,7 +233,7 @@ std::string generate_osl(const Material& m, const GenerateOptions& o) {
   std::string shader = render_template("osl/shader.osl", {{"scene", scene.name},
                                                           {"shader", "facet_" + identifier(m.name)},
                                                           {"parameters", params.text + textures.params},
-                                                          {"samples", textures.samples},
+                                                          {"samples", textures.samples + (textures.mapping.empty() ? "    vector Ns = Nn;\n" : textures.mapping)},
                                                           {"lights", lights}});
   return header + "\n" + library + shader;
 }

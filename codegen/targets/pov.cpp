@@ -277,7 +277,7 @@ void PovScene::register_mesh_files() {
 // sampling function; a colour from an image makes the material's pigments per channel.
 void PovScene::register_textures() {
   for (auto& sh : shadings_)
-    for (const auto& c : texture_calls(sh->program)) {
+    for (const auto& c : image_calls(sh->program)) {
       PovTexture t;
       t.call = c;
       t.image = int(textures_.size());
@@ -287,11 +287,23 @@ void PovScene::register_textures() {
       files_.push_back({t.file, [texels](std::ostream& out) { write_pov_texture_image(out, *texels, false); }});
       if (!t.alpha.empty())
         files_.push_back({t.alpha, [texels](std::ostream& out) { write_pov_texture_image(out, *texels, true); }});
+      textures_.push_back(t);
+      if (c.name == "normal_map") {  // its three channels as numbers, which the object functions combine
+        for (int k = 0; k < 3; ++k) {
+          PovTexture lane = t;
+          lane.call.channel = k;
+          lane.call.color = false;
+          lane.call.name = std::string("normal_map_") + "rgb"[k];
+          sh->normal_map[size_t(k)] = pov_sample_function(lane);
+          sh->printer.add_own(sh->normal_map[size_t(k)]);
+        }
+        sh->normal_map_uv = c.uv;
+        continue;
+      }
       ir::FunctionPtr f = pov_sample_function(t);
       sh->printer.add_own(f);
       sh->samples[c.name] = {f, c.uv};
       if (c.color && (c.channel < 0 || !pov_grey(c.factor))) sh->dependent = true;
-      textures_.push_back(t);
     }
 }
 
@@ -328,6 +340,9 @@ std::string PovScene::library() {
   const PovShading& sh = *shadings_.front();
   const Material& m = *sh.material;
   const std::string name = capital(identifier(m.name));
+  if (m.normal_map)  // its pigment macro takes the user's normal and no tangent frame
+    throw InputError({{m.source.empty() ? m.name : m.source, "normal_map",
+                       "POV-Ray's --library does not apply normal maps yet (a scene does: docs/textures.md)"}});
   if (plan_.native) {
     RGB e = sh.emission(s_);
     std::string emission;

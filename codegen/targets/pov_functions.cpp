@@ -98,14 +98,57 @@ ir::FunctionPtr frame_function(const ir::FunctionPtr& reflectance, const std::st
   return fb.returns(ir::call(reflectance, inputs));
 }
 
+// Where `sh` has a normal map, the lobes' normal (catalog/texture.h, NormalMap; glTF 2.0
+// §3.9.3) from the object's unit normal n and unit tangent t ⟂ n (w = +1: the shapes'):
+// n_t = normalize((2·rgb − 1) ⊗ (s, ±s, 1)), normalize(n_t.x·t + n_t.y·(n × t) + n_t.z·n).
+// Else n itself.
+Triple mapped_normal(ir::FunctionBuilder& fb, const PovShading& sh, const std::vector<Expr>& uv, const Triple& n,
+                     const Triple& t) {
+  if (!sh.normal_map[0]) return n;
+  const NormalMap& m = *sh.material->normal_map;
+  const size_t set = size_t(sh.normal_map_uv);
+  auto lane = [&](size_t k) { return ir::call(sh.normal_map[k], {uv[2 * set], uv[2 * set + 1]}); };
+  const double s = m.strength;
+  Triple c = lets(fb, "Cx", "Cy", "Cz",
+                  {s * (2.0 * lane(0) - 1.0), (m.green_down ? -s : s) * (2.0 * lane(1) - 1.0), 2.0 * lane(2) - 1.0});
+  Expr len = fb.let("Cl", length3(c));
+  const Triple N = lets(fb, "Gx", "Gy", "Gz", n), T = lets(fb, "Ux", "Uy", "Uz", t);
+  const Triple B = cross3(N, T);
+  auto times = [](const Triple& v, const Expr& k) { return Triple{v.x * k, v.y * k, v.z * k}; };
+  const Triple mapped = lets(fb, "Mx", "My", "Mz", times(T, c.x / len) + times(B, c.y / len) + times(N, c.z / len));
+  Expr ml = fb.let("Ml", length3(mapped));
+  return mapped / ml;
+}
+
+// Whether the lights' functions of `sh` take the tangent: a normal map under a lobe that reads
+// it, whose tangent follows the mapped normal (mapped_tangent) instead of the tangent rule on it.
+bool takes_tangent(const PovShading& sh, const ir::Function& reflectance) {
+  return sh.normal_map[0] && reads_tangent(reflectance);
+}
+
+// The tangent rule on the object's normal n (t = normalize(axis × n), or x̂ × n where
+// |axis × n| < ε), then Gram–Schmidt against the mapped normal m: normalize(t − m(m·t)).
+Triple mapped_tangent(ir::FunctionBuilder& fb, const PovShading& sh, const Triple& n, const Triple& m) {
+  const Triple c = lets(fb, "Ax", "Ay", "Az", cross3(constant(normalize(Vec3(sh.material->tangent_axis))), n));
+  Expr len = fb.let("Al", length3(c));
+  Expr fallback = fb.let("Fl", ir::sqrt(n.z * n.z + n.y * n.y));
+  const Triple t = lets(fb, "Rx", "Ry", "Rz",
+                        {ir::select(len < 1e-4, Expr(0.0), c.x / len), ir::select(len < 1e-4, -n.z / fallback, c.y / len),
+                         ir::select(len < 1e-4, n.y / fallback, c.z / len)});
+  Expr along = fb.let("Ad", dot3(t, m));
+  const Triple g = lets(fb, "Wx", "Wy", "Wz", {t.x - m.x * along, t.y - m.y * along, t.z - m.z * along});
+  Expr gl = fb.let("Wl", length3(g));
+  return g / gl;
+}
+
 }  // namespace
 
 // {P}Facet_Reflect{suffix}(n, l, v) → `reflectance`, with the tangent rule where it
 // reads t: t = normalize(axis × n), or x̂ × n = (0, −nz, ny) where |axis × n| < ε.
 ir::FunctionPtr PovScene::reflect_function(PovShading& sh, const ir::FunctionPtr& reflectance,
                                            const std::string& suffix) {
-  if (!reads_tangent(*reflectance)) {
-    ir::FunctionPtr f = frame_function(reflectance, "Facet_Reflect" + suffix, false, sh);
+  if (!reads_tangent(*reflectance) || takes_tangent(sh, *reflectance)) {  // the tangent, if any, as a parameter
+    ir::FunctionPtr f = frame_function(reflectance, "Facet_Reflect" + suffix, takes_tangent(sh, *reflectance), sh);
     sh.printer.add_own(f);
     return f;
   }
@@ -143,11 +186,14 @@ ir::FunctionPtr PovScene::light_function(PovShading& sh, size_t i, const ir::Fun
   const Light& l = s_.lights[i];
   ir::FunctionBuilder fb(fmt::format("Facet_Light{}{}", i, suffix), "");
   Triple P = params(fb, "x", "y", "z"), N = params(fb, "Nx", "Ny", "Nz");
+  const bool tangent = takes_tangent(sh, *sh.program.reflectance);
+  const Triple T = tangent ? params(fb, "Tx", "Ty", "Tz") : Triple{0.0, 0.0, 0.0};
   const std::vector<Expr> uv = uv_params(fb, sh);
+  auto frame = [&](const Triple& L, const Triple& V) { return with(tangent ? args({N, L, V, T}) : args({N, L, V}), uv); };
   if (l.type == Light::Type::Directional) {
     Triple V = lets(fb, "Vx", "Vy", "Vz", s_.camera.position - P);
     Expr dv = fb.let("Dv", length3(s_.camera.position - P));
-    ir::FunctionPtr f = fb.returns(ir::call(reflect, with(args({N, constant(-l.direction), V / dv}), uv)));
+    ir::FunctionPtr f = fb.returns(ir::call(reflect, frame(constant(-l.direction), V / dv)));
     sh.printer.add_own(f);
     return f;
   }
@@ -163,7 +209,7 @@ ir::FunctionPtr PovScene::light_function(PovShading& sh, size_t i, const ir::Fun
   if (l.type == Light::Type::Spot)
     times(ir::call(terms::spot_cone(),
                    {-dot3(L / d, constant(l.direction)), std::cos(l.cutoff * kPi / 180), l.exponent}));
-  Expr reflected = ir::call(reflect, with(args({N, L / d, V / dv}), uv));
+  Expr reflected = ir::call(reflect, frame(L / d, V / dv));
   ir::FunctionPtr f = fb.returns(factor ? *factor * reflected : reflected);
   sh.printer.add_own(f);
   return f;
@@ -207,7 +253,10 @@ ir::FunctionPtr PovScene::object_function(size_t o, const std::string& name, con
     obj.plane_axes(a, b);
     const Triple q = P - obj.point;
     coordinates(0.5 + dot3(q, constant(a)) / (2 * obj.size), 0.5 - dot3(q, constant(b)) / (2 * obj.size));
-    return fb.returns(ir::call(light, with(args({P, constant(obj.normal)}), uv)));
+    const Triple n = mapped_normal(fb, shading(o), uv, constant(obj.normal), constant(a));
+    if (takes_tangent(shading(o), *shading(o).program.reflectance))
+      return fb.returns(ir::call(light, with(args({P, n, mapped_tangent(fb, shading(o), constant(obj.normal), n)}), uv)));
+    return fb.returns(ir::call(light, with(args({P, n}), uv)));
   }
   if (obj.type == Object::Type::Mesh) {
     // (x, y) is uv_mapping's: where in the data image the hit point's block
@@ -229,7 +278,12 @@ ir::FunctionPtr PovScene::object_function(size_t o, const std::string& name, con
   Expr r = fb.let("R", length3(radial));
   const Triple d = radial / r;
   coordinates(0.5 + ir::atan2(d.x, d.z) / (2 * kPi), ir::acos(ir::clamp(d.y, -1.0, 1.0)) / kPi);
-  return fb.returns(ir::call(light, with(args({P, d}), uv)));
+  // docs/textures.md, "Tangent frames": the sphere's ∂p/∂u ∝ (d_z, 0, −d_x).
+  const Triple t = shading(o).normal_map[0] ? Triple{d.z, 0.0, -d.x} / ir::sqrt(d.z * d.z + d.x * d.x) : Triple{0.0, 0.0, 0.0};
+  const Triple n = mapped_normal(fb, shading(o), uv, d, t);
+  if (takes_tangent(shading(o), *shading(o).program.reflectance))
+    return fb.returns(ir::call(light, with(args({P, n, mapped_tangent(fb, shading(o), d, n)}), uv)));
+  return fb.returns(ir::call(light, with(args({P, n}), uv)));
 }
 
 namespace {
@@ -322,6 +376,8 @@ std::string PovScene::functions(bool objects) {
     if (objects && sh->emission_function) roots.push_back(sh->emission_function);
     for (const auto& f : ir::dependencies(roots))
       if (is_scaffold(*f) && !is_declared(*f)) frames += sh->printer.function(f);
+    if (objects && sh->normal_map[0])  // the object functions read the normal map
+      for (const auto& f : sh->normal_map) frames += sh->printer.function(f);
   }
   return render_template("pov/functions.pov", {{"constants", constants}, {"terms", terms},
                                                {"frames", texture_declarations() + frames}});

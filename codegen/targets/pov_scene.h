@@ -2,6 +2,7 @@
 // frame, the plan, the native route) and pov_functions.cpp (function pigments).
 #pragma once
 
+#include <array>
 #include <functional>
 #include <map>
 #include <memory>
@@ -46,7 +47,10 @@ struct PovShading {
   // {P}Facet_Emission(x, y, z, n, S0, T0, S1, T1) = m_a ⊗ A + m_e where m_a or m_e comes from an
   // image (null otherwise: the emission is a colour, emission_texture()).
   ir::FunctionPtr emission_function;
-  bool textured() const { return !samples.empty(); }
+  // A normal map's raw r, g, b at (S, T) of its set (Facet_Sample_normal_map_r, _g, _b), or null.
+  std::array<ir::FunctionPtr, 3> normal_map{};
+  int normal_map_uv = 0;
+  bool textured() const { return !samples.empty() || normal_map[0]; }
   int channels() const { return dependent ? 3 : 1; }
   std::string suffix(int ch) const;
   RGB emission(const Scene& s) const;  // m_a ⊗ A + m_e

@@ -90,6 +90,9 @@ void require_untextured(const Material& m, const std::string& target) {
   for (const auto& t : p.textured)
     d.push_back({m.source.empty() ? m.name : m.source, t.key,
                  "an image texture, which the " + target + " target does not sample yet (GLSL does; docs/textures.md)"});
+  if (m.normal_map)
+    d.push_back({m.source.empty() ? m.name : m.source, "normal_map",
+                 "a normal map, which the " + target + " target does not sample yet (GLSL does; docs/textures.md)"});
   throw InputError(d);
 }
 

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -28,6 +29,12 @@ struct TextureCall {
   std::string file;               // the image, as the material names it
 };
 
+// The textured parameters' calls (MaterialProgram::textured's order).
 std::vector<TextureCall> texture_calls(const MaterialProgram& p);
+// The normal map's call, named "normal_map": its raw rgb (linear, factor 1, range [0, 1]),
+// which the target turns into n_t itself (catalog/texture.h, NormalMap). Empty without one.
+std::optional<TextureCall> normal_map_call(const MaterialProgram& p);
+// Every image the material samples: texture_calls(p), then the normal map's.
+std::vector<TextureCall> image_calls(const MaterialProgram& p);
 
 }  // namespace facet

@@ -17,7 +17,7 @@ float facet_visibility(vec3 p, vec3 l, float d);
 vec3 facet_shade(vec3 p, vec3 n, vec3 v, vec3 t)
 {
     vec3 radiance = material_ambient * facet_ambient.rgb + material_emission;
-    for (int i = 0; i < FACET_MAX_LIGHTS; ++i) {
+{{mapping}}    for (int i = 0; i < FACET_MAX_LIGHTS; ++i) {
         if (i >= facet_light_count) break;
         FacetLight light = facet_lights[i];
         vec3 l;
@@ -36,9 +36,10 @@ vec3 facet_shade(vec3 p, vec3 n, vec3 v, vec3 t)
             }
             if (light.position.w == {{spot}}.0) factor *= spot_cone(-dot(l, light.spot.xyz), light.spot.w, light.color.a);
         }
-        // Below the horizon reflectance() is 0: skip the visibility query there.
+        // Below the horizon reflectance() is 0: skip the visibility query there. The surface's
+        // own normal n says which lights are above it; the lobes read ns.
         if (factor > 0.0 && dot(n, l) > 0.0)
-            radiance += factor * facet_visibility(p, l, d) * light.color.rgb * facet_reflect(n, l, v, t);
+            radiance += factor * facet_visibility(p, l, d) * light.color.rgb * facet_reflect(ns, l, v, t);
     }
     return radiance;
 }

@@ -237,5 +237,103 @@ TEST(Texture, AmbientAndEmissionMapsAreSampledForTheShading) {
   EXPECT_EQ(back.ambient, m.ambient);
 }
 
+TEST(NormalMap, BadNormalMapsNameTheFileAndKey) {
+  const std::string dir = test::scratch("texture", "").string();
+  auto with = [&](const std::string& value) {
+    return fmt::format(R"({{"diffuse": {{"model": "lambert"}}, "normal_map": {}}})", value);
+  };
+  expect_error(with(R"({"texture": "missing.png"})"), "normal_map.texture", "missing.png");
+  expect_error(with(R"({"uv": 0})"), "normal_map.texture", "missing");
+  expect_error(with(R"("normals.png")"), "normal_map", "normal map object");
+  expect_error(with(R"({"texture": "a.png", "green": "left"})"), "normal_map.green", "DirectX");
+  expect_error(with(R"({"texture": "a.png", "strength": "strong"})"), "normal_map.strength", "finite number");
+  expect_error(with(R"({"texture": "a.png", "colorspace": "srgb"})"), "normal_map.colorspace", "always rgb and linear");
+  expect_error(with(R"({"texture": "a.png", "factor": 2})"), "normal_map.factor", "unknown key");
+  expect_error(with(R"({"texture": "a.png", "strenght": 2})"), "normal_map.strenght", "\"strength\"");
+  expect_error(with(R"({"texture": "a.png", "wrap": "border"})"), "normal_map.wrap", "mirror");
+  expect_error(with(R"({"texture": "a.png", "uv": 3})"), "normal_map.uv", "0 or 1");
+}
+
+TEST(NormalMap, ExampleParsesAndWritesBackTheSame) {
+  const Material m = load_material((kSource / "examples/textured/textured_normal_cook_torrance.json").string());
+  ASSERT_TRUE(m.normal_map);
+  EXPECT_DOUBLE_EQ(m.normal_map->strength, 0.8);
+  EXPECT_FALSE(m.normal_map->green_down);
+  EXPECT_EQ(m.normal_map->texture().colorspace, "linear");
+  EXPECT_FALSE(m.normal_map->texture().sampler.srgb);
+  const nlohmann::json j = to_json(m);
+  EXPECT_EQ(j["normal_map"]["green"], "up");
+  EXPECT_EQ(j["normal_map"].count("factor"), 0u);
+  const Material back = parse_material(j, m.source);
+  ASSERT_TRUE(back.normal_map);
+  EXPECT_EQ(to_json(back), j);
+  EXPECT_TRUE(compile(m).has_textures());
+}
+
+// glTF 2.0 §3.9.3 by hand: rgb → n_t with the strength on x and y, green down negating y,
+// and the frame's bitangent B = w·(N × T).
+TEST(NormalMap, TangentSpaceNormalFollowsGltf) {
+  NormalMap m;
+  m.strength = 0.5;
+  const std::array<double, 3> rgb = {0.75, 0.25, 1.0};  // (0.5, −0.5, 1) before the strength
+  auto n = normal_map_tangent_normal(m, rgb);
+  const double len = std::sqrt(0.25 * 0.25 * 2 + 1);
+  EXPECT_NEAR(n[0], 0.25 / len, 1e-15);
+  EXPECT_NEAR(n[1], -0.25 / len, 1e-15);
+  EXPECT_NEAR(n[2], 1 / len, 1e-15);
+  m.green_down = true;
+  EXPECT_NEAR(normal_map_tangent_normal(m, rgb)[1], 0.25 / len, 1e-15);
+  // N = +z, T = +x: B = N × T = +y for w = +1, −y for w = −1.
+  const Vec3 N(0, 0, 1), T(1, 0, 0);
+  Vec3 up = perturb_normal(N, T, 1, {0, 1, 0}), down = perturb_normal(N, T, -1, {0, 1, 0});
+  EXPECT_NEAR(up.y, 1, 1e-15);
+  EXPECT_NEAR(down.y, -1, 1e-15);
+  // A tangent not ⟂ N is Gram–Schmidt'd first: the flat map gives N back exactly.
+  Vec3 flat = perturb_normal(N, normalize(Vec3(1, 0, 1)), 1, {0, 0, 1});
+  EXPECT_NEAR(flat.z, 1, 1e-15);
+  // The anisotropic tangent follows the mapped normal: ⟂ n′.
+  Vec3 mapped = normalize(Vec3(0.3, 0.1, 1));
+  EXPECT_NEAR(dot(follow_normal(Vec3(1, 0, 0), mapped), mapped), 0, 1e-15);
+}
+
+// docs/textures.md, "Tangent frames": T is the unit ∂p/∂u of the shapes' mappings (a finite
+// difference of uv_at), and B = w·(N × T) points towards decreasing v.
+TEST(NormalMap, ShapesTangentsAreTheirMappingsDerivatives) {
+  const Scene s = load_scene("shadows");
+  int checked = 0;
+  for (const auto& o : s.objects) {
+    if (o.type == Object::Type::Mesh) continue;
+    for (const Vec3 dir : {Vec3(0.3, 0.4, 0.8), Vec3(-0.5, 0.2, 0.3), Vec3(0.1, -0.7, -0.2)}) {
+      Vec3 p, a, b;
+      if (o.type == Object::Type::Sphere) {
+        p = o.center + normalize(dir) * o.radius;
+      } else {
+        o.plane_axes(a, b);
+        p = o.point + a * (dir.x * o.size) + b * (dir.y * o.size);
+      }
+      Hit h;
+      Vec3 t;
+      double w = 0;
+      ASSERT_TRUE(o.tangent_at(p, h, t, w));
+      EXPECT_EQ(w, 1);
+      const Vec3 n = o.normal_at(p, h);
+      EXPECT_NEAR(dot(t, n), 0, 1e-12);
+      // Moving along t raises u and leaves v; moving along B lowers v and leaves u.
+      const double e = 1e-6;
+      auto uv = [&](const Vec3& q) {
+        const Vec3 on = o.type == Object::Type::Sphere ? o.center + normalize(q - o.center) * o.radius : q;
+        return o.uv_at(on, h)[0];
+      };
+      const auto at = uv(p), along_t = uv(p + t * e), along_b = uv(p + cross(n, t) * (w * e));
+      EXPECT_GT(along_t[0] - at[0], 0);
+      EXPECT_NEAR(along_t[1] - at[1], 0, 1e-9);
+      EXPECT_LT(along_b[1] - at[1], 0);
+      EXPECT_NEAR(along_b[0] - at[0], 0, 1e-9);
+      ++checked;
+    }
+  }
+  EXPECT_EQ(checked, 9);  // two spheres and the square
+}
+
 }  // namespace
 }  // namespace facet

@@ -504,7 +504,7 @@ def enable_oslquery(bpy):
 # Blender's (x, −z, y).
 FACET_UV_OSL = """\
 shader facet_uv(float kind = 0, vector mesh_uv = 0, vector mesh_uv1 = 0, output vector uv = 0,
-                output vector uv1 = 0)
+                output vector uv1 = 0, output vector tangent = 0)
 {
     point q = transform("object", P);
     if (kind == %d) {
@@ -512,9 +512,12 @@ shader facet_uv(float kind = 0, vector mesh_uv = 0, vector mesh_uv1 = 0, output 
         float x = d[0], y = d[2], z = -d[1];
         uv = vector(0.5 + atan2(x, z) / M_2PI, 1 - acos(clamp(y, -1, 1)) / M_PI, 0);
         uv1 = uv;
+        // docs/textures.md, "Tangent frames": facet's (d_z, 0, -d_x), in Blender's axes.
+        tangent = normalize(transform("object", "common", vector(z, x, 0)));
     } else if (kind == %d) {
         uv = vector(0.5 + q[0] / 2, 0.5 + q[1] / 2, 0);
         uv1 = uv;
+        tangent = normalize(transform("object", "common", vector(1, 0, 0)));  // the square's first axis
     } else {
         uv = mesh_uv;
         uv1 = mesh_uv1;
@@ -543,6 +546,8 @@ def link_texture_coordinates(bpy, nt, script):
         uvmap.uv_map = f"facet_uv{k}"  # add_mesh's layers
         nt.links.new(uvmap.outputs["UV"], node.inputs[into])
         nt.links.new(node.outputs[out], script.inputs[f"facet_uv{k}"])
+    if "facet_uv_tangent" in script.inputs:  # a normal-mapped material: the shapes' tangents
+        nt.links.new(node.outputs["tangent"], script.inputs["facet_uv_tangent"])
     return ""
 
 

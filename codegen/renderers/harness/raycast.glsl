@@ -161,6 +161,19 @@ vec2 facet_uv(int i, vec3 p, FacetHit h, int set)
     return set == 0 ? st.xy : st.zw;
 }
 
+// docs/textures.md, "Tangent frames": the unit ∂p/∂u at p, for a normal map (with w = +1).
+// A sphere's: normalize(d_z, 0, −d_x); a square's: its first axis. Meshes have none yet.
+vec3 facet_uv_tangent_at(int i, vec3 p)
+{
+    float kind = facet_object_normal[i].w;
+    if (kind == {{sphere}}.0) {
+        vec3 d = p - facet_object_shape[i].xyz;
+        return normalize(vec3(d.z, 0.0, -d.x));
+    }
+    if (kind == {{square}}.0) return facet_object_axis[i].xyz;
+    return vec3(0.0);
+}
+
 void main()
 {
     vec2 ndc = 2.0 * gl_FragCoord.xy / facet_resolution - 1.0;
