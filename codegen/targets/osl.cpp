@@ -43,9 +43,10 @@ struct ShaderParams {
   }
 };
 
-// Light i's block of the shader, its parameters added to `params`.
+// Light i's block of the shader, its parameters added to `params`; the lobes read `normal`
+// (Nn, or Ns under a normal map) while Nn decides which lights are above the surface.
 std::string light_block(const targets::CPrinter& pr, const Light& l, size_t i, ShaderParams& params,
-                        const std::string& constant_args) {
+                        const std::string& constant_args, const char* normal) {
   std::string id = fmt::format("light{}_", i);
   params.add("color", id + "color", pr.color_literal(l.color));
   std::string body;
@@ -78,7 +79,7 @@ std::string light_block(const targets::CPrinter& pr, const Light& l, size_t i, S
   const char* kind = l.type == Light::Type::Point ? "point" : l.type == Light::Type::Spot ? "spot" : "directional";
   std::string out = fmt::format("    {{   // light {}: {}\n{}", i, kind, body);
   out += "        if (factor > 0 && dot(Nn, L) > 0 && !(shadows && trace(P, L, \"maxdist\", d)))\n";
-  out += fmt::format("            radiance += factor * {}color * facet_reflect(Ns, L, V, T{});\n    }}\n", id,
+  out += fmt::format("            radiance += factor * {}color * facet_reflect({}, L, V, T{});\n    }}\n", id, normal,
                      constant_args);
   return out;
 }
@@ -229,11 +230,12 @@ std::string generate_osl(const Material& m, const GenerateOptions& o) {
 
   std::string lights;
   for (size_t i = 0; i < scene.lights.size(); ++i)
-    lights += light_block(pr, scene.lights[i], i, params, constant_args + textures.reflect_args);
+    lights += light_block(pr, scene.lights[i], i, params, constant_args + textures.reflect_args,
+                          textures.mapping.empty() ? "Nn" : "Ns");
   std::string shader = render_template("osl/shader.osl", {{"scene", scene.name},
                                                           {"shader", "facet_" + identifier(m.name)},
                                                           {"parameters", params.text + textures.params},
-                                                          {"samples", textures.samples + (textures.mapping.empty() ? "    vector Ns = Nn;\n" : textures.mapping)},
+                                                          {"samples", textures.samples + textures.mapping},
                                                           {"lights", lights}});
   return header + "\n" + library + shader;
 }

@@ -89,7 +89,7 @@ class FACET_OT_export_material(_MaterialOperator, ExportHelper, bpy.types.Operat
     def run(self, context):
         mat = context_material(context)
         exe = preferences.facet_exe(context)
-        data, files, _, notes = textured_files(exe, mat)
+        data, files, _, notes = textured_files(exe, mat, meshes=False)
         generate.export_material(exe, data, mat.name, self.filepath, files)
         for note in notes:
             self.report_("WARNING", note)
@@ -152,7 +152,7 @@ class FACET_OT_export_glsl(_MaterialOperator, ExportHelper, bpy.types.Operator):
     def run(self, context):
         mat = context_material(context)
         exe = preferences.facet_exe(context)
-        data, files, _, notes = textured_files(exe, mat)
+        data, files, _, notes = textured_files(exe, mat, meshes=False)
         generate.code_to(exe, data, mat.name, self.filepath, self.dialect, self.library, files)
         for note in notes:
             self.report_("WARNING", note)
@@ -199,14 +199,15 @@ def texture_folder(material):
     return folder, [f"material '{material.name}': the .blend is not saved; its texture files are in {folder}"]
 
 
-def textured_files(exe, mat):
+def textured_files(exe, mat, meshes=True):
     """(material JSON naming its texture images relatively, {file name: bytes} of those
-    images, UV map names of sets 0 and 1, notes) of one material."""
+    images, UV map names of sets 0 and 1, notes) of one material; `meshes` False for a
+    material file alone, which keeps a normal map wherever facet's material files take one."""
     data = material_mod.to_json(mat)
     bindings = material_mod.texture_bindings(mat)
     if not bindings:
         return data, {}, [], []
-    keys = generate.texturable_material_keys(exe)
+    keys = generate.texturable_material_keys(exe, meshes)
     names, files, notes = images.texture_files({mat.name: textures.exported(bindings, keys)})
     data, more = textures.apply(data, bindings, names[mat.name], keys)
     return data, files, textures.uv_maps(bindings, mat.name), notes + more
