@@ -31,6 +31,7 @@ using gltf_detail::local_matrix;
 using gltf_detail::Mat4;
 using gltf_detail::PrimitivePlan;
 using gltf_detail::Reader;
+using gltf_detail::extension_of;
 
 namespace {
 
@@ -40,13 +41,6 @@ const char* kLightExt = "FACET_light";
 const char* kSceneExt = "FACET_scene";
 const char* kLightsExt = "KHR_lights_punctual";
 const std::set<std::string> kSupportedRequired = {kLightsExt, kMaterialExt, kObjectExt, kLightExt, kSceneExt};
-
-json extension(const std::string& extensions_json, const char* name) {
-  if (extensions_json.empty()) return nullptr;
-  json all = json::parse(extensions_json, nullptr, false);
-  if (!all.is_object() || !all.contains(name)) return nullptr;
-  return all[name];
-}
 
 std::array<double, 3> rgb3(const std::vector<double>& v, double fallback) {
   return {v.size() > 0 ? v[0] : fallback, v.size() > 1 ? v[1] : fallback, v.size() > 2 ? v[2] : fallback};
@@ -210,7 +204,7 @@ class Importer {
 
   // FACET_scene: the ambient colour.
   void read_scene_extension(const tinygltf::Scene& gscene, int scene_index) {
-    json scene_ext = extension(gscene.extensions_json_string, kSceneExt);
+    json scene_ext = extension_of(gscene.extensions_json_string, kSceneExt);
     scene_ext_path_ = fmt::format("scenes[{}].extensions.{}", scene_index, kSceneExt);
     if (scene_ext.is_object() && scene_ext.contains("ambient")) checked_["ambient"] = scene_ext["ambient"];
   }
@@ -248,13 +242,13 @@ class Importer {
   // The node's KHR_lights_punctual light: facet's own (FACET_light) where the node
   // carries it, exactly, else the punctual light's nearest facet light.
   void read_light(const tinygltf::Node& node, const std::string& npath, const Mat4& world) {
-    json light_ref = extension(node.extensions_json_string, kLightsExt);
+    json light_ref = extension_of(node.extensions_json_string, kLightsExt);
     if (!light_ref.is_object() || !light_ref.contains("light")) return;
     std::string ref_path = npath + ".extensions.KHR_lights_punctual.light";
     if (!light_ref["light"].is_number_integer()) reader_.fail(ref_path, "expected the index of a light");
     int64_t li = light_ref["light"].get<int64_t>();
     if (li < 0 || size_t(li) >= model_.lights.size()) reader_.fail(ref_path, "names no light");
-    json exact = extension(node.extensions_json_string, kLightExt);
+    json exact = extension_of(node.extensions_json_string, kLightExt);
     json lj;
     if (exact.is_object()) {
       lj = exact;
@@ -302,7 +296,7 @@ class Importer {
   void read_mesh(const tinygltf::Node& node, const std::string& npath, const Mat4& world) {
     if (size_t(node.mesh) >= model_.meshes.size()) reader_.fail(npath + ".mesh", "names no mesh");
     const auto& mesh = model_.meshes[size_t(node.mesh)];
-    json analytic = extension(node.extensions_json_string, kObjectExt);
+    json analytic = extension_of(node.extensions_json_string, kObjectExt);
     for (size_t pi = 0; pi < mesh.primitives.size(); ++pi) {
       const auto& prim = mesh.primitives[pi];
       std::string ppath = fmt::format("meshes[{}].primitives[{}]", node.mesh, pi);
@@ -375,7 +369,7 @@ class Importer {
 
   // facet's own material (FACET_material) exactly, else the metallic–roughness one.
   Material read_material(const tinygltf::Material& g, const std::string& mpath) {
-    json ext = extension(g.extensions_json_string, kMaterialExt);
+    json ext = extension_of(g.extensions_json_string, kMaterialExt);
     std::vector<std::pair<int, std::string>>& sets = texture_sets_[mpath];
     json m = ext.is_object() && ext.contains("material")
                  ? own_material(ext, mpath, sets)

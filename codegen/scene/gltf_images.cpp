@@ -15,14 +15,15 @@ namespace facet::gltf_detail {
 using nlohmann::json;
 namespace fs = std::filesystem;
 
-namespace {
-
+// gltf_images.h
 json extension_of(const std::string& extensions_json, const char* name) {
   if (extensions_json.empty()) return nullptr;
   json all = json::parse(extensions_json, nullptr, false);
   if (!all.is_object() || !all.contains(name)) return nullptr;
   return all[name];
 }
+
+namespace {
 
 // A name safe in any file system: letters, digits, '-' and '_', at most 40 of them.
 std::string safe_name(const std::string& s) {

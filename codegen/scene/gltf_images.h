@@ -31,6 +31,9 @@
 
 namespace facet::gltf_detail {
 
+// The JSON of extension `name` in a glTF object's extensions (tinygltf's string), or null.
+nlohmann::json extension_of(const std::string& extensions_json, const char* name);
+
 // One glTF textureInfo, resolved: facet's texture JSON for it (the image's absolute
 // path, filter, wrap, uv, transform; colorspace and factor left to the caller) and the
 // decoded image.

@@ -13,13 +13,6 @@ using nlohmann::json;
 
 namespace {
 
-json extension_of(const std::string& extensions_json, const char* name) {
-  if (extensions_json.empty()) return nullptr;
-  json all = json::parse(extensions_json, nullptr, false);
-  if (!all.is_object() || !all.contains(name)) return nullptr;
-  return all[name];
-}
-
 RGB rgb3(const std::vector<double>& v, double fallback) {
   return {v.size() > 0 ? v[0] : fallback, v.size() > 1 ? v[1] : fallback, v.size() > 2 ? v[2] : fallback};
 }
