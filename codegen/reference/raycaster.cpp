@@ -6,6 +6,7 @@
 
 #include "catalog/texture.h"
 #include "core/parallel.h"
+#include "scene/tangents.h"
 #include "reference/interpreter.h"
 
 namespace facet {
@@ -109,7 +110,11 @@ struct ShadingFrame {
   bool grazing = false;
 };
 
-ShadingFrame shading_frame(const Object& obj, const Reference& ref, const Vec3& p, const Hit& hit, const Vec3& v) {
+// A mesh's corner tangents (scene/tangents.h) where its material has a normal map, else empty.
+using CornerTangents = std::vector<std::array<double, 4>>;
+
+ShadingFrame shading_frame(const Object& obj, const Reference& ref, const CornerTangents& corners, const Vec3& p,
+                           const Hit& hit, const Vec3& v) {
   const Material& m = ref.material();
   ShadingFrame f;
   f.n = f.shading_n = obj.normal_at(p, hit);
@@ -125,7 +130,9 @@ ShadingFrame shading_frame(const Object& obj, const Reference& ref, const Vec3& 
   }
   Vec3 tangent;
   double w = 1;
-  if (m.normal_map && obj.tangent_at(p, hit, tangent, w)) {
+  const bool framed = obj.type == Object::Type::Mesh ? !corners.empty() : obj.tangent_at(p, hit, tangent, w);
+  if (obj.type == Object::Type::Mesh && framed) blend_tangent(*obj.mesh, corners, hit, tangent, w);
+  if (m.normal_map && framed) {
     f.shading_n = ref.mapped_normal(uv, f.n, tangent, w, f.grazing);
     f.t = follow_normal(f.t, f.shading_n);
     // The horizon rule jumps where the mapped normal turns from the eye.
@@ -135,8 +142,8 @@ ShadingFrame shading_frame(const Object& obj, const Reference& ref, const Vec3& 
 }
 
 // One pixel: the nearest object at its centre, shaded by every light that reaches it.
-void shade_pixel(const Scene& s, const std::vector<const Reference*>& shading, double offset, double close, int x,
-                 int y, Render& r) {
+void shade_pixel(const Scene& s, const std::vector<const Reference*>& shading,
+                 const std::vector<CornerTangents>& tangents, double offset, double close, int x, int y, Render& r) {
   const int width = r.image.width, height = r.image.height;
   Vec3 dir = s.camera.ray(x, y, width, height);
   SceneHit h = nearest(s, s.camera.position, dir);
@@ -148,7 +155,7 @@ void shade_pixel(const Scene& s, const std::vector<const Reference*>& shading, d
   const Material& m = ref.material();
   Vec3 p = s.camera.position + dir * h.hit.t;
   Vec3 v = -dir;
-  ShadingFrame f = shading_frame(obj, ref, p, h.hit, v);
+  ShadingFrame f = shading_frame(obj, ref, tangents[size_t(h.object)], p, h.hit, v);
   RGB L = ref.emitted(f.textured, s.ambient);
   bool grazing = f.grazing;
   for (const auto& light : s.lights) {
@@ -187,6 +194,11 @@ Render render(const Material* fallback, const Scene& s, int width, int height, i
     }
     shading[i] = made[m];
   }
+  // The normal-mapped meshes' tangents, once per render.
+  std::vector<CornerTangents> tangents(s.objects.size());
+  for (size_t i = 0; i < s.objects.size(); ++i)
+    if (const auto& nm = shading[i]->material().normal_map; nm && s.objects[i].type == Object::Type::Mesh)
+      tangents[i] = mesh_tangents(*s.objects[i].mesh, nm->texture().uv);
   Render r;
   r.image = Image(width, height);
   r.object.assign(size_t(width) * size_t(height), -1);
@@ -195,7 +207,7 @@ Render render(const Material* fallback, const Scene& s, int width, int height, i
   const double close = std::max(kCloseBlock, kGrazing * scene_scale(s));
   // Rows on every core (or `threads`): each pixel is its own, so any split gives the same image.
   parallel_for(size_t(std::max(height, 0)), unsigned(std::max(threads, 0)), [&](size_t y) {
-    for (int x = 0; x < width; ++x) shade_pixel(s, shading, offset, close, x, int(y), r);
+    for (int x = 0; x < width; ++x) shade_pixel(s, shading, tangents, offset, close, x, int(y), r);
   });
   return r;
 }

@@ -4,6 +4,7 @@
 // for every batch of jobs that share a scene and size.
 #include <cstdlib>
 #include <filesystem>
+#include <set>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -12,6 +13,7 @@
 #include "renderers/backends.h"
 #include "renderers/harness.h"
 #include "renderers/process.h"
+#include "scene/tangents.h"
 #include "targets/targets.h"
 
 namespace facet {
@@ -94,6 +96,20 @@ RenderOutcome batch_outcome(const RenderJob& job, const json& result, const json
   return o;
 }
 
+// The corner tangents (scene/tangents.h) of each mesh whose material, in any of `jobs`, has a
+// normal map: "facet_tangents0"/"facet_tangents1" of its object, [x, y, z, w] per corner in
+// facet's axes, for the harness's corner attributes (docs/textures.md, "Tangent frames").
+void add_corner_tangents(json& scene, const std::vector<const RenderJob*>& jobs) {
+  const Scene& s = jobs.front()->scene;
+  for (size_t i = 0; i < s.objects.size(); ++i) {
+    if (s.objects[i].type != Object::Type::Mesh) continue;
+    std::set<int> sets;
+    for (const RenderJob* j : jobs)
+      if (const auto& nm = s.material_of(i, j->material ? &*j->material : nullptr).normal_map) sets.insert(nm->texture().uv);
+    for (int set : sets) scene["objects"][i][fmt::format("facet_tangents{}", set)] = mesh_tangents(*s.objects[i].mesh, set);
+  }
+}
+
 // One Blender process for jobs that share scene, size and workdir; one outcome per job.
 std::vector<RenderOutcome> render_batch(const std::vector<const RenderJob*>& jobs, const std::string& python) {
   const RenderJob& first = *jobs.front();
@@ -104,6 +120,7 @@ std::vector<RenderOutcome> render_batch(const std::vector<const RenderJob*>& job
   json items = json::array();
   for (const RenderJob* j : jobs) items.push_back(batch_item(*j, dir));
   json job = {{"width", first.width}, {"height", first.height}, {"scene", to_json(first.scene)}, {"items", items}};
+  add_corner_tangents(job["scene"], jobs);
   fs::path job_file = dir / (identifier(first.scene.name) + "_cycles_job.json");
   write_file_atomic(job_file.string(), job.dump(2));
   fs::remove(job_file.string() + ".result.json");

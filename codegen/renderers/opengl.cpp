@@ -21,6 +21,7 @@
 #include "renderers/backends.h"
 #include "renderers/harness.h"
 #include "renderers/opengl.h"
+#include "scene/tangents.h"
 #include "targets/texture_code.h"
 #include "renderers/sweep.h"
 #include "targets/glsl_lights.h"
@@ -268,7 +269,9 @@ std::string GlRenderer::fragment_source(const Material& m) {
   MaterialProgram p = compile(m);
   GlslParts parts = glsl_parts(p, Target::Glsl, m.source);
   std::string sample = p.has_textures() ? "    facet_sample_textures(facet_uv(hit, p, best, 0), facet_uv(hit, p, best, 1));\n" : "";
-  if (p.normal_mapped()) sample += "    facet_uv_tangent = facet_uv_tangent_at(hit, p);\n";
+  if (p.normal_mapped())
+    sample += "    vec4 frame = facet_uv_tangent_at(hit, p, best);\n"
+              "    facet_uv_tangent = frame.xyz;\n    facet_uv_handedness = frame.w;\n";
   return "#version 330 core\n" + parts.header + parts.library + parts.lights +
          render_harness("raycast.glsl", {{"sphere", std::to_string(kSphere)},
                                          {"square", std::to_string(kSquare)},
@@ -281,19 +284,24 @@ namespace {
 // Every mesh's BVH and triangles, concatenated: 2 RGBA32F texels a node, 6 a
 // triangle (in BVH order), as codegen/renderers/harness/raycast.glsl reads them.
 struct MeshBuffers {
-  std::vector<float> nodes, triangles, texcoords;
+  std::vector<float> nodes, triangles, texcoords, tangents;
   std::vector<int> first_node;  // per object (meshes only)
 };
 
-MeshBuffers mesh_buffers(const Scene& s) {
+MeshBuffers mesh_buffers(const Scene& s, const Material* fallback) {
   MeshBuffers b;
   auto push = [](std::vector<float>& v, const Vec3& x, double w) {
     v.insert(v.end(), {float(x.x), float(x.y), float(x.z), float(w)});
   };
-  for (const auto& o : s.objects) {
+  for (size_t i = 0; i < s.objects.size(); ++i) {
+    const Object& o = s.objects[i];
     b.first_node.push_back(int(b.nodes.size() / 8));
     if (o.type != Object::Type::Mesh) continue;
     const Mesh& m = *o.mesh;
+    // A normal-mapped mesh's corner tangents (scene/tangents.h), 3 texels a triangle; 0 elsewhere.
+    const auto& nm = s.material_of(i, fallback).normal_map;
+    const std::vector<std::array<double, 4>> corners = nm ? mesh_tangents(m, nm->texture().uv)
+                                                          : std::vector<std::array<double, 4>>{};
     int node0 = int(b.nodes.size() / 8), tri0 = int(b.triangles.size() / 24);
     for (const auto& n : m.nodes) {
       push(b.nodes, n.lo, n.count > 0 ? double(tri0 + int(n.start)) : double(node0 + n.right));
@@ -301,6 +309,7 @@ MeshBuffers mesh_buffers(const Scene& s) {
     }
     for (uint32_t t : m.order) {
       const auto& k = m.triangles[t];
+      const uint32_t t_index = t;
       for (int c = 0; c < 3; ++c) push(b.triangles, m.positions[k[size_t(c)]], 0);
       for (int c = 0; c < 3; ++c) push(b.triangles, m.normals[k[size_t(c)]], 0);
       for (int c = 0; c < 3; ++c) {
@@ -308,6 +317,8 @@ MeshBuffers mesh_buffers(const Scene& s) {
         for (size_t set = 0; set < 2; ++set)
           if (!m.texcoords[set].empty()) st[set] = m.texcoords[set][k[size_t(c)]];
         b.texcoords.insert(b.texcoords.end(), {float(st[0][0]), float(st[0][1]), float(st[1][0]), float(st[1][1])});
+        const std::array<double, 4> t = corners.empty() ? std::array<double, 4>{} : corners[3 * size_t(t_index) + size_t(c)];
+        b.tangents.insert(b.tangents.end(), {float(t[0]), float(t[1]), float(t[2]), float(t[3])});
       }
     }
   }
@@ -315,6 +326,7 @@ MeshBuffers mesh_buffers(const Scene& s) {
   if (b.nodes.empty()) b.nodes.assign(8, 0);
   if (b.triangles.empty()) b.triangles.assign(24, 0);
   if (b.texcoords.empty()) b.texcoords.assign(12, 0);
+  if (b.tangents.empty()) b.tangents.assign(12, 0);
   return b;
 }
 
@@ -334,10 +346,10 @@ class MeshTextures {
  public:
   explicit MeshTextures(const MeshBuffers& m)
       : textures_{texture_buffer(m.nodes, buffers_[0]), texture_buffer(m.triangles, buffers_[1]),
-                  texture_buffer(m.texcoords, buffers_[2])} {}
+                  texture_buffer(m.texcoords, buffers_[2]), texture_buffer(m.tangents, buffers_[3])} {}
   ~MeshTextures() {
-    glDeleteTextures(3, textures_);
-    glDeleteBuffers(3, buffers_);
+    glDeleteTextures(4, textures_);
+    glDeleteBuffers(4, buffers_);
   }
   MeshTextures(const MeshTextures&) = delete;
   MeshTextures& operator=(const MeshTextures&) = delete;
@@ -352,15 +364,18 @@ class MeshTextures {
     glActiveTexture(GL_TEXTURE2);
     glBindTexture(GL_TEXTURE_BUFFER, textures_[2]);
     glUniform1i(glGetUniformLocation(prog, "facet_texcoords"), 2);
+    glActiveTexture(GL_TEXTURE3);
+    glBindTexture(GL_TEXTURE_BUFFER, textures_[3]);
+    glUniform1i(glGetUniformLocation(prog, "facet_tangents"), 3);
   }
 
  private:
-  GLuint buffers_[3] = {0, 0, 0};
-  GLuint textures_[3];
+  GLuint buffers_[4] = {0, 0, 0, 0};
+  GLuint textures_[4];
 };
 
 // A material's images as RGBA32F textures holding the files' values, read by texelFetch
-// only (glsl/textures.glsl), on units 3, 4, …, bound to facet_texture_<parameter>.
+// only (glsl/textures.glsl), on units 4, 5, …, bound to facet_texture_<parameter>.
 class MaterialImages {
  public:
   explicit MaterialImages(const MaterialProgram& p) {
@@ -386,9 +401,9 @@ class MaterialImages {
   MaterialImages& operator=(const MaterialImages&) = delete;
   void bind(GLuint prog) const {
     for (size_t i = 0; i < textures_.size(); ++i) {
-      glActiveTexture(GLenum(GL_TEXTURE3 + i));
+      glActiveTexture(GLenum(GL_TEXTURE4 + i));
       glBindTexture(GL_TEXTURE_2D, textures_[i]);
-      glUniform1i(glGetUniformLocation(prog, names_[i].c_str()), GLint(3 + i));
+      glUniform1i(glGetUniformLocation(prog, names_[i].c_str()), GLint(4 + i));
     }
   }
 
@@ -522,7 +537,7 @@ RenderOutcome GlRenderer::render_passes(const RenderJob& job, const std::vector<
   RenderOutcome out;
   const Scene& s = job.scene;
   const Material* fallback = job.material ? &*job.material : nullptr;
-  MeshBuffers meshes = mesh_buffers(s);
+  MeshBuffers meshes = mesh_buffers(s, fallback);
   MeshTextures textures(meshes);
   FloatFramebuffer fb(job.width, job.height);
   if (!fb.complete()) {

@@ -391,12 +391,14 @@ void check_texture_sets(const Scene& s, const Material* fallback) {
     if (o.type != Object::Type::Mesh) continue;
     if (o.material.empty() && !fallback) continue;  // reported where the material is needed
     const Material& m = s.material_of(i, fallback);
-    if (m.normal_map)
+    if (m.normal_map && o.mesh->texcoords[size_t(m.normal_map->texture().uv)].empty()) {
+      const size_t set = size_t(m.normal_map->texture().uv);
       problems.push_back({s.source, index_path("objects", i),
-                          fmt::format("mesh \"{}\": material \"{}\" has a normal_map, and normal maps on meshes "
-                                      "(which need the mesh's tangents) are not supported yet; spheres and squares "
-                                      "take them (docs/textures.md)",
-                                      o.name, m.name)});
+                          fmt::format("mesh \"{}\" has no texture coordinates set {} ({}), which material \"{}\"'s "
+                                      "normal map reads at normal_map.uv (its tangents come from them)",
+                                      o.name, set, set == 0 ? "texcoords, glTF's TEXCOORD_0" : "texcoords1, glTF's TEXCOORD_1",
+                                      m.name)});
+    }
     for (const auto& t : compile(m).textured) {
       const size_t set = size_t(t.value.texture->uv);
       if (!o.mesh->texcoords[set].empty()) continue;

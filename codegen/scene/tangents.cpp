@@ -110,4 +110,17 @@ std::vector<std::array<double, 4>> mikktspace_tangents(const Mesh& m, int set) {
   return out;
 }
 
+void blend_tangent(const Mesh&, const std::vector<std::array<double, 4>>& corners, const Hit& h, Vec3& t, double& w) {
+  const size_t c = size_t(h.triangle) * 3;
+  const double b[3] = {1 - h.u - h.v, h.u, h.v};
+  double sw = 0;
+  t = Vec3();
+  for (size_t k = 0; k < 3; ++k) {
+    const auto& x = corners[c + k];
+    t = t + Vec3(x[0], x[1], x[2]) * b[k];
+    sw += b[k] * x[3];
+  }
+  w = sw >= 0 ? 1 : -1;
+}
+
 }  // namespace facet

@@ -27,4 +27,13 @@ namespace facet {
 // direction), w = ±1. The mesh must have that set.
 std::vector<std::array<double, 4>> mikktspace_tangents(const Mesh& m, int set);
 
+// The tangents a normal map on texture coordinate set `set` of `m` uses, per corner: facet's
+// MikkTSpace ones (meshes do not carry their own yet).
+inline std::vector<std::array<double, 4>> mesh_tangents(const Mesh& m, int set) { return mikktspace_tangents(m, set); }
+
+// The tangent frame at a hit of triangle h.triangle from its corners' tangents
+// (`corners`, as mikktspace_tangents gives them): t the barycentric blend of their xyz
+// (made ⟂ n by the normal map's Gram–Schmidt), w = +1 where the blend of their w is ≥ 0, else −1.
+void blend_tangent(const Mesh& m, const std::vector<std::array<double, 4>>& corners, const Hit& h, Vec3& t, double& w);
+
 }  // namespace facet

@@ -145,7 +145,9 @@ OslTextures osl_textures(const targets::CPrinter& pr, const MaterialProgram& p, 
                "    vector facet_uv1 = 0,\n";
   if (p.material.normal_map) {
     out.params += "    vector facet_uv_tangent = 0,  // the normal map's ∂p/∂u, world space (docs/textures.md, Tangent frames)\n"
-                  "    float facet_uv_handedness = 1,  // w: B = w·(N × T)\n";
+                  "    float facet_uv_handedness = 1,  // w: B = w·(N × T)\n" +
+                  fmt::format("    int facet_normal_map_uv = {},  // the coordinate set the normal map reads (its tangents')\n",
+                              p.material.normal_map->texture().uv);
     out.mapping = osl_normal_mapping(pr, *p.material.normal_map);
   }
   return out;

@@ -32,6 +32,7 @@
 #include "core/diagnostics.h"
 #include "core/vec.h"
 #include "scene/gltf_read.h"
+#include "scene/tangents.h"
 #include "targets/pov_scene.h"
 #include "targets/targets.h"
 #include "targets/targets_internal.h"
@@ -265,10 +266,15 @@ void PovScene::register_mesh_files() {
                       }});
     if (!numbered) continue;
     const bool textured = shading(o).textured();
-    data_[o] = pov_mesh_data(*mesh, fmt::format("{}_mesh{}.ppm", stem_, o), textured);
+    // A normal map's corner tangents (scene/tangents.h): three more planes.
+    std::shared_ptr<const std::vector<std::array<double, 4>>> tangents;
+    if (const auto& nm = shading(o).material->normal_map)
+      tangents = std::make_shared<const std::vector<std::array<double, 4>>>(mesh_tangents(*mesh, nm->texture().uv));
+    data_[o] = pov_mesh_data(*mesh, fmt::format("{}_mesh{}.ppm", stem_, o), textured, tangents);
     routes_[o] += fmt::format("; POV-Ray reads its positions from {} to within {:.2g} and normals to within {:.2g}",
                               data_[o].file, data_[o].position_error, data_[o].normal_error);
     if (textured) routes_[o] += fmt::format(", texture coordinates to within {:.2g}", data_[o].texcoord_error);
+    if (tangents) routes_[o] += ", and the normal map's tangents as its normals";
     files_.push_back({data_[o].file, [mesh, d = data_[o]](std::ostream& out) { write_pov_mesh_image(out, *mesh, d); }});
   }
 }

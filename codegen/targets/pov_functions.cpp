@@ -103,7 +103,7 @@ ir::FunctionPtr frame_function(const ir::FunctionPtr& reflectance, const std::st
 // n_t = normalize((2·rgb − 1) ⊗ (s, ±s, 1)), normalize(n_t.x·t + n_t.y·(n × t) + n_t.z·n).
 // Else n itself.
 Triple mapped_normal(ir::FunctionBuilder& fb, const PovShading& sh, const std::vector<Expr>& uv, const Triple& n,
-                     const Triple& t) {
+                     const Triple& t, const std::optional<Expr>& w = std::nullopt) {
   if (!sh.normal_map[0]) return n;
   const NormalMap& m = *sh.material->normal_map;
   const size_t set = size_t(sh.normal_map_uv);
@@ -112,11 +112,20 @@ Triple mapped_normal(ir::FunctionBuilder& fb, const PovShading& sh, const std::v
   Triple c = lets(fb, "Cx", "Cy", "Cz",
                   {s * (2.0 * lane(0) - 1.0), (m.green_down ? -s : s) * (2.0 * lane(1) - 1.0), 2.0 * lane(2) - 1.0});
   Expr len = fb.let("Cl", length3(c));
-  const Triple N = lets(fb, "Gx", "Gy", "Gz", n), T = lets(fb, "Ux", "Uy", "Uz", t);
-  const Triple B = cross3(N, T);
+  const Triple N = lets(fb, "Gx", "Gy", "Gz", n);
+  Triple T = lets(fb, "Ux", "Uy", "Uz", t);
+  Triple B = cross3(N, T);
+  if (w) {  // a mesh's blended tangent: made ⟂ n (Gram–Schmidt), B = w·(n × T)
+    Expr along = fb.let("Ud", dot3(N, T));
+    const Triple g = lets(fb, "Vx", "Vy", "Vz", {T.x - N.x * along, T.y - N.y * along, T.z - N.z * along});
+    Expr gl = fb.let("Vl", length3(g));
+    T = lets(fb, "Kx", "Ky", "Kz", g / gl);
+    const Triple c = cross3(N, T);
+    B = {c.x * *w, c.y * *w, c.z * *w};
+  }
   auto times = [](const Triple& v, const Expr& k) { return Triple{v.x * k, v.y * k, v.z * k}; };
-  const Triple mapped = lets(fb, "Mx", "My", "Mz", times(T, c.x / len) + times(B, c.y / len) + times(N, c.z / len));
-  Expr ml = fb.let("Ml", length3(mapped));
+  const Triple mapped = lets(fb, "Qx", "Qy", "Qz", times(T, c.x / len) + times(B, c.y / len) + times(N, c.z / len));
+  Expr ml = fb.let("Ql", length3(mapped));
   return mapped / ml;
 }
 
@@ -271,7 +280,14 @@ ir::FunctionPtr PovScene::object_function(size_t o, const std::string& name, con
     if (shading(o).textured())
       uv = {fb.let("S0", ir::call(data("S0"), at)), fb.let("T0", ir::call(data("T0"), at)),
             fb.let("S1", ir::call(data("S1"), at)), fb.let("T1", ir::call(data("T1"), at))};
-    return fb.returns(ir::call(light, with(args({hit, M / len}), uv)));
+    if (!shading(o).normal_map[0]) return fb.returns(ir::call(light, with(args({hit, M / len}), uv)));
+    // The blended corner tangents (docs/textures.md, "Tangent frames"), w the sign of the blended w.
+    const Triple tangent = {ir::call(data("UX"), at), ir::call(data("UY"), at), ir::call(data("UZ"), at)};
+    Expr w = fb.let("W", ir::select(ir::call(data("UW"), at) < 0.0, Expr(-1.0), Expr(1.0)));
+    const Triple n = mapped_normal(fb, shading(o), uv, M / len, tangent, w);
+    if (takes_tangent(shading(o), *shading(o).program.reflectance))
+      return fb.returns(ir::call(light, with(args({hit, n, mapped_tangent(fb, shading(o), M / len, n)}), uv)));
+    return fb.returns(ir::call(light, with(args({hit, n}), uv)));
   }
   // Sphere: n = (P − C)/|P − C|, which holds for the shrunken copies too.
   Triple radial = P - obj.center;

@@ -25,6 +25,7 @@
 #pragma once
 
 #include <array>
+#include <memory>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -39,9 +40,12 @@ struct PovMeshData {
   int blocks = 0;     // triangles (2 × 2 blocks) a row: the image is 2·blocks texels wide
   int plane_rows = 0; // rows of each of the four planes; the image is 4·plane_rows high
   // Component c (0–2 the position's x, y, z, 3–5 the normal's, and with texture coordinates
-  // 6–9 u₀, v₀, u₁, v₁, 10–11 unused) = offset[c] + step[c] · code.
-  int components = 6;  // 12 with texture coordinates: two more pairs of planes
-  std::array<double, 12> offset{}, step{};
+  // 6–9 u₀, v₀, u₁, v₁, 10–11 unused; with a normal map's tangents 10–12 the tangent's x, y,
+  // z, 13 its w, 14 unused) = offset[c] + step[c] · code.
+  int components = 6;  // 12 with texture coordinates: two more pairs of planes; 15 with tangents
+  std::array<double, 15> offset{}, step{};
+  // A normal map's corner tangents (scene/tangents.h), 3 a triangle, or null.
+  std::shared_ptr<const std::vector<std::array<double, 4>>> tangents;
   // How far a value POV-Ray reads may be from the mesh's own, at most: positions in
   // scene units, normal components (the codes' step and float32's rounding of the blend).
   double position_error = 0, normal_error = 0, texcoord_error = 0;
@@ -55,7 +59,10 @@ struct PovMeshData {
 
 // The data image's layout and precision for mesh `m`, named `file`; with `texcoords`, its
 // texture coordinates too (two more planes, read by Facet_Mesh{o}_S0, _T0, _S1, _T1).
-PovMeshData pov_mesh_data(const Mesh& m, const std::string& file, bool texcoords = false);
+// With `tangents` (a normal map's corner tangents), those too (three more planes: Facet_Mesh{o}_UX,
+// _UY, _UZ, _UW).
+PovMeshData pov_mesh_data(const Mesh& m, const std::string& file, bool texcoords = false,
+                          std::shared_ptr<const std::vector<std::array<double, 4>>> tangents = nullptr);
 // The image itself (binary PPM, 16 bits a channel), a row at a time.
 void write_pov_mesh_image(std::ostream& out, const Mesh& m, const PovMeshData& d);
 // The functions that read it for object o: Facet_Mesh{o}_PX … _PZ (the hit point)

@@ -589,8 +589,7 @@ TEST(Detection, GlslNormalMapFailsWhenWrong) {
   const std::pair<const char*, std::string> wrongs[] = {
       {"green flipped", inject(good, "0.8 * c.y", "-0.8 * c.y")},
       {"map ignored", inject(good, "vec3 ns = facet_normal_mapped(n, facet_uv_tangent, facet_uv_handedness);", "vec3 ns = n;")},
-      {"tangent reversed", inject(good, "facet_uv_tangent = facet_uv_tangent_at(hit, p);",
-                                  "facet_uv_tangent = -facet_uv_tangent_at(hit, p);")},
+      {"tangent reversed", inject(good, "facet_uv_tangent = frame.xyz;", "facet_uv_tangent = -frame.xyz;")},
   };
   for (const auto& [what, code] : wrongs) {
     f.job.code_override = code;
@@ -598,6 +597,23 @@ TEST(Detection, GlslNormalMapFailsWhenWrong) {
     std::cout << what << ": " << bad.metrics.over << " pixels over, worst " << bad.metrics.max_excess << "\n";
     EXPECT_FALSE(bad.pass) << what << ": " << bad.metrics.max_excess;
   }
+}
+
+// On a mesh the normal map's frame comes from the mesh's corner tangents (scene/tangents.h),
+// which GLSL's BVH carries: the handedness w read the wrong way round (B = −w·(n × T)) fails
+// on the bent sheet of tests/scenes/textured_mesh.json, the generated code passes.
+TEST(Detection, GlslMeshTangentHandednessFailsWhenWrong) {
+  GlRenderer gl;
+  ASSERT_TRUE(gl.ok()) << gl.error();
+  Fixture f = fixture(kNormalExample, "glsl-mesh", "textured", (kSource / "tests/scenes/textured_mesh.json").string());
+  const std::string good = GlRenderer::fragment_source(f.material);
+  f.job.code_override = good;
+  ComparisonRow right = judged(f, gl.render(f.job));
+  EXPECT_TRUE(right.pass) << right.metrics.max_excess;
+  f.job.code_override = inject(good, "return vec4(c.xyz, c.w >= 0.0 ? 1.0 : -1.0);", "return vec4(c.xyz, c.w >= 0.0 ? -1.0 : 1.0);");
+  ComparisonRow bad = judged(f, gl.render(f.job));
+  std::cout << "mesh handedness flipped: " << bad.metrics.over << " pixels over, worst " << bad.metrics.max_excess << "\n";
+  EXPECT_FALSE(bad.pass) << bad.metrics.max_excess;
 }
 
 // Under a normal map the anisotropic tangent follows the mapped normal (t Gram–Schmidt'd

@@ -433,6 +433,17 @@ def add_mesh(bpy, scene, obj_desc, material, index):
         uv = np.stack([st[corners, 0], 1.0 - st[corners, 1]], axis=1)
         layer = mesh.uv_layers.new(name=f"facet_uv{set_index}")
         layer.data.foreach_set("uv", uv.astype(np.float32).ravel())
+    # A normal map's tangent frames, per corner (facet's, docs/textures.md): xyz and w apart.
+    for set_index in (0, 1):
+        key = f"facet_tangents{set_index}"
+        if key not in obj_desc:
+            continue
+        tw = np.asarray(obj_desc[key], dtype=np.float64)
+        xyz = np.stack([tw[:, 0], -tw[:, 2], tw[:, 1]], axis=1)  # facet's (x, y, z) is Blender's (x, -z, y)
+        attribute = mesh.attributes.new(f"facet_tangent{set_index}", "FLOAT_VECTOR", "CORNER")
+        attribute.data.foreach_set("vector", xyz.astype(np.float32).ravel())
+        attribute = mesh.attributes.new(f"facet_tangent_w{set_index}", "FLOAT", "CORNER")
+        attribute.data.foreach_set("value", tw[:, 3].astype(np.float32))
     mesh.materials.append(material)
     obj = bpy.data.objects.new(obj_desc.get("name") or f"mesh_{index}", mesh)
     obj.pass_index = MESH_INDEX
@@ -503,8 +514,8 @@ def enable_oslquery(bpy):
 # from the shading point in object space (add_sphere, add_plane). Facet's (x, y, z) is
 # Blender's (x, −z, y).
 FACET_UV_OSL = """\
-shader facet_uv(float kind = 0, vector mesh_uv = 0, vector mesh_uv1 = 0, output vector uv = 0,
-                output vector uv1 = 0, output vector tangent = 0)
+shader facet_uv(float kind = 0, vector mesh_uv = 0, vector mesh_uv1 = 0, vector mesh_tangent = 0, float mesh_w = 1,
+                output vector uv = 0, output vector uv1 = 0, output vector tangent = 0, output float handedness = 1)
 {
     point q = transform("object", P);
     if (kind == %d) {
@@ -521,6 +532,9 @@ shader facet_uv(float kind = 0, vector mesh_uv = 0, vector mesh_uv1 = 0, output 
     } else {
         uv = mesh_uv;
         uv1 = mesh_uv1;
+        // facet's corner tangents (add_mesh), blended by Cycles as facet blends them.
+        tangent = mesh_tangent;
+        handedness = mesh_w < 0 ? -1 : 1;
     }
 }
 """ % (SPHERE_INDEX, SQUARE_INDEX)
@@ -546,8 +560,14 @@ def link_texture_coordinates(bpy, nt, script):
         uvmap.uv_map = f"facet_uv{k}"  # add_mesh's layers
         nt.links.new(uvmap.outputs["UV"], node.inputs[into])
         nt.links.new(node.outputs[out], script.inputs[f"facet_uv{k}"])
-    if "facet_uv_tangent" in script.inputs:  # a normal-mapped material: the shapes' tangents
+    if "facet_uv_tangent" in script.inputs:  # a normal-mapped material: the shapes' and meshes' tangent frames
         nt.links.new(node.outputs["tangent"], script.inputs["facet_uv_tangent"])
+        nt.links.new(node.outputs["handedness"], script.inputs["facet_uv_handedness"])
+        tangent_set = int(script.inputs["facet_normal_map_uv"].default_value)
+        for into, name, output in (("mesh_tangent", "facet_tangent", "Vector"), ("mesh_w", "facet_tangent_w", "Fac")):
+            attribute = nt.nodes.new("ShaderNodeAttribute")
+            attribute.attribute_name = f"{name}{tangent_set}"  # add_mesh's corner attributes
+            nt.links.new(attribute.outputs[output], node.inputs[into])
     return ""
 
 

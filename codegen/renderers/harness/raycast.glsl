@@ -18,6 +18,7 @@ uniform int facet_object_shaded[FACET_MAX_OBJECTS];  // 1: shaded in this pass
 uniform samplerBuffer facet_bvh;        // 2 texels a node: (lo, right child or first triangle), (hi, count)
 uniform samplerBuffer facet_triangles;  // 6 texels a triangle: p0, p1, p2, n0, n1, n2
 uniform samplerBuffer facet_texcoords;  // 3 texels a triangle: vertex k's (uv set 0, uv set 1)
+uniform samplerBuffer facet_tangents;   // 3 texels a triangle: corner k's tangent (xyz, w), normal-mapped meshes
 uniform float facet_shadow_offset;      // shadow rays start this far out
 out vec4 facet_color;
 
@@ -161,17 +162,21 @@ vec2 facet_uv(int i, vec3 p, FacetHit h, int set)
     return set == 0 ? st.xy : st.zw;
 }
 
-// docs/textures.md, "Tangent frames": the unit ∂p/∂u at p, for a normal map (with w = +1).
-// A sphere's: normalize(d_z, 0, −d_x); a square's: its first axis. Meshes have none yet.
-vec3 facet_uv_tangent_at(int i, vec3 p)
+// docs/textures.md, "Tangent frames": (t, w) at p, for a normal map: t the unit ∂p/∂u, B = w·(n × t).
+// A sphere's: normalize(d_z, 0, −d_x); a square's: its first axis; w = +1. A mesh's: the
+// barycentric blend of its corners' tangents, w the sign of their blended w.
+vec4 facet_uv_tangent_at(int i, vec3 p, FacetHit h)
 {
     float kind = facet_object_normal[i].w;
     if (kind == {{sphere}}.0) {
         vec3 d = p - facet_object_shape[i].xyz;
-        return normalize(vec3(d.z, 0.0, -d.x));
+        return vec4(normalize(vec3(d.z, 0.0, -d.x)), 1.0);
     }
-    if (kind == {{square}}.0) return facet_object_axis[i].xyz;
-    return vec3(0.0);
+    if (kind == {{square}}.0) return vec4(facet_object_axis[i].xyz, 1.0);
+    int t = h.triangle * 3;
+    vec4 c = texelFetch(facet_tangents, t) * (1.0 - h.uv.x - h.uv.y) + texelFetch(facet_tangents, t + 1) * h.uv.x
+             + texelFetch(facet_tangents, t + 2) * h.uv.y;
+    return vec4(c.xyz, c.w >= 0.0 ? 1.0 : -1.0);
 }
 
 void main()
