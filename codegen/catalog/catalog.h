@@ -67,7 +67,9 @@ struct Value {
   std::string choice;
   std::array<double, 3> rgb{};
   std::shared_ptr<const ModelSpec> model;  // Model and Object kinds
-  std::vector<std::array<double, 3>> points;  // Points and Triangles kinds
+  // Points and Triangles kinds: the first ParamDef::arity numbers of each element hold the values.
+  std::vector<std::array<double, 4>> points;
+  int arity = 3;  // Points: numbers an element
   // Number and Color kinds (ParamDef::texturable): the value comes from an image, times
   // the factor `number` / `rgb` holds, clamped to the range (catalog/texture.h).
   std::shared_ptr<const TextureRef> texture;
@@ -90,7 +92,7 @@ struct ParamDef {
   bool every_lobe = false;           // one of the parameters every diffuse and specular lobe takes (color, toon)
   bool by_name = false;              // Index: a name is allowed as well as an index
   bool texturable = false;           // Number, Color: may come from an image ({"texture": …})
-  int arity = 3;                     // Points: numbers an element (2: texture coordinates [u, v])
+  int arity = 3;                     // Points: numbers an element (2: texture coordinates [u, v]; 4: tangents [x, y, z, w])
   std::string allowed() const;       // what the error messages say is allowed
 };
 

@@ -120,15 +120,17 @@ class Checker {
       if (++problems <= 8) sink_.error(index_path(path, i), what + "; allowed: " + p.allowed());
     };
     out.points.reserve(j.size());
+    out.arity = p.kind == ParamKind::Points ? p.arity : 3;
+    static const char* const counts[] = {"", "one", "two", "three", "four"};
     for (size_t i = 0; i < j.size(); ++i) {
       const json& e = j[i];
-      const size_t arity = p.kind == ParamKind::Points ? size_t(p.arity) : 3;
+      const size_t arity = size_t(out.arity);
       if (!e.is_array() || e.size() != arity) {
-        bad(i, fmt::format("expected {} numbers, found {}", arity == 2 ? "two" : "three",
+        bad(i, fmt::format("expected {} numbers, found {}", counts[arity],
                            e.is_array() ? fmt::format("{} values", e.size()) : json_type_name(e)));
         continue;
       }
-      std::array<double, 3> v{};
+      std::array<double, 4> v{};
       bool ok = true;
       for (size_t k = 0; k < arity; ++k) {
         if (!e[k].is_number() || !std::isfinite(e[k].get<double>())) ok = false;
@@ -137,7 +139,7 @@ class Checker {
       }
       if (!ok) {
         bad(i, p.kind == ParamKind::Triangles ? "expected three non-negative integers"
-                                              : fmt::format("expected {} finite numbers", arity == 2 ? "two" : "three"));
+                                              : fmt::format("expected {} finite numbers", counts[arity]));
         continue;
       }
       if (p.kind == ParamKind::Points && p.nonzero && v[0] == 0 && v[1] == 0 && v[2] == 0) {

@@ -153,7 +153,11 @@ json value_json(const Value& v) {
     case ParamKind::Object: return spec_json(*v.model, false);
     case ParamKind::String: return v.choice;
     case ParamKind::Points:
-    case ParamKind::Triangles: return v.points;
+    case ParamKind::Triangles: {
+      json list = json::array();
+      for (const auto& e : v.points) list.push_back(std::vector<double>(e.begin(), e.begin() + v.arity));
+      return list;
+    }
     case ParamKind::Index: return v.number >= 0 ? json(int64_t(v.number)) : json(v.choice);
   }
   return nullptr;

@@ -191,6 +191,10 @@ void add_scene_vocabulary(std::vector<ModelDef>& all) {
                 list("texcoords", "texture coordinates set 0 per vertex, [u, v] (glTF's TEXCOORD_0: v down the "
                                   "picture; docs/textures.md)", ParamKind::Points),
                 list("texcoords1", "texture coordinates set 1 per vertex (glTF's TEXCOORD_1)", ParamKind::Points),
+                list("tangents", "a tangent per vertex, [x, y, z, w] (glTF's TANGENT): a normal map's ∂p/∂u and "
+                                 "its bitangent B = w·(n × t), w = +1 or −1; absent: facet computes MikkTSpace "
+                                 "tangents (docs/textures.md)",
+                     ParamKind::Points, true),
                 text("gltf", "a glTF 2.0 file (.gltf or .glb), relative to the scene file"),
                 index("mesh", "the glTF file's mesh: its index in \"meshes\" or its name", true),
                 index("node", "the glTF file's node: its index in \"nodes\" or its name; its mesh in its world "
@@ -200,8 +204,9 @@ void add_scene_vocabulary(std::vector<ModelDef>& all) {
     for (auto& p : m.params) {
       p.required = false;  // the forms say which keys a mesh needs
       if (p.name == "texcoords" || p.name == "texcoords1") p.arity = 2;
+      if (p.name == "tangents") p.arity = 4;
     }
-    m.forms = {{"inline arrays", {"positions", "normals", "triangles"}, {"texcoords", "texcoords1"}},
+    m.forms = {{"inline arrays", {"positions", "normals", "triangles"}, {"texcoords", "texcoords1", "tangents"}},
                {"a glTF file's mesh", {"gltf", "mesh"}, {"primitive"}},
                {"a glTF file's node", {"gltf", "node"}, {"primitive"}}};
     m.object_type = ObjectType::Mesh;

@@ -31,6 +31,13 @@ std::string default_python() {
 
 namespace {
 
+// A Python given as a relative path (--python .venv/bin/python) made absolute: Blender runs
+// in the job's folder, where the relative path names nothing. A bare name stays for PATH.
+std::string as_run_from_anywhere(const std::string& python) {
+  const fs::path p(python);
+  return p.is_relative() && p.has_parent_path() ? fs::absolute(p).string() : python;
+}
+
 // The sweep's grid side at most.
 const int kMaxSweepGrid = 512;
 
@@ -187,7 +194,7 @@ std::vector<SweepCount> sweep_osl(const std::string& target, const std::vector<S
 class CyclesRenderer : public Renderer {
  public:
   CyclesRenderer(const RendererInfo& info, const RendererSettings& settings)
-      : info_(info), python_(settings.python.empty() ? default_python() : settings.python) {}
+      : info_(info), python_(settings.python.empty() ? default_python() : as_run_from_anywhere(settings.python)) {}
   const RendererInfo& info() const override { return info_; }
   std::string unavailable() const override {
     return find_program(python_).empty() ? fmt::format("cannot run {0}: {0}: not found on PATH", python_) : "";

@@ -631,6 +631,32 @@ class Exporter {
                                      "baseColorTexture is left out (FACET_material carries it)",
                                      key));
     }
+    if (m.normal_map) {  // glTF's normal texture is facet's with green up; down has no glTF form
+      if (m.normal_map->green_down) {
+        notes_.push_back(fmt::format("materials.{}: its normal map's green points down (DirectX); glTF's "
+                                     "normalTexture is left out (FACET_material carries it)",
+                                     key));
+      } else {
+        tinygltf::TextureInfo info;
+        images_.texture_info(m.normal_map->texture(), info, used_);
+        g.normalTexture.index = info.index;
+        g.normalTexture.texCoord = info.texCoord;
+        g.normalTexture.extensions = info.extensions;
+        g.normalTexture.scale = m.normal_map->strength;
+      }
+    }
+    if (m.emission_texture && m.emission_texture->channel == "rgb" && m.emission_texture->colorspace == "srgb") {
+      images_.texture_info(*m.emission_texture, g.emissiveTexture, used_);
+      const double peak = std::max({m.emission[0], m.emission[1], m.emission[2]});
+      const double k = std::max(peak, 1.0);  // glTF's factor is at most 1: the rest is KHR_materials_emissive_strength
+      g.emissiveFactor = {m.emission[0] / k, m.emission[1] / k, m.emission[2] / k};
+      if (k > 1) {
+        tinygltf::Value::Object strength;
+        strength["emissiveStrength"] = tinygltf::Value(k);
+        g.extensions["KHR_materials_emissive_strength"] = tinygltf::Value(strength);
+        used_.insert("KHR_materials_emissive_strength");
+      }
+    }
     model_.materials.push_back(g);
     material_index_[key] = int(model_.materials.size() - 1);
   }
@@ -679,7 +705,7 @@ class Exporter {
   }
 
   // A one-primitive triangle mesh of float32 positions and normals (and `source`'s texture
-  // coordinates as TEXCOORD_0/1, where it has them).
+  // coordinates as TEXCOORD_0/1 and tangents as TANGENT, where it has them).
   int add_mesh(const std::string& name, int material, const std::vector<Vec3>& pos, const std::vector<Vec3>& nor,
                const std::vector<uint32_t>& idx, const Mesh* source = nullptr) {
     std::vector<float> fp, fn;
@@ -709,6 +735,12 @@ class Exporter {
       prim.attributes["TEXCOORD_" + std::to_string(set)] =
           add_accessor(st.data(), st.size() * 4, st.size() / 2, TINYGLTF_TYPE_VEC2, TINYGLTF_COMPONENT_TYPE_FLOAT,
                        TINYGLTF_TARGET_ARRAY_BUFFER);
+    }
+    if (source && !source->tangents.empty()) {
+      std::vector<float> tw;
+      for (const auto& t : source->tangents) tw.insert(tw.end(), {float(t[0]), float(t[1]), float(t[2]), float(t[3])});
+      prim.attributes["TANGENT"] = add_accessor(tw.data(), tw.size() * 4, tw.size() / 4, TINYGLTF_TYPE_VEC4,
+                                                TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TARGET_ARRAY_BUFFER);
     }
     tinygltf::Mesh mesh;
     mesh.name = name;

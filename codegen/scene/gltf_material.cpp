@@ -24,6 +24,8 @@ struct Pbr {
   RGB base{1, 1, 1};
   double metal = 1, rough = 1;
   std::optional<TextureUse> base_map, mr_map;  // baseColorTexture (sRGB), metallicRoughnessTexture (linear)
+  std::optional<TextureUse> occlusion_map;     // occlusionTexture (linear, R)
+  double occlusion = 1;                        // occlusionTexture.strength
   std::string name;                            // the facet material's key, for baked images' names
 };
 
@@ -162,19 +164,53 @@ void colours(const Pbr& p, GltfImages& images, json& kd, json& f0, const std::st
   }
 }
 
-// The textures facet does not import yet, each named on stderr (each becomes a map of
-// the material once its parameter is texturable: emission, the ambient term, a normal map).
-void note_unmapped(const tinygltf::Material& g, const std::string& mpath, std::vector<std::string>& notes) {
-  const std::pair<const char*, int> unmapped[] = {
-      {"emissiveTexture: not imported yet (facet's emission is a colour); the material uses emissiveFactor",
-       g.emissiveTexture.index},
-      {"occlusionTexture: not imported yet (facet's ambient term is a colour); the material ignores it",
-       g.occlusionTexture.index},
-      {"normalTexture: not imported yet (facet has no normal maps yet); the material uses the mesh's normals",
-       g.normalTexture.index},
-  };
-  for (const auto& [what, index] : unmapped)
-    if (index >= 0) notes.push_back(mpath + "." + what);
+// glTF's occluded colour, lerp(1, occlusion, strength) (glTF 2.0 §3.9.3), at texel (i, j)
+// of a grid of `w`×`h`: the R channel at the texel itself when the grids are one, else
+// sampled at the grid texel's centre.
+double occlusion_at(const Pbr& p, int i, int j, int w, int h) {
+  const Texels& t = *p.occlusion_map->texels;
+  const double r = t.width == w && t.height == h ? t.at(i, j)[0]
+                                                  : sample(t, p.occlusion_map->sampler, (i + 0.5) / w, (j + 0.5) / h)[0];
+  return 1 + p.occlusion * (r - 1);
+}
+
+// The ambient term m_a: the diffuse albedo the ambient light meets, base·(1 − metallic),
+// times glTF's occlusion (docs/textures.md, "glTF import"): the occlusion map times the
+// albedo as a factor where the albedo is a number and the strength 1, else baked texel by
+// texel on the base colour (or metallic–roughness) map's grid, which the occlusion map
+// must share the coordinates of.
+json ambient_term(const Pbr& p, const RGB& kd, GltfImages& images, const std::string& mpath,
+                  std::vector<std::string>& notes) {
+  const TextureUse& o = *p.occlusion_map;
+  if (!p.base_map && !(p.mr_map && p.metal > 0) && p.occlusion == 1) {
+    json a = o.spec;
+    a["colorspace"] = "linear";
+    a["channel"] = "r";
+    a["factor"] = kd;
+    return a;
+  }
+  const TextureUse& g = p.base_map ? *p.base_map : p.mr_map && p.metal > 0 ? *p.mr_map : o;
+  if (!g.same_mapping(o))
+    images.fail(o.key + ".texCoord",
+                fmt::format("reads other texture coordinates (set or KHR_texture_transform) than {}; facet bakes the "
+                            "ambient term texel by texel from both and needs them to agree",
+                            g.key));
+  const int w = g.texels->width, h = g.texels->height;
+  std::vector<uint16_t> v(size_t(w) * size_t(h) * 3);
+  for (int j = 0; j < h; ++j)
+    for (int i = 0; i < w; ++i) {
+      const RGB b = base_at(p, i, j);
+      const double keep = (1 - metal_at(p, i, j, w, h)) * occlusion_at(p, i, j, w, h);
+      for (size_t k = 0; k < 3; ++k) v[(size_t(j) * size_t(w) + size_t(i)) * 3 + k] = unorm16(b[k] * keep);
+    }
+  const std::string file = images.bake(p.name + "_ambient", w, h, 3, v);
+  notes.push_back(fmt::format("{}: baked the ambient term base·(1 − metallic)·lerp(1, occlusion, {}) texel by texel "
+                              "({}×{}, 16-bit linear) into {}",
+                              mpath, p.occlusion, w, h, file));
+  json a = g.spec;
+  a["texture"] = file;
+  a["colorspace"] = "linear";
+  return a;
 }
 
 }  // namespace
@@ -194,7 +230,22 @@ json pbr_material(const tinygltf::Material& g, const std::string& mpath, GltfIma
   if (pbr.metallicRoughnessTexture.index >= 0)
     p.mr_map = images.texture(pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord,
                               pbr.metallicRoughnessTexture.extensions_json_string, pm + ".metallicRoughnessTexture");
-  for (const auto* map : {&p.base_map, &p.mr_map})
+  if (g.occlusionTexture.index >= 0) {
+    p.occlusion_map = images.texture(g.occlusionTexture.index, g.occlusionTexture.texCoord,
+                                     g.occlusionTexture.extensions_json_string, mpath + ".occlusionTexture");
+    p.occlusion = std::clamp(g.occlusionTexture.strength, 0.0, 1.0);
+    if (p.occlusion != g.occlusionTexture.strength)
+      notes.push_back(fmt::format("{}.occlusionTexture.strength: {} taken as {} (glTF allows 0 to 1)", mpath,
+                                  g.occlusionTexture.strength, p.occlusion));
+  }
+  std::optional<TextureUse> normal_map, emission_map;
+  if (g.normalTexture.index >= 0)
+    normal_map = images.texture(g.normalTexture.index, g.normalTexture.texCoord, g.normalTexture.extensions_json_string,
+                                mpath + ".normalTexture");
+  if (g.emissiveTexture.index >= 0)
+    emission_map = images.texture(g.emissiveTexture.index, g.emissiveTexture.texCoord,
+                                  g.emissiveTexture.extensions_json_string, mpath + ".emissiveTexture");
+  for (const auto* map : {&p.base_map, &p.mr_map, &p.occlusion_map, &normal_map, &emission_map})
     if (*map) sets.emplace_back((*map)->uv, (*map)->key + ".texCoord");
   json m = {{"name", g.name.empty() ? mpath : g.name}};
   json kd, f0;
@@ -208,8 +259,28 @@ json pbr_material(const tinygltf::Material& g, const std::string& mpath, GltfIma
   auto e = rgb3(g.emissiveFactor, 0);
   json strength = extension_of(g.extensions_json_string, "KHR_materials_emissive_strength");
   double k = strength.is_object() ? strength.value("emissiveStrength", 1.0) : 1.0;
-  if (e[0] + e[1] + e[2] > 0) m["emission"] = {e[0] * k, e[1] * k, e[2] * k};
-  note_unmapped(g, mpath, notes);
+  const RGB emitted = {e[0] * k, e[1] * k, e[2] * k};
+  if (emission_map && e[0] + e[1] + e[2] > 0) {  // emissiveTexture (sRGB) × emissiveFactor × emissiveStrength
+    m["emission"] = emission_map->spec;
+    m["emission"]["colorspace"] = "srgb";
+    m["emission"]["factor"] = emitted;
+  } else if (e[0] + e[1] + e[2] > 0) {
+    m["emission"] = emitted;
+  } else if (emission_map) {
+    notes.push_back(mpath + ".emissiveTexture: emissiveFactor is 0, so the map emits nothing (glTF multiplies them)");
+  }
+  if (normal_map) {  // tangent-space, linear, +Y up (glTF 2.0 §3.9.3); scale is facet's strength
+    m["normal_map"] = normal_map->spec;
+    m["normal_map"]["green"] = "up";
+    m["normal_map"]["strength"] = g.normalTexture.scale;
+  }
+  if (p.occlusion_map) {
+    const RGB kd_c = {p.base[0] * (1 - p.metal), p.base[1] * (1 - p.metal), p.base[2] * (1 - p.metal)};
+    if (p.base_map || (p.mr_map && p.metal > 0) || kd_c[0] + kd_c[1] + kd_c[2] > 0)
+      m["ambient"] = ambient_term(p, kd_c, images, mpath, notes);
+    else
+      notes.push_back(mpath + ".occlusionTexture: the material has no diffuse albedo (metallic 1), so nothing to occlude");
+  }
   if (g.alphaMode != "OPAQUE" && !g.alphaMode.empty())
     notes.push_back(mpath + ": alphaMode " + g.alphaMode + " is ignored (facet's surfaces are opaque)");
   if (diffuse && (p.metal < 1 || p.mr_map))

@@ -149,6 +149,22 @@ std::array<double, 2> Reader::vec2_at(const AccessorView& a, size_t i) const {
   return {f[0], f[1]};
 }
 
+AccessorView Reader::vec4(int index, const std::string& path) const {
+  AccessorView a = view(index, path, TINYGLTF_TYPE_VEC4);
+  if (a.component != TINYGLTF_COMPONENT_TYPE_FLOAT) fail(fmt::format("accessors[{}]", index), "expected VEC4 of FLOAT");
+  return a;
+}
+
+std::array<double, 4> Reader::vec4_at(const AccessorView& a, size_t i) const {
+  float f[4];
+  std::memcpy(f, a.data + i * a.stride, sizeof f);
+  for (float x : f)
+    if (!std::isfinite(x)) fail(fmt::format("accessors[{}]", a.accessor), fmt::format("element {} is not finite", i));
+  if (f[0] == 0 && f[1] == 0 && f[2] == 0)
+    fail(fmt::format("accessors[{}]", a.accessor), fmt::format("element {}: a tangent of length 0 has no direction", i));
+  return {f[0], f[1], f[2], f[3]};
+}
+
 AccessorView Reader::indices(int index, const std::string& path) const {
   AccessorView a = view(index, path, TINYGLTF_TYPE_SCALAR);
   if (a.component != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && a.component != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
@@ -236,6 +252,12 @@ PrimitivePlan plan_primitive(const Reader& r, const tinygltf::Primitive& prim, c
     if (p.texcoords[set].count != p.positions.count)
       r.fail(path + ".attributes." + key, "has a different count from POSITION");
   }
+  auto tangent = prim.attributes.find("TANGENT");
+  p.has_tangents = tangent != prim.attributes.end();
+  if (p.has_tangents) {
+    p.tangents = r.vec4(tangent->second, path + ".attributes.TANGENT");
+    if (p.tangents.count != p.positions.count) r.fail(path + ".attributes.TANGENT", "has a different count from POSITION");
+  }
   p.has_indices = prim.indices >= 0;
   if (p.has_indices) p.indices = r.indices(prim.indices, path + ".indices");
   size_t corners = p.has_indices ? p.indices.count : p.positions.count;
@@ -248,6 +270,14 @@ PrimitivePlan plan_primitive(const Reader& r, const tinygltf::Primitive& prim, c
 }
 
 namespace {
+
+// Vertex i's TANGENT in the world transform: xyz as a direction, w negated by a mirroring
+// transform (B = w·(n × t) turns with it).
+std::array<double, 4> world_tangent(const Reader& r, const PrimitivePlan& p, const Mat4& world, size_t i) {
+  const std::array<double, 4> t = r.vec4_at(p.tangents, i);
+  const Vec3 d = normalize(world.direction(Vec3(t[0], t[1], t[2])));
+  return {d.x, d.y, d.z, (world.det3() < 0 ? -1.0 : 1.0) * (t[3] < 0 ? -1.0 : 1.0)};
+}
 
 // Corner k of the primitive: its vertex index (in range), or k itself without indices.
 uint32_t corner(const Reader& r, const PrimitivePlan& p, size_t k) {
@@ -265,6 +295,7 @@ void smooth(const Reader& r, const PrimitivePlan& p, const Mat4& world, Mesh& me
     mesh.normals.push_back(world.normal(r.vec3_at(p.normals, i)));
     for (size_t set = 0; set < 2; ++set)
       if (p.has_texcoords[set]) mesh.texcoords[set].push_back(r.vec2_at(p.texcoords[set], i));
+    if (p.has_tangents) mesh.tangents.push_back(world_tangent(r, p, world, i));
   }
   for (size_t t = 0; t < p.size.triangles; ++t) {
     uint32_t a = corner(r, p, 3 * t), b = corner(r, p, 3 * t + 1), c = corner(r, p, 3 * t + 2);
@@ -293,6 +324,11 @@ void flat(const Reader& r, const PrimitivePlan& p, const Mat4& world, Mesh& mesh
       if (flip) std::swap(k[1], k[2]);
       for (uint32_t v : k) mesh.texcoords[set].push_back(r.vec2_at(p.texcoords[set], v));
     }
+    if (p.has_tangents) {
+      uint32_t k[3] = {corner(r, p, 3 * t), corner(r, p, 3 * t + 1), corner(r, p, 3 * t + 2)};
+      if (flip) std::swap(k[1], k[2]);
+      for (uint32_t v : k) mesh.tangents.push_back(world_tangent(r, p, world, v));
+    }
     mesh.triangles.push_back({base, base + 1, base + 2});
   }
 }
@@ -309,11 +345,23 @@ void append_primitive(const Reader& r, const PrimitivePlan& p, const Mat4& world
   for (size_t set = 0; set < 2; ++set)
     if (!p.has_texcoords[set] && !mesh.texcoords[set].empty())
       notes.push_back(fmt::format("{}: no TEXCOORD_{}, which other primitives of its mesh have; (0, 0) taken", p.path, set));
+  // Tangents only where every primitive of the mesh has them (a TANGENT array cannot be
+  // completed by another rule without a seam): an earlier primitive without them, or this one.
+  const bool lacked = first > 0 && mesh.tangents.size() != first;
+  if (p.has_tangents && lacked)
+    notes.push_back(p.path + ": TANGENT left, as earlier primitives of its mesh have none; MikkTSpace tangents taken");
+  if (!p.has_tangents && !mesh.tangents.empty()) {
+    notes.push_back(p.path + ": no TANGENT, which earlier primitives of its mesh have; MikkTSpace tangents taken");
+    mesh.tangents.clear();
+    mesh.tangents.shrink_to_fit();
+  }
+  PrimitivePlan plan = p;
+  plan.has_tangents = p.has_tangents && !lacked;
   if (p.has_normals) {
-    smooth(r, p, world, mesh);
+    smooth(r, plan, world, mesh);
   } else {
     notes.push_back(p.path + ": no NORMAL; flat normals computed");
-    flat(r, p, world, mesh);
+    flat(r, plan, world, mesh);
   }
   for (size_t set = 0; set < 2; ++set) {
     auto& tc = mesh.texcoords[set];

@@ -61,6 +61,9 @@ class Reader {
   AccessorView vec2(int index, const std::string& path) const;
   Vec3 vec3_at(const AccessorView& a, size_t i) const;  // fails on a non-finite element
   std::array<double, 2> vec2_at(const AccessorView& a, size_t i) const;
+  // VEC4 of FLOAT (glTF's TANGENT); an element must be finite, its xyz not zero.
+  AccessorView vec4(int index, const std::string& path) const;
+  std::array<double, 4> vec4_at(const AccessorView& a, size_t i) const;
   static uint32_t index_at(const AccessorView& a, size_t i);
 
   // The parent of every node (−1: none, kSeveral: more than one), from the children lists.
@@ -95,6 +98,8 @@ struct PrimitivePlan {
   bool has_normals = false, has_indices = false;
   std::array<AccessorView, 2> texcoords;  // TEXCOORD_0, TEXCOORD_1
   std::array<bool, 2> has_texcoords{false, false};
+  AccessorView tangents;  // TANGENT
+  bool has_tangents = false;
   MeshSize size;  // at most: zero-area (flat) and degenerate triangles are dropped
 };
 
@@ -104,8 +109,11 @@ PrimitivePlan plan_primitive(const Reader& r, const tinygltf::Primitive& prim, c
 // Appends the primitive in the world transform `world` to `mesh`: with NORMAL, its
 // vertices and normals (degenerate triangles dropped); without, flat normals, each
 // triangle its own three vertices (zero-area triangles dropped); a mirroring
-// transform turns the triangles round so they still face their normals. Does not
-// build the hierarchy. `notes` says which primitives had no normals.
+// transform turns the triangles round so they still face their normals. TANGENT
+// goes along (xyz by the transform, w negated by a mirroring one) where every primitive
+// of the mesh has it; else the mesh keeps none and takes facet's MikkTSpace tangents.
+// Does not build the hierarchy. `notes` says which primitives had no normals, and
+// which tangents were left.
 void append_primitive(const Reader& r, const PrimitivePlan& p, const Mat4& world, Mesh& mesh,
                       std::vector<std::string>& notes);
 

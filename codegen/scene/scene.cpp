@@ -120,11 +120,11 @@ MeshReference reference_of(const ModelSpec& o, const std::string& file) {
 // The mesh of an object spec: the vertex arrays, checked against each other.
 std::shared_ptr<Mesh> mesh_of(const ModelSpec& o, const std::string& path, DiagnosticSink& sink) {
   auto m = std::make_shared<Mesh>();
-  for (const auto& p : o.at("positions").points) m->positions.push_back(Vec3(p));
+  for (const auto& p : o.at("positions").points) m->positions.push_back(Vec3(p[0], p[1], p[2]));
   // Normals are made unit; one already unit to rounding is kept as written, so that
   // a mesh written out (to_json, import-gltf --inline) reads back bit for bit.
   for (const auto& n : o.at("normals").points) {
-    Vec3 v(n);
+    Vec3 v(n[0], n[1], n[2]);
     m->normals.push_back(std::fabs(length(v) - 1) <= 1e-15 ? v : normalize(v));
   }
   if (m->normals.size() != m->positions.size())
@@ -137,6 +137,20 @@ std::shared_ptr<Mesh> mesh_of(const ModelSpec& o, const std::string& path, Diagn
     if (m->texcoords[set].size() != m->positions.size())
       sink.error(join_path(path, sets[set]), fmt::format("has {} coordinates for {} positions; allowed: one per position",
                                                          m->texcoords[set].size(), m->positions.size()));
+  }
+  if (o.given.count("tangents")) {
+    const auto& tangents = o.at("tangents").points;
+    for (size_t i = 0; i < tangents.size(); ++i) {
+      if (std::fabs(tangents[i][3]) != 1) {
+        sink.error(index_path(join_path(path, "tangents"), i),
+                   fmt::format("w is {}; allowed: +1 or −1 (the bitangent's sign, B = w·(n × t))", tangents[i][3]));
+        break;
+      }
+      m->tangents.push_back(tangents[i]);
+    }
+    if (m->tangents.size() == tangents.size() && m->tangents.size() != m->positions.size())
+      sink.error(join_path(path, "tangents"), fmt::format("has {} tangents for {} positions; allowed: one per position",
+                                                          m->tangents.size(), m->positions.size()));
   }
   const auto& tris = o.at("triangles").points;
   for (size_t i = 0; i < tris.size(); ++i) {
@@ -446,6 +460,7 @@ json mesh_json(const Object& o, const std::string& scene_file) {
   const char* sets[] = {"texcoords", "texcoords1"};
   for (size_t set = 0; set < 2; ++set)
     if (!o.mesh->texcoords[set].empty()) oj[sets[set]] = o.mesh->texcoords[set];
+  if (!o.mesh->tangents.empty()) oj["tangents"] = o.mesh->tangents;
   return oj;
 }
 

@@ -67,6 +67,10 @@ struct Mesh {
   // Texture coordinates per vertex, sets 0 and 1 (glTF's TEXCOORD_0/1: v down the
   // picture); empty where the mesh has no such set.
   std::array<std::vector<std::array<double, 2>>, 2> texcoords;
+  // Tangents per vertex, [x, y, z, w], where the mesh brings its own (glTF's TANGENT, the
+  // Blender add-on's calc_tangents()): a normal map's ∂p/∂u and B = w·(n × t). Empty: a
+  // normal map takes facet's MikkTSpace tangents (scene/tangents.h).
+  std::vector<std::array<double, 4>> tangents;
   // A bounding volume hierarchy, nodes in depth-first order: an inner node's
   // left child follows it, `right` indexes the other; a leaf holds `count`
   // triangles from `start` in `order`.

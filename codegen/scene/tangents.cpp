@@ -110,6 +110,15 @@ std::vector<std::array<double, 4>> mikktspace_tangents(const Mesh& m, int set) {
   return out;
 }
 
+std::vector<std::array<double, 4>> mesh_tangents(const Mesh& m, int set) {
+  if (m.tangents.empty()) return mikktspace_tangents(m, set);
+  std::vector<std::array<double, 4>> out;
+  out.reserve(3 * m.triangles.size());
+  for (const auto& t : m.triangles)
+    for (uint32_t v : t) out.push_back(m.tangents[v]);
+  return out;
+}
+
 void blend_tangent(const Mesh&, const std::vector<std::array<double, 4>>& corners, const Hit& h, Vec3& t, double& w) {
   const size_t c = size_t(h.triangle) * 3;
   const double b[3] = {1 - h.u - h.v, h.u, h.v};

@@ -27,9 +27,10 @@ namespace facet {
 // direction), w = ±1. The mesh must have that set.
 std::vector<std::array<double, 4>> mikktspace_tangents(const Mesh& m, int set);
 
-// The tangents a normal map on texture coordinate set `set` of `m` uses, per corner: facet's
-// MikkTSpace ones (meshes do not carry their own yet).
-inline std::vector<std::array<double, 4>> mesh_tangents(const Mesh& m, int set) { return mikktspace_tangents(m, set); }
+// The tangents a normal map on texture coordinate set `set` of `m` uses, per corner (3 a
+// triangle): the mesh's own where it brings them (Mesh::tangents: glTF's TANGENT, which glTF
+// defines for the normal texture, whichever set it reads), else facet's MikkTSpace ones.
+std::vector<std::array<double, 4>> mesh_tangents(const Mesh& m, int set);
 
 // The tangent frame at a hit of triangle h.triangle from its corners' tangents
 // (`corners`, as mikktspace_tangents gives them): t the barycentric blend of their xyz

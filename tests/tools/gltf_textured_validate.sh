@@ -20,10 +20,15 @@ case $variant in
   roundtrip)
     "$facet" import-gltf "$folder/textured.glb" -o "$work/first/scene.json"
     "$facet" export-gltf "$work/first/scene.json" -o "$work/exported/textured.gltf"
+    for key in normalTexture emissiveTexture; do  # glTF's own keys, for other viewers (k_d is baked: no baseColorTexture)
+      grep -q "\"$key\"" "$work/exported/textured.gltf" || { echo "FAIL: export-gltf wrote no $key" >&2; exit 1; }
+    done
     in=$work/exported/textured.gltf ;;
   *) echo "unknown variant $variant" >&2; exit 2 ;;
 esac
 "$facet" import-gltf "$in" -o "$work/scene.json"
 grep -q '"texture"' "$work/scene.json" || { echo "FAIL: the imported scene has no textures" >&2; exit 1; }
+grep -q '"normal_map"' "$work/scene.json" || { echo "FAIL: the sphere's normalTexture was not imported" >&2; exit 1; }
+grep -q '"emission": *{' "$work/scene.json" || { echo "FAIL: the plane's emissiveTexture was not imported" >&2; exit 1; }
 "$facet" validate --scene "$work/scene.json" --renderers "reference,$renderer" --size 160x120 --python "$python" \
   --out "$work/validate"

@@ -138,6 +138,44 @@ TEST(Gltf, TextureCoordinatesRoundTrip) {
   }
 }
 
+// A mesh's own tangents go out as TANGENT and come back (float32), the normal-mapped picture
+// the same; under a mirroring node the tangent turns with the mesh and w changes sign
+// (B = w·(n × t) must still point where the mirrored bitangent points).
+TEST(Gltf, TangentsRoundTripAndTurnWithAMirror) {
+  Material m = load_material((kSource / "examples/textured/textured_normal_cook_torrance.json").string());
+  Scene s = load_scene((kSource / "tests/scenes/textured_mesh_tangents.json").string());
+  const std::string file = scratch("tangents.gltf").string();
+  check_round_trip(s, &m, file);
+  const Mesh& a = *s.objects[0].mesh;
+  auto sheet = [&](const Scene& back) {
+    for (const auto& o : back.objects)
+      if (o.name == s.objects[0].name) return o.mesh;
+    return std::shared_ptr<const Mesh>();
+  };
+  std::vector<std::string> notes;
+  const auto b = sheet(import_gltf(file, GltfImportOptions{}, notes));
+  ASSERT_TRUE(b);
+  ASSERT_EQ(b->tangents.size(), a.tangents.size());
+  for (size_t i = 0; i < a.tangents.size(); ++i) {
+    for (size_t k = 0; k < 3; ++k) EXPECT_NEAR(b->tangents[i][k], a.tangents[i][k], 2e-7);
+    EXPECT_EQ(b->tangents[i][3], a.tangents[i][3]);
+  }
+  // The same file with the sheet's node mirrored in x.
+  json doc = read_json_file(file);
+  for (auto& node : doc["nodes"])
+    if (node.value("name", "") == s.objects[0].name) node["scale"] = {-1, 1, 1};
+  const fs::path mirrored = fs::path(file).parent_path() / "tangents_mirrored.gltf";
+  write_file_atomic(mirrored.string(), doc.dump());
+  const auto c = sheet(import_gltf(mirrored.string(), GltfImportOptions{}, notes));
+  ASSERT_TRUE(c);
+  ASSERT_EQ(c->tangents.size(), a.tangents.size());
+  for (size_t i = 0; i < a.tangents.size(); ++i) {
+    EXPECT_NEAR(c->tangents[i][0], -a.tangents[i][0], 2e-7);
+    EXPECT_NEAR(c->tangents[i][1], a.tangents[i][1], 2e-7);
+    EXPECT_EQ(c->tangents[i][3], -a.tangents[i][3]);
+  }
+}
+
 TEST(Gltf, ExportedCameraHasAValidFarPlane) {
   // glTF 2.0: zfar, when present, is greater than znear (0 made Blender clip the whole scene).
   std::string path = scratch("camera.gltf").string();
@@ -420,19 +458,49 @@ TEST(GltfTextures, MetallicRoughnessMapIsBakedTexelByTexel) {
   EXPECT_TRUE(baked) << "the import says what it baked";
 }
 
-TEST(GltfTextures, OtherTexturesAreNamedNotImported) {
+// normalTexture becomes the normal map (scale its strength, +Y up), emissiveTexture the
+// emission map (sRGB, × emissiveFactor × KHR_materials_emissive_strength), occlusionTexture
+// the ambient term: the diffuse albedo base·(1 − metallic) times lerp(1, R, strength), a
+// factor of the map where it can be, else baked texel by texel on the base colour map's grid.
+TEST(GltfTextures, NormalEmissiveAndOcclusionMapsAreImported) {
   json g = textured_triangle(json::array({data_uri_image(small_png())}));
-  g["materials"][0]["normalTexture"] = {{"index", 0}};
-  g["materials"][0]["emissiveTexture"] = {{"index", 0}};
-  g["materials"][0]["occlusionTexture"] = {{"index", 0}};
+  json& gm = g["materials"][0];
+  gm["pbrMetallicRoughness"]["metallicFactor"] = 0.5;
+  gm["normalTexture"] = {{"index", 0}, {"scale", 0.7}};
+  gm["emissiveTexture"] = {{"index", 0}};
+  gm["emissiveFactor"] = {1.0, 0.5, 0.25};
+  gm["extensions"] = {{"KHR_materials_emissive_strength", {{"emissiveStrength", 4.0}}}};
+  gm["occlusionTexture"] = {{"index", 0}, {"strength", 0.5}};
+  g["extensionsUsed"] = {"KHR_materials_emissive_strength"};
   std::vector<std::string> notes;
-  (void)import_gltf(write_gltf("other_maps.gltf", g).string(), {}, notes);
-  for (const char* key : {"materials[0].normalTexture: not imported yet", "materials[0].emissiveTexture: not imported yet",
-                          "materials[0].occlusionTexture: not imported yet"}) {
-    bool told = false;
-    for (const auto& n : notes) told |= n.find(key) != std::string::npos;
-    EXPECT_TRUE(told) << key;
-  }
+  Scene s = import_gltf(write_gltf("other_maps.gltf", g).string(), {}, notes);
+  const Material& m = s.materials.begin()->second;
+  ASSERT_TRUE(m.normal_map);
+  EXPECT_EQ(m.normal_map->strength, 0.7);
+  EXPECT_FALSE(m.normal_map->green_down);
+  ASSERT_TRUE(m.emission_texture);
+  EXPECT_EQ(m.emission_texture->colorspace, "srgb");
+  EXPECT_EQ(m.emission, (RGB{4.0, 2.0, 1.0}));
+  ASSERT_TRUE(m.ambient_texture);  // base map × (1 − metallic) × lerp(1, R, 0.5): baked
+  const Texels& src = *m.diffuse->at("color").texture->texels;
+  const Texels& a = *m.ambient_texture->texels;
+  ASSERT_EQ(a.width, src.width);
+  const RGB base = {0.8, 0.2, 0.1};  // tests/gltf/one_triangle.gltf's baseColorFactor
+  for (int j = 0; j < src.height; ++j)
+    for (int i = 0; i < src.width; ++i)
+      for (int c = 0; c < 3; ++c)
+        EXPECT_NEAR(a.at(i, j)[c],
+                    base[size_t(c)] * srgb_to_linear(src.at(i, j)[c]) * 0.5 * (1 + 0.5 * (src.at(i, j)[0] - 1)),
+                    0.6 / 65535)
+            << i << "," << j << "," << c;
+  // Without a base colour map and with strength 1, the occlusion map itself, the albedo its factor.
+  gm["pbrMetallicRoughness"].erase("baseColorTexture");
+  gm["occlusionTexture"]["strength"] = 1.0;
+  Scene plain = import_gltf(write_gltf("occlusion_factor.gltf", g).string(), {}, notes);
+  const Material& q = plain.materials.begin()->second;
+  ASSERT_TRUE(q.ambient_texture);
+  EXPECT_EQ(q.ambient_texture->channel, "r");
+  EXPECT_EQ(q.ambient, (RGB{0.8 * 0.5, 0.2 * 0.5, 0.1 * 0.5}));
 }
 
 TEST(GltfTextures, UnlitFileGetsAHeadlight) {

@@ -11,7 +11,10 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "catalog/material.h"
+#include "core/diagnostics.h"
 #include "core/io.h"
+#include "reference/raycaster.h"
 #include "scene/tangents.h"
 #include "test_support.h"
 
@@ -94,6 +97,60 @@ TEST(Tangents, MikkTSpaceAsBlenderComputesIt) {
     }
   }
   EXPECT_GT(mirrored, 0) << "the mirrored plane's corners have w = −1";
+}
+
+// A mesh's own tangents ("tangents", glTF's TANGENT) are the normal map's frame, corner by
+// corner, in place of facet's MikkTSpace ones: the reference render of
+// tests/scenes/textured_mesh_tangents.json (a mirrored frame unlike MikkTSpace's) differs from
+// the same mesh without them, and `validate.*.textured.mesh_tangents` hold every renderer to it.
+TEST(Tangents, AMeshsOwnTangentsAreTheNormalMapsFrame) {
+  const std::string source = FACET_SOURCE_DIR;
+  const Material m = load_material(source + "/examples/textured/textured_normal_cook_torrance.json");
+  Scene own = load_scene(source + "/tests/scenes/textured_mesh_tangents.json");
+  const Mesh& mesh = *own.objects[0].mesh;
+  ASSERT_EQ(mesh.tangents.size(), mesh.positions.size());
+  const auto corners = mesh_tangents(mesh, 0);
+  ASSERT_EQ(corners.size(), 3 * mesh.triangles.size());
+  for (size_t t = 0; t < mesh.triangles.size(); ++t)
+    for (size_t k = 0; k < 3; ++k) EXPECT_EQ(corners[3 * t + k], mesh.tangents[mesh.triangles[t][k]]);
+
+  Scene computed = own;
+  auto bare = std::make_shared<Mesh>(mesh);
+  bare->tangents.clear();
+  computed.objects[0].mesh = bare;
+  const Render a = render_reference(m, own, 80, 60), b = render_reference(m, computed, 80, 60);
+  int differ = 0;
+  for (size_t i = 0; i < a.image.rgb.size(); ++i) differ += std::fabs(a.image.rgb[i] - b.image.rgb[i]) > 1e-2;
+  std::cout << "channels that differ by more than 1e-2 without the mesh's tangents: " << differ << "\n";
+  EXPECT_GT(differ, 500);
+}
+
+// Bad "tangents" fail naming the key: a w that is not ±1, a count unlike the positions', a
+// tangent of length 0, four numbers not given.
+TEST(Tangents, BadMeshTangentsNameTheKey) {
+  const nlohmann::json mesh = {{"type", "mesh"},
+                               {"positions", {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}},
+                               {"normals", {{0, 0, 1}, {0, 0, 1}, {0, 0, 1}}},
+                               {"texcoords", {{0, 0}, {1, 0}, {0, 1}}},
+                               {"triangles", {{0, 1, 2}}}};
+  const std::pair<nlohmann::json, std::string> cases[] = {
+      {{{1, 0, 0, 1}, {1, 0, 0, 0.5}, {1, 0, 0, 1}}, "objects[0].tangents[1]: w is 0.5; allowed: +1 or −1"},
+      {{{1, 0, 0, 1}, {1, 0, 0, 1}}, "objects[0].tangents: has 2 tangents for 3 positions"},
+      {{{1, 0, 0, 1}, {0, 0, 0, 1}, {1, 0, 0, 1}}, "objects[0].tangents[1]: the zero vector has no direction"},
+      {{{1, 0, 0, 1}, {1, 0, 0}, {1, 0, 0, 1}}, "objects[0].tangents[1]: expected four numbers, found 3 values"},
+  };
+  for (const auto& [tangents, expected] : cases) {
+    nlohmann::json doc = {{"camera", {{"position", {0, 0, 3}}, {"look_at", {0, 0, 0}}}}, {"objects", {mesh}}};
+    doc["objects"][0]["tangents"] = tangents;
+    try {
+      (void)parse_scene(doc, "bad.json");
+      ADD_FAILURE() << "accepted " << tangents.dump();
+    } catch (const InputError& e) {
+      std::string all;
+      for (const auto& d : e.diagnostics()) all += d.format() + "\n";
+      EXPECT_NE(all.find(expected), std::string::npos) << all;
+    }
+  }
 }
 
 }  // namespace

@@ -1853,6 +1853,12 @@ def test_textured_principled_exports_and_renders_like_reference():
         expect_ok("generate_osl", mat)
         uv_nodes = [n for n in mat.node_tree.nodes if n.type == "UVMAP" and n.name.startswith("facet UV")]
         check(uv_nodes and all(n.outputs["UV"].is_linked for n in uv_nodes), f"{mat.name}: no UV Map node linked")
+        script = next(n for n in mat.node_tree.nodes if n.type == "SCRIPT")
+        if "facet_uv_tangent" in script.inputs:   # the normal map's frame: Cycles' UV tangent and its sign
+            check(script.inputs["facet_uv_tangent"].is_linked and script.inputs["facet_uv_handedness"].is_linked,
+                  f"{mat.name}: the normal map's tangent frame is not linked")
+    check(facet_has_normal_map() == ("facet_uv_tangent" in next(
+        n for n in ball.node_tree.nodes if n.type == "SCRIPT").inputs), "the ball's OSL has the normal map")
     got = cycles_render(work("principled_osl.exr"), w, h)
     compare(got, ref, ids, "textured Principled, Cycles OSL vs facet reference of the exported scene")
 

@@ -94,8 +94,9 @@ UV_NODE_NAME = "facet UV"
 
 def _link_uv_maps(tree, script, uv_maps):
     """UV Map nodes (one per texture coordinate set the shader reads) into the shader's
-    facet_uv0 / facet_uv1 inputs; Cycles exports a mesh's UV map only when a node asks."""
-    for node in [n for n in tree.nodes if n.type == "UVMAP" and n.name.startswith(UV_NODE_NAME)]:
+    facet_uv0 / facet_uv1 inputs; Cycles exports a mesh's UV map only when a node asks.
+    A normal-mapped shader's tangent frame too (_link_tangent_frame)."""
+    for node in [n for n in tree.nodes if n.name.startswith(UV_NODE_NAME)]:
         tree.nodes.remove(node)
     for k, name in enumerate(uv_maps):
         socket = script.inputs.get(f"facet_uv{k}")
@@ -106,6 +107,42 @@ def _link_uv_maps(tree, script, uv_maps):
         node.uv_map = name
         node.location = (script.location.x - 250, script.location.y - 150 * k)
         tree.links.new(node.outputs["UV"], socket)
+    if "facet_uv_tangent" in script.inputs and uv_maps:
+        _link_tangent_frame(tree, script, uv_maps)
+
+
+def _link_tangent_frame(tree, script, uv_maps):
+    """The normal map's frame (docs/textures.md, "Tangent frames") from Cycles' own
+    MikkTSpace tangents of the UV map the normal map reads, as Blender's Normal Map node
+    takes them: a Tangent node (UV Map) gives the interpolated tangent in world space made
+    ⟂ N and unit, which is facet's t after its Gram–Schmidt; the Attribute
+    "<uv map>.tangent_sign" (Cycles computes it beside the tangent) gives the blended w,
+    whose sign, +1 where w ≥ 0, becomes facet_uv_handedness (two Math nodes: 1 − 2·[w < 0])."""
+    socket = script.inputs.get("facet_normal_map_uv")
+    k = int(socket.default_value) if socket is not None else 0
+    name = uv_maps[min(k, len(uv_maps) - 1)]
+    x, y = script.location.x - 250, script.location.y - 320
+
+    def node(kind, label, dx, dy):
+        n = tree.nodes.new(kind)
+        n.name = n.label = f"{UV_NODE_NAME} {label}"
+        n.location = (x + dx, y + dy)
+        return n
+
+    tangent = node("ShaderNodeTangent", "tangent", 0, 0)
+    tangent.direction_type, tangent.uv_map = "UV_MAP", name
+    tree.links.new(tangent.outputs["Tangent"], script.inputs["facet_uv_tangent"])
+    sign = node("ShaderNodeAttribute", "tangent sign", -500, -150)
+    sign.attribute_name = f"{name}.tangent_sign"
+    below = node("ShaderNodeMath", "w < 0", -300, -150)
+    below.operation = "LESS_THAN"
+    below.inputs[1].default_value = 0.0
+    tree.links.new(sign.outputs["Fac"], below.inputs[0])
+    handedness = node("ShaderNodeMath", "handedness", -100, -150)
+    handedness.operation = "MULTIPLY_ADD"
+    handedness.inputs[1].default_value, handedness.inputs[2].default_value = -2.0, 1.0
+    tree.links.new(below.outputs["Value"], handedness.inputs[0])
+    tree.links.new(handedness.outputs["Value"], script.inputs["facet_uv_handedness"])
 
 
 def install(material, osl_text, text_name, uv_maps=()):
