@@ -246,7 +246,8 @@ ir::FunctionPtr PovScene::emission_function(PovShading& sh) {
 
 // `name`: `light` (a light's, or the emission's function) on object o, which takes (x, y, z):
 // the hit point on spheres and squares, uv_mapping's point on meshes.
-ir::FunctionPtr PovScene::object_function(size_t o, const std::string& name, const ir::FunctionPtr& light) {
+ir::FunctionPtr PovScene::object_function(size_t o, const std::string& name, const ir::FunctionPtr& light,
+                                          std::optional<size_t> light_index) {
   const Object& obj = s_.objects[o];
   ir::FunctionBuilder fb(name, "");
   Triple P = params(fb, "x", "y", "z");
@@ -285,9 +286,16 @@ ir::FunctionPtr PovScene::object_function(size_t o, const std::string& name, con
     const Triple tangent = {ir::call(data("UX"), at), ir::call(data("UY"), at), ir::call(data("UZ"), at)};
     Expr w = fb.let("W", ir::select(ir::call(data("UW"), at) < 0.0, Expr(-1.0), Expr(1.0)));
     const Triple n = mapped_normal(fb, shading(o), uv, M / len, tangent, w);
-    if (takes_tangent(shading(o), *shading(o).program.reflectance))
-      return fb.returns(ir::call(light, with(args({hit, n, mapped_tangent(fb, shading(o), M / len, n)}), uv)));
-    return fb.returns(ir::call(light, with(args({hit, n}), uv)));
+    Expr lit = takes_tangent(shading(o), *shading(o).program.reflectance)
+                   ? ir::call(light, with(args({hit, n, mapped_tangent(fb, shading(o), M / len, n)}), uv))
+                   : ir::call(light, with(args({hit, n}), uv));
+    if (!light_index) return fb.returns(lit);
+    // The smooth normal decides whether the light is above the surface (the reference's rule,
+    // docs/textures.md "Normal maps"); POV-Ray's own lit side is the flat triangle's, which
+    // faces the light a little past the smooth normal's terminator, where n′ may still.
+    const Light& l = s_.lights[*light_index];
+    const Triple toward = l.type == Light::Type::Directional ? constant(-l.direction) : l.position - hit;
+    return fb.returns(lit * ir::select(dot3(M, toward) > 0.0, Expr(1.0), Expr(0.0)));
   }
   // Sphere: n = (P − C)/|P − C|, which holds for the shrunken copies too.
   Triple radial = P - obj.center;
@@ -354,9 +362,9 @@ void PovScene::build_scaffolding() {
     if (table_[o]) continue;  // the table's leaves call Facet_Table{i}
     for (size_t i = 0; i < s_.lights.size(); ++i) {
       const std::string name = fmt::format("Facet_Object{}_Light{}", o, i);
-      if (sh.lobes.empty()) objects_[o][i].push_back(object_function(o, name, sh.lights[i]));
+      if (sh.lobes.empty()) objects_[o][i].push_back(object_function(o, name, sh.lights[i], i));
       for (const auto& lobe : sh.lobes)
-        objects_[o][i].push_back(object_function(o, name + lobe.suffix, lobe.lights[i]));
+        objects_[o][i].push_back(object_function(o, name + lobe.suffix, lobe.lights[i], i));
     }
   }
 }

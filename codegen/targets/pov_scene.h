@@ -105,8 +105,10 @@ class PovScene {
   ir::FunctionPtr reflect_function(PovShading& sh, const ir::FunctionPtr& reflectance, const std::string& suffix);
   ir::FunctionPtr light_function(PovShading& sh, size_t i, const ir::FunctionPtr& reflect, const std::string& suffix);
   ir::FunctionPtr emission_function(PovShading& sh);
-  // `name`(x, y, z): `light` (a function of the point, its normal and its texture coordinates) on object o.
-  ir::FunctionPtr object_function(size_t o, const std::string& name, const ir::FunctionPtr& light);
+  // `name`(x, y, z): `light` (a function of the point, its normal and its texture coordinates) on object o;
+  // `light_index`: the scene light it is, where there is one (not the emission's function).
+  ir::FunctionPtr object_function(size_t o, const std::string& name, const ir::FunctionPtr& light,
+                                  std::optional<size_t> light_index = std::nullopt);
   // Constants, terms and frames; `objects`: those the scene's objects call (lobe by lobe
   // where PovShading::lobes), else the whole reflectance's (the library, the sweep).
   std::string functions(bool objects = false);

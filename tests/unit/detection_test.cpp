@@ -616,6 +616,70 @@ TEST(Detection, GlslMeshTangentHandednessFailsWhenWrong) {
   EXPECT_FALSE(bad.pass) << bad.metrics.max_excess;
 }
 
+// A mesh's own tangents reach every renderer's normal map: on
+// tests/scenes/textured_mesh_tangents.json, whose sheet brings a mirrored frame (w = −1 at
+// every vertex), each renderer with the mesh's w taken as +1 fails and the generated code
+// passes (the sphere beside it has w = +1 either way).
+TEST(Detection, MeshTangentsHandednessReachesEveryRenderer) {
+  const std::string scene = (kSource / "tests/scenes/textured_mesh_tangents.json").string();
+  {
+    GlRenderer gl;
+    ASSERT_TRUE(gl.ok()) << gl.error();
+    Fixture f = fixture(kNormalExample, "glsl-own-tangents", "textured", scene);
+    const std::string good = GlRenderer::fragment_source(f.material);
+    f.job.code_override = good;
+    EXPECT_TRUE(judged(f, gl.render(f.job)).pass);
+    f.job.code_override = inject(good, "return vec4(c.xyz, c.w >= 0.0 ? 1.0 : -1.0);", "return vec4(c.xyz, 1.0);");
+    ComparisonRow bad = judged(f, gl.render(f.job));
+    std::cout << "GLSL, the mesh's w taken as +1: " << bad.metrics.over << " pixels over, worst " << bad.metrics.max_excess << "\n";
+    EXPECT_FALSE(bad.pass);
+  }
+  {
+    Fixture f = fixture(kNormalExample, "osl-own-tangents", "textured", scene);
+    GenerateOptions o;
+    o.target = Target::Osl;
+    o.scene = f.scene;
+    const std::string good = generate(f.material, o);
+    std::vector<RenderJob> jobs(2, f.job);
+    jobs[0].code_override = good;
+    jobs[1].code_override = inject(good, "vector Bu = facet_uv_handedness * cross(Nn, Tu);", "vector Bu = cross(Nn, Tu);");
+    jobs[1].material->name += "_w_ignored";
+    std::vector<RenderOutcome> r = make_renderer("osl")->render(jobs);
+    ASSERT_EQ(r.size(), 2u);
+    EXPECT_TRUE(judged(f, r[0]).pass);
+    ComparisonRow bad = judged(f, r[1]);
+    std::cout << "OSL, the mesh's w taken as +1: " << bad.metrics.over << " pixels over, worst " << bad.metrics.max_excess << "\n";
+    EXPECT_FALSE(bad.pass);
+  }
+  {
+    Fixture f = fixture(kNormalExample, "pov-own-tangents", "textured", scene);
+    PovOutput pov = generate_pov_files(f.scene, &f.material, kNormalExample, PovRoute::Auto, job_name(f.job));
+    f.job.code_override = pov.code;
+    EXPECT_TRUE(judged(f, render_one("pov", f.job)).pass);
+    f.job.code_override = inject_all(pov.code, "select(Facet_Mesh0_UW(x, y), -1, 1)", "1");
+    ComparisonRow bad = judged(f, render_one("pov", f.job));
+    std::cout << "POV-Ray, the mesh's w taken as +1: " << bad.metrics.over << " pixels over, worst " << bad.metrics.max_excess << "\n";
+    EXPECT_FALSE(bad.pass);
+  }
+}
+
+// POV-Ray lights a flat triangle that faces the light a little past the smooth normal's
+// terminator, where the mapped normal n′ may still face it; the object functions of a
+// normal-mapped mesh keep the reference's rule (the smooth normal decides) with a
+// select(N·L, 0, 0, 1). On examples/scenes/textured.json (the normal-mapped sphere mesh) POV-Ray
+// with every such select lit fails, the generated scene passes.
+TEST(Detection, PovNormalMappedMeshIsLitBySmoothNormal) {
+  Fixture f = fixture(kNormalExample, "pov-lit-side", "textured", (kSource / "examples/scenes/textured.json").string());
+  PovOutput pov = generate_pov_files(f.scene, &f.material, kNormalExample, PovRoute::Auto, job_name(f.job));
+  f.job.code_override = pov.code;
+  ComparisonRow right = judged(f, render_one("pov", f.job));
+  EXPECT_TRUE(right.pass) << right.metrics.max_excess;
+  f.job.code_override = inject_all(pov.code, ", 0, 0, 1)", ", 1, 1, 1)");
+  ComparisonRow bad = judged(f, render_one("pov", f.job));
+  std::cout << "the flat triangle's lit side: " << bad.metrics.over << " pixels over, worst " << bad.metrics.max_excess << "\n";
+  EXPECT_FALSE(bad.pass);
+}
+
 // Under a normal map the anisotropic tangent follows the mapped normal (t Gram–Schmidt'd
 // against n′): Ward on the tangent rule's t, left as it was, fails; the generated code passes.
 TEST(Detection, GlslAnisotropicTangentFollowsTheNormalMap) {
