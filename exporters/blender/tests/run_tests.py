@@ -1187,6 +1187,12 @@ def test_facet_rejects_out_of_range_value():
     error = expect_error("export_material", mat, ["specular.alpha", "out of range", "material 'Mirror'"],
                          filepath=target)
     info(f"facet's words: {error.splitlines()[0]}")
+    # Blender prefixes an error report with "Error: "; facet's own "error: " must not follow it.
+    _, _, reports = run_op("export_material", mat, filepath=target)
+    check(reports and reports[-1][0] == "ERROR" and "specular.alpha" in reports[-1][1], f"reports: {reports}")
+    doubled = [l for l in error.splitlines() + reports[-1][1].splitlines()
+               if re.match(r"(Error: )?error:", l)]
+    check(not doubled, f"the message says error twice: {doubled}")
     with open(target) as f:
         check_equal(f.read(), "previous contents\n", "a failed export must leave the old file intact")
     expect_error("export_glsl", mat, ["specular.alpha"], filepath=work("mirror.glsl"))

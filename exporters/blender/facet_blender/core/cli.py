@@ -27,13 +27,23 @@ class FacetNotFound(UserError):
     """No usable facet executable."""
 
 
+ERROR_PREFIX = "error: "
+
+
+def without_prefix(line):
+    """facet's line without its `error: ` prefix: Blender prefixes an error report with
+    "Error: " itself, and "Error: error: ..." says it twice."""
+    return line[len(ERROR_PREFIX):] if line.startswith(ERROR_PREFIX) else line
+
+
 class FacetError(UserError):
-    """facet ran and refused: `lines` are its own `error: ...` lines."""
+    """facet ran and refused: `lines` are its own `error: ...` lines; the message is
+    those lines without the prefix (`without_prefix`)."""
 
     def __init__(self, lines, command=""):
         self.lines = list(lines)
         self.command = command
-        super().__init__("\n".join(self.lines) or f"facet failed: {command}")
+        super().__init__("\n".join(without_prefix(line) for line in self.lines) or f"facet failed: {command}")
 
 
 def _is_executable(path):
