@@ -1153,7 +1153,8 @@ def test_bad_facet_path():
         lines = [entry[1] for entry in draw_panel(ui.FACET_PT_material, mat) if entry[0] == "label"]
         check(any("/nonexistent/bin/facet" in l and "not found" in l for l in lines),
               f"the panel should show the error: {lines}")
-        check(any("Preferences" in l for l in lines), "the panel should point to the preferences")
+        where = [l for l in lines if "Preferences" in l]
+        check(len(where) == 1, f"the panel should point to the preferences once: {where}")
         for op, kw in (("export_material", {"filepath": work("bad_path.json")}),
                        ("export_glsl", {"filepath": work("bad_path.glsl")}),
                        ("convert_material", {}),
@@ -1170,6 +1171,11 @@ def test_bad_facet_path():
         check(state.STATE.catalog is None and "not found" in state.STATE.error, "catalog error kept at register")
         lines = [entry[1] for entry in draw_panel(ui.FACET_PT_material, mat) if entry[0] == "label"]
         check(any("not found" in l for l in lines), f"the panel should show the error after registering: {lines}")
+        # An executable that runs but is not facet: its error does not say where to set the path; the box does.
+        prefs().facet_path = shutil.which("false")
+        lines = [entry[1] for entry in draw_panel(ui.FACET_PT_material, mat) if entry[0] == "label"]
+        where = [l for l in lines if "Preferences" in l]
+        check(len(where) == 1, f"the panel should point to the preferences once ({state.STATE.error!r}): {lines}")
     finally:
         prefs().facet_path = good
     check(state.STATE.catalog is not None, f"catalog back after restoring the path: {state.STATE.error}")
@@ -1229,9 +1235,23 @@ def test_panels_draw_the_chosen_models():
     check("exact_ior" not in drawn, "only the chosen Fresnel model's parameters are drawn")
     ops = {e[1] for e in log if e[0] == "operator"}
     check({"facet_path", "povray_path"} <= drawn, "preferences do not draw the executables")
-    for op in ("facet.export_glsl", "facet.generate_osl", "facet.export_pov", "facet.import_material",
+    for op in ("facet.export_glsl", "facet.export_pov", "facet.import_material",
                "facet.export_material", "facet.convert_material", "facet.export_scene", "facet.reload_catalog"):
         check(op in ops, f"{op} has no button")
+    # Generate OSL is offered where Cycles has OSL and hidden (not a button that refuses) elsewhere.
+    check_equal("facet.generate_osl" in ops, has_osl(), "Generate OSL button shown exactly where OSL exists")
+    from facet_blender.blender import osl
+    real_available = osl.available
+    try:
+        osl.available = lambda: (False, "simulated: no OSL")
+        ops = {e[1] for e in draw_panel(ui.FACET_PT_generate, mat) if e[0] == "operator"}
+        check("facet.generate_osl" not in ops and "facet.export_glsl" in ops,
+              f"without OSL the Generate panel must hide Generate OSL only: {ops}")
+        osl.available = lambda: (True, "")
+        ops = {e[1] for e in draw_panel(ui.FACET_PT_generate, mat) if e[0] == "operator"}
+        check("facet.generate_osl" in ops, f"with OSL the Generate panel must offer Generate OSL: {ops}")
+    finally:
+        osl.available = real_available
 
 
 INSTALL_SCRIPT = """
