@@ -1386,7 +1386,9 @@ def test_export_pov_of_half_a_million_triangles():
 @test()
 def test_export_pov_render_failure_keeps_old_png():
     """A POV-Ray that fails in one of the passes (one per light): a clear error naming the
-    pass, the other runs stopped, the previous PNG intact and no temporary files left."""
+    pass, the other runs stopped, the previous PNG and .pov intact and nothing of the
+    failed export left (no new .pov, side file or temporary file); the same for a
+    POV-Ray that fails at once (exit 1) with the scene saved too."""
     check(scene_support(), "facet lacks scene materials/meshes")
     mat = new_material("Two", "lambert", "ggx")
     add_uv_sphere("Ball", (0.0, 0.0, 1.0), 1.0, 12, 6, True, mat)
@@ -1400,9 +1402,10 @@ def test_export_pov_render_failure_keeps_old_png():
         f.write("#!/bin/sh\ncase \"$*\" in *Facet_Light=1*) echo 'Parse Error: simulated' >&2; exit 3;; esac\n"
                 "for a; do case \"$a\" in +O*) echo x > \"${a#+O}\";; esac; done; sleep 0.2\n")
     os.chmod(fake, 0o755)
-    png = os.path.join(folder, "scene.png")
-    with open(png, "w") as f:
-        f.write("old image")
+    png, old_pov = os.path.join(folder, "scene.png"), os.path.join(folder, "scene.pov")
+    for path, text in ((png, "old image"), (old_pov, "old scene")):
+        with open(path, "w") as f:
+            f.write(text)
     prefs().povray_path = fake
     try:
         error = expect_error("export_pov", None, ["POV-Ray failed", "pass 2 of 2", "exit status 3", "simulated"],
@@ -1410,13 +1413,27 @@ def test_export_pov_render_failure_keeps_old_png():
     finally:
         prefs().povray_path = shutil.which(OPTS.povray) or ""
     info(f"message: {error.splitlines()[0]}")
-    with open(png) as f:
-        check_equal(f.read(), "old image", "the previous PNG must be intact")
-    # The export itself stays: the .pov and the files it reads, its meshes' lists and data images
-    # (scene_mesh<i>.inc, scene_mesh<i>.ppm).
-    left = sorted(n for n in os.listdir(folder)
-                  if n not in ("povray", "scene.png", "scene.pov") and not re.fullmatch(r"scene_mesh\d+\.(ppm|inc)", n))
-    check(not left, f"temporary files left behind: {left}")
+    for path, text in ((png, "old image"), (old_pov, "old scene")):
+        with open(path) as f:
+            check_equal(f.read(), text, f"the previous {os.path.basename(path)} must be intact")
+    # Nothing of the failed export stays: not its .pov (the previous one is whole), not the files it
+    # reads (its meshes' lists and data images, scene_mesh<i>.inc and .ppm), no temporary file.
+    left = sorted(n for n in os.listdir(folder) if n not in ("povray", "scene.png", "scene.pov"))
+    check(not left, f"files of the failed export left behind: {left}")
+    # A POV-Ray that fails on its first run, in a folder with no previous export.
+    folder = work("failing_pov_at_once")
+    os.makedirs(folder)
+    fake = os.path.join(folder, "povray")
+    with open(fake, "w") as f:
+        f.write("#!/bin/sh\necho 'Possible Parse Error: simulated at once' >&2\nexit 1\n")
+    os.chmod(fake, 0o755)
+    prefs().povray_path = fake
+    try:
+        expect_error("export_pov", None, ["POV-Ray failed", "exit status 1", "simulated at once"],
+                     filepath=os.path.join(folder, "scene.pov"), render=True, save_scene=True)
+    finally:
+        prefs().povray_path = shutil.which(OPTS.povray) or ""
+    check_equal(sorted(os.listdir(folder)), ["povray"], "what a failed export leaves in a fresh folder")
 
 
 # ============================================================================ tests: glTF with facet's extensions

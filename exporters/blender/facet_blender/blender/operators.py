@@ -310,19 +310,27 @@ class FACET_OT_export_pov(_FacetOperator, ExportHelper, bpy.types.Operator):
         reserved = [os.path.basename(stem) + ext for ext in (".pov", ".png", ".json")]
         data, notes, files = scene_data.full_scene(context, generate.texturable_material_keys(exe), reserved)
         povray_path = preferences.povray_exe(context) if self.render else None
-        plan = pov.generate_scene(exe, data, context.scene.name, self.filepath, files)   # facet's pass count
-        beside = dict(files)
-        if self.save_scene:
-            beside[os.path.basename(stem) + ".json"] = cli.dump_json(data)
-        if beside:     # the images the scene names, beside the .pov (and the scene, last)
-            cli.write_all_atomic(os.path.dirname(os.path.abspath(self.filepath)), beside)
+        width, height = scene_data.render_size(context.scene)
+        name = os.path.basename(stem)
+        # Everything is written and rendered in a folder beside the .pov and moved beside it
+        # only when all of it worked: a failed POV-Ray run leaves no .pov, no side file, and
+        # a previous export (and its PNG) whole.
+        with cli.staged(self.filepath) as stage:
+            staged_pov = os.path.join(stage, os.path.basename(self.filepath))
+            plan = pov.generate_scene(exe, data, context.scene.name, staged_pov, files)   # facet's pass count
+            beside = dict(files)
+            if self.save_scene:
+                beside[name + ".json"] = cli.dump_json(data)
+            if beside:     # the images the scene names, beside the .pov (and the scene, last)
+                cli.write_all_atomic(stage, beside)
+            if povray_path:
+                runs = povray.render(povray_path, staged_pov, plan, os.path.join(stage, name + ".png"),
+                                     width, height, self.exposure)
         for note in notes:
             self.report_("WARNING", note)
         message = f"Exported scene '{context.scene.name}' to {self.filepath}"
         if povray_path:
             png = stem + ".png"
-            width, height = scene_data.render_size(context.scene)
-            runs = povray.render(povray_path, self.filepath, plan, png, width, height, self.exposure)
             image = load_image(png, f"{context.scene.name} (POV-Ray)")
             message += (f"; rendered {width}x{height} to {png} (image '{image.name}'"
                         + (f", {runs} POV-Ray runs, one per light, added" if runs > 1 else "")

@@ -6,6 +6,7 @@ the generated code (`facet generate`). A failing facet command exits 1 and print
 `error: FILE: key.path: message` lines on stderr; `FacetError` carries those lines.
 """
 
+import contextlib
 import json
 import os
 import shutil
@@ -284,13 +285,43 @@ def generate_to(exe, path, args, replace=None, describe=None):
                                   f"needs: it is older than the add-on; update facet"], e.command)
             raise
         result = describe(_parse_json(out, exe, command)) if describe else None
-        # The files beside the scene first, the scene last: it never reads a missing file.
-        for name in sorted(os.listdir(tmp_dir), key=lambda n: n == os.path.basename(path)):
-            _give_ordinary_permissions(os.path.join(tmp_dir, name))
-            os.replace(os.path.join(tmp_dir, name), os.path.join(folder, name))
+        _move_all(tmp_dir, folder, os.path.basename(path))
     finally:
         shutil.rmtree(tmp_dir, ignore_errors=True)
     return result
+
+
+def _move_all(tmp_dir, folder, last):
+    """Moves the files of `tmp_dir` into `folder`, the one named `last` last (a scene
+    that names the others never names a missing file)."""
+    for name in sorted(os.listdir(tmp_dir), key=lambda n: n == last):
+        if os.path.isfile(os.path.join(tmp_dir, name)):
+            _give_ordinary_permissions(os.path.join(tmp_dir, name))
+            os.replace(os.path.join(tmp_dir, name), os.path.join(folder, name))
+
+
+@contextlib.contextmanager
+def staged(path):
+    """A temporary folder beside `path` (same file system) for everything one export
+    writes: `path`'s file and the files beside it, by the same names. When the block ends
+    without an exception they are moved beside `path` (`path`'s file last); otherwise the
+    folder is removed and nothing beside `path` has changed (a previous export stays
+    whole)."""
+    folder = os.path.dirname(os.path.abspath(path))
+    if not os.path.isdir(folder):
+        raise UserError(f"cannot write '{path}': folder '{folder}' does not exist")
+    try:
+        tmp_dir = tempfile.mkdtemp(prefix="." + os.path.basename(path) + ".", suffix=".tmp", dir=folder)
+    except OSError as e:
+        raise UserError(f"cannot write into '{folder}': {e.strerror or e}")
+    try:
+        yield tmp_dir
+        try:
+            _move_all(tmp_dir, folder, os.path.basename(path))
+        except OSError as e:
+            raise UserError(f"cannot write into '{folder}': {e.strerror or e}")
+    finally:
+        shutil.rmtree(tmp_dir, ignore_errors=True)
 
 
 def _is_scalar(v):
