@@ -1135,11 +1135,14 @@ def test_material_without_facet_settings():
             continue
         expect_error(op, plain, ["material 'Plain' has no facet settings"], **kw)
     check(not os.path.exists(work("plain.json")) and not os.path.exists(work("plain.glsl")), "files written")
-    # A whole-scene export names the material of an object.
+    # A whole-scene export names the material of an object: strict, or when its nodes do not convert.
     add_camera((0.0, -5.0, 2.0), (0.0, 0.0, 0.0))
     add_quad("Ground", 2.0, material=plain)
+    plain.use_nodes = False
     for op, path in (("export_pov", work("plain.pov")), ("export_scene", work("plain_scene.json"))):
-        expect_error(op, None, ["material 'Plain' has no facet settings"], filepath=path)
+        expect_error(op, None, ["material 'Plain' has no facet settings"], filepath=path, strict=True)
+        expect_error(op, None, ["material 'Plain' has no facet settings", "do not convert", "Material Output"],
+                     filepath=path)
         check(not os.path.exists(path), f"{op} wrote {path}")
     check(not os.path.exists(work("plain.png")), "a PNG was written")
     add_quad("Naked", 1.0)
@@ -1445,6 +1448,81 @@ def test_export_pov_render_failure_keeps_old_png():
     finally:
         prefs().povray_path = shutil.which(OPTS.povray) or ""
     check_equal(sorted(os.listdir(folder)), ["povray"], "what a failed export leaves in a fresh folder")
+
+
+def plain_principled(name, image, roughness=0.5):
+    """A material with Blender's Principled BSDF, its Base Color an image, and no facet settings."""
+    def build(nodes, links, out):
+        p = nodes.new("ShaderNodeBsdfPrincipled")
+        links.new(image_node(nodes, links, image).outputs["Color"], p.inputs["Base Color"])
+        p.inputs["Roughness"].default_value = roughness
+        links.new(p.outputs[0], out.inputs["Surface"])
+    return node_material(name, build)
+
+
+def facet_settings_snapshot(mat):
+    from facet_blender.blender import properties, state
+    return (properties.read(mat.facet, state.STATE.plan), mat.facet_textures, node_snapshot(mat))
+
+
+@test()
+def test_export_converts_materials_without_facet_settings():
+    """Acceptance 4 of issue 13: a scene with one facet material and one plain Principled
+    material exports (POV-Ray and scene file); a warning names the second, which is
+    exported as 'Convert Blender Material to facet' would set it, without changing the
+    material; POV-Ray's render equals facet's reference of the exported scene. Strict
+    refuses it as before, writing nothing."""
+    check(scene_support(), "facet lacks scene materials/meshes")
+    check(OPTS.povray and shutil.which(OPTS.povray), "POV-Ray (povray) is not installed")
+    prefs().povray_path = shutil.which(OPTS.povray)
+    ball = new_material("BallFacet", "lambert", "phong")
+    ball.facet.diffuse_lambert.color = (0.7, 0.35, 0.2)
+    ball.facet.specular_phong.color = (0.3, 0.3, 0.3)
+    ball.facet.specular_phong.n = 20.0
+    plain = plain_principled("PlainPrincipled", make_image("Tiles", lambda i, j: texel_colour(j, i)[::-1]))
+    add_uv_sphere("Ball", (0.0, 0.0, 1.0), 1.0, 32, 16, True, ball)
+    floor = add_quad("Floor", 4.0, material=plain)
+    add_uv_map(floor, lambda corners: [((x + 4.0) / 8.0, (y + 4.0) / 8.0) for x, y, _ in corners])
+    add_camera((0.5, -6.0, 3.0), (0.0, 0.0, 0.8), 40.0)
+    add_light("POINT", (2.0, -3.0, 4.0), 600.0)
+    w, h = 48, 36
+    scene = bpy.context.scene
+    scene.render.resolution_x, scene.render.resolution_y = w, h
+    before = facet_settings_snapshot(plain)
+    check(not plain.facet.use_facet, "the Principled material starts without facet settings")
+    # Strict: today's refusal, nothing written.
+    for op, path in (("export_pov", work("strict.pov")), ("export_scene", work("strict.json"))):
+        expect_error(op, None, ["material 'PlainPrincipled' has no facet settings"], filepath=path, strict=True)
+        check(not os.path.exists(path), f"strict {op} wrote {path}")
+    reports = expect_ok("export_pov", None, filepath=work("converted.pov"), render=True, save_scene=True)
+    warned = [m for level, m in reports if level == "WARNING" and "material 'PlainPrincipled'" in m]
+    check(warned and "no facet settings" in warned[0] and "approximate" in warned[0],
+          f"a warning should name the converted material: {reports}")
+    info(f"warning: {warned[0]}")
+    check(not any("BallFacet" in m for level, m in reports if level == "WARNING"), f"reports: {reports}")
+    check_equal(facet_settings_snapshot(plain), before, "the converted material's settings and nodes")
+    exported = read_json(work("converted.json"))
+    # What Convert Blender Material sets on a copy, exported: the same material (float32 aside).
+    copy = plain.copy()
+    expect_ok("convert_material", copy)
+    by_operator = export_material(copy, "converted_by_operator.json")
+    by_operator["name"] = plain.name
+    check_close(exported["materials"]["PlainPrincipled"], by_operator, "the exported conversion", 1e-6)
+    check_equal(exported["materials"]["PlainPrincipled"]["specular"]["model"], "ggx", "the Principled specular")
+    tiles = exported["materials"]["PlainPrincipled"]["diffuse"]["color"]
+    check(isinstance(tiles, dict) and os.path.isfile(work(tiles["texture"])), f"the Base Color image: {tiles}")
+    reports = expect_ok("export_scene", None, filepath=work("converted_scene.json"))
+    check(any(level == "WARNING" and "material 'PlainPrincipled'" in m for level, m in reports),
+          f"Export facet Scene should warn too: {reports}")
+    check_equal(read_json(work("converted_scene.json"))["materials"], exported["materials"], "both exports' materials")
+    _, _, got = read_png16(work("converted.png"))
+    ref = facet_reference(None, exported, w, h, "converted")
+    check(max(max(px) for row in ref for px in row) < 1.0, "reference above 1 would clip in the PNG")
+    ids = reference_ids(exported, w, h, "converted")
+    floor = sum(1 for j in range(h) for i in range(w) if interior(ids, i, j) and ids[j][i] == 1 + next(
+        k for k, o in enumerate(exported["objects"]) if o["material"] == "PlainPrincipled"))
+    check(floor > 100, f"only {floor} interior pixels of the converted floor")
+    compare(got, ref, ids, "converted Principled + facet material, POV-Ray vs facet reference")
 
 
 # ============================================================================ tests: glTF with facet's extensions
