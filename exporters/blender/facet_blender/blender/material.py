@@ -62,6 +62,42 @@ def set_lobes(material, result):
     material.facet_textures = textures.dumps(result.textures) if result.textures else ""
 
 
+def _overlay(base, over):
+    """`base` (nested dicts) with the values of `over` put in, as properties.write puts them."""
+    out = dict(base)
+    for key, value in over.items():
+        out[key] = _overlay(base[key], value) if isinstance(value, dict) and isinstance(base.get(key), dict) \
+            else value
+    return out
+
+
+def exported(material, strict=False):
+    """(material JSON, texture bindings, notes) of a material as a scene export writes it:
+    its facet settings; without them, unless `strict`, what 'Convert Blender Material to
+    facet' would set from its Blender nodes, worked out on plain data (the material is
+    not changed), with a warning that names it. `strict` keeps the refusal."""
+    if has_settings(material) or strict:
+        return to_json(material), texture_bindings(material), []
+    from ..core.convert import IGNORED, map_surface
+    from . import nodes
+    catalog, plan = state.require()
+    try:
+        result = map_surface(nodes.surface_description(material), material.name)
+    except UserError as e:
+        raise UserError(f"material '{material.name}' has no facet settings and its Blender nodes do not convert "
+                        f"({e}): enable facet in its Material Properties > facet panel, or give it a Diffuse, "
+                        f"Glossy or Principled BSDF")
+    values = _overlay(properties.read(material.facet, plan), plan_mod.conversion_values(catalog, plan, result))
+    data = plan_mod.material_to_json(catalog, plan, values, material.name)
+    notes = [f"material '{material.name}' has no facet settings: exported as converted from its Blender nodes, "
+             f"{result.headline()} (the material is unchanged; 'Convert Blender Material to facet' makes this its "
+             f"settings, and 'Strict' refuses such a material)"]
+    named = f"material '{material.name}'"
+    notes += [message if named in message else f"{named}: {message}"
+              for level, message in result.notes if level == IGNORED]
+    return data, result.textures, notes
+
+
 def texture_bindings(material):
     """The textures Convert Blender Material found (core/textures.py bindings)."""
     return textures.loads(getattr(material, "facet_textures", ""), material.name)

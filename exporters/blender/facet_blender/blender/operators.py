@@ -13,6 +13,9 @@ Operators (bl_idname):
     facet.export_scene       the whole scene -> facet scene JSON (materials + meshes)
     facet.export_pov         the whole scene -> POV-Ray (facet generate --target pov
                              --scene), optionally rendered by POV-Ray into an Image
+                             (both scene exports: a material without facet settings is
+                             exported as convert_material would set it, with a warning,
+                             unless `strict`)
     facet.reload_catalog     runs facet again (after setting its path)
 
 For scripts, the messages of the last run of any of them are kept in LAST_REPORTS
@@ -248,6 +251,10 @@ class FACET_OT_convert_material(_MaterialOperator, bpy.types.Operator):
 
 # ----------------------------------------------------------------------------- scenes
 
+STRICT_DESCRIPTION = ("Refuse a material without facet settings instead of exporting what 'Convert Blender "
+                      "Material to facet' makes of its Blender nodes (approximate; a warning names it)")
+
+
 class FACET_OT_export_scene(_FacetOperator, ExportHelper, bpy.types.Operator):
     """Write the scene as a facet scene file (JSON): camera, World ambient, lights, meshes and their facet materials"""
     bl_idname = "facet.export_scene"
@@ -255,6 +262,7 @@ class FACET_OT_export_scene(_FacetOperator, ExportHelper, bpy.types.Operator):
     bl_options = {"REGISTER"}
     filename_ext = ".json"
     filter_glob: StringProperty(default="*.json", options={"HIDDEN"})
+    strict: BoolProperty(name="Strict", description=STRICT_DESCRIPTION, default=False)
 
     @classmethod
     def poll(cls, context):
@@ -263,7 +271,7 @@ class FACET_OT_export_scene(_FacetOperator, ExportHelper, bpy.types.Operator):
     def run(self, context):
         exe = preferences.facet_exe(context)
         data, notes, files = scene_data.full_scene(context, generate.texturable_material_keys(exe),
-                                                   [os.path.basename(self.filepath)])
+                                                   [os.path.basename(self.filepath)], self.strict)
         folder = os.path.dirname(os.path.abspath(self.filepath))
         # The images first, the scene that names them last.
         cli.write_all_atomic(folder, dict(files, **{os.path.basename(self.filepath): cli.dump_json(data)}))
@@ -294,6 +302,7 @@ class FACET_OT_export_pov(_FacetOperator, ExportHelper, bpy.types.Operator):
         description="POV-Ray render: every radiance is multiplied by this before the PNG, which clips "
                     "at 1, is written (the PNG holds radiance × exposure); below 1 keeps bright highlights",
         default=1.0, min=1e-6, soft_min=0.01, soft_max=1.0)
+    strict: BoolProperty(name="Strict", description=STRICT_DESCRIPTION, default=False)
 
     @classmethod
     def poll(cls, context):
@@ -305,24 +314,33 @@ class FACET_OT_export_pov(_FacetOperator, ExportHelper, bpy.types.Operator):
     def run(self, context):
         exe = preferences.facet_exe(context)
         pov.require_scene_support(exe)
-        # names a material without settings; reads every image before anything is written
+        # converts (or, strict, names) a material without settings; reads every image before anything is written
         stem = os.path.splitext(self.filepath)[0]
         reserved = [os.path.basename(stem) + ext for ext in (".pov", ".png", ".json")]
-        data, notes, files = scene_data.full_scene(context, generate.texturable_material_keys(exe), reserved)
+        data, notes, files = scene_data.full_scene(context, generate.texturable_material_keys(exe), reserved,
+                                                   self.strict)
         povray_path = preferences.povray_exe(context) if self.render else None
-        plan = pov.generate_scene(exe, data, context.scene.name, self.filepath, files)   # facet's pass count
-        beside = dict(files)
-        if self.save_scene:
-            beside[os.path.basename(stem) + ".json"] = cli.dump_json(data)
-        if beside:     # the images the scene names, beside the .pov (and the scene, last)
-            cli.write_all_atomic(os.path.dirname(os.path.abspath(self.filepath)), beside)
+        width, height = scene_data.render_size(context.scene)
+        name = os.path.basename(stem)
+        # Everything is written and rendered in a folder beside the .pov and moved beside it
+        # only when all of it worked: a failed POV-Ray run leaves no .pov, no side file, and
+        # a previous export (and its PNG) whole.
+        with cli.staged(self.filepath) as stage:
+            staged_pov = os.path.join(stage, os.path.basename(self.filepath))
+            plan = pov.generate_scene(exe, data, context.scene.name, staged_pov, files)   # facet's pass count
+            beside = dict(files)
+            if self.save_scene:
+                beside[name + ".json"] = cli.dump_json(data)
+            if beside:     # the images the scene names, beside the .pov (and the scene, last)
+                cli.write_all_atomic(stage, beside)
+            if povray_path:
+                runs = povray.render(povray_path, staged_pov, plan, os.path.join(stage, name + ".png"),
+                                     width, height, self.exposure)
         for note in notes:
             self.report_("WARNING", note)
         message = f"Exported scene '{context.scene.name}' to {self.filepath}"
         if povray_path:
             png = stem + ".png"
-            width, height = scene_data.render_size(context.scene)
-            runs = povray.render(povray_path, self.filepath, plan, png, width, height, self.exposure)
             image = load_image(png, f"{context.scene.name} (POV-Ray)")
             message += (f"; rendered {width}x{height} to {png} (image '{image.name}'"
                         + (f", {runs} POV-Ray runs, one per light, added" if runs > 1 else "")

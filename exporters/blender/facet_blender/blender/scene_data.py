@@ -155,14 +155,13 @@ def _uv_layer(mesh, name, obj_name, material):
     return values
 
 
-def _corner_uvs(mesh, obj_name, loops, slot_names):
+def _corner_uvs(mesh, obj_name, loops, slot_names, bindings_of):
     """Per triangle, its corners' UVs of the UV maps its material's textures read."""
     per_material, layers, out = {}, {}, []
     for t, material in enumerate(slot_names):
         maps = per_material.get(material.name)
         if maps is None:
-            maps = per_material[material.name] = textures.uv_maps(material_mod.texture_bindings(material),
-                                                                  material.name)
+            maps = per_material[material.name] = textures.uv_maps(bindings_of(material), material.name)
         data = []
         for name in maps:
             if name not in layers:
@@ -172,12 +171,12 @@ def _corner_uvs(mesh, obj_name, loops, slot_names):
     return out
 
 
-def _corner_tangents(mesh, obj_name, loops, slot_materials, material_keys):
+def _corner_tangents(mesh, obj_name, loops, slot_materials, material_keys, bindings_of):
     """Per triangle, None or its corners' (MikkTSpace tangent, bitangent sign) for the UV
     map of its material's normal map (Mesh.calc_tangents)."""
     per_uv, out = {}, []
     for t, material in enumerate(slot_materials):
-        bindings = textures.exported(material_mod.texture_bindings(material), material_keys)
+        bindings = textures.exported(bindings_of(material), material_keys)
         normal = next((b for b in bindings if b["path"] == ["normal_map"]), None)
         if normal is None:
             out.append(None)
@@ -201,9 +200,10 @@ def _corner_tangents(mesh, obj_name, loops, slot_materials, material_keys):
     return out
 
 
-def objects_json(depsgraph, materials, material_keys=None):
+def objects_json(depsgraph, materials, material_keys=None, bindings_of=material_mod.texture_bindings):
     """(facet mesh objects, notes). `materials` collects name -> Blender material of
-    every material used (their facet settings are checked by the caller)."""
+    every material used (their facet settings are checked by the caller); `bindings_of`
+    gives a material's texture bindings as the export writes it."""
     objects, notes = [], []
     for name, obj, matrix in _instances(depsgraph):
         if obj.type not in MESH_TYPES:
@@ -227,9 +227,9 @@ def objects_json(depsgraph, materials, material_keys=None):
                 names.append(mat.name)
                 used_materials.append(materials[mat.name])
             uvs = tangents = None
-            if any(material_mod.texture_bindings(m) for m in set(used_materials)):
-                uvs = _corner_uvs(mesh, name, loops, used_materials)
-                tangents = _corner_tangents(mesh, name, loops, used_materials, material_keys)
+            if any(bindings_of(m) for m in set(used_materials)):
+                uvs = _corner_uvs(mesh, name, loops, used_materials, bindings_of)
+                tangents = _corner_tangents(mesh, name, loops, used_materials, material_keys, bindings_of)
             objects.extend(core_scene.mesh_objects(name, _rows(matrix), positions, triangles, normals, names, uvs,
                                                    tangents))
         finally:
@@ -237,30 +237,41 @@ def objects_json(depsgraph, materials, material_keys=None):
     return objects, notes
 
 
-def full_scene(context, material_keys=None, reserved=()):
+def full_scene(context, material_keys=None, reserved=(), strict=False):
     """(facet scene JSON with materials and meshes, notes, texture files) of the whole
     scene; the texture files ({file name: bytes}) go beside the scene file, which names
     them relatively, under names other than `reserved` (what else the export writes).
 
-    Raises a UserError naming the first material without facet settings."""
+    A material without facet settings is exported as 'Convert Blender Material to facet'
+    would set it, with a note naming it (material.exported); with `strict` a UserError
+    names the first one instead."""
     scene = context.scene
     depsgraph = context.evaluated_depsgraph_get()
     cam, notes = camera_json(scene)
     ambient, more = world_ambient(scene)
     notes += more
+    resolved = {}       # material name -> (material JSON, texture bindings, notes), worked out once
+
+    def resolve(material):
+        if material.name not in resolved:
+            resolved[material.name] = material_mod.exported(material, strict)
+        return resolved[material.name]
+
     used = {}
-    objects, more = objects_json(depsgraph, used, material_keys)
+    objects, more = objects_json(depsgraph, used, material_keys, lambda m: resolve(m)[1])
     notes += more
     if not objects:
         raise UserError(f"scene '{scene.name}' has no mesh objects to export")
     materials = {}
-    bindings = {name: material_mod.texture_bindings(used[name]) for name in sorted(used)}
+    for name in sorted(used):
+        notes += resolve(used[name])[2]
+    bindings = {name: resolve(used[name])[1] for name in sorted(used)}
     names, files, more = images.texture_files({n: textures.exported(b, material_keys)
                                                for n, b in bindings.items() if b},
                                               {r.lower() for r in reserved})
     notes += more
     for name in sorted(used):
-        materials[name], more = textures.apply(material_mod.to_json(used[name]), bindings[name],
+        materials[name], more = textures.apply(resolve(used[name])[0], bindings[name],
                                                names.get(name, {}), material_keys)
         notes += more
     lights, more = lights_json(depsgraph)

@@ -7,8 +7,8 @@ model's, with the catalog's documentation as tooltips.
 
 import bpy
 
-from ..core import props as plan_mod
-from . import material as material_mod, state
+from ..core import cli, props as plan_mod
+from . import material as material_mod, osl, state
 from .operators import context_material
 
 
@@ -66,7 +66,8 @@ class FACET_PT_material(bpy.types.Panel):
             box.label(text="facet is not available", icon="ERROR")
             for line in state.STATE.error.splitlines():
                 box.label(text=line)
-            box.label(text="Set the facet executable in Edit > Preferences > Add-ons > facet")
+            if cli.PREFERENCES_HINT not in state.STATE.error:     # said once: most errors say it already
+                box.label(text=f"Set the facet executable in {cli.PREFERENCES_HINT}")
             box.operator("facet.reload_catalog", icon="FILE_REFRESH")
             return
         row = layout.row(align=True)
@@ -169,7 +170,8 @@ class FACET_PT_generate(bpy.types.Panel):
     def draw(self, context):
         col = self.layout.column(align=True)
         col.operator("facet.export_glsl", text="Export GLSL...", icon="FILE_SCRIPT")
-        col.operator("facet.generate_osl", text="Generate OSL (Cycles)", icon="SHADING_RENDERED")
+        if osl.available()[0]:          # hidden, not refused, where Cycles has no OSL (Debian's 3.4)
+            col.operator("facet.generate_osl", text="Generate OSL (Cycles)", icon="SHADING_RENDERED")
         col.operator("facet.export_pov", text="Export Scene to POV-Ray...", icon="SCENE")
 
 
