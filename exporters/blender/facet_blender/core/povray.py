@@ -6,16 +6,23 @@ is never read back from the .pov. A .pov that did not come from `generate_scene`
 (written by hand or by another tool) has no Plan, and `render` refuses it with a
 message that says so: the add-on renders only the scenes it has just generated.
 
-Every run is `povray +I<scene> +O<image> +W +H -A File_Gamma=1.0 -D -P -V` in the
-scene's folder (POV-Ray's I/O restrictions allow it); passes run as many at a time as
-there are processors. On a failure the other runs are stopped, the message names the
-pass and POV-Ray's last lines, and neither the PNG nor a temporary file is left.
+Every run is `povray +I<scene> +O<image> +W +H +FP16 File_Gamma=1.0 -D -P +V` plus
+the `Settings` (anti-aliasing, quality; EXACT by default: -A +Q9) in the scene's folder
+(POV-Ray's I/O restrictions allow it), in a process group of its own, its output in a
+log file; passes run as many at a time as there are processors. A `Job` runs them while
+its caller polls (the render engine, which can cancel); `render` waits for one. On a
+failure or a cancel the other runs are killed, the message names the pass and POV-Ray's
+last lines, and neither the PNG nor a temporary file is left.
 """
 
 import os
+import re
 import shutil
+import signal
 import subprocess
 import tempfile
+import time
+from dataclasses import dataclass
 
 from . import UserError, cli, pov
 
@@ -24,6 +31,7 @@ EXPOSURE_DECLARATION = "Facet_Exposure"
 PREFERENCES_HINT = "Edit > Preferences > Add-ons > facet > POV-Ray executable"
 HEADER_BYTES = 65536
 TIMEOUT = 3600                 # seconds for one run
+POLL_SECONDS = 0.05
 
 
 def default_povray_path():
@@ -53,79 +61,160 @@ def check_exposure_hook(pov_path):
                         f"render with Exposure 1")
 
 
-def _start(povray, folder, pov_name, out_name, width, height, options):
-    """One POV-Ray run in `folder`; returns the Popen (output in its .communicate())."""
-    # POV-Ray's I/O restrictions allow the working folder: run it there with plain names.
-    command = [povray, "+I" + pov_name, "+O" + out_name, f"+W{width}", f"+H{height}", "-A",
-               "File_Gamma=1.0", "-D", "-P", "-V"] + options
-    try:
-        return subprocess.Popen(command, cwd=folder, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                                text=True, errors="replace")
-    except OSError as e:
-        raise UserError(f"cannot run POV-Ray '{povray}': {e}")
+@dataclass(frozen=True)
+class Settings:
+    """POV-Ray's anti-aliasing and quality. The default is the exact mode: no
+    anti-aliasing (one ray through each pixel centre, as facet's reference samples it)
+    at full quality; `facet validate` and Export POV-Ray render that way."""
+    antialias: bool = False
+    threshold: float = 0.3       # +A<threshold>: supersample where neighbours differ by more
+    depth: int = 3               # +R<depth>: recursion depth (method 2) / grid (method 1)
+    method: int = 2              # +AM1 non-recursive, +AM2 adaptive
+    quality: int = 9             # +Q<quality>: 9 is POV-Ray's full quality
+
+    def options(self):
+        aa = ([f"+A{self.threshold:g}", f"+AM{self.method}", f"+R{self.depth}"] if self.antialias else ["-A"])
+        return aa + [f"+Q{self.quality}"]
 
 
-def _finish(proc, out_path, what):
-    """Waits for a run; a UserError with POV-Ray's last lines unless it wrote `out_path`."""
-    try:
-        stdout, stderr = proc.communicate(timeout=TIMEOUT)
-    except subprocess.TimeoutExpired:
-        proc.kill()
-        proc.communicate()
-        raise UserError(f"POV-Ray took more than an hour ({what}); stopped")
-    if proc.returncode != 0 or not os.path.exists(out_path) or os.path.getsize(out_path) == 0:
-        why = f"exit status {proc.returncode}" if proc.returncode != 0 else "it wrote no image"
-        lines = [l for l in (stderr + stdout).splitlines() if l.strip()][-8:]
-        raise UserError(f"POV-Ray failed ({what}; {why}):\n" + "\n".join(lines))
+EXACT = Settings()
+PROGRESS = re.compile(r"Rendered (\d+) of (\d+) pixels")
 
 
-def render(povray, pov_path, plan, png_path, width, height, exposure=1.0):
+class _Run:
+    """One POV-Ray run in the scene's folder, in a process group of its own (a stand-in
+    script's children stop with it), its output in a log file beside its image."""
+
+    def __init__(self, povray, folder, pov_name, out_rel, width, height, options, what):
+        self.out = os.path.join(folder, out_rel)
+        self.log_path = os.path.splitext(self.out)[0] + ".log"
+        self.what, self.started = what, time.monotonic()
+        # POV-Ray's I/O restrictions allow the working folder: run it there with plain names.
+        command = [povray, "+I" + pov_name, "+O" + out_rel, f"+W{width}", f"+H{height}", "+FP16",
+                   "File_Gamma=1.0", "-D", "-P", "+V"] + options
+        with open(self.log_path, "wb") as log:
+            try:
+                self.proc = subprocess.Popen(command, cwd=folder, stdin=subprocess.DEVNULL, stdout=log,
+                                             stderr=subprocess.STDOUT, start_new_session=True)
+            except OSError as e:
+                raise UserError(f"cannot run POV-Ray '{povray}': {e}")
+
+    def _tail(self, size=8192):
+        with open(self.log_path, "rb") as f:
+            f.seek(max(0, os.path.getsize(self.log_path) - size))
+            return f.read().decode("utf-8", "replace")
+
+    def fraction(self):
+        """How much of the image POV-Ray says it has rendered (its +V progress lines)."""
+        if self.proc.poll() is not None:
+            return 1.0
+        found = PROGRESS.findall(self._tail(512))
+        return int(found[-1][0]) / max(1, int(found[-1][1])) if found else 0.0
+
+    def done(self):
+        """True once POV-Ray has written the image; a UserError with its last lines when
+        it failed or ran past TIMEOUT (the caller stops the other runs)."""
+        code = self.proc.poll()
+        if code is None:
+            if time.monotonic() - self.started > TIMEOUT:
+                self.stop()
+                raise UserError(f"POV-Ray took more than an hour ({self.what}); stopped")
+            return False
+        if code != 0 or not os.path.exists(self.out) or os.path.getsize(self.out) == 0:
+            why = f"exit status {code}" if code != 0 else "it wrote no image"
+            lines = [l for l in re.split(r"[\r\n]+", self._tail()) if l.strip() and not PROGRESS.search(l)][-8:]
+            raise UserError(f"POV-Ray failed ({self.what}; {why}):\n" + "\n".join(lines))
+        return True
+
+    def stop(self):
+        """Kills the run's whole process group and waits for POV-Ray."""
+        if self.proc.poll() is None:
+            try:
+                os.killpg(self.proc.pid, signal.SIGKILL)
+            except OSError:                          # already gone
+                pass
+        self.proc.wait()
+
+
+class Job:
+    """A render of facet's POV-Ray scene that runs while the caller polls it (Blender's
+    render engine checks Esc between polls; `render` below waits for it).
+
+    The runs (one per pass of the scene's pov.Plan, Declare=Facet_Light=i, as many at a
+    time as there are processors; one plain run for passes 1) write 16-bit PPMs into a
+    temporary folder beside the scene. `poll()` starts the next runs, says whether all
+    are done and raises a UserError when one failed; `image()` adds the passes up;
+    `close()` (also on leaving a `with` block) kills what still runs, each run's whole
+    process group, and removes the temporary folder."""
+
+    def __init__(self, povray, pov_path, plan, width, height, exposure=1.0, settings=EXACT):
+        if not isinstance(plan, pov.Plan):
+            raise UserError(f"{pov_path}: facet did not say how many POV-Ray runs make this scene's image "
+                            f"(facet generate --json); the add-on renders only the POV-Ray scenes it has just "
+                            f"exported")
+        if exposure != 1.0:
+            check_exposure_hook(pov_path)
+        self.povray, self.pov_path, self.plan = povray, pov_path, plan
+        self.width, self.height = width, height
+        self.options = settings.options() + ([f"Declare={EXPOSURE_DECLARATION}={exposure!r}"]
+                                             if exposure != 1.0 else [])
+        self.folder = os.path.dirname(os.path.abspath(pov_path))
+        self.tmp = tempfile.mkdtemp(prefix=".facet-pov-", dir=self.folder)
+        self.waiting, self.running, self.finished = list(range(plan.passes)), [], []
+        self.at_once = max(1, os.cpu_count() or 1)
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+    def _run(self, i):
+        count = self.plan.passes
+        name = f"pass{i}.ppm" if count > 1 else "render.ppm"
+        light = [f"Declare=Facet_Light={i}"] if count > 1 else []
+        return _Run(self.povray, self.folder, os.path.basename(self.pov_path),
+                    os.path.join(os.path.basename(self.tmp), name), self.width, self.height,
+                    light + self.options, f"pass {i + 1} of {count}" if count > 1 else "one run")
+
+    def poll(self):
+        """Starts what may start; True when every run has finished (UserError on a failure)."""
+        for run in [r for r in self.running if r.done()]:
+            self.running.remove(run)
+            self.finished.append(run)
+        while self.waiting and len(self.running) < self.at_once:
+            self.running.append(self._run(self.waiting.pop(0)))
+        return not self.waiting and not self.running
+
+    def progress(self):
+        """0..1: the finished runs and what the running ones say they have rendered."""
+        return (len(self.finished) + sum(r.fraction() for r in self.running)) / self.plan.passes
+
+    def image(self):
+        """(width, height, samples): the passes added and clipped at 65535 (1.0), 16-bit
+        RGB as an array('H'), top row first. After poll() returned True."""
+        images = [pov.read_ppm16(run.out) for run in sorted(self.finished, key=lambda r: r.out)]
+        if any(img[:2] != (self.width, self.height) for img in images):
+            raise UserError(f"POV-Ray wrote images of another size than {self.width}x{self.height}")
+        return self.width, self.height, pov.add_clipped([img[2] for img in images])
+
+    def close(self):
+        for run in self.running:
+            run.stop()
+        self.running = []
+        shutil.rmtree(self.tmp, ignore_errors=True)
+
+
+def render(povray, pov_path, plan, png_path, width, height, exposure=1.0, settings=EXACT):
     """Renders `pov_path` to `png_path` (linear 16-bit PNG, whole or not at all); the PNG
     holds radiance × `exposure` (facet's scenes declare Facet_Exposure for that).
 
     `plan` is the scene's pov.Plan from facet (pov.generate_scene). With plan.passes > 1
     the scene is rendered the exact way: one run per pass (Declare=Facet_Light=i), as
-    many at a time as there are processors, each a 16-bit PPM, added up. Returns the
-    number of runs."""
-    if not isinstance(plan, pov.Plan):
-        raise UserError(f"{pov_path}: facet did not say how many POV-Ray runs make this scene's image "
-                        f"(facet generate --json); the add-on renders only the POV-Ray scenes it has just "
-                        f"exported")
-    if exposure != 1.0:
-        check_exposure_hook(pov_path)
-    folder = os.path.dirname(os.path.abspath(pov_path))
-    count = plan.passes
-    options = [f"Declare={EXPOSURE_DECLARATION}={exposure!r}"] if exposure != 1.0 else []
-    with tempfile.TemporaryDirectory(prefix=".facet-pov-", dir=folder) as tmp:
-        name = os.path.basename(tmp)
-        if count == 1:
-            out = os.path.join(tmp, "render.png")
-            _finish(_start(povray, folder, os.path.basename(pov_path), os.path.join(name, "render.png"),
-                           width, height, ["+FN16"] + options), out, "one run")
-            result = out
-        else:
-            outs = [os.path.join(tmp, f"pass{i}.ppm") for i in range(count)]
-            running, at_once = [], max(1, os.cpu_count() or 1)
-            try:
-                for i in range(count):
-                    if len(running) >= at_once:
-                        _finish(*running.pop(0))
-                    running.append((_start(povray, folder, os.path.basename(pov_path),
-                                           os.path.join(name, f"pass{i}.ppm"), width, height,
-                                           ["+FP16", f"Declare=Facet_Light={i}"] + options),
-                                    outs[i], f"pass {i + 1} of {count}"))
-                while running:
-                    _finish(*running.pop(0))
-            finally:
-                for proc, _, _ in running:          # after a failure: stop the others
-                    proc.kill()
-                    proc.communicate()
-            images = [pov.read_ppm16(path) for path in outs]
-            if any(img[:2] != (width, height) for img in images):
-                raise UserError(f"POV-Ray wrote images of another size than {width}x{height}")
-            result = os.path.join(tmp, "sum.png")
-            with open(result, "wb") as f:
-                f.write(pov.png16(width, height, pov.add_clipped([img[2] for img in images])))
-        with open(result, "rb") as f:
-            cli.write_atomic(png_path, f.read())
-    return count
+    many at a time as there are processors, each a 16-bit PPM, added up. `settings`:
+    anti-aliasing and quality (EXACT: none, full). Returns the number of runs."""
+    with Job(povray, pov_path, plan, width, height, exposure, settings) as job:
+        while not job.poll():
+            time.sleep(POLL_SECONDS)
+        cli.write_atomic(png_path, pov.png16(*job.image()))
+    return plan.passes

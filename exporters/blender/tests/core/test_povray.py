@@ -4,15 +4,16 @@ import json
 import os
 import struct
 import subprocess
+import time
 
 import pytest
 
 from facet_blender.core import UserError, pov, povray
 from support import example, read_png, script
 
-# A stand-in POV-Ray: writes a 16-bit PPM (+FP16) or, for a one-run render, copies a PNG,
-# whose samples are the light index + 1 times 1000 (the run's Declare=Facet_Light=i), so
-# the sum tells which passes were added. Every call is logged.
+# A stand-in POV-Ray: writes a 16-bit PPM (+FP16) whose samples are the light index + 2
+# times 1000 (the run's Declare=Facet_Light=i; 1000 for a plain run), so the sum tells
+# which passes were added. Every call is logged.
 FAKE_POVRAY = r"""
 log="$(dirname "$0")/calls.log"
 echo "$*" >> "$log"
@@ -29,7 +30,6 @@ case "$*" in *FAIL_ON_$light*) echo "Parse Error: simulated in pass $light" >&2;
 value=$(( (light + 2) * 1000 ))
 case "$*" in
   *+FP16*) python3 -c "import struct,sys; w,h,v=map(int,sys.argv[1:4]); sys.stdout.buffer.write(b'P6\n%d %d\n65535\n' % (w, h) + struct.pack('>%dH' % (3*w*h), *([v]*(3*w*h))))" $width $height $value > "$out";;
-  *) cp "$(dirname "$0")/one.png" "$out";;
 esac
 """
 
@@ -38,7 +38,6 @@ esac
 def fake(tmp_path):
     folder = tmp_path / "bin"
     folder.mkdir()
-    (folder / "one.png").write_bytes(pov.png16(4, 3, [7] * 36))
     return script(folder / "povray", FAKE_POVRAY)
 
 
@@ -76,11 +75,12 @@ def test_a_scene_without_facets_plan_is_refused(tmp_path, fake):
 def test_one_run(tmp_path, fake):
     png = tmp_path / "out.png"
     assert povray.render(fake, scene_file(tmp_path), pov.Plan(1, True), str(png), 4, 3) == 1
-    assert read_png(str(png)) == (4, 3, 16, [7] * 36)
+    assert read_png(str(png)) == (4, 3, 16, [1000] * 36)
     (call,) = calls(fake)
     args = call.split()
-    assert args[0] == "+Iscene.pov" and args[1].startswith("+O.facet-pov-") and "+FN16" in args
+    assert args[0] == "+Iscene.pov" and args[1].startswith("+O.facet-pov-") and "+FP16" in args
     assert "File_Gamma=1.0" in call and "Facet_Light" not in call and "Facet_Exposure" not in call
+    assert "-A" in args and "+Q9" in args and not any(a.startswith(("+AM", "+R")) for a in args)   # EXACT
     assert sorted(os.listdir(tmp_path)) == ["bin", "out.png", "scene.pov"]
 
 
@@ -93,6 +93,66 @@ def test_passes_are_rendered_one_per_light_and_added(tmp_path, fake):
         f"Declare=Facet_Light={i}" for i in range(3)]
     assert all("+FP16" in c and "Declare=Facet_Exposure=0.5" in c for c in runs)
     assert sorted(os.listdir(tmp_path)) == ["bin", "out.png", "scene.pov"]
+
+
+def test_anti_aliasing_and_quality_options(tmp_path, fake):
+    settings = povray.Settings(antialias=True, threshold=0.1, depth=4, method=1, quality=5)
+    povray.render(fake, scene_file(tmp_path), pov.Plan(2, False), str(tmp_path / "out.png"), 4, 3, settings=settings)
+    for call in calls(fake):
+        args = call.split()
+        assert "-A" not in args and {"+A0.1", "+AM1", "+R4", "+Q5"} <= set(args), call
+
+
+# Writes its image halfway, says how far it got (as POV-Ray's +V does), then sleeps in a
+# child process (`sleep`, its own pid in children.log): killing only the script would leave it.
+SLOW_POVRAY = r"""
+folder="$(dirname "$0")"
+pwd >> "$folder/cwd.log"
+echo "Rendered 6 of 12 pixels (50%)" >&2
+sleep 60 &
+echo $! >> "$folder/children.log"
+wait
+"""
+
+
+def alive(pid):
+    """The process exists and is not a zombie (a killed child its parent has not reaped)."""
+    try:
+        with open(f"/proc/{pid}/stat") as f:
+            return f.read().rsplit(")", 1)[1].split()[0] != "Z"
+    except FileNotFoundError:
+        return False
+
+
+def left_alive(pids, grace=2.0):
+    """The pids still alive after `grace` seconds: a SIGKILLed grandchild, which nobody
+    here waits for, dies as soon as the kernel schedules it, not at once."""
+    end = time.monotonic() + grace
+    while any(alive(p) for p in pids) and time.monotonic() < end:
+        time.sleep(0.01)
+    return [p for p in pids if alive(p)]
+
+
+def test_a_job_is_polled_and_closing_it_kills_every_run_and_its_children(tmp_path):
+    folder = tmp_path / "bin"
+    folder.mkdir()
+    slow = script(folder / "povray", SLOW_POVRAY)
+    job = povray.Job(slow, scene_file(tmp_path), pov.Plan(3, False), 4, 3)
+    job.at_once = 2
+    assert not job.poll()
+    for _ in range(100):                                       # until both runs have said how far they got
+        if abs(job.progress() - 1.0 / 3) < 1e-9:
+            break
+        time.sleep(0.05)
+    assert abs(job.progress() - 1.0 / 3) < 1e-9                # 2 runs at 50 % of 3 passes
+    assert not job.poll() and len(job.running) == 2 and job.waiting == [2]
+    children = [int(p) for p in (folder / "children.log").read_text().split()]
+    runs = [r.proc.pid for r in job.running]
+    assert len(children) == 2 and all(alive(p) for p in children + runs)
+    job.close()
+    assert not any(alive(p) for p in runs)                     # close() waited for them
+    assert not left_alive(children), "a run's child outlived close()"
+    assert sorted(os.listdir(tmp_path)) == ["bin", "scene.pov"]          # the temporary folder is gone
 
 
 def test_a_failing_pass_is_named_and_leaves_the_old_png(tmp_path, fake):
