@@ -1450,6 +1450,194 @@ def test_export_pov_render_failure_keeps_old_png():
     check_equal(sorted(os.listdir(folder)), ["povray"], "what a failed export leaves in a fresh folder")
 
 
+# ============================================================================ tests: the render engine
+
+def engine_scene(w, h):
+    """A smooth sphere (Lambert + GGX) on a floor (Lambert), a point light and a sun:
+    function pigments, one POV-Ray run per pass (facet's Plan)."""
+    ball = new_material("EngineBall", "lambert", "ggx")
+    ball.facet.diffuse_lambert.color = (0.7, 0.35, 0.2)
+    floor = new_material("EngineFloor", "lambert")
+    floor.facet.diffuse_lambert.color = (0.5, 0.5, 0.5)
+    add_uv_sphere("Ball", (0.0, 0.0, 1.0), 1.0, 32, 16, True, ball)
+    add_quad("Floor", 4.0, material=floor)
+    add_camera((0.5, -6.0, 3.0), (0.0, 0.0, 0.8), 40.0)
+    add_light("POINT", (2.0, -3.0, 4.0), 600.0)
+    add_light("SUN", (0.0, 0.0, 5.0), 1.0, rotation=(0.4, 0.2, 0.0))
+    r = bpy.context.scene.render
+    r.resolution_x, r.resolution_y, r.resolution_percentage = w, h, 100
+
+
+def engine_render(name):
+    """F12 with the facet POV-Ray engine: bpy.ops.render.render(), then the Render Result
+    saved as a linear 32-bit EXR and read back: rows of RGBA, row 0 the BOTTOM row."""
+    from facet_blender.blender import engine
+    scene = bpy.context.scene
+    scene.render.engine = engine.ENGINE_ID
+    scene.render.image_settings.file_format = "OPEN_EXR"
+    scene.render.image_settings.color_depth = "32"
+    scene.render.image_settings.color_mode = "RGBA"
+    scene.view_settings.view_transform = "Standard"
+    scene.view_settings.look = "None"
+    engine.LAST_REPORTS.clear()
+    bpy.ops.render.render()
+    errors = [m for level, m in engine.LAST_REPORTS if level == "ERROR"]
+    check(not errors, f"the render failed: {errors}")
+    path = work(f"{name}.exr")
+    bpy.data.images["Render Result"].save_render(path, scene=scene)
+    image = bpy.data.images.load(path, check_existing=False)
+    w, h = image.size
+    px = list(image.pixels)
+    bpy.data.images.remove(image)
+    return [[tuple(px[4 * (j * w + i):4 * (j * w + i) + 4]) for i in range(w)] for j in range(h)]
+
+
+def engine_settings():
+    from facet_blender.blender import engine
+    return engine.FACET_RE_povray
+
+
+@test()
+def test_render_engine_renders_like_reference():
+    """scene.render.engine = "facet POV-Ray" and bpy.ops.render.render(): in validation
+    (exact) mode the Render Result equals facet's reference render of the exported scene
+    (Export POV-Ray's saved JSON of the same scene) within facet validate's tolerance, and
+    the progress reported rises to 1. With anti-aliasing (the default) the edges change
+    and the interior stays close to the reference."""
+    check(scene_support(), "facet lacks scene materials/meshes")
+    check(OPTS.povray and shutil.which(OPTS.povray), "POV-Ray (povray) is not installed")
+    prefs().povray_path = shutil.which(OPTS.povray)
+    w, h = 64, 48
+    engine_scene(w, h)
+    scene = bpy.context.scene
+    engine_cls = engine_settings()
+    check_equal(engine_cls.bl_label, "facet POV-Ray", "the engine's name in the render-engine menu")
+    check(not scene.facet_povray.validation and scene.facet_povray.antialias, "defaults: anti-aliased, not exact")
+    expect_ok("export_pov", None, filepath=work("engine.pov"), render=False, save_scene=True)
+    exported = read_json(work("engine.json"))
+    ref = facet_reference(None, exported, w, h, "engine")
+    brightest = max(max(px) for row in ref for px in row)
+    info(f"the reference's brightest value: {brightest:.3g} (Range 4)")
+    check(1.0 < brightest < 4.0, "the scene should need a Range above 1 and stay under 4")
+    scene.facet_povray.max_radiance = 4.0
+    ids = reference_ids(exported, w, h, "engine")
+    progress = []
+    original = engine_cls.show_progress
+    engine_cls.show_progress = lambda self, done, *a: (progress.append(done), original(self, done, *a))[1]
+    scene.facet_povray.validation = True
+    t0 = time.perf_counter()
+    try:
+        exact = engine_render("engine_exact")
+    finally:
+        engine_cls.show_progress = original
+    info(f"exact render {w}x{h}: {time.perf_counter() - t0:.2f} s; progress reported {len(progress)} times, "
+         f"{[round(p, 2) for p in progress[:3]]} ... {progress[-1:]}")
+    check(progress and progress[-1] == 1.0 and progress == sorted(progress), f"progress: {progress}")
+    check_equal(len(exact[0]), w, "Render Result width")
+    compare(exact, ref, ids, "facet POV-Ray engine (validation) vs facet reference")
+    scene.facet_povray.validation = False
+    t0 = time.perf_counter()
+    smooth = engine_render("engine_aa")
+    info(f"anti-aliased render: {time.perf_counter() - t0:.2f} s")
+    edges = sum(1 for j in range(h) for i in range(w) if not interior(ids, i, j)
+                and max(abs(a - b) for a, b in zip(smooth[j][i][:3], exact[j][i][:3])) > 0.01)
+    inner = [(j, i, c) for j in range(h) for i in range(w) if interior(ids, i, j) for c in range(3)]
+    near = sum(1 for j, i, c in inner if abs(smooth[j][i][c] - ref[j][i][c]) <= TOL * max(1.0, ref[j][i][c]))
+    mean_delta = sum(abs(smooth[j][i][c] - ref[j][i][c]) for j, i, c in inner) / len(inner)
+    mean_ref = sum(ref[j][i][c] for j, i, c in inner) / len(inner)
+    info(f"anti-aliased vs exact: {edges} edge pixels differ by > 0.01; vs the reference on interior pixels: "
+         f"{near} of {len(inner)} samples within {TOL}, mean |Δ| {mean_delta:.3g} (mean value {mean_ref:.3g}; "
+         f"POV-Ray's anti-aliasing averages pixel corners and subpixels, the reference samples the centre)")
+    check(edges > 20, "anti-aliasing changed no edge: are the settings passed to POV-Ray?")
+    check(mean_delta < 0.02 * mean_ref, "the anti-aliased image is not the scene")
+
+
+def alive(pid):
+    """The process exists and is not a zombie (killed, not yet reaped by its parent)."""
+    try:
+        with open(f"/proc/{pid}/stat") as f:
+            return f.read().rsplit(")", 1)[1].split()[0] != "Z"
+    except FileNotFoundError:
+        return False
+
+
+def left_alive(pids, grace=2.0):
+    """The pids still alive after `grace` seconds (a SIGKILLed grandchild dies when the
+    kernel next schedules it, not at once)."""
+    end = time.monotonic() + grace
+    while any(alive(p) for p in pids) and time.monotonic() < end:
+        time.sleep(0.01)
+    return [p for p in pids if alive(p)]
+
+
+def cancelled_render(name, interrupt):
+    """A render with a stand-in POV-Ray that starts a child (`sleep 60`) and waits, Esc
+    pressed once it runs: `interrupt` True sends SIGINT to Blender from the first run
+    (a Blender binary takes it as its internal break event, i.e. Esc: test_break() turns
+    True), else the engine's cancelled() is replaced by one that turns True 0.3 s after
+    the first run started its child. Checks that every run and child is gone, and the
+    temporary folders too."""
+    from facet_blender.blender import engine
+    folder = work(name)
+    os.makedirs(folder)
+    fake = os.path.join(folder, "povray")
+    signal_blender = f"mkdir {folder}/sent 2>/dev/null && kill -INT $PPID\n" if interrupt else ""
+    with open(fake, "w") as f:
+        f.write(f"#!/bin/sh\necho $$ >> {folder}/pids\npwd >> {folder}/cwds\n"
+                f"sleep 60 &\necho $! >> {folder}/pids\nsleep 0.3\n{signal_blender}wait\n")
+    os.chmod(fake, 0o755)
+    tmp = os.path.join(folder, "tmp")          # the engine's temporary folders go here, and none may stay
+    os.makedirs(tmp)
+    engine_cls, polls, started = engine_settings(), [], []
+
+    def cancelled(self):
+        polls.append(time.perf_counter())
+        pids = os.path.join(folder, "pids")
+        if os.path.exists(pids) and len(open(pids).read().split()) >= 2:
+            started.append(started[0] if started else time.perf_counter())
+            return time.perf_counter() - started[0] > 0.3
+        return False
+    original = engine_cls.cancelled
+    if not interrupt:
+        engine_cls.cancelled = cancelled
+    prefs().povray_path = fake
+    t0 = time.perf_counter()
+    tempfile.tempdir = tmp
+    try:
+        engine.LAST_REPORTS.clear()
+        bpy.context.scene.render.engine = engine.ENGINE_ID
+        bpy.ops.render.render()
+    finally:
+        engine_cls.cancelled = original
+        tempfile.tempdir = None
+        prefs().povray_path = shutil.which(OPTS.povray) or ""
+    info(f"{name}: cancelled in {time.perf_counter() - t0:.2f} s; reports {engine.LAST_REPORTS}")
+    check(any("cancelled" in m for _, m in engine.LAST_REPORTS), f"no cancel reported: {engine.LAST_REPORTS}")
+    pids = [int(p) for p in open(os.path.join(folder, "pids")).read().split()]
+    cwds = open(os.path.join(folder, "cwds")).read().split()
+    at_once = min(2, os.cpu_count() or 1)       # the scene has 2 passes, run as many at a time as processors
+    check(len(pids) == 2 * at_once and len(cwds) == at_once, f"stand-in runs (and children) started: {pids}")
+    left = left_alive(pids)
+    check(not left, f"processes left after the cancel: {left}")
+    check(not any(os.path.exists(c) for c in cwds), f"POV-Ray's temporary folder left: {cwds}")
+    check(all(c.startswith(tmp) for c in cwds), f"POV-Ray ran outside the engine's temporary folder: {cwds}")
+    check_equal(os.listdir(tmp), [], "what the cancelled render left in the temporary folder")
+
+
+@test()
+def test_render_engine_cancel_leaves_nothing():
+    """Esc during a render: every POV-Ray run is killed with its children and the
+    temporary folders are gone; the render says it was cancelled. In a Blender binary
+    also by Blender's own break event (SIGINT, what Esc sets), through test_break()."""
+    check(scene_support(), "facet lacks scene materials/meshes")
+    engine_scene(32, 24)
+    cancelled_render("cancel_by_test_break", interrupt=False)
+    if bpy.app.binary_path:
+        cancelled_render("cancel_by_break_event", interrupt=True)
+    else:
+        info("Blender's break event: pip bpy has no Blender signal handler (SIGINT is Python's); not tried")
+
+
 def plain_principled(name, image, roughness=0.5):
     """A material with Blender's Principled BSDF, its Base Color an image, and no facet settings."""
     def build(nodes, links, out):
