@@ -500,8 +500,10 @@ def test_register_unregister():
     import facet_blender
     from facet_blender.blender import operators, ui
     check(facet_blender.bl_info["blender"] <= (3, 4, 0), "bl_info must allow Blender 3.4")
-    from facet_blender.blender import preferences, state
-    fixed = operators.classes + ui.classes + preferences.classes
+    from facet_blender.blender import engine, preferences, state
+    fixed = operators.classes + ui.classes + preferences.classes + engine.classes
+    check(engine.ENGINE_ID in bpy.types.RENDER_PT_format.COMPAT_ENGINES, "Output > Format not shown for the engine")
+    check("facet_povray" in bpy.types.Scene.bl_rna.properties, "Scene.facet_povray is not registered")
     for cls in fixed:
         check(cls.is_registered, f"{cls.__name__} is not registered")
     check("facet" in bpy.types.Material.bl_rna.properties, "Material.facet is not registered")
@@ -515,6 +517,8 @@ def test_register_unregister():
         check(not cls.is_registered, f"{cls.__name__} is still registered after disabling")
     check(not any(c.is_registered for c in groups), "catalog PropertyGroups still registered after disabling")
     check("facet" not in bpy.types.Material.bl_rna.properties, "Material.facet still registered after disabling")
+    check("facet_povray" not in bpy.types.Scene.bl_rna.properties, "Scene.facet_povray left after disabling")
+    check(engine.ENGINE_ID not in bpy.types.RENDER_PT_format.COMPAT_ENGINES, "the engine left in Blender's panels")
     enable_addon()
     check(hasattr(bpy.types.Material, "facet"), "Material.facet missing after enabling again")
     check_equal((mat.facet.diffuse_model, mat.facet.specular_model), ("oren_nayar", "ward"),
@@ -1513,6 +1517,14 @@ def test_render_engine_renders_like_reference():
     engine_cls = engine_settings()
     check_equal(engine_cls.bl_label, "facet POV-Ray", "the engine's name in the render-engine menu")
     check(not scene.facet_povray.validation and scene.facet_povray.antialias, "defaults: anti-aliased, not exact")
+    from facet_blender.blender import engine
+    panel = engine.FACET_PT_povray_render
+    for name, shown in (("CYCLES", False), (engine.ENGINE_ID, True)):
+        check_equal(panel.poll(types.SimpleNamespace(engine=name)), shown, f"the render panel shown for {name}")
+    log = Recorder().log
+    panel.draw(types.SimpleNamespace(layout=Recorder(log)), types.SimpleNamespace(scene=scene))
+    check_equal([e[1] for e in log if e[0] == "prop"], ["validation", "antialias", "method", "threshold", "depth",
+                                                        "quality", "max_radiance"], "the render panel's settings")
     expect_ok("export_pov", None, filepath=work("engine.pov"), render=False, save_scene=True)
     exported = read_json(work("engine.json"))
     ref = facet_reference(None, exported, w, h, "engine")
