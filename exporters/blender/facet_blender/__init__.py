@@ -18,7 +18,7 @@ bl_info = {
     "author": "facet contributors",
     "version": (0, 1, 0),
     "blender": (3, 4, 0),
-    "location": "Properties > Material > facet; File > Export > facet",
+    "location": "Properties > Material > facet; File > Export > facet; Render Engine > facet POV-Ray",
     "description": "facet materials: classic and physically based reflection models "
                    "-> GLSL, OSL and POV-Ray, through the facet command-line tool",
     "category": "Material",

@@ -17,7 +17,8 @@ Modules:
     textures  Image Texture / Normal Map nodes -> textured parameters; derived images; PNGs
     gltf      facet's glTF extensions -> Blender light settings; FACET_material checked
     pov       POV-Ray scenes: generated with facet's Plan (passes), 16-bit PPM and PNG
-    povray    finding and running POV-Ray: one run, or one per pass, added
+    povray    finding and running POV-Ray: one run, or one per pass, added; a polled,
+              cancellable Job (the render engine); anti-aliasing and quality Settings
     osl       compiling OSL in Blender's process: the compiler's output, oslquery's folder
 
 Its tests are plain pytest (exporters/blender/tests/core/), run without Blender.
