@@ -1128,7 +1128,7 @@ def test_generate_osl_follows_moved_recoloured_dimmed_lights():
         check(re.search(rf"^// +light\d: '{name}', driven$", text, re.MULTILINE), f"header names {name}: {text[:1500]}")
     check("indirect light" in text and "the World beyond the ambient term" in text,
           "the Text's header says what the shader cannot receive")
-    drivers = tree.animation_data.drivers
+    drivers = tree.animation_data.drivers if tree.animation_data else []
     check_equal(len(drivers), 6 + 6 + 10, "drivers: point colour+position, sun colour+direction, "
                                           "spot colour+position+direction+cutoff")
     check(all(f.driver.is_valid and f.driver.is_simple_expression for f in drivers),
@@ -1223,7 +1223,7 @@ def test_generate_osl_notices_lights_added_or_removed():
     info(f"message: {said}")
     expect_ok("generate_osl", mat)
     check_equal(message(), None, "regenerated for the lights now in the scene")
-    drivers = mat.node_tree.animation_data.drivers
+    drivers = mat.node_tree.animation_data.drivers if mat.node_tree.animation_data else []
     check_equal(len(drivers), 12, "regenerating leaves the drivers of the lights now in the scene only")
     check(all(f.driver.is_valid for f in drivers), "every driver valid after regenerating")
 
