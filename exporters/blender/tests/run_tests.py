@@ -1064,7 +1064,19 @@ def test_generate_osl_renders_like_reference():
     w = h = 32
     mat, center = osl_scene()
     bpy.context.scene.render.resolution_x = bpy.context.scene.render.resolution_y = w
+    scene = bpy.context.scene
+    settings = lambda: (scene.render.engine, scene.cycles.device, scene.cycles.shading_system)  # noqa: E731
+    scene.render.engine = "BLENDER_WORKBENCH"
+    before = settings()
+    # Without 'Switch Scene to Cycles OSL' (the default) the scene is left alone and the
+    # report says what to switch.
     reports = expect_ok("generate_osl", mat)
+    check_equal(settings(), before, "scene settings without configure_scene")
+    check(any(level == "WARNING" and "Render Engine to Cycles" in m and "Open Shading Language on" in m
+              and "Switch Scene to Cycles OSL" in m for level, m in reports),
+          f"the report should say what to switch: {reports}")
+    reports = expect_ok("generate_osl", mat, configure_scene=True)
+    check(not any("left as it is" in m for _, m in reports), f"nothing left to switch: {reports}")
     tree = mat.node_tree
     script = tree.nodes.get("facet OSL")
     check(script is not None and script.type == "SCRIPT", "no facet OSL Script node")
@@ -1076,9 +1088,7 @@ def test_generate_osl_renders_like_reference():
     links = out.inputs["Surface"].links
     check(links and links[0].from_node == script and links[0].from_socket.name == "Out",
           "Script node's Out must feed the Material Output's Surface")
-    scene = bpy.context.scene
-    check_equal((scene.render.engine, scene.cycles.device, scene.cycles.shading_system), ("CYCLES", "CPU", True),
-                "scene set to Cycles, CPU, OSL")
+    check_equal(settings(), ("CYCLES", "CPU", True), "scene set to Cycles, CPU, OSL")
     check(any("3 lights" in m for _, m in reports), f"report should count the lights: {reports}")
     # A second run replaces the node instead of piling up nodes and texts.
     expect_ok("generate_osl", mat)
@@ -1092,6 +1102,134 @@ def test_generate_osl_renders_like_reference():
     mask = [[1 if px[3] == 1.0 else 0 for px in row] for row in got]
     count, worst_abs, worst_rel = compare(got, ref, mask, "Generate OSL, Cycles 32x32 vs facet reference")
     check(count > 400, f"only {count} interior pixels")
+
+
+def driven_inputs(script):
+    """{input name: value} of the Script node's light inputs (lists for vectors and colours)."""
+    return {s.name: (list(s.default_value)[:3] if hasattr(s.default_value, "__len__") else s.default_value)
+            for s in script.inputs if s.name.startswith("light")}
+
+
+@test(when=lambda v: v >= (4, 2, 0), why="rendering OSL needs Cycles with OSL and the 4.x Geometry Nodes API")
+def test_generate_osl_follows_moved_recoloured_dimmed_lights():
+    """Issue 13, acceptance 3: Generate OSL once, then move, recolour and dim the point
+    light (and turn, recolour and dim the sun, move, turn and widen the spot): without
+    regenerating, each driven input equals the scene export's conversion of its light and
+    Cycles' render equals facet's reference of the scene exported after the change. The
+    same change with the drivers removed (the shader as generated) must not match."""
+    check(has_osl(), "this Blender 4.x has no OSL: cannot check Generate OSL")
+    from mathutils import Vector
+    from facet_blender.blender import scene_data
+    from facet_blender.core.coords import to_blender
+    w = h = 32
+    mat, center = osl_scene()
+    expect_ok("generate_osl", mat, configure_scene=True)
+    tree = mat.node_tree
+    script = tree.nodes["facet OSL"]
+    text = script.script.as_string()
+    generated = driven_inputs(script)
+    for name in ("point_light", "sun_light", "spot_light"):
+        check(re.search(rf"^// +light\d: '{name}', driven$", text, re.MULTILINE), f"header names {name}: {text[:1500]}")
+    check("indirect light" in text and "the World beyond the ambient term" in text,
+          "the Text's header says what the shader cannot receive")
+    drivers = tree.animation_data.drivers if tree.animation_data else []
+    check_equal(len(drivers), 6 + 6 + 10, "drivers: point colour+position, sun colour+direction, "
+                                          "spot colour+position+direction+cutoff")
+    check(all(f.driver.is_valid and f.driver.is_simple_expression for f in drivers),
+          "every driver valid and a simple expression (runs with Auto Run Python Scripts off)")
+
+    point, sun, spot = (bpy.data.objects[n] for n in ("point_light", "sun_light", "spot_light"))
+    point.location = (-1.5, -3.5, 2.0)
+    point.data.color, point.data.energy = (0.3, 0.9, 0.5), 650.0
+    sun.rotation_euler = (math.radians(-25), math.radians(-35), math.radians(10))
+    sun.data.color, sun.data.energy = (1.0, 0.8, 0.5), 1.4
+    spot.location = (2.5, -2.5, -0.5)
+    spot.rotation_euler = (Vector(center) - spot.location).to_track_quat("-Z", "Y").to_euler()
+    spot.data.spot_size, spot.data.energy = math.radians(70), 500.0
+    bpy.context.view_layer.update()
+    check(tree.nodes["facet OSL"] == script and script.script.as_string() == text, "nothing regenerated")
+    sources, _ = scene_data.light_sources(bpy.context.evaluated_depsgraph_get())
+    expected = {}
+    for k, (_, _, light) in enumerate(sources):
+        for key in ("color", "position", "direction", "cutoff"):
+            if key in light:
+                expected[f"light{k}_{key}"] = to_blender(light[key]) if key in ("position", "direction") else light[key]
+    now = driven_inputs(script)
+    check_close({k: now[k] for k in expected}, expected, "driven inputs vs the scene export's lights", 1e-6)
+    check(not close({k: generated[k] for k in expected}, expected, 1e-3), "the change must change the inputs")
+
+    scene_json = exporter_scene([{"type": "sphere", "name": "ball", "center": to_facet(center), "radius": 1.0}])
+    export_material(mat, "follow_material.json")
+    ref = facet_reference(work("follow_material.json"), scene_json, w, h, "follow")
+    got = cycles_render(work("follow.exr"), w, h)
+    mask = [[1 if px[3] == 1.0 else 0 for px in row] for row in got]
+    count, _, _ = compare(got, ref, mask, "lights changed after Generate OSL, Cycles vs facet reference")
+    check(count > 400, f"only {count} interior pixels")
+
+    # The wrong variant: no drivers, so the inputs keep the values generated.
+    for fcurve in list(drivers):
+        drivers.remove(fcurve)
+    for name, value in generated.items():
+        script.inputs[name].default_value = value + [1.0] if script.inputs[name].type == "RGBA" else value
+    bpy.context.view_layer.update()
+    frozen = cycles_render(work("follow_frozen.exr"), w, h)
+    try:
+        compare(frozen, ref, mask, "the same change, drivers removed (must differ)")
+    except Failure as e:
+        info(f"as it must, the render without drivers differs: {str(e).splitlines()[0]}")
+    else:
+        raise Failure("the render without drivers matched the changed scene: the test cannot fail")
+
+
+@test(when=lambda v: v >= (4, 2, 0), why="needs Generate OSL (Cycles with OSL)")
+def test_generate_osl_notices_lights_added_or_removed():
+    """Lights added, removed, hidden from the render or changed in type after Generate
+    OSL are named by the panel, with a Regenerate button; regenerating clears it."""
+    check(has_osl(), "this Blender 4.x has no OSL: cannot check Generate OSL")
+    from facet_blender.blender import osl_lights, ui
+    mat, _ = osl_scene()
+    expect_ok("generate_osl", mat)
+
+    def message():
+        return osl_lights.changed_lights(mat, bpy.context.evaluated_depsgraph_get())
+
+    def panel_says():
+        return [e[1] for e in draw_panel(ui.FACET_PT_generate, mat) if e[0] == "label"]
+
+    check_equal(message(), None, "lights as generated")
+    check_equal(panel_says(), [], "panel without a message")
+    point = bpy.data.objects["point_light"]
+    point.location.x += 1.0
+    point.data.energy *= 0.5
+    bpy.context.view_layer.update()
+    check_equal(message(), None, "moved and dimmed: the drivers follow, nothing to regenerate")
+    extra = add_light("POINT", (1.0, 1.0, 4.0), 100.0)
+    said = message()
+    check(said and f"added: '{extra.name}'" in said and "regenerate" in said, f"added light: {said}")
+    labels = panel_says()
+    check(any(f"added: '{extra.name}'" in line for line in labels), f"the panel names the new light: {labels}")
+    check("facet.generate_osl" in [e[1] for e in draw_panel(ui.FACET_PT_generate, mat) if e[0] == "operator"],
+          "the panel offers to regenerate")
+    bpy.data.objects.remove(extra)
+    bpy.data.objects["sun_light"].hide_render = True
+    bpy.context.view_layer.update()
+    said = message()
+    check(said and "removed or hidden from the render: 'sun_light'" in said, f"hidden light: {said}")
+    bpy.data.objects["sun_light"].hide_render = False
+    bpy.data.objects["spot_light"].data.type = "POINT"
+    bpy.context.view_layer.update()
+    said = message()
+    check(said and "changed type: 'spot_light'" in said, f"light changed to a point: {said}")
+    bpy.data.objects.remove(bpy.data.objects["spot_light"])
+    bpy.context.view_layer.update()
+    said = message()
+    check(said and "removed or hidden from the render: 'spot_light'" in said, f"deleted light: {said}")
+    info(f"message: {said}")
+    expect_ok("generate_osl", mat)
+    check_equal(message(), None, "regenerated for the lights now in the scene")
+    drivers = mat.node_tree.animation_data.drivers if mat.node_tree.animation_data else []
+    check_equal(len(drivers), 12, "regenerating leaves the drivers of the lights now in the scene only")
+    check(all(f.driver.is_valid for f in drivers), "every driver valid after regenerating")
 
 
 @test(when=lambda v: v >= (4, 2, 0), why="needs a Blender with OSL to provoke failures")
@@ -1885,7 +2023,7 @@ def test_gltf_scene_osl_matches_reference():
     used = sorted({s.material.name for o in scene.objects if o.type == "MESH" for s in o.material_slots})
     check_equal(len(used), 3, "materials used by the imported meshes")
     for name in used:
-        expect_ok("generate_osl", bpy.data.materials[name])
+        expect_ok("generate_osl", bpy.data.materials[name], configure_scene=True)
     path = work("three_meshes_osl.json")
     expect_ok("export_scene", None, filepath=path)
     exported = read_json(path)
@@ -2182,7 +2320,7 @@ def test_textured_principled_exports_and_renders_like_reference():
         info("Cycles OSL: not in this Blender")
         return
     for mat in (ball, floor):
-        expect_ok("generate_osl", mat)
+        expect_ok("generate_osl", mat, configure_scene=True)
         uv_nodes = [n for n in mat.node_tree.nodes if n.type == "UVMAP" and n.name.startswith("facet UV")]
         check(uv_nodes and all(n.outputs["UV"].is_linked for n in uv_nodes), f"{mat.name}: no UV Map node linked")
         script = next(n for n in mat.node_tree.nodes if n.type == "SCRIPT")

@@ -8,7 +8,9 @@ Operators (bl_idname):
     facet.import_material    material JSON (checked by facet) -> facet settings
     facet.export_glsl        facet generate --target glsl|glsl450|essl [--library]
     facet.generate_osl       facet generate --target osl --scene (the Blender lights)
-                             -> Text + Script node wired to the Material Output (needs OSL)
+                             -> Text + Script node wired to the Material Output (needs OSL),
+                             its light inputs driven by the light objects (osl_lights);
+                             the scene switched to Cycles/CPU/OSL only with configure_scene
     facet.convert_material   Diffuse / Glossy / Principled BSDF -> facet settings
     facet.export_scene       the whole scene -> facet scene JSON (materials + meshes)
     facet.export_pov         the whole scene -> POV-Ray (facet generate --target pov
@@ -28,9 +30,9 @@ import bpy
 from bpy.props import BoolProperty, EnumProperty, FloatProperty, StringProperty
 from bpy_extras.io_utils import ExportHelper, ImportHelper
 
-from ..core import UserError, cli, generate, pov, povray, textures
+from ..core import UserError, cli, generate, osl as core_osl, pov, povray, textures
 from ..core.convert import IGNORED, map_surface
-from . import images, material as material_mod, nodes, osl, preferences, scene_data, state
+from . import images, material as material_mod, nodes, osl, osl_lights, preferences, scene_data, state
 
 LAST_REPORTS = []
 
@@ -164,10 +166,28 @@ class FACET_OT_export_glsl(_MaterialOperator, ExportHelper, bpy.types.Operator):
 
 
 class FACET_OT_generate_osl(_MaterialOperator, bpy.types.Operator):
-    """Generate an OSL shader lit by this scene's lights, put it in a Script node wired to the Material Output, and switch the scene to Cycles with OSL"""
+    """Generate an OSL shader lit by this scene's lights (its light inputs driven by the light objects) and put it in a Script node wired to the Material Output"""
     bl_idname = "facet.generate_osl"
     bl_label = "Generate OSL"
     bl_options = {"REGISTER", "UNDO"}
+    configure_scene: BoolProperty(
+        name="Switch Scene to Cycles OSL",
+        description="Also set the scene's Render Engine to Cycles, Device to CPU and Open Shading Language on, "
+                    "which the Script node needs to render; off, the scene is left alone and the report says "
+                    "what to switch",
+        default=False)
+
+    def invoke(self, context, event):
+        # Asked, not done silently: a dialog with the switch (off) when the scene needs it.
+        if context.scene is not None and osl.scene_settings_to_switch(context.scene):
+            return context.window_manager.invoke_props_dialog(self, width=420)
+        return self.execute(context)
+
+    def draw(self, context):
+        layout = self.layout
+        layout.label(text="The scene must render with Cycles, CPU, Open Shading Language:")
+        layout.label(text="switch " + ", ".join(osl.scene_settings_to_switch(context.scene)) + "?")
+        layout.prop(self, "configure_scene")
 
     def run(self, context):
         mat = context_material(context)
@@ -177,17 +197,29 @@ class FACET_OT_generate_osl(_MaterialOperator, bpy.types.Operator):
                             f"builds); material '{mat.name}' was not changed")
         catalog, _ = state.require()
         exe = preferences.facet_exe(context)
-        scene_json, notes = scene_data.lights_scene(context, catalog)
+        scene_json, notes, sources = scene_data.lights_scene(context, catalog)
         data, uv_maps, more = textured_material(exe, mat)
         notes += more
         osl_text = generate.osl_shader(exe, data, mat.name, scene_json, context.scene.name)
-        osl.install(mat, osl_text, generate.osl_text_name(mat.name), uv_maps)
-        osl.configure_scene(context.scene)
-        lights = len(scene_json["lights"])
+        names = [name for name, _, _ in sources]
+        header = core_osl.addon_header(names, {name for name, obj, _ in sources if obj is not None})
+        script = osl.install(mat, core_osl.with_addon_header(osl_text, header), generate.osl_text_name(mat.name),
+                             uv_maps)
+        notes += osl_lights.drive(mat.node_tree, script, sources)
+        lights = len(sources)
         for note in notes:
             self.report_("WARNING", note)
-        self.report_("INFO", f"Generated OSL for '{mat.name}' lit by {lights} light{'s' * (lights != 1)} "
-                             f"(regenerate after moving lights); scene set to Cycles, CPU, OSL")
+        message = (f"Generated OSL for '{mat.name}' lit by {lights} light{'s' * (lights != 1)}, its inputs "
+                   f"driven by the light objects (regenerate only after adding or removing lights)")
+        if self.configure_scene:
+            osl.configure_scene(context.scene)
+            message += "; scene set to Cycles, CPU, OSL"
+        switch = osl.scene_settings_to_switch(context.scene)
+        if switch:
+            self.report_("WARNING", f"scene '{context.scene.name}' left as it is: for a render to run the shader, "
+                                    f"switch {', '.join(switch)} (Render Properties), or run Generate OSL with "
+                                    f"'Switch Scene to Cycles OSL'")
+        self.report_("INFO", message)
 
 
 def texture_folder(material):

@@ -201,6 +201,20 @@ def _texts_in_use():
     return {n.script.name for t in trees for n in t.nodes if n.type == "SCRIPT" and n.script is not None}
 
 
+def scene_settings_to_switch(scene):
+    """What the scene must switch for Cycles to run Script nodes: [] when it renders with
+    Cycles on the CPU with Open Shading Language, else the settings (Render Properties)."""
+    missing = []
+    if scene.render.engine != "CYCLES":
+        missing.append("Render Engine to Cycles")
+    cycles = getattr(scene, "cycles", None)
+    if cycles is None or cycles.device != "CPU":
+        missing.append("Device to CPU")
+    if cycles is None or not cycles.shading_system:
+        missing.append("Open Shading Language on")
+    return missing
+
+
 def configure_scene(scene):
     """Cycles on the CPU with the OSL shading system, as Script nodes need."""
     scene.render.engine = "CYCLES"

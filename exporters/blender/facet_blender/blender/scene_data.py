@@ -66,9 +66,10 @@ def _light_desc(obj, matrix):
             "use_nodes": bool(getattr(light, "use_nodes", False))}
 
 
-def _instances(depsgraph):
+def _instances(depsgraph, originals=None):
     """(name, evaluated object, world matrix) of everything the scene renders,
-    instances included, hidden-for-render objects excluded."""
+    instances included, hidden-for-render objects excluded. `originals`, a list, gets
+    each one's original object, or None for an instance (a copy that no object is)."""
     seen = {}
     for inst in depsgraph.object_instances:
         obj = inst.object
@@ -79,13 +80,16 @@ def _instances(depsgraph):
         if inst.is_instance:
             seen[name] = seen.get(name, 0) + 1
             name = f"{name}.instance{seen[name]}"
+        if originals is not None:
+            originals.append(None if inst.is_instance else original)
         yield name, obj, inst.matrix_world.copy()
 
 
-def lights_json(depsgraph):
-    """(facet lights, notes) of every light the scene renders."""
-    lights, notes = [], []
-    for name, obj, matrix in _instances(depsgraph):
+def light_sources(depsgraph):
+    """([(name, original light object or None for an instance, facet light)], notes) of
+    every light the scene renders that facet takes, in the order of lights_json."""
+    sources, notes, originals = [], [], []
+    for name, obj, matrix in _instances(depsgraph, originals):
         if obj.type != "LIGHT":
             continue
         desc = _light_desc(obj, matrix)
@@ -93,8 +97,14 @@ def lights_json(depsgraph):
         light, light_notes = core_scene.light(desc, tuple(bpy.app.version))
         notes.extend(light_notes)
         if light:
-            lights.append(light)
-    return lights, notes
+            sources.append((name, originals[-1], light))
+    return sources, notes
+
+
+def lights_json(depsgraph):
+    """(facet lights, notes) of every light the scene renders."""
+    sources, notes = light_sources(depsgraph)
+    return [light for _, _, light in sources], notes
 
 
 def _corner_normals(mesh):
@@ -280,7 +290,8 @@ def full_scene(context, material_keys=None, reserved=(), strict=False):
 
 
 def lights_scene(context, catalog):
-    """(facet scene JSON, notes) for generating OSL: the lights and ambient colour.
+    """(facet scene JSON, notes, light_sources) for generating OSL: the lights and
+    ambient colour, and where each light came from.
 
     facet's OSL generator reads only those. The camera is the scene's (facet's default
     camera when there is none, or it is not a perspective one) and the objects are a
@@ -289,11 +300,12 @@ def lights_scene(context, catalog):
     scene = context.scene
     depsgraph = context.evaluated_depsgraph_get()
     ambient, notes = world_ambient(scene)
-    lights, more = lights_json(depsgraph)
+    sources, more = light_sources(depsgraph)
     notes += more
     try:
         camera, _ = camera_json(scene)
     except UserError:
         camera = core_scene.default_camera(catalog)
+    lights = [light for _, _, light in sources]
     return core_scene.scene(scene.name, camera, ambient, lights,
-                            [dict(core_scene.OSL_PLACEHOLDER_OBJECT)]), notes
+                            [dict(core_scene.OSL_PLACEHOLDER_OBJECT)]), notes, sources

@@ -8,7 +8,7 @@ model's, with the catalog's documentation as tooltips.
 import bpy
 
 from ..core import cli, props as plan_mod
-from . import material as material_mod, osl, state
+from . import material as material_mod, osl, osl_lights, state
 from .operators import context_material
 
 
@@ -172,6 +172,14 @@ class FACET_PT_generate(bpy.types.Panel):
         col.operator("facet.export_glsl", text="Export GLSL...", icon="FILE_SCRIPT")
         if osl.available()[0]:          # hidden, not refused, where Cycles has no OSL (Debian's 3.4)
             col.operator("facet.generate_osl", text="Generate OSL (Cycles)", icon="SHADING_RENDERED")
+            view_layer = getattr(context, "view_layer", None) or bpy.context.view_layer
+            changed = osl_lights.changed_lights(context_material(context), view_layer.depsgraph)
+            if changed:
+                box = self.layout.box()
+                head, _, tail = changed.partition(": regenerate")
+                box.label(text=head, icon="ERROR")
+                box.label(text="Regenerate" + tail)
+                box.operator("facet.generate_osl", text="Regenerate OSL", icon="FILE_REFRESH")
         col.operator("facet.export_pov", text="Export Scene to POV-Ray...", icon="SCENE")
 
 

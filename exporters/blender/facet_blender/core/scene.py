@@ -101,6 +101,18 @@ def camera(cam):
 
 # ----------------------------------------------------------------------------- lights
 
+def light_power_divisor(kind):
+    """facet's light colour is Blender's colour × power divided by this: 4π² for a point
+    or spot light (W), π for a sun (W/m²); see the module's units."""
+    return math.pi if kind == "SUN" else FOUR_PI_SQUARED
+
+
+def spot_cutoff(spot_size):
+    """facet's cutoff (degrees, half the cone) of a Blender spot size (radians, the whole
+    cone), at most SPOT_MAX_CUTOFF."""
+    return min(math.degrees(spot_size) / 2.0, SPOT_MAX_CUTOFF)
+
+
 def light(desc, blender_version=(4, 5, 0)):
     """facet's light from a plain Blender light description; returns (light or None, notes).
 
@@ -124,7 +136,7 @@ def light(desc, blender_version=(4, 5, 0)):
                          f"a parallel beam (exact only with Angle 0)")
         direction = normalize(transform_direction(m, (0.0, 0.0, -1.0)))
         return {"type": "directional", "direction": to_facet(direction),
-                "color": clean_vector(c * energy / math.pi for c in color)}, notes
+                "color": clean_vector(c * energy / light_power_divisor(kind) for c in color)}, notes
     if kind not in ("POINT", "SPOT"):
         notes.append(f"light '{name}': {kind} lights have no facet equivalent; skipped")
         return None, notes
@@ -132,16 +144,15 @@ def light(desc, blender_version=(4, 5, 0)):
         notes.append(f"light '{name}': radius {desc['shadow_soft_size']:g} > 0; facet treats the light as "
                      f"a point (exact only with Radius 0)")
     out = {"type": "point", "position": position,
-           "color": clean_vector(c * energy / FOUR_PI_SQUARED for c in color),
+           "color": clean_vector(c * energy / light_power_divisor(kind) for c in color),
            "attenuation": "inverse_square"}
     if kind == "POINT":
         return out, notes
     direction = normalize(transform_direction(m, (0.0, 0.0, -1.0)))
-    cutoff = math.degrees(desc["spot_size"]) / 2.0
-    if cutoff >= SPOT_MAX_CUTOFF:
-        notes.append(f"light '{name}': spot size {2 * cutoff:g}° reaches 180°; facet's cutoff is < 90°, "
-                     f"using {SPOT_MAX_CUTOFF}° (approximate)")
-        cutoff = SPOT_MAX_CUTOFF
+    cutoff = spot_cutoff(desc["spot_size"])
+    if cutoff == SPOT_MAX_CUTOFF:
+        notes.append(f"light '{name}': spot size {math.degrees(desc['spot_size']):g}° reaches 180°; facet's "
+                     f"cutoff is < 90°, using {SPOT_MAX_CUTOFF}° (approximate)")
     if desc.get("spot_blend", 0.0) > 0.0:
         notes.append(f"light '{name}': spot blend {desc['spot_blend']:g} > 0 has no facet equivalent; "
                      f"facet's cone edge is hard (approximate)")
@@ -153,6 +164,47 @@ def light(desc, blender_version=(4, 5, 0)):
     out.update({"type": "spot", "direction": to_facet(direction), "cutoff": cutoff, "exponent": exponent})
     return {k: out[k] for k in ("type", "position", "direction", "cutoff", "exponent", "color",
                                 "attenuation")}, notes
+
+
+# ----------------------------------------------------------------------------- lights as OSL drivers
+
+# facet's OSL takes the i-th light of its scene as Script-node inputs "light<i>_color",
+# "_position", "_direction" (spot, directional) and "_cutoff", "_exponent" (spot), in
+# Blender's axes (facet writes them back through coords.to_blender). The add-on drives
+# them from the light object, so the shader follows the scene without regenerating.
+# Each component's driver is a *simple expression* (arithmetic and the functions in
+# DRIVER_FUNCTIONS), which Blender evaluates without Python: it runs in a file opened
+# with Auto Run Python Scripts off. Its variables read a property of the light object
+# (RNA paths: matrix_world[c][r] is column c, row r of the world matrix; data.* the
+# light's settings). What the expressions compute is light()'s conversion, written with
+# the same constants and helpers, and read back in coords.to_blender's axes:
+#   position:  to_blender(to_facet(world translation)) = the translation
+#   direction: normalize(local −Z in world space) = −(column 2) / |column 2|
+#   color:     colour × power / light_power_divisor
+#   cutoff:    spot_cutoff(spot size)
+# tests/core/test_scene.py evaluates them against light() for each kind.
+# Not driven: a spot's exponent (it depends on the Blender version only).
+
+DRIVER_FUNCTIONS = {"min": min, "degrees": math.degrees, "sqrt": math.sqrt}
+
+
+def light_drivers(kind, index):
+    """{Script-node input name: [(expression, {variable: RNA path on the light object}),
+    one per component]} that make facet's OSL inputs of light number `index` follow a
+    Blender light object of type `kind`; {} for a kind facet skips (area)."""
+    if kind not in ("POINT", "SPOT", "SUN"):
+        return {}
+    prefix = f"light{index}_"
+    out = {prefix + "color": [(f"c * e / {light_power_divisor(kind)!r}", {"c": f"data.color[{i}]", "e": "data.energy"})
+                              for i in range(3)]}
+    if kind in ("POINT", "SPOT"):
+        out[prefix + "position"] = [("p", {"p": f"matrix_world[3][{i}]"}) for i in range(3)]
+    if kind in ("SPOT", "SUN"):
+        column = {v: f"matrix_world[2][{i}]" for i, v in enumerate("xyz")}
+        out[prefix + "direction"] = [(f"-{v} / sqrt(x * x + y * y + z * z)", column) for v in "xyz"]
+    if kind == "SPOT":
+        out[prefix + "cutoff"] = [(f"min(degrees(s) / 2, {SPOT_MAX_CUTOFF!r})", {"s": "data.spot_size"})]
+    return out
 
 
 # ----------------------------------------------------------------------------- meshes

@@ -2,10 +2,12 @@
 
 import math
 import os
+import re
 
 import pytest
 
 from facet_blender.core import UserError, pov, scene
+from facet_blender.core.coords import to_blender
 
 IDENTITY = [[1.0, 0, 0, 0], [0, 1.0, 0, 0], [0, 0, 1.0, 0], [0, 0, 0, 1.0]]
 
@@ -108,6 +110,48 @@ def test_light_approximations_are_noted():
     assert any("blend" in n for n in notes) and any("reaches 180" in n for n in notes)
     light, notes = scene.light(light_desc("AREA"))
     assert light is None and "skipped" in notes[0]
+
+
+def resolve_driver_path(desc, path):
+    """The value a driver variable's RNA path reads on the light object `desc` describes."""
+    found = re.fullmatch(r"matrix_world\[(\d)\]\[(\d)\]", path)
+    if found:                                  # RNA's matrix_world[c][r]: column c, row r
+        return desc["matrix"][int(found.group(2))][int(found.group(1))]
+    found = re.fullmatch(r"data\.(\w+)(?:\[(\d)\])?", path)
+    value = desc[found.group(1)]
+    return value[int(found.group(2))] if found.group(2) is not None else value
+
+
+SIMPLE_EXPRESSION = re.compile(r"[a-z][a-z_]*|[0-9.e+-]+|[-+*/(), ]")
+
+
+@pytest.mark.parametrize("kind, settings", [
+    ("POINT", {}), ("SUN", {"energy": 2.5}), ("SPOT", {"spot_size": math.radians(70)}),
+    ("SPOT", {"spot_size": math.radians(180)})])
+def test_light_drivers_compute_what_light_exports(kind, settings):
+    """Each driven Script-node input equals light()'s value read back in Blender's axes,
+    for a rotated, scaled and moved light: the drivers are the export's conversion."""
+    m = rot_x(0.7, at=(1.5, -2.0, 3.25))
+    m = [[m[0][0], m[0][1], 2.0 * m[0][2], m[0][3]], [m[1][0], m[1][1], 2.0 * m[1][2], m[1][3]],
+         [m[2][0], m[2][1], 2.0 * m[2][2], m[2][3]], m[3]]          # scaled ×2 along local z
+    desc = light_desc(kind, matrix=m, color=[0.9, 0.5, 0.125], **settings)
+    light, _ = scene.light(desc)
+    drivers = scene.light_drivers(kind, 3)
+    expected_keys = {"position", "direction", "cutoff", "color"} & set(light)
+    assert set(drivers) == {f"light3_{k}" for k in expected_keys}
+    for key in expected_keys:
+        want = light[key]
+        want = to_blender(want) if key in ("position", "direction") else want
+        want = want if isinstance(want, list) else [want]
+        got = []
+        for expression, variables in drivers[f"light3_{key}"]:
+            assert "".join(SIMPLE_EXPRESSION.findall(expression)) == expression
+            names = set(re.findall(r"[a-z_]+", expression)) - set(variables)
+            assert names <= set(scene.DRIVER_FUNCTIONS), f"{expression}: {names}"
+            values = {v: resolve_driver_path(desc, p) for v, p in variables.items()}
+            got.append(eval(expression, {"__builtins__": {}}, dict(scene.DRIVER_FUNCTIONS, **values)))
+        assert got == pytest.approx(want, rel=1e-12, abs=1e-12), key
+    assert scene.light_drivers("AREA", 0) == {}
 
 
 # ----------------------------------------------------------------------------- meshes
