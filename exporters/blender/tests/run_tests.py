@@ -474,7 +474,7 @@ class Recorder:
         self.log.append(("prop", name, k.get("text")))
 
     def label(self, text="", **k):
-        self.log.append(("label", text))
+        self.log.append(("label", text, k.get("icon", "NONE")))
 
     def operator(self, idname, **k):
         self.log.append(("operator", idname))
@@ -484,13 +484,22 @@ class Recorder:
         pass
 
 
-def draw_panel(panel_cls, material, **attrs):
+def draw_panel(panel_cls, material, region_width=None, **attrs):
+    """What the panel draws (a Recorder's log), in a region `region_width` pixels wide
+    (None: no region, as when a script draws it)."""
     layout = Recorder()
     fake = types.SimpleNamespace(layout=layout, **attrs)
     ctx = types.SimpleNamespace(material=material, object=None)
+    if region_width is not None:
+        ctx.region = types.SimpleNamespace(width=region_width)
     if panel_cls.poll(ctx):
         panel_cls.draw(fake, ctx)
     return layout.log
+
+
+def panel_text(log):
+    """The panel's labels as one text (wrapped lines joined again by spaces)."""
+    return " ".join(e[1] for e in log if e[0] == "label")
 
 
 # ============================================================================ tests: add-on
@@ -1207,7 +1216,7 @@ def test_generate_osl_notices_lights_added_or_removed():
     said = message()
     check(said and f"added: '{extra.name}'" in said and "regenerate" in said, f"added light: {said}")
     labels = panel_says()
-    check(any(f"added: '{extra.name}'" in line for line in labels), f"the panel names the new light: {labels}")
+    check(f"added: '{extra.name}'" in " ".join(labels), f"the panel names the new light: {labels}")
     check("facet.generate_osl" in [e[1] for e in draw_panel(ui.FACET_PT_generate, mat) if e[0] == "operator"],
           "the panel offers to regenerate")
     bpy.data.objects.remove(extra)
@@ -1301,16 +1310,16 @@ def test_bad_facet_path():
     good = prefs().facet_path
     try:
         prefs().facet_path = "/nonexistent/bin/facet"
-        check(state.STATE.catalog is None, "the catalog should be unloaded with a bad path")
-        check(not hasattr(bpy.types.Material, "facet"), "the dynamic properties should be gone")
-        lines = [entry[1] for entry in draw_panel(ui.FACET_PT_material, mat) if entry[0] == "label"]
-        check(any("/nonexistent/bin/facet" in l and "not found" in l for l in lines),
-              f"the panel should show the error: {lines}")
-        where = [l for l in lines if "Preferences" in l]
-        check(len(where) == 1, f"the panel should point to the preferences once: {where}")
+        # The properties stay, registered from the catalog bundled with the add-on.
+        check(state.STATE.catalog is not None and state.STATE.exe == "",
+              f"the bundled catalog should be in use with a bad path: {state.STATE.error}")
+        check(hasattr(bpy.types.Material, "facet"), "material.facet should exist before facet is found")
+        check_equal((mat.facet.diffuse_model, mat.facet.specular_model), ("oren_nayar", "ggx"), "settings kept")
+        text = panel_text(draw_panel(ui.FACET_PT_material, mat))
+        check("/nonexistent/bin/facet" in text and "not found" in text, f"the panel should show the error: {text}")
+        check_equal(text.count("Preferences"), 1, f"the panel should point to the preferences once: {text}")
         for op, kw in (("export_material", {"filepath": work("bad_path.json")}),
                        ("export_glsl", {"filepath": work("bad_path.glsl")}),
-                       ("convert_material", {}),
                        ("import_material", {"filepath": work("rough_brushed.json")})):
             expect_error(op, mat, ["facet executable not found at '/nonexistent/bin/facet'", "Preferences"], **kw)
         check(not os.path.exists(work("bad_path.json")) and not os.path.exists(work("bad_path.glsl")), "files written")
@@ -1321,19 +1330,54 @@ def test_bad_facet_path():
         facet_blender.unregister()
         facet_blender.register()
         check(all(c.is_registered for c in operators.classes + ui.classes), "add-on not registered without facet")
-        check(state.STATE.catalog is None and "not found" in state.STATE.error, "catalog error kept at register")
-        lines = [entry[1] for entry in draw_panel(ui.FACET_PT_material, mat) if entry[0] == "label"]
-        check(any("not found" in l for l in lines), f"the panel should show the error after registering: {lines}")
+        check(state.STATE.exe == "" and "not found" in state.STATE.error, "catalog error kept at register")
+        text = panel_text(draw_panel(ui.FACET_PT_material, mat))
+        check("not found" in text, f"the panel should show the error after registering: {text}")
         # An executable that runs but is not facet: its error does not say where to set the path; the box does.
         prefs().facet_path = shutil.which("false")
-        lines = [entry[1] for entry in draw_panel(ui.FACET_PT_material, mat) if entry[0] == "label"]
-        where = [l for l in lines if "Preferences" in l]
-        check(len(where) == 1, f"the panel should point to the preferences once ({state.STATE.error!r}): {lines}")
+        text = panel_text(draw_panel(ui.FACET_PT_material, mat))
+        check_equal(text.count("Preferences"), 1, f"the panel should point to the preferences once "
+                                                   f"({state.STATE.error!r}): {text}")
+        check(state.STATE.catalog is not None and hasattr(mat, "facet"), "bundled catalog in use with a non-facet")
     finally:
         prefs().facet_path = good
     check(state.STATE.catalog is not None, f"catalog back after restoring the path: {state.STATE.error}")
     check_equal((mat.facet.diffuse_model, mat.facet.specular_model), ("oren_nayar", "ggx"), "settings kept")
     check_close(mat.facet.specular_ggx.alpha, 0.33, "values kept across the reload")
+
+
+@test()
+def test_bundled_catalog_until_facet_is_found():
+    """Without facet the properties come from facet_blender/catalog.json; once facet is found
+    its own catalog is used, also where it differs from the bundled one."""
+    from facet_blender.blender import state
+    from facet_blender.core import catalog as catalog_mod
+    bundled = catalog_mod.bundled_data()
+    check_equal(bundled, {"models": catalog_json(), "schema": schema_json()},
+                "the bundled catalog is what this facet prints (ctest addon.catalog_bundled checks the same)")
+    # A bundled copy with one diffuse model fewer, as an add-on older than its facet would have.
+    dropped = bundled["models"]["sections"]["diffuse"].pop()["name"]
+    older = write_json(work("older_catalog.json"), bundled)
+    real_path, good = catalog_mod.BUNDLED_PATH, prefs().facet_path
+
+    def diffuse_models():
+        return [i.identifier for i in bpy.types.Material.bl_rna.properties["facet"].fixed_type
+                .bl_rna.properties["diffuse_model"].enum_items]
+    try:
+        catalog_mod.BUNDLED_PATH = older
+        prefs().facet_path = "/nonexistent/facet"
+        check(hasattr(bpy.data.materials.new("B"), "facet"), "no material.facet without facet")
+        check(dropped not in diffuse_models() and state.STATE.exe == "",
+              f"without facet the bundled catalog should be used: {diffuse_models()}")
+        prefs().facet_path = good
+        check(dropped in diffuse_models() and state.STATE.differs and state.STATE.exe == OPTS.facet,
+              f"with facet, facet's catalog (which has {dropped}) should be used: {diffuse_models()}")
+    finally:
+        catalog_mod.BUNDLED_PATH = real_path
+        prefs().facet_path = good
+    check(not state.STATE.differs and state.STATE.exe, "facet's catalog is the bundled one again")
+    info(f"without facet: {len(diffuse_models()) - 1} diffuse models from the older bundled copy; with facet: "
+         f"{len(diffuse_models())} ({dropped} back)")
 
 
 @test()
@@ -1382,7 +1426,7 @@ def test_panels_draw_the_chosen_models():
             # Nested parameters are drawn as their switch (toon) or their model choice (fresnel).
             drawn_as = {"object": "enabled", "model": "model"}.get(p["type"], p["name"])
             check(drawn_as in drawn, f"panel does not draw {section} {name}.{p['name']}")
-        check(any(e[0] == "label" and e[1] == model["formula"] for e in log), f"formula of {name} not shown")
+        check(model["formula"] in panel_text(log), f"formula of {name} not shown")
     for name in ("schlick_f0", "ambient", "emission", "tangent_axis", "enabled", "cutoff", "width"):
         check(name in drawn, f"panel does not draw {name}")
     check("exact_ior" not in drawn, "only the chosen Fresnel model's parameters are drawn")
@@ -1405,6 +1449,54 @@ def test_panels_draw_the_chosen_models():
         check("facet.generate_osl" in ops, f"with OSL the Generate panel must offer Generate OSL: {ops}")
     finally:
         osl.available = real_available
+
+
+@test()
+def test_wrap_helper():
+    from facet_blender.blender import ui
+    check_equal(ui.wrap("ρ = k_d / π · max(0, n·l)", 12), ["ρ = k_d / π", "· max(0,", "n·l)"], "wrapped at spaces")
+    check_equal(ui.wrap("abcdefghij", 4), ["abcd", "efgh", "ij"], "a word longer than a line is split")
+    check_equal(ui.wrap("one\ntwo", 40), ["one", "two"], "the text's own line breaks are kept")
+    check_equal(ui.wrap("", 10), [""], "an empty text is one empty line")
+    check_equal(ui.line_chars(types.SimpleNamespace(region=types.SimpleNamespace(width=30 + 7 * 40))), 40,
+                "characters in a 310 px region at scale 1")
+    check_equal(ui.line_chars(types.SimpleNamespace(region=types.SimpleNamespace(width=10))), ui.MIN_CHARS,
+                "a very narrow region still gets MIN_CHARS")
+
+
+def lines_too_wide(log, chars):
+    """The labels of a Recorder log wider than `chars` characters (an icon counts ICON_CHARS)."""
+    from facet_blender.blender import ui
+    return [(e[1], len(e[1]) + (ui.ICON_CHARS if e[2] != "NONE" else 0)) for e in log
+            if e[0] == "label" and len(e[1]) + (ui.ICON_CHARS if e[2] != "NONE" else 0) > chars]
+
+
+@test()
+def test_panel_lines_fit_the_region_width():
+    """Every model's panel at three editor widths: no label wider than the region gives, and
+    the formula and citation whole (the wrapped lines joined again)."""
+    from facet_blender.blender import ui
+    cat = catalog_json()["sections"]
+    mat = new_material("Wrapped")
+    longest = 0
+    for width in (220, 320, 600):
+        chars = ui.line_chars(types.SimpleNamespace(region=types.SimpleNamespace(width=width)))
+        for section in ("diffuse", "specular"):
+            panel = ui.FACET_PT_diffuse if section == "diffuse" else ui.FACET_PT_specular
+            for model in cat[section]:
+                setattr(mat.facet, f"{section}_model", model["name"])
+                log = draw_panel(panel, mat, region_width=width, section=section)
+                wide = lines_too_wide(log, chars)
+                check(not wide, f"{section} {model['name']} at {width} px ({chars} characters): lines too wide {wide}")
+                text = panel_text(log)
+                for key in ("formula", "citation"):
+                    check(" ".join(model.get(key, "").split()) in text, f"{model['name']}'s {key} not shown whole")
+                longest = max(longest, len(model.get("formula", "")), len(model.get("citation", "")))
+        log = draw_panel(ui.FACET_PT_material, mat, region_width=width)
+        check(not lines_too_wide(log, chars), f"main panel at {width} px: {lines_too_wide(log, chars)}")
+    check(longest > ui.line_chars(types.SimpleNamespace(region=types.SimpleNamespace(width=320))),
+          "no formula or citation is longer than a default-width line: the test would not see cutting")
+    info(f"longest formula/citation {longest} characters; every line fits at 220, 320 and 600 px")
 
 
 INSTALL_SCRIPT = """
@@ -2156,8 +2248,8 @@ def test_textures_land_where_cycles_puts_them():
         reports = expect_ok("convert_material", mat)
         check(any("textured by" in m for _, m in reports), f"{mat.name}: no texture found: {reports}")
     from facet_blender.blender.ui import FACET_PT_material
-    labels = [entry[1] for entry in draw_panel(FACET_PT_material, ball) if entry[0] == "label"]
-    check(any("diffuse.color" in t and "image 'Checker'" in t for t in labels), f"the panel shows no texture: {labels}")
+    labels = panel_text(draw_panel(FACET_PT_material, ball))
+    check("diffuse.color <- image 'Checker'" in labels, f"the panel shows no texture: {labels}")
     path = work("textured.json")
     expect_ok("export_scene", None, filepath=path)
     exported = read_json(path)

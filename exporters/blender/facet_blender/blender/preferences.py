@@ -39,14 +39,19 @@ class FACET_AP_preferences(bpy.types.AddonPreferences):
         from . import state
         layout = self.layout
         layout.prop(self, "facet_path")
-        if state.STATE.catalog:
-            c = state.STATE.catalog
+        c = state.STATE.catalog
+        if c and state.STATE.exe:
             layout.label(text=f"facet {c.version}: {len(c.models('diffuse'))} diffuse and "
                               f"{len(c.models('specular'))} specular models ({state.STATE.exe})",
                          icon="CHECKMARK")
+            if state.STATE.differs:
+                layout.label(text="facet's catalog differs from the one bundled with the add-on: facet's is used",
+                             icon="INFO")
         else:
             for line in state.STATE.error.splitlines() or ["facet is not loaded"]:
                 layout.label(text=line, icon="ERROR")
+            if c:
+                layout.label(text=f"Using the catalog bundled with the add-on (facet {c.version})", icon="INFO")
         layout.operator("facet.reload_catalog", icon="FILE_REFRESH")
         layout.prop(self, "povray_path")
 

@@ -3,13 +3,62 @@
 The panel draws whatever the property plan holds, so it follows the catalog: the
 model drop-downs list facet's models, and the parameters below them are the chosen
 model's, with the catalog's documentation as tooltips.
+
+Where people look: the panel is ordered before Blender's own material panels
+(`bl_order = ORDER`, below the material slots, above Preview and Surface). Blender's
+labels do not wrap, they are cut at the editor's edge; every long line (formula,
+citation, messages) goes through `wrapped_label`, which wraps it to the region's width.
 """
+
+import textwrap
 
 import bpy
 
 from ..core import cli, props as plan_mod
 from . import material as material_mod, osl, osl_lights, state
 from .operators import context_material
+
+
+# Panels with a lower bl_order come first; Blender's own material panels have 0 and the
+# slot list (a header-less panel) draws above every panel in its region regardless.
+ORDER = -10
+
+# Width estimate of Blender's UI font: 7 px a character at UI scale 1 (DejaVu Sans /
+# Inter at 11 pt average ~6 px; 7 leaves room for wide glyphs such as "ω" and "—"),
+# and the panel's own margins, both scaled by Preferences > Interface > Resolution Scale.
+CHAR_PX = 7.0
+MARGIN_PX = 30.0
+ICON_CHARS = 3              # an icon takes about three characters' width
+DEFAULT_WIDTH_PX = 320.0    # when the context has no region (drawn from a script)
+MIN_CHARS = 16
+
+
+def line_chars(context):
+    """How many characters of text fit on one line of the region `context` draws in."""
+    region = getattr(context, "region", None)
+    width = float(getattr(region, "width", 0) or DEFAULT_WIDTH_PX)
+    prefs = getattr(context, "preferences", None)
+    scale = float(prefs.system.ui_scale) if prefs is not None else 1.0
+    return max(MIN_CHARS, int((width - MARGIN_PX * scale) / (CHAR_PX * scale)))
+
+
+def wrap(text, chars):
+    """`text` as lines of at most `chars` characters (words kept whole where they fit;
+    a word longer than a line is split); its own line breaks are kept."""
+    lines = []
+    for paragraph in str(text).splitlines() or [""]:
+        lines += textwrap.wrap(paragraph, max(1, chars), break_on_hyphens=False) or [""]
+    return lines
+
+
+def wrapped_label(layout, context, text, icon="NONE"):
+    """`text` as labels that fit the region's width; the icon, if any, on the first line
+    and its width kept free on the others, so continued lines stay aligned."""
+    chars = line_chars(context) - (ICON_CHARS if icon != "NONE" else 0)
+    col = layout.column(align=True)
+    for i, line in enumerate(wrap(text, chars)):
+        col.label(text=line, icon=icon if i == 0 or icon == "NONE" else "BLANK1")
+    return col
 
 
 def draw_fields(layout, pg, group):
@@ -42,12 +91,27 @@ def _ready(context):
     return state.STATE.catalog is not None and mat is not None and material_mod.has_settings(mat)
 
 
+def draw_not_found(layout, context):
+    """The box that says why facet is not used and what to set: the reason, and where to
+    set the path only when the reason does not say it already (said once)."""
+    box = layout.box()
+    box.label(text="facet is not available", icon="ERROR")
+    wrapped_label(box, context, state.STATE.error)
+    if cli.PREFERENCES_HINT not in state.STATE.error:
+        wrapped_label(box, context, f"Set the facet executable in {cli.PREFERENCES_HINT}")
+    if state.STATE.catalog is not None:
+        wrapped_label(box, context, f"Editing with the catalog bundled with the add-on (facet "
+                                    f"{state.STATE.catalog.version}); exporting needs facet.")
+    box.operator("facet.reload_catalog", icon="FILE_REFRESH")
+
+
 class FACET_PT_material(bpy.types.Panel):
     bl_label = "facet"
     bl_idname = "FACET_PT_material"
     bl_space_type = "PROPERTIES"
     bl_region_type = "WINDOW"
     bl_context = "material"
+    bl_order = ORDER
 
     @classmethod
     def poll(cls, context):
@@ -61,35 +125,30 @@ class FACET_PT_material(bpy.types.Panel):
     def draw(self, context):
         layout = self.layout
         mat = context_material(context)
+        if state.STATE.error:
+            draw_not_found(layout, context)
         if state.STATE.catalog is None:
-            box = layout.box()
-            box.label(text="facet is not available", icon="ERROR")
-            for line in state.STATE.error.splitlines():
-                box.label(text=line)
-            if cli.PREFERENCES_HINT not in state.STATE.error:     # said once: most errors say it already
-                box.label(text=f"Set the facet executable in {cli.PREFERENCES_HINT}")
-            box.operator("facet.reload_catalog", icon="FILE_REFRESH")
             return
         row = layout.row(align=True)
         row.operator("facet.import_material", text="Import", icon="IMPORT")
         row.operator("facet.export_material", text="Export", icon="EXPORT")
         layout.operator("facet.convert_material", text="From Blender Nodes", icon="NODETREE")
         if not material_mod.has_settings(mat):
-            layout.label(text="Enable facet (the box in this panel's header) to edit facet settings")
+            wrapped_label(layout, context, "Enable facet (the box in this panel's header) to edit facet settings")
             return
         try:
             bindings = material_mod.texture_bindings(mat)
         except Exception as e:  # noqa: BLE001 - a panel must draw
             bindings = []
-            layout.label(text=str(e), icon="ERROR")
+            wrapped_label(layout, context, str(e), icon="ERROR")
         if bindings:
             box = layout.box()
-            box.label(text="Textures (exported with the material; the values below stand in for them):",
-                      icon="TEXTURE")
+            wrapped_label(box, context, "Textures (exported with the material; the values below stand in for them):",
+                          icon="TEXTURE")
             for b in bindings:
                 where = ".".join(b["path"]) + (f" ({b['model']})" if b.get("model") else "")
                 baked = f", {b['derive']['op']} baked" if b.get("derive") else ""
-                box.label(text=f"{where} <- image '{b['spec']['image']}'{baked}")
+                wrapped_label(box, context, f"{where} <- image '{b['spec']['image']}'{baked}")
 
 
 class _LobePanel:
@@ -115,9 +174,9 @@ class _LobePanel:
         model = catalog.model(self.section, chosen)
         info = layout.column(align=True)
         info.scale_y = 0.8
-        info.label(text=model.formula)
+        wrapped_label(info, context, model.formula)
         if model.citation:
-            info.label(text=model.citation)
+            wrapped_label(info, context, model.citation)
         draw_fields(layout, getattr(settings, f"{self.section}_{chosen}"),
                     plan.field(f"{self.section}_{chosen}").group)
 
@@ -177,8 +236,8 @@ class FACET_PT_generate(bpy.types.Panel):
             if changed:
                 box = self.layout.box()
                 head, _, tail = changed.partition(": regenerate")
-                box.label(text=head, icon="ERROR")
-                box.label(text="Regenerate" + tail)
+                wrapped_label(box, context, head, icon="ERROR")
+                wrapped_label(box, context, "Regenerate" + tail)
                 box.operator("facet.generate_osl", text="Regenerate OSL", icon="FILE_REFRESH")
         col.operator("facet.export_pov", text="Export Scene to POV-Ray...", icon="SCENE")
 

@@ -8,9 +8,17 @@ whole user interface from these two outputs and never repeats them in Python, so
 model added to facet's C++ catalog shows up in Blender without touching the add-on.
 """
 
+import json
+import os
 from dataclasses import dataclass, field
 
 from . import UserError
+
+# The catalog shipped inside the add-on (`facet models --json` and `facet schema` of the
+# facet it was made with; exporters/blender/bundle_catalog.py writes it, and the ctest
+# addon.catalog_bundled fails when it differs from what the built facet prints). The add-on
+# registers its properties from it when facet cannot be found or run.
+BUNDLED_PATH = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "catalog.json")
 
 # The sections whose models are a material's lobes (the panel's two drop-downs).
 LOBE_SECTIONS = ("diffuse", "specular")
@@ -165,7 +173,35 @@ def parse(models_json, material_schema_json):
     return catalog
 
 
+def facet_data(exe):
+    """What the bundled file holds, from a facet executable: {"models": `facet models
+    --json`, "schema": `facet schema`}."""
+    from . import cli
+    return {"models": cli.models(exe), "schema": cli.material_schema(exe)}
+
+
 def load(exe):
     """Runs facet and parses its catalog."""
-    from . import cli
-    return parse(cli.models(exe), cli.material_schema(exe))
+    data = facet_data(exe)
+    return parse(data["models"], data["schema"])
+
+
+def bundled_data(path=None):
+    path = path or BUNDLED_PATH
+    try:
+        with open(path, encoding="utf-8") as f:
+            data = json.load(f)
+        return {"models": data["models"], "schema": data["schema"]}
+    except (OSError, ValueError, KeyError, TypeError) as e:
+        raise UserError(f"{path}: the add-on's bundled catalog cannot be read ({type(e).__name__}: {e})")
+
+
+def load_bundled(path=None):
+    """The catalog shipped with the add-on (used until facet is found)."""
+    data = bundled_data(path)
+    return parse(data["models"], data["schema"])
+
+
+def dump_bundled(data):
+    """The bundled file's text for `facet_data(exe)` (stable, one key per line)."""
+    return json.dumps(data, indent=1, ensure_ascii=False, sort_keys=True) + "\n"
