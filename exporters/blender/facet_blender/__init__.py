@@ -2,8 +2,8 @@
 models) on Blender materials, and generate GLSL, OSL (Cycles) and POV-Ray from them.
 
 A thin layer over the facet command-line tool, which holds the model catalog and the
-code generators: the panel is built from `facet models --json`, and every export runs
-`facet generate`. `core/` is free of bpy (plain data + the facet CLI); `blender/`
+code generators: the panel is built from `facet models --json` (until facet is found,
+from the copy bundled in catalog.json), and every export runs `facet generate`. `core/` is free of bpy (plain data + the facet CLI); `blender/`
 reads and writes Blender data.
 
 With the add-on enabled, Blender's own glTF importer gives materials, lights and the

@@ -4,8 +4,8 @@ The panel draws whatever the property plan holds, so it follows the catalog: the
 model drop-downs list facet's models, and the parameters below them are the chosen
 model's, with the catalog's documentation as tooltips.
 
-Where people look: the panel is ordered before Blender's own material panels
-(`bl_order = ORDER`, below the material slots, above Preview and Surface). Blender's
+Where people look: the panel has no header, which places it right below the material
+slots, above Blender's own Preview and Surface panels (PANEL_OPTIONS says why). Blender's
 labels do not wrap, they are cut at the editor's edge; every long line (formula,
 citation, messages) goes through `wrapped_label`, which wraps it to the region's width.
 """
@@ -19,9 +19,13 @@ from . import material as material_mod, osl, osl_lights, state
 from .operators import context_material
 
 
-# Panels with a lower bl_order come first; Blender's own material panels have 0 and the
-# slot list (a header-less panel) draws above every panel in its region regardless.
-ORDER = -10
+# Where the panel goes: Blender lists header-less panels before every panel with a header
+# (rna_ui's "no header has priority"), in registration order. bl_order cannot do it: it has
+# a hard minimum of 0, which all of Blender's own material panels have, so an add-on panel
+# with a header always comes after Surface, Volume and Settings. Header-less, FACET_PT_material
+# sits right under the material slots and selector, above Preview and Surface; its lobe
+# panels (Diffuse, Specular, ...) are its sub-panels, with headers, and fold as usual.
+PANEL_OPTIONS = {"HIDE_HEADER"}
 
 # Width estimate of Blender's UI font: 7 px a character at UI scale 1 (DejaVu Sans /
 # Inter at 11 pt average ~6 px; 7 leaves room for wide glyphs such as "ω" and "—"),
@@ -111,30 +115,28 @@ class FACET_PT_material(bpy.types.Panel):
     bl_space_type = "PROPERTIES"
     bl_region_type = "WINDOW"
     bl_context = "material"
-    bl_order = ORDER
+    bl_options = PANEL_OPTIONS
 
     @classmethod
     def poll(cls, context):
         return context_material(context) is not None
-
-    def draw_header(self, context):
-        mat = context_material(context)
-        if state.STATE.catalog is not None and hasattr(mat, "facet"):
-            self.layout.prop(mat.facet, plan_mod.USE_FACET, text="")
 
     def draw(self, context):
         layout = self.layout
         mat = context_material(context)
         if state.STATE.error:
             draw_not_found(layout, context)
-        if state.STATE.catalog is None:
+        if state.STATE.catalog is None or not hasattr(mat, "facet"):
             return
+        # No header (see PANEL_OPTIONS): the switch is the panel's first line, beside the buttons
+        # that give a material facet settings; the rest shows only once it is on.
+        row = layout.row(align=True)
+        row.prop(mat.facet, plan_mod.USE_FACET, text="facet")
+        row.operator("facet.convert_material", text="From Blender Nodes", icon="NODETREE")
         row = layout.row(align=True)
         row.operator("facet.import_material", text="Import", icon="IMPORT")
         row.operator("facet.export_material", text="Export", icon="EXPORT")
-        layout.operator("facet.convert_material", text="From Blender Nodes", icon="NODETREE")
         if not material_mod.has_settings(mat):
-            wrapped_label(layout, context, "Enable facet (the box in this panel's header) to edit facet settings")
             return
         try:
             bindings = material_mod.texture_bindings(mat)
