@@ -22,6 +22,7 @@ import json
 import math
 import os
 import re
+import shlex
 import shutil
 import struct
 import subprocess
@@ -40,6 +41,8 @@ from blender_scene import add_uv_map, add_uv_sphere, link, point_sampled_cycles,
 HERE = os.path.dirname(os.path.abspath(__file__))
 ADDON_ROOT = os.path.dirname(HERE)          # exporters/blender: holds facet_blender/
 ADDON = "facet_blender"
+README = os.path.join(ADDON_ROOT, "README.md")
+REPO = os.path.dirname(os.path.dirname(ADDON_ROOT))
 TOL = 2e-3                                   # |Δ| ≤ TOL · max(1, |ref|), as facet validate
 BLENDER = tuple(bpy.app.version)
 
@@ -1515,18 +1518,25 @@ def test_extension_package_builds():
     cli = os.path.join(bpy.utils.system_resource("SCRIPTS"), "addons_core", "bl_pkg", "cli", "blender_ext.py")
     check(os.path.exists(cli), f"Blender's extension tool not found: {cli}")
     src = os.path.join(ADDON_ROOT, ADDON)
-    # Build from a clean copy (no __pycache__ from this very run).
+    # The README's build line for pip bpy, as written, from a clean copy (no __pycache__ from
+    # this very run) and into the work folder.
     copy = work("ext_src")
     shutil.copytree(src, copy, ignore=shutil.ignore_patterns("__pycache__"))
-    out = work("facet.zip")
-    proc = subprocess.run([sys.executable, cli, "build", "--source-dir", copy, "--output-filepath", out],
-                          stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
-    check(proc.returncode == 0 and os.path.exists(out), f"extension build failed:\n{proc.stdout}")
+    line = readme_line(".venv/bin/python", "blender_ext.py", " build ")
+    os.makedirs(work("ext_out"))
+    command = (line.replace("--output-dir /tmp", "--output-dir " + shlex.quote(work("ext_out")))
+               .replace(".venv/bin/python", shlex.quote(sys.executable))
+               .replace("exporters/blender/facet_blender", shlex.quote(copy)))
+    proc = subprocess.run(["bash", "-c", command], cwd=REPO, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                          text=True)
+    out = work("ext_out/facet-0.1.0.zip")    # the name the README's install-file line uses
+    check(proc.returncode == 0 and os.path.exists(out), f"extension build failed ({command}):\n{proc.stdout}")
+    check(f"-e /tmp/{os.path.basename(out)}" in readme_line("extension install-file"), "README's zip name")
     proc = subprocess.run([sys.executable, cli, "validate", out], stdout=subprocess.PIPE,
                           stderr=subprocess.STDOUT, text=True)
     check(proc.returncode == 0, f"extension validate failed:\n{proc.stdout}")
     names = zipfile.ZipFile(out).namelist()
-    for required in ("blender_manifest.toml", "__init__.py", "core/cli.py", "blender/operators.py"):
+    for required in ("blender_manifest.toml", "__init__.py", "catalog.json", "core/cli.py", "blender/operators.py"):
         check(required in names, f"{required} missing from the extension zip: {names}")
     # Install it as an extension in a throw-away user folder, in a separate Blender.
     script = work("install_extension.py")
@@ -1542,6 +1552,67 @@ def test_extension_package_builds():
     result = [l for l in proc.stdout.splitlines() if l.startswith("RESULT")]
     check_equal(result, [f"RESULT True {OPTS.facet} lambert"], f"installed extension (output:\n{proc.stdout[-2000:]})")
     info(f"built {os.path.basename(out)} ({len(names)} files), installed and enabled as bl_ext.user_default.facet")
+
+
+def readme_line(*fragments):
+    """The one line of the add-on's README that holds every fragment (a documented command)."""
+    with open(README, encoding="utf-8") as f:
+        lines = [l for l in f.read().splitlines() if all(x in l for x in fragments)]
+    check(len(lines) == 1, f"README.md should have one line with {fragments}: {lines}")
+    return lines[0]
+
+
+def env_without_facet(**extra):
+    """The environment with no facet to find: $FACET_BIN unset, no PATH folder holding one."""
+    env = {k: v for k, v in os.environ.items() if k != "FACET_BIN"}
+    env["PATH"] = os.pathsep.join(d for d in env.get("PATH", "").split(os.pathsep)
+                                  if d and not os.path.exists(os.path.join(d, "facet")))
+    env.update(extra)
+    return env
+
+
+def is_blender_binary():
+    return bool(bpy.app.binary_path) and os.path.basename(bpy.app.binary_path).startswith("blender")
+
+
+@test(when=lambda v: is_blender_binary(), why="pip bpy has no Blender binary to run the legacy install with")
+def test_legacy_install_as_written():
+    """The README's two lines for Debian's Blender 3.4, as written (user folders redirected),
+    then a fresh Blender without facet: the add-on enabled, material.facet from the bundled catalog."""
+    folder = work("legacy")
+    os.makedirs(folder)
+    env = env_without_facet(BLENDER_USER_CONFIG=os.path.join(folder, "config"),
+                            BLENDER_USER_SCRIPTS=os.path.join(folder, "scripts"))
+    env["PATH"] = os.path.dirname(bpy.app.binary_path) + os.pathsep + env["PATH"]
+    for line in (readme_line("python3 -m zipfile -c /tmp/facet_blender.zip"),
+                 readme_line("addon_install(filepath='/tmp/facet_blender.zip'")):
+        command = line.replace("/tmp/", folder + "/")
+        proc = subprocess.run(["bash", "-c", command], cwd=REPO, env=env, stdout=subprocess.PIPE,
+                              stderr=subprocess.STDOUT, text=True, timeout=300)
+        check(proc.returncode == 0, f"{command} failed:\n{proc.stdout[-2000:]}")
+    installed = os.path.join(folder, "scripts", "addons", ADDON)
+    check(os.path.exists(os.path.join(installed, "catalog.json")), f"not installed in {installed}")
+    probe = ("import bpy; m = bpy.data.materials.new('m'); "
+             "print('RESULT', 'facet_blender' in bpy.context.preferences.addons, "
+             "getattr(getattr(m, 'facet', None), 'diffuse_model', None))")
+    proc = subprocess.run([bpy.app.binary_path, "-b", "--python-expr", probe], env=env, stdout=subprocess.PIPE,
+                          stderr=subprocess.STDOUT, text=True, timeout=300)
+    result = [l for l in proc.stdout.splitlines() if l.startswith("RESULT")]
+    check_equal(result, ["RESULT True lambert"], f"a fresh Blender after the install (output:\n{proc.stdout[-2000:]})")
+    info(f"installed into {installed} and enabled; a fresh Blender without facet has material.facet")
+
+
+@test(when=lambda v: not is_blender_binary(), why="the pip bpy line runs a Python that imports bpy")
+def test_pip_bpy_enable_as_written():
+    """The README's pip bpy line, as written (the venv's Python), with no facet to find."""
+    command = readme_line(".venv/bin/python -c", "addon_utils.enable").replace(".venv/bin/python",
+                                                                             shlex.quote(sys.executable))
+    proc = subprocess.run(["bash", "-c", command], cwd=REPO, env=env_without_facet(), stdout=subprocess.PIPE,
+                          stderr=subprocess.STDOUT, text=True, timeout=300)
+    lines = proc.stdout.strip().splitlines()
+    check(proc.returncode == 0 and lines and lines[-1] == "lambert",
+          f"{command} should print lambert (output:\n{proc.stdout[-2000:]})")
+    info("pip bpy: enabled from sys.path, material.facet.diffuse_model = lambert without facet")
 
 
 # ============================================================================ tests: POV-Ray (scene-level materials)
