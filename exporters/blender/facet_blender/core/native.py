@@ -118,8 +118,8 @@ def summary(blender_nodes):
     if kind == "exact":
         return "Blender nodes: exact (within 2e-3)"
     if kind == "approximate":
-        return f"Blender nodes: approximate, measured |Δ| ≤ {blender_nodes['error']:.2g}·max(1, |ref|)"
-    return "Blender nodes: no equivalent"
+        return f"Blender nodes: approximate, worst measured |Δ|/max(1, |ref|) {blender_nodes['error']:.2g}"
+    return f"Blender nodes: none ({blender_nodes.get('nodes', '').split(':')[0]})"
 
 
 def lobe_node(section, lobe):
