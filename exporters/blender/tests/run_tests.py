@@ -1162,6 +1162,38 @@ def test_native_nodes_match_published_error():
 
 
 @test()
+def test_native_nodes_build_and_rebuild():
+    """In both Blenders, Build Blender Nodes on each example material whose lobes all have
+    nodes wires them to the Material Output's Surface; building again replaces its own
+    nodes (none piled up) and leaves the user's nodes where they are."""
+    published = published_nodes()
+    built = 0
+    for name, data in examples():
+        lobes = [(s, data[s]) for s in ("diffuse", "specular") if data.get(s)]
+        if any(l.get("toon") or published[(s, l["model"])]["kind"] == "none" for s, l in lobes):
+            continue
+        reset()
+        mat = new_material(name)
+        expect_ok("import_material", mat, filepath=write_json(work(f"build_{name}.json"), data))
+        mat.use_nodes = True
+        mine = mat.node_tree.nodes.new("ShaderNodeRGB")
+        expect_ok("build_native_nodes", mat)
+        first = sorted(n.name for n in mat.node_tree.nodes)
+        expect_ok("build_native_nodes", mat)
+        check_equal(sorted(n.name for n in mat.node_tree.nodes), first, f"{name}: nodes after building again")
+        check(mat.node_tree.nodes.get(mine.name) is not None, f"{name}: the user's node was removed")
+        from facet_blender.blender.nodes import output_node
+        links = output_node(mat.node_tree).inputs["Surface"].links
+        check(links and links[0].from_node.name.startswith("facet native"), f"{name}: Surface not fed by the build")
+        kinds = sorted(n.bl_idname for n in mat.node_tree.nodes if n.name.startswith("facet native"))
+        expected = len(lobes) + (1 if any(data.get("emission") or [0]) else 0)
+        check_equal(sum(k != "ShaderNodeAddShader" for k in kinds), expected, f"{name}: shader nodes built")
+        check_equal(kinds.count("ShaderNodeAddShader"), expected - 1, f"{name}: Add Shader nodes")
+        built += 1
+    check(built >= 5, f"only {built} example materials built")
+
+
+@test()
 def test_native_nodes_panel_line():
     """Under each lobe model the panel says what the catalog publishes of its Blender
     nodes (kind and measured error), and the Generate panel offers Build Blender Nodes."""
