@@ -230,7 +230,10 @@ void add_specular(std::vector<ModelDef>& all) {
     m.cycles = approximate("microfacet(\"ggx\", …) uses height-correlated Smith G and no Fresnel");
     m.pov = none(kMicrofacetPov);
     m.blender_nodes = nodes_approximate(
-        "Glossy BSDF, GGX, Roughness √α, Color k_s × F(0) (Cycles: height-correlated Smith G, no Fresnel)", 0.255);
+        "Principled BSDF (Blender 4), GGX, Roughness √α, only its specular layer: Schlick's Fresnel a metal of Base "
+        "Color k_s ⊗ f0, the exact one a dielectric of that IOR with Specular Tint k_s (without Fresnel, and before "
+        "Blender 4: Glossy BSDF, GGX, Color k_s); Cycles' G is height-correlated Smith",
+        0.00467);
     m.build = [](LobeContext& c) {
       ir::Expr a = c.number("alpha");
       return microfacet(c, ir::call(terms::distribution_ggx(), {c.NoH(), a}), a);

@@ -61,7 +61,7 @@ class FACET_OT_build_native_nodes(_MaterialOperator, bpy.types.Operator):
 
     def run(self, context):
         mat = context_material(context)
-        plan = core_native.node_plan(material_mod.to_json(mat))
+        plan = core_native.node_plan(material_mod.to_json(mat), principled=bpy.app.version >= (4, 0, 0))
         build(mat, plan)
         kinds = ", ".join(spec["type"].replace("ShaderNode", "") for spec in plan)
         self.report_("INFO", f"built Blender nodes for '{mat.name}': {kinds} (the catalog's blender_nodes "

@@ -20,7 +20,12 @@ The mappings (ρ as MODELS.md defines it, relative to Lambert; Cycles' BSDFs are
 - beckmann, cook_torrance: Glossy BSDF, Beckmann, Roughness √m (Cycles' α = Roughness²);
   the Fresnel term is taken at normal incidence into the colour (Cycles' Glossy BSDF
   has none), the masking is Cycles' Smith G.
-- ggx: Glossy BSDF, GGX (single scattering), Roughness √α, colour × F(0).
+- ggx: Principled BSDF (Blender 4.x), GGX (single scattering), Roughness √α, nothing
+  but its specular layer: Schlick's Fresnel is a metal of Base Colour k_s ⊗ f0 (with
+  Specular Tint white, 4.x's F82 metal is Schlick's; k_s ⊗ F = Schlick(k_s ⊗ f0) only for
+  a white k_s), the exact one a dielectric of that IOR, Specular Tint k_s, Base Colour
+  black. Without a Fresnel term, and before Blender 4 (whose Principled BSDF has another
+  Fresnel and IOR), a Glossy BSDF, GGX, colour × F(0).
 - blinn: D_TR(c) = π c² D_GGX(α = c), and Blinn's ρ lacks the 1/4 of a microfacet
   BRDF: Glossy BSDF, GGX, Roughness √c, colour × 4c² F(0).
 - emission: an Emission shader of strength 1 (radiance m_e).
@@ -33,6 +38,7 @@ from . import UserError
 
 DIFFUSE, GLOSSY, EMISSION, ADD = "ShaderNodeBsdfDiffuse", "ShaderNodeBsdfGlossy", "ShaderNodeEmission", \
     "ShaderNodeAddShader"
+PRINCIPLED = "ShaderNodeBsdfPrincipled"
 
 
 def _rgb(value, default=1.0):
@@ -81,7 +87,7 @@ def oren_nayar_roughness(sigma, interreflection=False):
     return min(1.0, b / a), 1.0
 
 
-def _diffuse(lobe):
+def _diffuse(lobe, principled=True):
     model, color = lobe["model"], _rgb(lobe.get("color"))
     if model == "lambert":
         return {"type": DIFFUSE, "inputs": {"Color": color, "Roughness": 0.0}}
@@ -96,8 +102,26 @@ def _glossy(distribution, roughness, color):
             "inputs": {"Color": color, "Roughness": math.sqrt(roughness)}}
 
 
-def _specular(lobe):
+def _principled_ggx(lobe, color):
+    """The GGX lobe as Principled BSDF's specular layer (4.x), or None (no Fresnel term)."""
+    fresnel = lobe.get("fresnel") or FRESNEL_DEFAULTS["ggx"]
+    inputs = {"Roughness": math.sqrt(_number(lobe, "alpha")), "Base Color": (0.0, 0.0, 0.0), "Metallic": 0.0}
+    if fresnel.get("model") == "exact":
+        inputs.update({"IOR": float(fresnel.get("ior", 1.5)), "Specular Tint": color})
+    elif fresnel.get("model") == "schlick":
+        f0 = _rgb(fresnel.get("f0", 0.04))
+        inputs.update({"Metallic": 1.0, "Base Color": tuple(c * f for c, f in zip(color, f0))})
+    else:
+        return None
+    return {"type": PRINCIPLED, "props": {"distribution": "GGX"}, "inputs": inputs}
+
+
+def _specular(lobe, principled=True):
     model, color = lobe["model"], _rgb(lobe.get("color"))
+    if model == "ggx" and principled:
+        node = _principled_ggx(lobe, color)
+        if node:
+            return node
     if model in ("beckmann", "cook_torrance"):
         f0 = fresnel_at_normal(model, lobe)
         return _glossy("BECKMANN", _number(lobe, "m"), tuple(c * f for c, f in zip(color, f0)))
@@ -122,21 +146,22 @@ def summary(blender_nodes):
     return f"Blender nodes: none ({blender_nodes.get('nodes', '').split(':')[0]})"
 
 
-def lobe_node(section, lobe):
-    """The node (a dict: type, inputs, props) standing in for one lobe, or UserError."""
+def lobe_node(section, lobe, principled=True):
+    """The node (a dict: type, inputs, props) standing in for one lobe, or UserError.
+    `principled`: Blender's Principled BSDF is 4.x's (Fresnel of its IOR, F82 metals)."""
     if lobe.get("toon"):
         raise UserError(f"{section} '{lobe['model']}' with toon has no Blender-node equivalent")
-    node = (_diffuse if section == "diffuse" else _specular)(lobe)
+    node = (_diffuse if section == "diffuse" else _specular)(lobe, principled)
     if node is None:
         raise UserError(f"{section} model '{lobe['model']}' has no Blender-node equivalent "
                         f"(the catalog says so: facet models --json, blender_nodes)")
     return node
 
 
-def node_plan(material):
+def node_plan(material, principled=True):
     """The nodes for a facet material JSON (a dict), in the order they are summed by Add
     Shader nodes: [node, ...]. Ambient is left out (Cycles' World lights the material)."""
-    plan = [lobe_node(s, material[s]) for s in ("diffuse", "specular") if material.get(s)]
+    plan = [lobe_node(s, material[s], principled) for s in ("diffuse", "specular") if material.get(s)]
     emission = material.get("emission")
     if emission is not None and any(c != 0.0 for c in _rgb(emission)):
         plan.append({"type": EMISSION, "inputs": {"Color": _rgb(emission), "Strength": 1.0}})

@@ -20,9 +20,20 @@ def test_lambert_and_emission_sum():
 
 
 def test_roughness_mappings():
-    ggx = native.lobe_node("specular", {"model": "ggx", "alpha": 0.09})
-    assert ggx["props"] == {"distribution": "GGX"} and ggx["inputs"]["Roughness"] == pytest.approx(0.3)
+    ggx = native.lobe_node("specular", {"model": "ggx", "alpha": 0.09}, principled=False)
+    assert ggx["type"] == native.GLOSSY and ggx["props"] == {"distribution": "GGX"}
+    assert ggx["inputs"]["Roughness"] == pytest.approx(0.3)
     assert ggx["inputs"]["Color"] == pytest.approx((0.04, 0.04, 0.04))      # k_s 1 × Schlick's default f0
+    metal = native.lobe_node("specular", {"model": "ggx", "alpha": 0.09, "color": 0.5})
+    assert metal["type"] == native.PRINCIPLED and metal["props"] == {"distribution": "GGX"}
+    assert sorted(metal["inputs"]) == ["Base Color", "Metallic", "Roughness"] and metal["inputs"]["Metallic"] == 1.0
+    assert metal["inputs"]["Base Color"] == pytest.approx((0.02, 0.02, 0.02))  # k_s ⊗ f0
+    assert metal["inputs"]["Roughness"] == pytest.approx(0.3)
+    glass = native.lobe_node("specular", {"model": "ggx", "alpha": 0.09, "fresnel": {"model": "exact", "ior": 1.33}})
+    assert glass["inputs"]["IOR"] == 1.33 and glass["inputs"]["Metallic"] == 0.0
+    assert glass["inputs"]["Specular Tint"] == (1.0, 1.0, 1.0) and glass["inputs"]["Base Color"] == (0.0, 0.0, 0.0)
+    plain = native.lobe_node("specular", {"model": "ggx", "alpha": 0.09, "fresnel": {"model": "none"}})
+    assert plain["type"] == native.GLOSSY and plain["inputs"]["Color"] == (1.0, 1.0, 1.0)
     ct = native.lobe_node("specular", {"model": "cook_torrance", "m": 0.25, "color": 1})
     assert ct["props"] == {"distribution": "BECKMANN"} and ct["inputs"]["Roughness"] == pytest.approx(0.5)
     assert ct["inputs"]["Color"] == pytest.approx((0.04, 0.04, 0.04))       # F(0) of ior 1.5
