@@ -7,7 +7,7 @@ model's, with the catalog's documentation as tooltips.
 
 import bpy
 
-from ..core import cli, props as plan_mod
+from ..core import cli, native as core_native, props as plan_mod
 from . import material as material_mod, osl, osl_lights, state
 from .operators import context_material
 
@@ -118,6 +118,7 @@ class _LobePanel:
         info.label(text=model.formula)
         if model.citation:
             info.label(text=model.citation)
+        info.label(text=core_native.summary(model.blender_nodes))
         draw_fields(layout, getattr(settings, f"{self.section}_{chosen}"),
                     plan.field(f"{self.section}_{chosen}").group)
 
@@ -170,6 +171,7 @@ class FACET_PT_generate(bpy.types.Panel):
     def draw(self, context):
         col = self.layout.column(align=True)
         col.operator("facet.export_glsl", text="Export GLSL...", icon="FILE_SCRIPT")
+        col.operator("facet.build_native_nodes", text="Build Blender Nodes", icon="NODE_MATERIAL")
         if osl.available()[0]:          # hidden, not refused, where Cycles has no OSL (Debian's 3.4)
             col.operator("facet.generate_osl", text="Generate OSL (Cycles)", icon="SHADING_RENDERED")
             view_layer = getattr(context, "view_layer", None) or bpy.context.view_layer
