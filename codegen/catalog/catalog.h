@@ -104,6 +104,19 @@ struct Equivalence {
 };
 const char* level_name(Equivalence::Level l);
 
+// Blender's own shader nodes nearest a lobe model: what the add-on's "Build Blender
+// Nodes" makes (exporters/blender/facet_blender/core/native.py) and how close it comes,
+// MEASURED: the worst |Δ|/max(1, |ref|) of a Cycles render (one point light of radius 0,
+// direct light only) against facet's reference, the worst over the lobes of this model in
+// examples/materials/*.json, each built alone. exporters/blender/tests/run_tests.py
+// (test_native_nodes_match_published_error) measures it again: exact within 2e-3,
+// approximate within 10 % of `error`. Level None: no node stands in (`nodes` says why).
+struct BlenderNodes {
+  Equivalence::Level level = Equivalence::Level::None;
+  std::string nodes;   // the node(s) and how the model's parameters map onto them
+  double error = 0.0;  // approximate: the measured worst |Δ|/max(1, |ref|)
+};
+
 // ---- POV-Ray's native finish (read by targets/pov.cpp) -----------------------
 // Where POV-Ray's own finish is a lobe exactly (shared/notes/povray.md §2): the
 // finish keywords it sets, where each value comes from, and what the material
@@ -173,6 +186,7 @@ struct ModelDef {
   std::string forms_text() const;  // "one of: inline arrays (\"positions\", …); …"
   Equivalence cycles;    // the nearest Cycles closure
   Equivalence pov;       // POV-Ray's native finish
+  BlenderNodes blender_nodes;  // lobes: Blender's own node tree nearest the model, measured
   // Physics, as the literature states it (facet physics measures both):
   // f(l, v) = f(v, l); and directional albedo ≤ 1 for every incidence and roughness.
   bool reciprocal = false;

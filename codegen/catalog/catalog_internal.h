@@ -153,6 +153,11 @@ inline Value color_value(double v) {
 inline Equivalence exact(std::string note) { return {Equivalence::Level::Exact, std::move(note)}; }
 inline Equivalence approximate(std::string note) { return {Equivalence::Level::Approximate, std::move(note)}; }
 inline Equivalence none(std::string note) { return {Equivalence::Level::None, std::move(note)}; }
+inline BlenderNodes nodes_exact(std::string nodes) { return {Equivalence::Level::Exact, std::move(nodes), 0.0}; }
+inline BlenderNodes nodes_approximate(std::string nodes, double measured_error) {
+  return {Equivalence::Level::Approximate, std::move(nodes), measured_error};
+}
+inline BlenderNodes nodes_none(std::string why) { return {Equivalence::Level::None, std::move(why), 0.0}; }
 
 // Every diffuse and specular lobe takes its colour and the toon modifier.
 inline void add_lobe_params(ModelDef& m) {

@@ -16,6 +16,7 @@ void add_diffuse(std::vector<ModelDef>& all) {
             "surface facing a light of colour C shows C.";
     m.cycles = exact("diffuse(N) (the Diffuse BSDF, f = 1/π) is the same lobe");
     m.pov = exact("finish { diffuse 1 brilliance 1 } with pigment k_d (POV has no 1/π)");
+    m.blender_nodes = nodes_exact("Diffuse BSDF, Roughness 0, Color k_d");
     m.pov_finish.terms = {{"diffuse", PovFinishTerm::From::Weight, "", 0},
                           {"brilliance", PovFinishTerm::From::Fixed, "", 1}};
     m.pov_finish.pigment = "color";
@@ -40,6 +41,7 @@ void add_diffuse(std::vector<ModelDef>& all) {
     m.params = {number("k", "limb exponent; 1 is Lambert, below 1 brightens the limb", Range::positive(), 0.8)};
     m.cycles = none("Cycles has no Minnaert closure");
     m.pov = none("POV's brilliance gives (n·l)^k but not the (n·v)^(k−1) factor: function pigment");
+    m.blender_nodes = nodes_none("no Blender node has the (n·v)^(k−1) factor");
     m.build = [](LobeContext& c) { return ir::call(terms::minnaert(), {c.NoL(), c.NoV(), c.number("k")}); };
     m.reciprocal = true;
     m.physics_note = "f ∝ (n·l)^(k−1)(n·v)^(k−1), symmetric (Minnaert built it for reciprocity); for k < 1 the "
@@ -59,6 +61,7 @@ void add_diffuse(std::vector<ModelDef>& all) {
     m.params = {number("k", "velvet exponent in [0, 1]; smaller is more velvety", Range::closed(0, 1), 0.5)};
     m.cycles = none("Cycles' ashikhmin_velvet / sheen closures are different lobes");
     m.pov = none("function pigment");
+    m.blender_nodes = nodes_none("no Blender node has this limb darkening (Velvet/Sheen are other lobes)");
     m.build = [](LobeContext& c) {
       return ir::call(terms::minnaert_velvet(), {c.NoL(), c.NoV(), c.number("k")});
     };
@@ -82,6 +85,9 @@ void add_diffuse(std::vector<ModelDef>& all) {
     m.cycles = approximate("Cycles' oren_nayar closure is Fujii's improved model (with a multiscatter "
                            "term since 4.3), not the 1994 qualitative model");
     m.pov = none("function pigment");
+    m.blender_nodes = nodes_approximate(
+        "Diffuse BSDF (Fujii's improved Oren–Nayar with a multiscatter term), Roughness B/A, Color k_d",
+        0.0755);
     m.build = [](LobeContext& c) {
       double q = c.flag("interreflection") ? 0.57 : 0.33;
       return ir::call(terms::oren_nayar(), {c.NoL(), c.NoV(), c.LoV(), c.number("sigma"), q});

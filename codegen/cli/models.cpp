@@ -46,6 +46,10 @@ json catalog_json() {
     if (m.section == "diffuse" || m.section == "specular") {
       mj["cycles"] = {{"level", level_name(m.cycles.level)}, {"note", m.cycles.note}};
       mj["pov"] = {{"level", level_name(m.pov.level)}, {"note", m.pov.note}};
+      const BlenderNodes& b = m.blender_nodes;
+      mj["blender_nodes"] = {{"kind", level_name(b.level)},
+                             {"nodes", b.nodes},
+                             {"error", b.level == Equivalence::Level::Approximate ? json(b.error) : json(nullptr)}};
       // Claims from the literature; docs/physics.md holds the measurement (facet physics).
       mj["physics"] = {{"reciprocal", m.reciprocal},
                        {"energy_conserving", m.energy_conserving},

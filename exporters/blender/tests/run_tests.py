@@ -512,8 +512,8 @@ def test_register_unregister():
     import facet_blender
     from facet_blender.blender import operators, ui
     check(facet_blender.bl_info["blender"] <= (3, 4, 0), "bl_info must allow Blender 3.4")
-    from facet_blender.blender import engine, preferences, state
-    fixed = operators.classes + ui.classes + preferences.classes + engine.classes
+    from facet_blender.blender import engine, native, preferences, state
+    fixed = operators.classes + native.classes + ui.classes + preferences.classes + engine.classes
     check(engine.ENGINE_ID in bpy.types.RENDER_PT_format.COMPAT_ENGINES, "Output > Format not shown for the engine")
     check("facet_povray" in bpy.types.Scene.bl_rna.properties, "Scene.facet_povray is not registered")
     for cls in fixed:
@@ -1036,6 +1036,197 @@ def test_light_units_match_cycles():
         lit = sum(1 for row in ref for px in row if px[0] > 1e-3)
         check(lit > w * h // 10, f"{kind}: too few lit pixels ({lit}) for a meaningful test")
         compare(got, ref, mask, f"{kind} light, Cycles vs facet reference")
+
+
+# ============================================================================ tests: Build Blender Nodes
+
+def deviation(got_rows, ref_rows, mask_rows):
+    """(interior pixels, max |Δ|/max(1, |ref|), where) over every channel, as compare()."""
+    count, worst, where = 0, 0.0, None
+    for j in range(len(ref_rows)):
+        for i in range(len(ref_rows[0])):
+            if not interior(mask_rows, i, j):
+                continue
+            count += 1
+            for c in range(3):
+                g, r = got_rows[j][i][c], ref_rows[j][i][c]
+                rel = abs(g - r) / max(1.0, abs(r))
+                if rel > worst:
+                    worst, where = rel, (i, j, c, g, r)
+    return count, worst, where
+
+
+def native_scene():
+    """A sphere lit from the side by one point light (radius 0), a black World: what the
+    catalog's blender_nodes figures are measured under (light and view 90° apart, so the
+    sphere shows l·v of both signs and a highlight)."""
+    set_world((0.0, 0.0, 0.0), 0.0)
+    add_camera((0.0, -5.0, 0.0), (0.0, 0.0, 0.0), 80.0)
+    add_light("POINT", (4.5, -1.5, 1.0), 800.0, (1.0, 0.95, 0.9))
+
+
+def native_deviation(material_json, name, w=40, h=40):
+    """Imports a facet material, runs Build Blender Nodes, renders it in Cycles on the
+    sphere of native_scene() and returns its worst |Δ|/max(1, |ref|) against facet's
+    reference of the same material, scene and lights."""
+    reset()
+    path = write_json(work(f"{name}.json"), material_json)
+    mat = new_material(name)
+    expect_ok("import_material", mat, filepath=path)
+    expect_ok("build_native_nodes", mat)
+    check(mat.node_tree.nodes.get("facet OSL") is None, "no OSL node")
+    add_point_sphere("Ball", (0.0, 0.0, 0.0), 1.0, mat)
+    native_scene()
+    got = cycles_render(work(f"{name}.exr"), w, h)
+    scene_json = exporter_scene([{"type": "sphere", "name": "ball", "center": [0.0, 0.0, 0.0], "radius": 1.0}])
+    ref = facet_reference(path, scene_json, w, h, name)
+    mask = [[1 if px[3] == 1.0 else 0 for px in row] for row in got]
+    lit = sum(1 for row in ref for px in row if max(px[:3]) > 1e-3)
+    check(lit > w * h // 20, f"{name}: too few lit pixels ({lit}) for a meaningful measurement")
+    count, worst, where = deviation(got, ref, mask)
+    check(count > w * h // 4, f"{name}: only {count} interior pixels")
+    info(f"{name}: Build Blender Nodes, Cycles vs facet reference: {count} pixels, max |Δ|/max(1,|ref|) "
+         f"{worst:.3g} at (i, j, channel, got, ref) = {where}")
+    return worst
+
+
+def examples():
+    folder = os.path.join(os.path.dirname(os.path.dirname(ADDON_ROOT)), "examples", "materials")
+    return [(f[:-5], read_json(os.path.join(folder, f))) for f in sorted(os.listdir(folder)) if f.endswith(".json")]
+
+
+def published_nodes():
+    """{(section, model): blender_nodes} of every lobe model in `facet models --json`."""
+    cat = catalog_json()
+    return {(s, m["name"]): m.get("blender_nodes") for s in ("diffuse", "specular") for m in cat["sections"][s]}
+
+
+def lobe_alone(section, lobe, name):
+    return {"name": name, section: {k: v for k, v in lobe.items() if k != "toon"}}
+
+
+def holds_published(measured, published, what):
+    """Exact: within TOL. Approximate: within 10 % of the published figure, both ways, so
+    that the figure cannot go stale."""
+    kind, error = published["kind"], published.get("error")
+    if kind == "exact":
+        check(measured <= TOL, f"{what}: published exact, measured {measured:.3g} > {TOL}")
+        return
+    check(kind == "approximate" and isinstance(error, (int, float)), f"{what}: published {published}")
+    check(error / 1.1 <= measured <= error * 1.1,
+          f"{what}: measured |Δ|/max(1,|ref|) = {measured:.4g}, published {error:.4g} (allowed ±10 %)")
+
+
+@test(when=lambda v: v >= (4, 2, 0), why="measured with Cycles and the 4.x Geometry Nodes sphere")
+def test_native_nodes_match_published_error():
+    """Every catalog lobe model: where the catalog's blender_nodes says none, Build Blender
+    Nodes refuses it by name; else each example material's lobe of that model is built
+    alone, rendered in Cycles and measured against facet's reference, and the worst
+    figure holds what the catalog publishes. Whole example materials (Add Shader) add no
+    error beyond their lobes'. A wrong roughness mapping fails the same check."""
+    from facet_blender.core import native as core_native
+    published = published_nodes()
+    uses = {}
+    for name, data in examples():
+        for section in ("diffuse", "specular"):
+            lobe = data.get(section)
+            if lobe and not lobe.get("toon"):
+                uses.setdefault((section, lobe["model"]), []).append((name, lobe))
+    alone = {}          # (example, section) -> the lobe's figure, built alone
+    for (section, model), nodes in published.items():
+        check(nodes and nodes.get("kind") in ("exact", "approximate", "none"), f"{model}: blender_nodes {nodes}")
+        if nodes["kind"] == "none":
+            reset()
+            mat = new_material(f"none_{model}", model if section == "diffuse" else "none",
+                               model if section == "specular" else "none")
+            expect_error("build_native_nodes", mat, [f"'{model}'", "no Blender-node equivalent"])
+            continue
+        check((section, model) in uses, f"no example material uses {section} {model}")
+        for example, lobe in uses[(section, model)]:
+            alone[(example, section)] = native_deviation(lobe_alone(section, lobe, f"{example}_{section}"),
+                                                         f"{example}_{section}")
+        worst = max(alone[(example, section)] for example, _ in uses[(section, model)])
+        holds_published(worst, nodes, f"{section} {model} (worst of {[e for e, _ in uses[(section, model)]]})")
+    for name, data in examples():
+        lobes = [s for s in ("diffuse", "specular") if data.get(s)]
+        if not all((name, s) in alone for s in lobes) or len(lobes) < 2:
+            continue
+        got = native_deviation(data, f"whole_{name}")
+        bound = sum(alone[(name, s)] for s in lobes) + TOL
+        check(got <= bound, f"{name}.json: whole {got:.4g} > its lobes' {bound:.4g}")
+    lambert = uses[("diffuse", "lambert")][0][1]
+    got = native_deviation({"name": "glow", "diffuse": lambert, "emission": [0.15, 0.05, 0.02]}, "native_emission")
+    check(got <= TOL, f"lambert + emission: {got:.3g} > {TOL}")
+    # A wrong variant must fail: GGX with Roughness = α instead of √α.
+    right = core_native.lobe_node
+
+    def squared(*args, **kw):
+        node = right(*args, **kw)
+        return dict(node, inputs=dict(node["inputs"], Roughness=node["inputs"]["Roughness"] ** 2))
+    core_native.lobe_node = squared
+    try:
+        example, lobe = uses[("specular", "ggx")][0]
+        wrong = native_deviation(lobe_alone("specular", lobe, "wrong_ggx"), "wrong_ggx")
+    finally:
+        core_native.lobe_node = right
+    try:
+        holds_published(max(wrong, alone[(example, "specular")]), published[("specular", "ggx")], "wrong variant")
+    except Failure as e:
+        info(f"the wrong variant (GGX Roughness = α on {example}.json) fails as it must: {e}")
+    else:
+        raise Failure(f"GGX with Roughness = α measured {wrong:.4g}, which the published figure accepts")
+
+
+@test()
+def test_native_nodes_build_and_rebuild():
+    """In both Blenders, Build Blender Nodes on each example material whose lobes all have
+    nodes wires them to the Material Output's Surface; building again replaces its own
+    nodes (none piled up) and leaves the user's nodes where they are."""
+    published = published_nodes()
+    built = 0
+    for name, data in examples():
+        lobes = [(s, data[s]) for s in ("diffuse", "specular") if data.get(s)]
+        if any(l.get("toon") or published[(s, l["model"])]["kind"] == "none" for s, l in lobes):
+            continue
+        reset()
+        mat = new_material(name)
+        expect_ok("import_material", mat, filepath=write_json(work(f"build_{name}.json"), data))
+        mat.use_nodes = True
+        mine = mat.node_tree.nodes.new("ShaderNodeRGB")
+        expect_ok("build_native_nodes", mat)
+        first = sorted(n.name for n in mat.node_tree.nodes)
+        expect_ok("build_native_nodes", mat)
+        check_equal(sorted(n.name for n in mat.node_tree.nodes), first, f"{name}: nodes after building again")
+        check(mat.node_tree.nodes.get(mine.name) is not None, f"{name}: the user's node was removed")
+        from facet_blender.blender.nodes import output_node
+        links = output_node(mat.node_tree).inputs["Surface"].links
+        check(links and links[0].from_node.name.startswith("facet native"), f"{name}: Surface not fed by the build")
+        kinds = sorted(n.bl_idname for n in mat.node_tree.nodes if n.name.startswith("facet native"))
+        expected = len(lobes) + (1 if any(data.get("emission") or [0]) else 0)
+        check_equal(sum(k != "ShaderNodeAddShader" for k in kinds), expected, f"{name}: shader nodes built")
+        check_equal(kinds.count("ShaderNodeAddShader"), expected - 1, f"{name}: Add Shader nodes")
+        built += 1
+    check(built >= 5, f"only {built} example materials built")
+
+
+@test()
+def test_native_nodes_panel_line():
+    """Under each lobe model the panel says what the catalog publishes of its Blender
+    nodes (kind and measured error), and the Generate panel offers Build Blender Nodes."""
+    from facet_blender.blender import ui
+    published = published_nodes()
+    for (section, model), nodes in published.items():
+        mat = new_material(f"line_{model}", model if section == "diffuse" else "none",
+                           model if section == "specular" else "none")
+        panel = ui.FACET_PT_diffuse if section == "diffuse" else ui.FACET_PT_specular
+        text = panel_text(draw_panel(panel, mat, section=section))    # wrapped lines joined again
+        check(text.count("Blender nodes:") == 1, f"{model}: one Blender nodes line expected, drawn {text}")
+        line = text[text.index("Blender nodes:"):]
+        expected = {"exact": "exact (within 2e-3)", "none": f"none ({nodes['nodes'].split(':')[0]})",
+                    "approximate": f"{nodes.get('error') or 0:.2g}"}[nodes["kind"]]
+        check(expected in line, f"{model}: the panel says {line!r}, the catalog {nodes}")
+    ops = {e[1] for e in draw_panel(ui.FACET_PT_generate, new_material("ops")) if e[0] == "operator"}
+    check("facet.build_native_nodes" in ops, f"no Build Blender Nodes button: {ops}")
 
 
 # ============================================================================ tests: OSL

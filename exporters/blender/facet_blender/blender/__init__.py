@@ -6,9 +6,9 @@ Everything here reads or writes Blender data and delegates the rest to `..core`.
 
 import bpy
 
-from . import engine, operators, preferences, state, ui
+from . import engine, native, operators, preferences, state, ui
 
-_CLASSES = preferences.classes + operators.classes + ui.classes
+_CLASSES = preferences.classes + operators.classes + native.classes + ui.classes
 
 
 def register():

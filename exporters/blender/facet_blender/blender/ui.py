@@ -14,7 +14,7 @@ import textwrap
 
 import bpy
 
-from ..core import cli, props as plan_mod
+from ..core import cli, native as core_native, props as plan_mod
 from . import material as material_mod, osl, osl_lights, state
 from .operators import context_material
 
@@ -179,6 +179,7 @@ class _LobePanel:
         wrapped_label(info, context, model.formula)
         if model.citation:
             wrapped_label(info, context, model.citation)
+        wrapped_label(info, context, core_native.summary(model.blender_nodes))
         draw_fields(layout, getattr(settings, f"{self.section}_{chosen}"),
                     plan.field(f"{self.section}_{chosen}").group)
 
@@ -231,6 +232,7 @@ class FACET_PT_generate(bpy.types.Panel):
     def draw(self, context):
         col = self.layout.column(align=True)
         col.operator("facet.export_glsl", text="Export GLSL...", icon="FILE_SCRIPT")
+        col.operator("facet.build_native_nodes", text="Build Blender Nodes", icon="NODE_MATERIAL")
         if osl.available()[0]:          # hidden, not refused, where Cycles has no OSL (Debian's 3.4)
             col.operator("facet.generate_osl", text="Generate OSL (Cycles)", icon="SHADING_RENDERED")
             view_layer = getattr(context, "view_layer", None) or bpy.context.view_layer

@@ -14,6 +14,7 @@ Modules:
     coords    Blender (+Z up) <-> facet (+Y up) coordinates, float formatting
     scene     cameras, lights, meshes and the scene JSON
     convert   Blender BSDF nodes -> facet lobes (the mapping table)
+    native    facet lobes -> Blender's own shader nodes (Build Blender Nodes; the other way)
     textures  Image Texture / Normal Map nodes -> textured parameters; derived images; PNGs
     gltf      facet's glTF extensions -> Blender light settings; FACET_material checked
     pov       POV-Ray scenes: generated with facet's Plan (passes), 16-bit PPM and PNG

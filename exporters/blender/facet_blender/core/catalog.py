@@ -66,6 +66,7 @@ class Model:
     params: tuple = ()
     cycles: dict = None       # how exact Cycles' closest closure is (informative)
     pov: dict = None
+    blender_nodes: dict = None  # Build Blender Nodes: kind, nodes, measured error (lobes)
 
     def param(self, name):
         for p in self.params:
@@ -124,7 +125,7 @@ def _model(section, data):
                  doc=data.get("doc", ""), formula=data.get("formula", ""),
                  citation=data.get("citation", ""),
                  params=tuple(_param(p) for p in data.get("parameters", [])),
-                 cycles=data.get("cycles"), pov=data.get("pov"))
+                 cycles=data.get("cycles"), pov=data.get("pov"), blender_nodes=data.get("blender_nodes"))
 
 
 def _allows_number(prop):

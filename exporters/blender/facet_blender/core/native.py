@@ -1,0 +1,170 @@
+"""A facet material -> the nearest tree of Blender's own shader nodes (plain data).
+
+"Build Blender Nodes" (blender/native.py) builds what `node_plan()` returns, so the
+material renders in Cycles on any device and in EEVEE, with the World and indirect
+light, without OSL. How close each model comes is measured, not assumed: the catalog
+publishes it (`facet models --json`, each lobe model's "blender_nodes": exact,
+approximate with the worst |Δ|/max(1, |ref|) measured under one point light, or none)
+and exporters/blender/tests/run_tests.py (test_native_nodes_match_published_error)
+measures it again against facet's reference.
+
+The mappings (ρ as MODELS.md defines it, relative to Lambert; Cycles' BSDFs are f_r):
+- lambert: Diffuse BSDF, Roughness 0 (f = k_d/π): the same lobe.
+- oren_nayar: Diffuse BSDF, Roughness r = B/A of the 1994 model, colour k_d. Cycles
+  evaluates Fujii's improved Oren–Nayar, ρ = n·l·A'(1 + r·s/t), plus OpenPBR's
+  energy-preserving multiscatter term; r = B/A gives the same ratio of the angular term
+  to the constant one where cos φ ≥ 0. Measured on examples/materials/oren_nayar.json
+  (σ = 0.5), k_d unscaled is nearest (0.043; scaled by A/A' 0.088, by A 0.148; r = σ
+  0.043, 0.8·B/A 0.062, 1.3·B/A 0.059): the multiscatter term returns the energy
+  that A' < 1 takes away.
+- beckmann, cook_torrance: Glossy BSDF, Beckmann, Roughness √m (Cycles' α = Roughness²);
+  the Fresnel term is taken at normal incidence into the colour (Cycles' Glossy BSDF
+  has none), the masking is Cycles' Smith G.
+- ggx: Principled BSDF (Blender 4.x), GGX (single scattering), Roughness √α, nothing
+  but its specular layer: Schlick's Fresnel is a metal of Base Colour k_s ⊗ f0 (with
+  Specular Tint white, 4.x's F82 metal is Schlick's; k_s ⊗ F = Schlick(k_s ⊗ f0) only for
+  a white k_s), the exact one a dielectric of that IOR, Specular Tint k_s, Base Colour
+  black. Without a Fresnel term, and before Blender 4 (whose Principled BSDF has another
+  Fresnel and IOR), a Glossy BSDF, GGX, colour × F(0).
+- blinn: D_TR(c) = π c² D_GGX(α = c), and Blinn's ρ lacks the 1/4 of a microfacet
+  BRDF: Glossy BSDF, GGX, Roughness √c, colour × 4c² F(0).
+- emission: an Emission shader of strength 1 (radiance m_e).
+Models without such a node (Minnaert, Phong, Blinn–Phong, …) are refused by name.
+"""
+
+import math
+
+from . import UserError
+
+DIFFUSE, GLOSSY, EMISSION, ADD = "ShaderNodeBsdfDiffuse", "ShaderNodeBsdfGlossy", "ShaderNodeEmission", \
+    "ShaderNodeAddShader"
+PRINCIPLED = "ShaderNodeBsdfPrincipled"
+
+
+def _rgb(value, default=1.0):
+    if value is None:
+        value = default
+    if isinstance(value, (int, float)):
+        return (float(value),) * 3
+    if isinstance(value, dict):
+        raise UserError("a textured parameter has no Blender-node equivalent here: build nodes from "
+                        "a material without textures")
+    return tuple(float(c) for c in value[:3])
+
+
+def _scaled(rgb, k):
+    return tuple(c * k for c in rgb)
+
+
+def _number(lobe, key):
+    value = lobe.get(key)
+    if isinstance(value, dict):
+        raise UserError(f"'{key}' from a texture has no Blender-node equivalent here")
+    return float(value)
+
+
+FRESNEL_DEFAULTS = {"cook_torrance": {"model": "exact", "ior": 1.5}, "blinn": {"model": "exact", "ior": 1.5},
+                    "ggx": {"model": "schlick", "f0": 0.04}, "beckmann": {"model": "none"}}
+
+
+def fresnel_at_normal(model, lobe):
+    """F(0) of the lobe's Fresnel term (its default where the lobe names none), as RGB."""
+    fresnel = lobe.get("fresnel") or FRESNEL_DEFAULTS[model]
+    kind = fresnel.get("model", "none")
+    if kind == "schlick":
+        return _rgb(fresnel.get("f0", 0.04))
+    if kind == "exact":
+        eta = float(fresnel.get("ior", 1.5))
+        return (((eta - 1.0) / (eta + 1.0)) ** 2,) * 3
+    return (1.0, 1.0, 1.0)
+
+
+def oren_nayar_roughness(sigma, interreflection=False):
+    """(Roughness, colour factor) of Cycles' Diffuse BSDF nearest the 1994 model's σ."""
+    s2 = sigma * sigma
+    a = 1.0 - 0.5 * s2 / (s2 + (0.57 if interreflection else 0.33))
+    b = 0.45 * s2 / (s2 + 0.09)
+    return min(1.0, b / a), 1.0
+
+
+def _diffuse(lobe, principled=True):
+    model, color = lobe["model"], _rgb(lobe.get("color"))
+    if model == "lambert":
+        return {"type": DIFFUSE, "inputs": {"Color": color, "Roughness": 0.0}}
+    if model == "oren_nayar":
+        r, k = oren_nayar_roughness(_number(lobe, "sigma"), bool(lobe.get("interreflection", False)))
+        return {"type": DIFFUSE, "inputs": {"Color": _scaled(color, k), "Roughness": r}}
+    return None
+
+
+def _glossy(distribution, roughness, color):
+    return {"type": GLOSSY, "props": {"distribution": distribution},
+            "inputs": {"Color": color, "Roughness": math.sqrt(roughness)}}
+
+
+def _principled_ggx(lobe, color):
+    """The GGX lobe as Principled BSDF's specular layer (4.x), or None (no Fresnel term)."""
+    fresnel = lobe.get("fresnel") or FRESNEL_DEFAULTS["ggx"]
+    inputs = {"Roughness": math.sqrt(_number(lobe, "alpha")), "Base Color": (0.0, 0.0, 0.0), "Metallic": 0.0}
+    if fresnel.get("model") == "exact":
+        inputs.update({"IOR": float(fresnel.get("ior", 1.5)), "Specular Tint": color})
+    elif fresnel.get("model") == "schlick":
+        f0 = _rgb(fresnel.get("f0", 0.04))
+        inputs.update({"Metallic": 1.0, "Base Color": tuple(c * f for c, f in zip(color, f0))})
+    else:
+        return None
+    return {"type": PRINCIPLED, "props": {"distribution": "GGX"}, "inputs": inputs}
+
+
+def _specular(lobe, principled=True):
+    model, color = lobe["model"], _rgb(lobe.get("color"))
+    if model == "ggx" and principled:
+        node = _principled_ggx(lobe, color)
+        if node:
+            return node
+    if model in ("beckmann", "cook_torrance"):
+        f0 = fresnel_at_normal(model, lobe)
+        return _glossy("BECKMANN", _number(lobe, "m"), tuple(c * f for c, f in zip(color, f0)))
+    if model == "ggx":
+        f0 = fresnel_at_normal(model, lobe)
+        return _glossy("GGX", _number(lobe, "alpha"), tuple(c * f for c, f in zip(color, f0)))
+    if model == "blinn":
+        c, f0 = _number(lobe, "c"), fresnel_at_normal(model, lobe)
+        return _glossy("GGX", c, tuple(4.0 * c * c * k * f for k, f in zip(color, f0)))
+    return None
+
+
+def summary(blender_nodes):
+    """The panel's line for a model's published blender_nodes (None: the catalog has none)."""
+    if not blender_nodes:
+        return "Blender nodes: not published by this facet"
+    kind = blender_nodes.get("kind")
+    if kind == "exact":
+        return "Blender nodes: exact (within 2e-3)"
+    if kind == "approximate":
+        return f"Blender nodes: approximate, worst measured |Δ|/max(1, |ref|) {blender_nodes['error']:.2g}"
+    return f"Blender nodes: none ({blender_nodes.get('nodes', '').split(':')[0]})"
+
+
+def lobe_node(section, lobe, principled=True):
+    """The node (a dict: type, inputs, props) standing in for one lobe, or UserError.
+    `principled`: Blender's Principled BSDF is 4.x's (Fresnel of its IOR, F82 metals)."""
+    if lobe.get("toon"):
+        raise UserError(f"{section} '{lobe['model']}' with toon has no Blender-node equivalent")
+    node = (_diffuse if section == "diffuse" else _specular)(lobe, principled)
+    if node is None:
+        raise UserError(f"{section} model '{lobe['model']}' has no Blender-node equivalent "
+                        f"(the catalog says so: facet models --json, blender_nodes)")
+    return node
+
+
+def node_plan(material, principled=True):
+    """The nodes for a facet material JSON (a dict), in the order they are summed by Add
+    Shader nodes: [node, ...]. Ambient is left out (Cycles' World lights the material)."""
+    plan = [lobe_node(s, material[s], principled) for s in ("diffuse", "specular") if material.get(s)]
+    emission = material.get("emission")
+    if emission is not None and any(c != 0.0 for c in _rgb(emission)):
+        plan.append({"type": EMISSION, "inputs": {"Color": _rgb(emission), "Strength": 1.0}})
+    if not plan:
+        raise UserError(f"material '{material.get('name', '')}' has no lobe and no emission")
+    return plan
