@@ -37,6 +37,8 @@ import bpy
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from blender_scene import add_uv_map, add_uv_sphere, link, point_sampled_cycles, sphere_uvs  # noqa: E402  (the tests' shared scene building)
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "core"))
+from support import alive, left_alive  # noqa: E402  (the core tests' process checks)
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ADDON_ROOT = os.path.dirname(HERE)          # exporters/blender: holds facet_blender/
@@ -403,9 +405,9 @@ def interior(mask_rows, i, j):
     return bool(label) and all(mask_rows[j + dj][i + di] == label for dj in (-1, 0, 1) for di in (-1, 0, 1))
 
 
-def compare(got_rows, ref_rows, mask_rows, what):
-    """|got − ref| ≤ TOL·max(1, |ref|) on every channel of every interior pixel.
-    Returns (interior pixels, max |Δ|, max |Δ|/max(1, |ref|))."""
+def deviation(got_rows, ref_rows, mask_rows):
+    """(interior pixels, max |Δ|, max |Δ|/max(1, |ref|), where) over every channel of every
+    interior pixel; `where` is (i, j from bottom, channel, got, ref) of the largest relative."""
     count, worst_abs, worst_rel, where = 0, 0.0, 0.0, None
     for j in range(len(ref_rows)):
         for i in range(len(ref_rows[0])):
@@ -415,10 +417,17 @@ def compare(got_rows, ref_rows, mask_rows, what):
             for c in range(3):
                 g, r = got_rows[j][i][c], ref_rows[j][i][c]
                 d = abs(g - r)
-                rel = d / max(1.0, abs(r))
                 worst_abs = max(worst_abs, d)
+                rel = d / max(1.0, abs(r))
                 if rel > worst_rel:
                     worst_rel, where = rel, (i, j, c, g, r)
+    return count, worst_abs, worst_rel, where
+
+
+def compare(got_rows, ref_rows, mask_rows, what):
+    """|got − ref| ≤ TOL·max(1, |ref|) on every channel of every interior pixel.
+    Returns (interior pixels, max |Δ|, max |Δ|/max(1, |ref|))."""
+    count, worst_abs, worst_rel, where = deviation(got_rows, ref_rows, mask_rows)
     check(count > 0, f"{what}: no interior pixels")
     info(f"{what}: {count} interior pixels, max |Δ| {worst_abs:.3g}, max |Δ|/max(1,|ref|) {worst_rel:.3g}")
     check(worst_rel <= TOL, f"{what}: |Δ|/max(1,|ref|) = {worst_rel:.3g} > {TOL} at pixel "
@@ -1040,22 +1049,6 @@ def test_light_units_match_cycles():
 
 # ============================================================================ tests: Build Blender Nodes
 
-def deviation(got_rows, ref_rows, mask_rows):
-    """(interior pixels, max |Δ|/max(1, |ref|), where) over every channel, as compare()."""
-    count, worst, where = 0, 0.0, None
-    for j in range(len(ref_rows)):
-        for i in range(len(ref_rows[0])):
-            if not interior(mask_rows, i, j):
-                continue
-            count += 1
-            for c in range(3):
-                g, r = got_rows[j][i][c], ref_rows[j][i][c]
-                rel = abs(g - r) / max(1.0, abs(r))
-                if rel > worst:
-                    worst, where = rel, (i, j, c, g, r)
-    return count, worst, where
-
-
 def native_scene():
     """A sphere lit from the side by one point light (radius 0), a black World: what the
     catalog's blender_nodes figures are measured under (light and view 90° apart, so the
@@ -1083,7 +1076,7 @@ def native_deviation(material_json, name, w=40, h=40):
     mask = [[1 if px[3] == 1.0 else 0 for px in row] for row in got]
     lit = sum(1 for row in ref for px in row if max(px[:3]) > 1e-3)
     check(lit > w * h // 20, f"{name}: too few lit pixels ({lit}) for a meaningful measurement")
-    count, worst, where = deviation(got, ref, mask)
+    count, _, worst, where = deviation(got, ref, mask)
     check(count > w * h // 4, f"{name}: only {count} interior pixels")
     info(f"{name}: Build Blender Nodes, Cycles vs facet reference: {count} pixels, max |Δ|/max(1,|ref|) "
          f"{worst:.3g} at (i, j, channel, got, ref) = {where}")
@@ -2054,24 +2047,6 @@ def test_render_engine_renders_like_reference():
          f"POV-Ray's anti-aliasing averages pixel corners and subpixels, the reference samples the centre)")
     check(edges > 20, "anti-aliasing changed no edge: are the settings passed to POV-Ray?")
     check(mean_delta < 0.02 * mean_ref, "the anti-aliased image is not the scene")
-
-
-def alive(pid):
-    """The process exists and is not a zombie (killed, not yet reaped by its parent)."""
-    try:
-        with open(f"/proc/{pid}/stat") as f:
-            return f.read().rsplit(")", 1)[1].split()[0] != "Z"
-    except FileNotFoundError:
-        return False
-
-
-def left_alive(pids, grace=2.0):
-    """The pids still alive after `grace` seconds (a SIGKILLed grandchild dies when the
-    kernel next schedules it, not at once)."""
-    end = time.monotonic() + grace
-    while any(alive(p) for p in pids) and time.monotonic() < end:
-        time.sleep(0.01)
-    return [p for p in pids if alive(p)]
 
 
 def cancelled_render(name, interrupt):

@@ -4,6 +4,7 @@ import os
 import stat
 import struct
 import sys
+import time
 import zlib
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -70,3 +71,21 @@ def read_png(path):
         else:
             out.extend(line)
     return width, height, depth, out
+
+
+def alive(pid):
+    """The process exists and is not a zombie (killed, not yet reaped by its parent)."""
+    try:
+        with open(f"/proc/{pid}/stat") as f:
+            return f.read().rsplit(")", 1)[1].split()[0] != "Z"
+    except FileNotFoundError:
+        return False
+
+
+def left_alive(pids, grace=2.0):
+    """The pids still alive after `grace` seconds (a SIGKILLed grandchild dies when the
+    kernel next schedules it, not at once)."""
+    end = time.monotonic() + grace
+    while any(alive(p) for p in pids) and time.monotonic() < end:
+        time.sleep(0.01)
+    return [p for p in pids if alive(p)]

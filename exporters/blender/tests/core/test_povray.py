@@ -9,7 +9,7 @@ import time
 import pytest
 
 from facet_blender.core import UserError, pov, povray
-from support import example, read_png, script
+from support import alive, example, left_alive, read_png, script
 
 # A stand-in POV-Ray: writes a 16-bit PPM (+FP16) whose samples are the light index + 2
 # times 1000 (the run's Declare=Facet_Light=i; 1000 for a plain run), so the sum tells
@@ -113,24 +113,6 @@ sleep 60 &
 echo $! >> "$folder/children.log"
 wait
 """
-
-
-def alive(pid):
-    """The process exists and is not a zombie (a killed child its parent has not reaped)."""
-    try:
-        with open(f"/proc/{pid}/stat") as f:
-            return f.read().rsplit(")", 1)[1].split()[0] != "Z"
-    except FileNotFoundError:
-        return False
-
-
-def left_alive(pids, grace=2.0):
-    """The pids still alive after `grace` seconds: a SIGKILLed grandchild, which nobody
-    here waits for, dies as soon as the kernel schedules it, not at once."""
-    end = time.monotonic() + grace
-    while any(alive(p) for p in pids) and time.monotonic() < end:
-        time.sleep(0.01)
-    return [p for p in pids if alive(p)]
 
 
 def test_a_job_is_polled_and_closing_it_kills_every_run_and_its_children(tmp_path):
