@@ -272,11 +272,11 @@ PrimitivePlan plan_primitive(const Reader& r, const tinygltf::Primitive& prim, c
 namespace {
 
 // Vertex i's TANGENT in the world transform: xyz as a direction, w negated by a mirroring
-// transform (B = w·(n × t) turns with it).
-std::array<double, 4> world_tangent(const Reader& r, const PrimitivePlan& p, const Mat4& world, size_t i) {
+// transform (`flip`: B = w·(n × t) turns with it).
+std::array<double, 4> world_tangent(const Reader& r, const PrimitivePlan& p, const Mat4& world, bool flip, size_t i) {
   const std::array<double, 4> t = r.vec4_at(p.tangents, i);
   const Vec3 d = normalize(world.direction(Vec3(t[0], t[1], t[2])));
-  return {d.x, d.y, d.z, (world.det3() < 0 ? -1.0 : 1.0) * (t[3] < 0 ? -1.0 : 1.0)};
+  return {d.x, d.y, d.z, (flip ? -1.0 : 1.0) * (t[3] < 0 ? -1.0 : 1.0)};
 }
 
 // Corner k of the primitive: its vertex index (in range), or k itself without indices.
@@ -295,7 +295,7 @@ void smooth(const Reader& r, const PrimitivePlan& p, const Mat4& world, Mesh& me
     mesh.normals.push_back(world.normal(r.vec3_at(p.normals, i)));
     for (size_t set = 0; set < 2; ++set)
       if (p.has_texcoords[set]) mesh.texcoords[set].push_back(r.vec2_at(p.texcoords[set], i));
-    if (p.has_tangents) mesh.tangents.push_back(world_tangent(r, p, world, i));
+    if (p.has_tangents) mesh.tangents.push_back(world_tangent(r, p, world, flip, i));
   }
   for (size_t t = 0; t < p.size.triangles; ++t) {
     uint32_t a = corner(r, p, 3 * t), b = corner(r, p, 3 * t + 1), c = corner(r, p, 3 * t + 2);
@@ -327,7 +327,7 @@ void flat(const Reader& r, const PrimitivePlan& p, const Mat4& world, Mesh& mesh
     if (p.has_tangents) {
       uint32_t k[3] = {corner(r, p, 3 * t), corner(r, p, 3 * t + 1), corner(r, p, 3 * t + 2)};
       if (flip) std::swap(k[1], k[2]);
-      for (uint32_t v : k) mesh.tangents.push_back(world_tangent(r, p, world, v));
+      for (uint32_t v : k) mesh.tangents.push_back(world_tangent(r, p, world, flip, v));
     }
     mesh.triangles.push_back({base, base + 1, base + 2});
   }
