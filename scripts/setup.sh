@@ -18,6 +18,7 @@ packages=(
   build-essential cmake pkg-config git
   nlohmann-json3-dev libfmt-dev libcli11-dev libtinygltf-dev libstb-dev googletest libgtest-dev libbenchmark-dev
   glslang-tools spirv-tools libepoxy-dev libegl-dev libegl-mesa0 libgl1-mesa-dri libgles-dev
+  libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers
   povray blender xvfb python3 python3-venv python3-pip chromium valgrind fonts-dejavu-core
 )
 missing=()
