@@ -370,21 +370,23 @@ void image_barrier(VkCommandBuffer cb, VkImage image, VkImageLayout from, VkImag
 namespace {
 
 // The descriptor sets of a VulkanDraw (vulkan.h): their layouts, the sets, and the
-// textures' uploads to record before the render pass.
+// images' uploads to record before the render pass.
 struct Bindings {
   VkDescriptorSetLayout layouts[2] = {VK_NULL_HANDLE, VK_NULL_HANDLE};
   VkDescriptorSet sets[2] = {VK_NULL_HANDLE, VK_NULL_HANDLE};
   struct Upload {
     HostBuffer staging;
     GpuImage image;
-    const Texels* texels;
+    int width, height;
   };
   std::vector<Upload> uploads;
 };
 
-VkDescriptorSetLayout set_layout(VkDevice device, Trash& trash, const std::vector<VkDescriptorType>& types) {
-  std::vector<VkDescriptorSetLayoutBinding> b(types.size());
-  for (size_t i = 0; i < types.size(); ++i) b[i] = {uint32_t(i), types[i], 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr};
+VkDescriptorSetLayout set_layout(VkDevice device, Trash& trash, size_t uniforms, size_t images) {
+  std::vector<VkDescriptorSetLayoutBinding> b;
+  for (size_t i = 0; i < uniforms + images; ++i)
+    b.push_back({uint32_t(i), i < uniforms ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER : VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr});
   auto ci = make<VkDescriptorSetLayoutCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO);
   ci.bindingCount = uint32_t(b.size());
   ci.pBindings = b.data();
@@ -396,8 +398,7 @@ VkDescriptorSetLayout set_layout(VkDevice device, Trash& trash, const std::vecto
 
 void allocate_sets(VkDevice device, Trash& trash, const VulkanDraw& d, Bindings& b) {
   std::vector<VkDescriptorPoolSize> sizes = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1}};
-  if (!d.textures.empty()) sizes.push_back({VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, uint32_t(d.textures.size())});
-  if (!d.buffers.empty()) sizes.push_back({VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, uint32_t(d.buffers.size())});
+  if (size_t n = d.textures.size() + d.images.size()) sizes.push_back({VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, uint32_t(n)});
   auto pi = make<VkDescriptorPoolCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO);
   pi.maxSets = 2;
   pi.poolSizeCount = uint32_t(sizes.size());
@@ -431,43 +432,44 @@ VkSampler nearest_sampler(VkDevice device, Trash& trash) {
   return sampler;
 }
 
-// The uniform block, the textures (staged for upload) and the storage buffers, written into the sets.
+// `images` staged for upload and written into `set` from binding `first` (`infos` keeps the
+// descriptors' image infos alive until the writes are made).
+template <class State>
+void bind_images(const State& s, Trash& trash, const std::vector<VulkanImage>& images, VkDescriptorSet set,
+                 uint32_t first, VkSampler sampler, Bindings& b, std::vector<VkDescriptorImageInfo>& infos,
+                 std::vector<VkWriteDescriptorSet>& writes) {
+  for (size_t i = 0; i < images.size(); ++i) {
+    const VulkanImage& t = images[i];
+    const size_t bytes = size_t(t.width) * size_t(t.height) * 16;
+    Bindings::Upload up{host_buffer(s, trash, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT),
+                        float_image(s, trash, t.width, t.height, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT),
+                        t.width, t.height};
+    std::memcpy(up.staging.data, t.rgba, bytes);
+    infos.push_back({sampler, up.image.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL});
+    writes.push_back(write(set, first + uint32_t(i), VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER));
+    writes.back().pImageInfo = &infos.back();
+    b.uploads.push_back(up);
+  }
+}
+
+// The uniform block and the images (staged for upload), written into the sets.
 template <class State>
 Bindings bindings(const State& s, Trash& trash, const VulkanDraw& d) {
   Bindings b;
-  std::vector<VkDescriptorType> set0(1 + d.textures.size(), VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
-  set0[0] = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
-  b.layouts[0] = set_layout(s.device, trash, set0);
-  b.layouts[1] = set_layout(s.device, trash, std::vector<VkDescriptorType>(d.buffers.size(), VK_DESCRIPTOR_TYPE_STORAGE_BUFFER));
+  b.layouts[0] = set_layout(s.device, trash, 1, d.textures.size());
+  b.layouts[1] = set_layout(s.device, trash, 0, d.images.size());
   allocate_sets(s.device, trash, d, b);
-  std::vector<VkDescriptorBufferInfo> buffers;
-  std::vector<VkDescriptorImageInfo> images;
-  buffers.reserve(1 + d.buffers.size());
-  images.reserve(d.textures.size());
-  std::vector<VkWriteDescriptorSet> writes;
   HostBuffer u = host_buffer(s, trash, d.uniforms.size(), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
   if (!d.uniforms.empty()) std::memcpy(u.data, d.uniforms.data(), d.uniforms.size());
-  buffers.push_back({u.buffer, 0, VK_WHOLE_SIZE});
-  writes.push_back(write(b.sets[0], 0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER));
-  writes.back().pBufferInfo = &buffers.back();
-  VkSampler sampler = d.textures.empty() ? VK_NULL_HANDLE : nearest_sampler(s.device, trash);
-  for (size_t i = 0; i < d.textures.size(); ++i) {
-    const Texels& t = *d.textures[i];
-    Bindings::Upload up{host_buffer(s, trash, t.rgba.size() * 4, VK_BUFFER_USAGE_TRANSFER_SRC_BIT),
-                        float_image(s, trash, t.width, t.height, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT),
-                        &t};
-    std::memcpy(up.staging.data, t.rgba.data(), t.rgba.size() * 4);
-    images.push_back({sampler, up.image.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL});
-    writes.push_back(write(b.sets[0], uint32_t(1 + i), VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER));
-    writes.back().pImageInfo = &images.back();
-    b.uploads.push_back(up);
-  }
-  for (size_t i = 0; i < d.buffers.size(); ++i) {
-    HostBuffer g = host_buffer(s, trash, d.buffers[i].size() * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-    if (!d.buffers[i].empty()) std::memcpy(g.data, d.buffers[i].data(), d.buffers[i].size() * 4);
-    buffers.push_back({g.buffer, 0, VK_WHOLE_SIZE});
-    writes.push_back(write(b.sets[1], uint32_t(i), VK_DESCRIPTOR_TYPE_STORAGE_BUFFER));
-    writes.back().pBufferInfo = &buffers.back();
+  const VkDescriptorBufferInfo block{u.buffer, 0, VK_WHOLE_SIZE};
+  std::vector<VkWriteDescriptorSet> writes = {write(b.sets[0], 0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER)};
+  writes.back().pBufferInfo = &block;
+  std::vector<VkDescriptorImageInfo> infos;
+  infos.reserve(d.textures.size() + d.images.size());
+  if (!d.textures.empty() || !d.images.empty()) {
+    VkSampler sampler = nearest_sampler(s.device, trash);
+    bind_images(s, trash, d.textures, b.sets[0], 1, sampler, b, infos, writes);
+    bind_images(s, trash, d.images, b.sets[1], 0, sampler, b, infos, writes);
   }
   vkUpdateDescriptorSets(s.device, uint32_t(writes.size()), writes.data(), 0, nullptr);
   return b;
@@ -479,7 +481,7 @@ void record_uploads(VkCommandBuffer cb, const Bindings& b) {
                   VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT);
     VkBufferImageCopy copy{};
     copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    copy.imageExtent = {uint32_t(up.texels->width), uint32_t(up.texels->height), 1};
+    copy.imageExtent = {uint32_t(up.width), uint32_t(up.height), 1};
     vkCmdCopyBufferToImage(cb, up.staging.buffer, up.image.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
     image_barrier(cb, up.image.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
                   VK_ACCESS_TRANSFER_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,

@@ -7,16 +7,21 @@
 #include <string>
 #include <vector>
 
-#include "core/texture.h"
 #include "renderers/renderer.h"
 
 namespace facet {
 
-// One fragment shader and what its descriptor sets hold:
+// RGBA32F texels, row j (texelFetch's j) at rgba + 4·j·width; the caller keeps them alive.
+struct VulkanImage {
+  int width = 0, height = 0;
+  const float* rgba = nullptr;
+};
+
+// One fragment shader and what its descriptor sets hold, every image an RGBA32F combined
+// image sampler (nearest, read with texelFetch):
 //  set 0, binding 0      a uniform block of `uniforms` bytes (std140: the generated glsl450's FacetScene)
-//  set 0, bindings 1…    `textures`, RGBA32F combined image samplers read with texelFetch (the
-//                        generated glsl450's facet_texture_<parameter>, in image_calls() order)
-//  set 1, bindings 0…    `buffers`, read-only storage buffers of vec4 (the G-buffer's images)
+//  set 0, bindings 1…    `textures` (the generated glsl450's facet_texture_<parameter>, in image_calls() order)
+//  set 1, bindings 0…    `images` (the G-buffer's seven, renderers/gbuffer.h)
 //  push constants        ivec2 (width, height) at offset 0
 // The framebuffer's y runs down (gl_FragCoord.y = 0.5 on the top row); the image comes back
 // in facet's order, rows from the top.
@@ -25,8 +30,7 @@ struct VulkanDraw {
   std::string source;  // the fragment shader
   bool hlsl = false;   // HLSL (entry point main) rather than GLSL 4.50
   std::vector<unsigned char> uniforms;
-  std::vector<const Texels*> textures;
-  std::vector<std::vector<float>> buffers;
+  std::vector<VulkanImage> textures, images;
 };
 
 // The generated glsl450's FacetScene uniform block (templates/glsl, std140) for scene `s`:

@@ -34,19 +34,19 @@ VulkanDevice& device() {
   return d;
 }
 
-// Every binding of vulkan.h at once: the uniform block (a float and an int), a 3×2 texture,
-// a storage buffer of one vec4 per pixel, the push constants; the pixel centre from gl_FragCoord.
+// Every binding of vulkan.h at once: the uniform block (a float and an int), a 3×2 texture in
+// set 0, an image of one texel per pixel in set 1, the push constants; the pixel centre from gl_FragCoord.
 const char* kEveryBinding = R"(#version 450
 layout(std140, set = 0, binding = 0) uniform Block { vec4 offset; int count; };
 layout(set = 0, binding = 1) uniform sampler2D image;
-layout(std430, set = 1, binding = 0) readonly buffer Values { vec4 values[]; };
+layout(set = 1, binding = 0) uniform sampler2D values;
 layout(push_constant) uniform Size { ivec2 size; };
 layout(location = 0) out vec4 color;
 void main()
 {
     ivec2 p = ivec2(gl_FragCoord.xy);
     float texel = texelFetch(image, ivec2(p.x % 3, p.y % 2), 0).r;
-    color = vec4(gl_FragCoord.xy, values[p.y * size.x + p.x].x + texel, offset.x + float(count));
+    color = vec4(gl_FragCoord.xy, texelFetch(values, p, 0).x + texel + float(size.x * 100000), offset.x + float(count));
 }
 )";
 
@@ -73,9 +73,10 @@ TEST(Vulkan, EveryBindingReachesItsPixel) {
   d.uniforms.resize(32);
   std::memcpy(d.uniforms.data(), &offset, 4);
   std::memcpy(d.uniforms.data() + 16, &count, 4);
-  d.textures = {&tex};
-  d.buffers.emplace_back();
-  for (int i = 0; i < w * h; ++i) d.buffers[0].insert(d.buffers[0].end(), {float(i), 0, 0, 0});
+  d.textures = {{tex.width, tex.height, tex.rgba.data()}};
+  std::vector<float> values;
+  for (int i = 0; i < w * h; ++i) values.insert(values.end(), {float(i), 0, 0, 0});
+  d.images = {{w, h, values.data()}};
   RenderOutcome r = device().draw(d, w, h, folder("bindings"));
   ASSERT_TRUE(r.ok) << r.error;
   ASSERT_EQ(r.image.width, w);
@@ -86,7 +87,7 @@ TEST(Vulkan, EveryBindingReachesItsPixel) {
       const float* px = r.image.at(x, y);
       EXPECT_EQ(px[0], x + 0.5f) << x << "," << y;
       EXPECT_EQ(px[1], y + 0.5f) << x << "," << y;
-      EXPECT_EQ(px[2], float(y * w + x) + float(1000 * ((y % 2) * 3 + x % 3 + 1))) << x << "," << y;
+      EXPECT_EQ(px[2], float(y * w + x) + float(1000 * ((y % 2) * 3 + x % 3 + 1)) + float(w * 100000)) << x << "," << y;
       EXPECT_EQ(r.alpha[size_t(y * w + x)], 3.25f);
     }
 }
@@ -151,9 +152,8 @@ TEST(Vulkan, ValidationLayersNameTheFile) {
   ASSERT_TRUE(device().validation_layers()) << "VK_LAYER_KHRONOS_validation is not installed (vulkan-validationlayers)";
   VulkanDraw d;
   d.name = "missing_binding";
-  d.source = "#version 450\nlayout(std430, set = 1, binding = 3) readonly buffer B { vec4 v[]; };\n"
-             "layout(location = 0) out vec4 color;\nvoid main() { color = v[0]; }\n";
-  d.buffers.resize(1);
+  d.source = "#version 450\nlayout(set = 1, binding = 3) uniform sampler2D missing;\n"
+             "layout(location = 0) out vec4 color;\nvoid main() { color = texelFetch(missing, ivec2(0), 0); }\n";
   RenderOutcome r = device().draw(d, 4, 4, folder("missing"));
   EXPECT_FALSE(r.ok);
   EXPECT_NE(r.error.find("missing_binding.frag"), std::string::npos) << r.error;
