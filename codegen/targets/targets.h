@@ -47,8 +47,9 @@ struct GlslParts {
 GlslParts glsl_parts(const MaterialProgram& p, Target dialect, const std::string& source);
 
 // The robustness sweep's programs (facet/sweep.h): the material's functions
-// under a main that evaluates the sweep grid.
-std::string glsl_sweep_source(const Material& m);
+// under a main that evaluates the sweep grid. GLSL's in `dialect` Glsl (uniform vec2
+// facet_resolution) or Glsl450 (Vulkan: the grid's side from the push constants, ivec2).
+std::string glsl_sweep_source(const Material& m, Target dialect = Target::Glsl);
 std::string osl_sweep_source(const Material& m);
 std::string generate_pov_sweep(const Material& m);
 
