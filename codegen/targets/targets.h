@@ -46,6 +46,12 @@ struct GlslParts {
 };
 GlslParts glsl_parts(const MaterialProgram& p, Target dialect, const std::string& source);
 
+// The G-buffer shading pass (renderers/gbuffer.h) in `dialect` (Glsl, Glsl450, Essl):
+// the material's library and light loop under templates/glsl/gbuffer_shade.glsl's main,
+// which reads the seven G-buffer images at its pixel (samplers facet_gbuffer_position …
+// facet_gbuffer_visibility_high; Vulkan: set 1, bindings 0-6) and writes facet_color.
+std::string glsl_gbuffer_shading_source(const Material& m, Target dialect);
+
 // The robustness sweep's programs (facet/sweep.h): the material's functions
 // under a main that evaluates the sweep grid.
 std::string glsl_sweep_source(const Material& m);
