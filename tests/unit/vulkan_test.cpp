@@ -103,7 +103,7 @@ TEST(Vulkan, SceneBlockIsWhereTheGeneratedCodeReadsIt) {
   VulkanDraw d;
   d.name = "scene_block";
   d.source = "#version 450\n" + parts.library + parts.lights +
-             "float facet_visibility(vec3 p, vec3 l, float d) { return 1.0; }\n"
+             "float facet_visibility(vec3 p, vec3 l, float d, int light) { return 1.0; }\n"
              "layout(location = 0) out vec4 color;\n"
              "void main()\n{\n    ivec2 p = ivec2(gl_FragCoord.xy);\n    FacetLight l = facet_lights[p.x];\n"
              "    vec4 v[4] = vec4[4](l.position, l.color, l.spot, l.attenuation);\n"
