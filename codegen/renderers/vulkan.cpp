@@ -4,6 +4,8 @@
 // its own objects and destroys them (a Trash), so a failure half-way leaks nothing.
 #include "renderers/vulkan.h"
 
+#include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstring>
@@ -14,11 +16,18 @@
 #include <fmt/format.h>
 #include <vulkan/vulkan.h>
 
+#include "catalog/program.h"
 #include "core/io.h"
 #include "renderers/backends.h"
+#include "renderers/gbuffer.h"
 #include "renderers/harness.h"
+#include "renderers/hlsl_shading.h"
+#include "renderers/opengl.h"
 #include "renderers/process.h"
+#include "renderers/sweep.h"
 #include "targets/glsl_lights.h"
+#include "targets/targets.h"
+#include "targets/texture_code.h"
 
 namespace facet {
 
@@ -216,21 +225,14 @@ bool VulkanDevice::validation_layers() const { return state_->layers; }
 std::vector<unsigned char> facet_scene_block(const Scene& s) {
   // std140: vec4 camera (0), vec4 ambient (16), int count (32), FacetLight[8] from 48, 64 bytes each.
   std::vector<float> f(560 / 4, 0.0f);
-  auto put = [&](size_t at, double x, double y, double z, double w) {
-    f[at / 4] = float(x), f[at / 4 + 1] = float(y), f[at / 4 + 2] = float(z), f[at / 4 + 3] = float(w);
-  };
-  put(0, s.camera.position.x, s.camera.position.y, s.camera.position.z, 1);
-  put(16, s.ambient[0], s.ambient[1], s.ambient[2], 0);
+  const Vec3& eye = s.camera.position;
+  const float head[8] = {float(eye.x), float(eye.y), float(eye.z), 1,
+                         float(s.ambient[0]), float(s.ambient[1]), float(s.ambient[2]), 0};
+  std::copy(head, head + 8, f.begin());
   const int32_t count = int32_t(std::min<size_t>(s.lights.size(), 8));
   for (size_t i = 0; i < size_t(count); ++i) {
-    const Light& l = s.lights[i];
-    const size_t at = 48 + 64 * i;
-    const Vec3& where = l.type == Light::Type::Directional ? l.direction : l.position;
-    put(at, where.x, where.y, where.z, glsl_light::type_code(l.type));
-    put(at + 16, l.color[0], l.color[1], l.color[2], l.exponent);
-    put(at + 32, l.direction.x, l.direction.y, l.direction.z, std::cos(l.cutoff * M_PI / 180.0));
-    const Attenuation& a = l.attenuation;
-    put(at + 48, a.constant, a.linear, a.quadratic, glsl_light::law_code(a.law));
+    const std::array<float, 16> light = glsl_light::encode(s.lights[i]);
+    std::copy(light.begin(), light.end(), f.begin() + ptrdiff_t(12 + 16 * i));
   }
   std::vector<unsigned char> out(f.size() * 4);
   std::memcpy(out.data(), f.data(), out.size());
@@ -715,6 +717,151 @@ RenderOutcome VulkanDevice::draw(const VulkanDraw& d, int width, int height, con
   out.ok = true;
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
+}
+
+// ---------------------------------------------------------------- the renderer
+
+namespace {
+
+const int kMaxVulkanLights = 8;  // FacetScene's FACET_MAX_LIGHTS
+
+// The material's images (image_calls() order: set 0, bindings 1…).
+std::vector<VulkanImage> material_images(const Material& m) {
+  std::vector<VulkanImage> out;
+  for (const auto& c : image_calls(compile(m))) out.push_back({c.texels->width, c.texels->height, c.texels->rgba.data()});
+  return out;
+}
+
+// "vulkan" and "vulkan-hlsl": each material pass's G-buffer cast by the GL renderer's
+// ray caster (renderers/gbuffer.h), shaded on the Vulkan device by the generated glsl450
+// shading pass (glsl_gbuffer_shading_source) or the HLSL one (hlsl_shading_source,
+// through glslang's HLSL front end); the passes add up.
+class VulkanRenderer : public Renderer {
+ public:
+  VulkanRenderer(const RendererInfo& info, bool hlsl) : info_(info), hlsl_(hlsl) {
+    if (!device_.unavailable().empty()) error_ = device_.unavailable();
+    else if (!gl_.ok()) error_ = "the G-buffer is cast with OpenGL, which is not here: " + gl_.error();
+  }
+  const RendererInfo& info() const override { return info_; }
+  std::string unavailable() const override { return error_; }
+  std::string description() const override {
+    return device_.description() + "; G-buffer: " + gl_.description();
+  }
+  std::vector<RenderOutcome> render(const std::vector<RenderJob>& jobs, const RenderProgress& progress) override {
+    std::vector<RenderOutcome> out;
+    for (size_t i = 0; i < jobs.size(); ++i) {
+      out.push_back(render_one(jobs[i]));
+      if (progress.finished) progress.finished(i);
+    }
+    return out;
+  }
+  std::vector<SweepCount> sweep(const std::vector<SweepJob>& jobs, const SweepSettings& settings) override;
+
+ private:
+  RenderOutcome render_one(const RenderJob& job);
+  RenderOutcome shade(const RenderJob& job, const Material& m, const std::string& name, const GBuffer& g);
+  RendererInfo info_;
+  bool hlsl_;
+  VulkanDevice device_;
+  GlRenderer gl_;
+  std::string error_;
+};
+
+RenderOutcome VulkanRenderer::shade(const RenderJob& job, const Material& m, const std::string& name,
+                                    const GBuffer& g) {
+  VulkanDraw d;
+  d.name = name;
+  d.hlsl = hlsl_;
+  d.source = !job.code_override.empty() ? job.code_override
+             : hlsl_                    ? hlsl_shading_source(m)
+                                        : glsl_gbuffer_shading_source(m, Target::Glsl450);
+  d.uniforms = facet_scene_block(job.scene);
+  d.textures = material_images(m);
+  for (const auto& image : g.images) d.images.push_back({g.width, g.height, image.data()});
+  return device_.draw(d, job.width, job.height, job.folder());
+}
+
+RenderOutcome VulkanRenderer::render_one(const RenderJob& job) {
+  RenderOutcome out;
+  if (!error_.empty() || job.scene.lights.size() > size_t(kMaxVulkanLights)) {
+    out.error = !error_.empty() ? error_ : fmt::format("the Vulkan renderer takes at most {} lights", kMaxVulkanLights);
+    return out;
+  }
+  auto start = std::chrono::steady_clock::now();
+  std::vector<const Material*> passes;
+  try {
+    passes = material_passes(job);
+  } catch (const std::exception& e) {
+    out.error = e.what();
+    return out;
+  }
+  if (!job.code_override.empty() && passes.size() != 1) {
+    out.error = "code_override needs a scene with one material";
+    return out;
+  }
+  const size_t pixels = size_t(job.width) * size_t(job.height);
+  out.image = Image(job.width, job.height);
+  out.alpha.assign(pixels, 0);
+  for (size_t k = 0; k < passes.size(); ++k) {
+    GBufferOutcome g = cast_gbuffer(gl_, job, k);
+    if (!g.ok) {
+      out.error = "the G-buffer: " + g.error;
+      return out;
+    }
+    const std::string name = job_name(job) + (passes.size() > 1 ? "_" + identifier(passes[k]->name) : "");
+    RenderOutcome pass = shade(job, *passes[k], name, g.gbuffer);
+    if (!pass.ok) {
+      out.error = pass.error;
+      return out;
+    }
+    for (size_t i = 0; i < pixels; ++i) {
+      for (size_t c = 0; c < 3; ++c) out.image.rgb[i * 3 + c] += pass.image.rgb[i * 3 + c];
+      out.alpha[i] = std::max(out.alpha[i], pass.alpha[i]);
+    }
+  }
+  out.ok = true;
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+std::vector<SweepCount> VulkanRenderer::sweep(const std::vector<SweepJob>& jobs, const SweepSettings& settings) {
+  if (!error_.empty()) return failed_sweeps(jobs.size(), info_.name, error_);
+  std::vector<SweepCount> out(jobs.size());
+  const std::string folder =
+      settings.workdir.empty() ? (std::filesystem::temp_directory_path() / "facet-sweep").string() : settings.workdir;
+  for (size_t i = 0; i < jobs.size(); ++i) {
+    SweepCount& c = out[i];
+    c.target = info_.name;
+    const Material& m = jobs[i].material;
+    VulkanDraw d;
+    d.name = identifier(m.name) + "_sweep";
+    d.hlsl = hlsl_;
+    d.source = !jobs[i].source.empty() ? jobs[i].source : hlsl_ ? hlsl_sweep_source(m) : glsl_sweep_source(m, Target::Glsl450);
+    if (hlsl_) {  // hlsl/sweep.hlsl's cbuffer FacetSweep: float2 facet_resolution (glsl450 reads the push constants)
+      const float side[2] = {float(settings.grid), float(settings.grid)};
+      d.uniforms.resize(sizeof side);
+      std::memcpy(d.uniforms.data(), side, sizeof side);
+    }
+    d.textures = material_images(jobs[i].material);
+    RenderOutcome r = device_.draw(d, settings.grid, settings.grid, folder);
+    if (!r.ok) {
+      c.error = r.error;
+      continue;
+    }
+    for (size_t k = 0; k < r.image.rgb.size(); k += 3)
+      count_sweep_value(c, {r.image.rgb[k], r.image.rgb[k + 1], r.image.rgb[k + 2]});
+  }
+  return out;
+}
+
+}  // namespace
+
+std::unique_ptr<Renderer> make_vulkan_renderer(const RendererInfo& info, const RendererSettings&) {
+  return std::make_unique<VulkanRenderer>(info, false);
+}
+
+std::unique_ptr<Renderer> make_vulkan_hlsl_renderer(const RendererInfo& info, const RendererSettings&) {
+  return std::make_unique<VulkanRenderer>(info, true);
 }
 
 }  // namespace facet
