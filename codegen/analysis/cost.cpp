@@ -167,6 +167,7 @@ SpirvCount spirv_count(const std::string& source, const std::string& workdir, co
     return r.exit_code == 0;
   };
   compile.insert(compile.end(), {"-o", spv, file});
+  out.module = spv;
   if (!step(compile) || !step({"spirv-opt", "-O", spv, "-o", opt}) || !step({"spirv-dis", opt, "-o", dis}))
     return out;
   out.disassembly = read_file(dis);

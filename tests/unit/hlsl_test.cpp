@@ -1,4 +1,4 @@
-// The HLSL shading pass over the G-buffer (renderers/hlsl_shading.h): for every example,
+// The HLSL shading pass over the G-buffer (renderers/hlsl_shading.h) and the HLSL sweep: for every example,
 // textured ones included, it compiles with glslang's HLSL front end to SPIR-V, its seven
 // G-buffer images at set 1, bindings 0–6, the scene's cbuffer at set 0, binding 0 and the
 // material's textures at set 0, bindings 1, 2, …; and the compile fails on a broken pass.
@@ -13,6 +13,7 @@
 #include "core/io.h"
 #include "renderers/hlsl_shading.h"
 #include "renderers/process.h"
+#include "targets/targets.h"
 
 namespace facet {
 namespace {
@@ -86,6 +87,17 @@ TEST(HlslShading, EveryExampleCompilesWithTheContractsBindings) {
     ++compiled;
   }
   EXPECT_GE(compiled, 29);
+}
+
+// The robustness sweep's HLSL (targets.h, hlsl_sweep_source: a pixel shader evaluating the
+// sweep grid) compiles for every example; the grid's functions and facet_reflect are in it.
+TEST(HlslSweep, EveryExampleCompiles) {
+  for (const auto& path : examples()) {
+    const std::string source = hlsl_sweep_source(load_material(path.string()));
+    EXPECT_NE(source.find("sweep_n_x("), std::string::npos) << path;
+    Compiled c = compile_hlsl(source, path.stem().string() + "_sweep");
+    EXPECT_EQ(c.run.exit_code, 0) << path << "\n" << c.run.output;
+  }
 }
 
 // The compile has teeth: the pass without its visibility function, or with GLSL's vec4 in
