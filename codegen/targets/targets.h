@@ -46,6 +46,12 @@ struct GlslParts {
 };
 GlslParts glsl_parts(const MaterialProgram& p, Target dialect, const std::string& source);
 
+// The G-buffer shading pass (renderers/gbuffer.h) in `dialect` (Glsl, Glsl450, Essl):
+// the material's library and light loop under templates/glsl/gbuffer_shade.glsl's main,
+// which reads the seven G-buffer images at its pixel (samplers facet_gbuffer_position …
+// facet_gbuffer_visibility_high; Vulkan: set 1, bindings 0-6) and writes facet_color.
+std::string glsl_gbuffer_shading_source(const Material& m, Target dialect);
+
 // HLSL in the same pieces (templates/hlsl): the library, the light loop (the FacetScene
 // cbuffer, facet_shade, which asks facet_visibility(p, l, d, i) for light i) and the
 // standalone Shader Model 5 main.
