@@ -164,7 +164,7 @@ inline void add_lobe_params(ModelDef& m) {
   const bool diffuse = m.section == "diffuse";
   m.params.insert(m.params.begin(),
                   color("color", diffuse ? "k_d, the diffuse colour" : "k_s, the specular colour",
-                        Range::non_negative(), {1, 1, 1}));
+                        Range::color(), {1, 1, 1}));
   m.params.push_back(object("toon", "Toon modifier: ρ' = smoothstep(cutoff − width/2, cutoff + width/2, ρ)",
                             "modifier", "toon"));
   m.params.front().every_lobe = m.params.back().every_lobe = true;

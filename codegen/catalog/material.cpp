@@ -20,7 +20,7 @@ ParamDef material_color(const char* name, const char* doc) {
   p.name = name;
   p.kind = ParamKind::Color;
   p.doc = doc;
-  p.range = Range::non_negative();
+  p.range = Range::color();
   p.fallback.kind = ParamKind::Color;
   return p;
 }
@@ -270,7 +270,7 @@ json param_schema(const ParamDef& p) {
     // The value itself, or {"texture": …} (catalog/texture.h).
     json def = s.contains("default") ? s["default"] : json();
     s.erase("default");
-    s = {{"anyOf", json::array({s, texture_schema(p.kind == ParamKind::Color)})}};
+    s = {{"anyOf", json::array({s, texture_schema(p.kind == ParamKind::Color, p.range)})}};
     if (!def.is_null()) s["default"] = def;
   }
   s["description"] = p.doc;

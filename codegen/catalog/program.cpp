@@ -35,7 +35,9 @@ ir::FunctionPtr build_lobe(const ModelSpec& spec, const std::string& lobe, const
     const ModelSpec& t = *toon->second.model;
     ir::Expr cutoff = ctx.parameter(t, "cutoff", lobe + "_toon_cutoff");
     double width = t.at("width").number;
-    if (width > 0) {
+    // A width below 1e-30 is a hard step: float32 flushes it towards 0, where
+    // (ρ − cutoff) / width would be 0/0 at ρ = cutoff (docs/float32.md).
+    if (width >= 1e-30) {
       rho = ir::call(terms::toon(rho.type()), {rho, cutoff, ir::constant(lobe + "_toon_width", width)});
     } else {
       rho = ir::call(terms::toon_hard(rho.type()), {rho, cutoff});
@@ -112,7 +114,7 @@ MaterialProgram compile(const Material& m) {
     Value v = material_term(m, ambient);
     if (v.texture)
       p.textured.push_back({ambient ? kAmbientInput : kEmissionInput, ambient ? "ambient" : "emission", ir::Type::Color,
-                            v, Range::non_negative()});
+                            v, Range::color()});
   }
   return p;
 }
