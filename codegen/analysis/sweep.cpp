@@ -49,14 +49,15 @@ std::vector<Material> extreme_materials() {
   for (const auto& def : catalog()) {
     if (def.section != "diffuse" && def.section != "specular") continue;
     ModelSpec low = default_spec(def), high = default_spec(def);
-    // Numbers and colours (k_d, k_s: up to kColorMax) at the ends of their ranges.
+    // Numbers at the ends of their ranges; colours (k_d, k_s) at the top of theirs in
+    // both, the largest product a lobe's peak can reach (a colour of 0 hides nothing
+    // the top does not show: 0 · ∞ is NaN only where the top gives ∞).
     for (const auto& p : def.params) {
       if (p.kind == ParamKind::Number) {
         low.values[p.name] = number_value(low_end(p.range));
         high.values[p.name] = number_value(high_end(p.range));
       } else if (p.kind == ParamKind::Color) {
-        low.values[p.name] = color_value(low_end(p.range));
-        high.values[p.name] = color_value(high_end(p.range));
+        low.values[p.name] = high.values[p.name] = color_value(high_end(p.range));
       }
     }
     add(def, "low", low);

@@ -51,12 +51,20 @@ inline constexpr double kRoughnessMin = 1e-3;
 // formulas have reached their limits to float32 precision (σ²/(σ² + 0.57) rounds
 // to 1 beyond σ ≈ 3.1e3).
 inline constexpr double kScalarMax = 1e4;
+// Scene coordinates (positions, look_at, centres, mesh vertices, texture coordinates,
+// a sphere's radius, a square's size; directions too, which C++ normalizes): with
+// |x| ≤ 1e6 the ray caster's |o − c|², b² − 4ac and d² stay below 1e26, and a point
+// light's c₃ d² below 1e17.
+inline constexpr double kCoordinateMax = 1e6;
 
 struct Range {
   double min = -std::numeric_limits<double>::infinity();
   double max = std::numeric_limits<double>::infinity();
   bool min_open = false;
   bool max_open = false;
+  // A bound set for float32 (the helpers below), not by the model: analyses that step
+  // over a model's own range (facet physics) step around the default instead.
+  bool float32 = false;
   bool contains(double v) const;
   std::string describe() const;  // "> 0", "in [0, 1]", "any"
   static Range positive() { return {0, std::numeric_limits<double>::infinity(), true, false}; }
@@ -66,11 +74,14 @@ struct Range {
   static Range left_open(double a, double b) { return {a, b, true, false}; }
   static Range open(double a, double b) { return {a, b, true, true}; }
   // The float32 bounds above as ranges.
-  static Range color() { return closed(0, kColorMax); }               // [0, 1e4]
-  static Range exponent(double lo) { return closed(lo, kExponentMax); }  // [lo, 1e6]
-  static Range roughness() { return closed(kRoughnessMin, kScalarMax); }  // [1e-3, 1e4]
-  static Range scalar() { return closed(0, kScalarMax); }             // [0, 1e4]
-  static Range positive_scalar() { return left_open(0, kScalarMax); }  // (0, 1e4]
+  static Range color() { return {0, kColorMax, false, false, true}; }                    // [0, 1e4]
+  static Range exponent(double lo) { return {lo, kExponentMax, false, false, true}; }       // [lo, 1e6]
+  static Range positive_exponent() { return {0, kExponentMax, true, false, true}; }         // (0, 1e6]
+  static Range roughness() { return {kRoughnessMin, kScalarMax, false, false, true}; }      // [1e-3, 1e4]
+  static Range scalar() { return {0, kScalarMax, false, false, true}; }                     // [0, 1e4]
+  static Range positive_scalar() { return {0, kScalarMax, true, false, true}; }             // (0, 1e4]
+  static Range coordinate() { return {-kCoordinateMax, kCoordinateMax, false, false, true}; }  // [-1e6, 1e6]
+  static Range positive_coordinate() { return {0, kCoordinateMax, true, false, true}; }     // (0, 1e6]
 };
 
 enum class ParamKind {

@@ -43,6 +43,7 @@ inline ParamDef list(std::string name, std::string doc, ParamKind kind, bool non
   p.doc = std::move(doc);
   p.required = true;
   p.nonzero = nonzero;
+  if (kind == ParamKind::Points) p.range = Range::coordinate();
   p.fallback.kind = kind;
   return p;
 }
@@ -100,6 +101,7 @@ inline ParamDef vector(std::string name, std::string doc, std::array<double, 3> 
   p.name = std::move(name);
   p.kind = ParamKind::Vector;
   p.doc = std::move(doc);
+  p.range = Range::coordinate();
   p.required = required;
   p.fallback.kind = ParamKind::Vector;
   p.fallback.rgb = fallback;

@@ -38,7 +38,7 @@ void add_diffuse(std::vector<ModelDef>& all) {
     m.formula = "ρ_d = (n·l)^k · max(n·v, ε)^(k−1)";
     m.doc = "A power of Lambert that keeps reciprocity. k = 1 is Lambert; k < 1 brightens the limb, "
             "as the full moon shows; k > 1 darkens it.";
-    m.params = {number("k", "limb exponent; 1 is Lambert, below 1 brightens the limb", Range::left_open(0, kExponentMax), 0.8)};
+    m.params = {number("k", "limb exponent; 1 is Lambert, below 1 brightens the limb", Range::positive_exponent(), 0.8)};
     m.cycles = none("Cycles has no Minnaert closure");
     m.pov = none("POV's brilliance gives (n·l)^k but not the (n·v)^(k−1) factor: function pigment");
     m.blender_nodes = nodes_none("no Blender node has the (n·v)^(k−1) factor");

@@ -130,7 +130,7 @@ void add_specular(std::vector<ModelDef>& all) {
     m.citation = "Gaussian highlight, after Torrance & Sparrow 1967";
     m.formula = "ρ_s = exp(−m · acos([n·h])²)";
     m.doc = "A Gaussian in the angle between the normal and the half vector; larger m, tighter lobe.";
-    m.params = {number("m", "sharpness; larger is a tighter lobe", Range::left_open(0, kExponentMax), 50)};
+    m.params = {number("m", "sharpness; larger is a tighter lobe", Range::positive_exponent(), 50)};
     m.cycles = none("Cycles has no Gaussian-lobe closure");
     m.pov = none("function pigment");
     m.blender_nodes = nodes_none("no Blender node has a Gaussian lobe in the half-angle");

@@ -159,7 +159,7 @@ void add_scene_vocabulary(std::vector<ModelDef>& all) {
   {
     auto m = entry("object", "sphere", "Sphere", "", "|p − center| = radius", "An analytic sphere.");
     m.params = {text("name", "a name for reports"), text("material", "a key of the scene's \"materials\""),
-                vector("center", "centre", {0, 0, 0}, true), number("radius", "radius", Range::positive(), 1)};
+                vector("center", "centre", {0, 0, 0}, true), number("radius", "radius", Range::positive_coordinate(), 1)};
     m.object_type = ObjectType::Sphere;
     all.push_back(m);
   }
@@ -170,7 +170,7 @@ void add_scene_vocabulary(std::vector<ModelDef>& all) {
     m.params = {text("name", "a name for reports"), text("material", "a key of the scene's \"materials\""),
                 vector("point", "centre of the square", {0, 0, 0}, true),
                 vector("normal", "the side the square faces", {0, 1, 0}, true, true),
-                number("size", "half the side of the square", Range::positive(), 10, false)};
+                number("size", "half the side of the square", Range::positive_coordinate(), 10, false)};
     m.object_type = ObjectType::Plane;
     all.push_back(m);
   }
