@@ -63,13 +63,13 @@ std::vector<Material> extreme_materials() {
     add(def, "low", low);
     add(def, "high", high);
     if (!def.param("fresnel")) continue;
-    // The Fresnel terms at their ends: f0 = 0 and 1; η below 1 (total internal
-    // reflection), exactly 1 (no reflection) and the top of its range.
+    // The Fresnel terms at their ends: f0 = 0 and 1; η at the bottom of its range
+    // (total internal reflection), exactly 1 (no reflection) and the top.
     const Range& ior = find_model("fresnel", "exact")->param("ior")->range;
     std::vector<std::pair<std::string, ModelSpec>> fresnels = {
         {"schlick0", fresnel("schlick", {{"f0", color_value(0)}})},
         {"schlick1", fresnel("schlick", {{"f0", color_value(1)}})},
-        {"ior_tiny", fresnel("exact", {{"ior", number_value(1e-3)}})},
+        {"ior_tiny", fresnel("exact", {{"ior", number_value(low_end(ior))}})},
         {"ior_one", fresnel("exact", {{"ior", number_value(1)}})},
         {"ior_huge", fresnel("exact", {{"ior", number_value(high_end(ior))}})}};
     for (auto& [name, f] : fresnels) {
@@ -87,9 +87,7 @@ std::vector<Material> extreme_materials() {
   const ModelDef& toon = *find_model("modifier", "toon");
   const double top_cutoff = high_end(toon.param("cutoff")->range), top_width = high_end(toon.param("width")->range);
   for (auto [name, cutoff, width] : {std::tuple{"toon_zero", 0.0, 0.0}, std::tuple{"toon_thin", 0.5, 1e-9},
-                                     std::tuple{"toon_wide", top_cutoff, top_width},
-                                     // below float32's normals: the hard step (catalog/program.cpp), at ρ = 1
-                                     std::tuple{"toon_flushed", 1.0, 1e-40}}) {
+                                     std::tuple{"toon_wide", top_cutoff, top_width}}) {
     ModelSpec s = default_spec(lambert);
     ModelSpec t = default_spec(toon);
     t.values["cutoff"] = number_value(cutoff);

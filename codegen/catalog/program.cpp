@@ -35,9 +35,7 @@ ir::FunctionPtr build_lobe(const ModelSpec& spec, const std::string& lobe, const
     const ModelSpec& t = *toon->second.model;
     ir::Expr cutoff = ctx.parameter(t, "cutoff", lobe + "_toon_cutoff");
     double width = t.at("width").number;
-    // A width below 1e-30 is a hard step: float32 flushes it towards 0, where
-    // (ρ − cutoff) / width would be 0/0 at ρ = cutoff (docs/float32.md).
-    if (width >= 1e-30) {
+    if (width > 0) {
       rho = ir::call(terms::toon(rho.type()), {rho, cutoff, ir::constant(lobe + "_toon_width", width)});
     } else {
       rho = ir::call(terms::toon_hard(rho.type()), {rho, cutoff});

@@ -7,6 +7,12 @@
 namespace facet::catalog_detail {
 
 namespace {
+// η in [1e-3, 1e4] (docs/float32.md): at normal incidence the exact Fresnel term's
+// c(g + c) − 1 and c(g − c) + 1 both cancel to about η, which float32 computes from
+// numbers near 1 to one ulp (1.2e-7): η ≥ 1e-3 keeps their ratio to 1e-4; below
+// 1.1e-19, η² flushes to 0 and the ratio is 0/0.
+const Range kIorRange = {1e-3, kScalarMax, false, false, true};
+
 ModelDef entry(std::string section, std::string name, std::string title, std::string citation,
                std::string formula, std::string doc) {
   ModelDef m;
@@ -37,7 +43,7 @@ void add_terms(std::vector<ModelDef>& all) {
                    "Cook & Torrance 1982, after Fresnel", "g = √(η² + c² − 1), F = ½ (g−c)²/(g+c)² (1 + ((c(g+c)−1)/(c(g−c)+1))²), c = v·h",
                    "Unpolarized reflectance of a dielectric of relative index η; F = 1 under total internal "
                    "reflection (η² + c² − 1 < 0).");
-    m.params = {number("ior", "relative index of refraction η", Range::positive_scalar(), 1.5)};
+    m.params = {number("ior", "relative index of refraction η", kIorRange, 1.5)};
     all.push_back(m);
   }
   // Geometry
@@ -62,7 +68,7 @@ void add_terms(std::vector<ModelDef>& all) {
                    "ρ' = smoothstep(cutoff − width/2, cutoff + width/2, ρ); width 0: ρ' = [ρ ≥ cutoff]",
                    "Quantizes a lobe into flat bands, as in cartoons. Any diffuse or specular lobe takes it.");
     m.params = {number("cutoff", "the value of ρ where the band changes", Range::scalar(), 0.5),
-                number("width", "width of the smooth transition; 0 (or below 1e-30) is a hard step", Range::scalar(), 0, false)};
+                number("width", "width of the smooth transition; 0 is a hard step", Range::scalar(), 0, false)};
     m.cycles = approximate("diffuse_toon / glossy_toon step on angles, not on ρ");
     m.pov = none("function pigment");
     all.push_back(m);
