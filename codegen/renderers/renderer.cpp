@@ -22,6 +22,10 @@ const std::vector<RendererEntry>& renderer_registry() {
       {{"pov", "POV-Ray", "POV-Ray", "POV-Ray 3.7: generated scene",
         "the generated POV-Ray scene, 16-bit linear PNG, antialiasing off", false},
        make_povray_renderer},
+      {{"webgl", "WebGL2", "WebGL2 (ESSL)", "Chromium WebGL2: generated ES 3.00 GLSL",
+        "the generated ES 3.00 shader shading the GL ray caster's G-buffer in headless Chromium's WebGL2 "
+        "(ANGLE on SwiftShader), RGBA32F", false},
+       make_webgl_renderer},
   };
   return registry;
 }
