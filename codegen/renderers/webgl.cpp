@@ -22,6 +22,7 @@
 #include "renderers/harness.h"
 #include "renderers/opengl.h"
 #include "renderers/process.h"
+#include "renderers/sweep.h"
 #include "targets/targets.h"
 #include "targets/texture_code.h"
 
@@ -159,44 +160,78 @@ class WebglRenderer : public Renderer {
   std::vector<RenderOutcome> render(const std::vector<RenderJob>& jobs, const RenderProgress& progress) override {
     if (std::string why = unavailable(); !why.empty()) return failed_renders(jobs.size(), why);
     std::vector<RenderOutcome> out(jobs.size());
-    std::vector<size_t> batch, passes(jobs.size(), 0);
-    json data = json::array();
-    size_t bytes = 0;
+    std::vector<size_t> passes(jobs.size(), 0);
+    Pages pages{*this, jobs, passes, out, progress};
     for (size_t i = 0; i < jobs.size(); ++i) {
       const auto start = std::chrono::steady_clock::now();
       json job = job_data(jobs[i], passes[i], out[i].error);
       out[i].seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      if (job.is_null()) {
-        if (progress.finished) progress.finished(i);
-        continue;
-      }
-      bytes += job.dump().size();
-      data.push_back(std::move(job));
-      batch.push_back(i);
-      if (bytes >= kPageBytes || i + 1 == jobs.size()) {
-        run_page(jobs, batch, passes, data, out);
-        for (size_t k : batch)
-          if (progress.finished) progress.finished(k);
-        batch.clear();
-        data = json::array();
-        bytes = 0;
-      }
+      if (!job.is_null()) pages.add(i, std::move(job));
+      else if (progress.finished) progress.finished(i);
     }
-    if (!batch.empty()) {  // the last job failed before its page ran
-      run_page(jobs, batch, passes, data, out);
-      for (size_t k : batch)
-        if (progress.finished) progress.finished(k);
-    }
+    pages.flush();
     return out;
   }
 
-  std::vector<SweepCount> sweep(const std::vector<SweepJob>& jobs, const SweepSettings&) override {
-    return failed_sweeps(jobs.size(), info_.name,
-                         "the WebGL renderer has no robustness sweep: the ES 3.00 code is the GLSL 3.30 code's "
-                         "functions, swept by the glsl renderer");
+  // Each material's ES 3.00 sweep harness (targets.h, glsl_sweep_source()) drawn on
+  // grid × grid pixels (at most 512), its raw values counted.
+  std::vector<SweepCount> sweep(const std::vector<SweepJob>& jobs, const SweepSettings& settings) override {
+    if (std::string why = unavailable(); !why.empty()) return failed_sweeps(jobs.size(), info_.name, why);
+    const int grid = std::min(settings.grid, 512);
+    std::vector<RenderJob> draws(jobs.size());
+    std::vector<RenderOutcome> out(jobs.size());
+    std::vector<size_t> passes(jobs.size(), 1);
+    const RenderProgress quiet;
+    Pages pages{*this, draws, passes, out, quiet};
+    for (size_t i = 0; i < jobs.size(); ++i) {
+      draws[i].material = jobs[i].material;
+      draws[i].scene.name = "sweep";
+      draws[i].width = draws[i].height = grid;
+      draws[i].workdir = settings.workdir;
+      const std::string source = jobs[i].source.empty() ? glsl_sweep_source(jobs[i].material, Target::Essl) : jobs[i].source;
+      json pass = {{"what", "the ES 3.00 sweep of \"" + jobs[i].material.name + "\""}, {"fragment", source},
+                   {"uniforms", json::array({json::array({"facet_resolution", {grid, grid}})})},
+                   {"textures", json::array()}};
+      pages.add(i, {{"width", grid}, {"height", grid}, {"passes", json::array({pass})}});
+    }
+    pages.flush();
+    std::vector<SweepCount> counts(jobs.size());
+    for (size_t i = 0; i < jobs.size(); ++i) {
+      counts[i].target = info_.name;
+      if (!out[i].ok) counts[i].error = out[i].error;
+      for (size_t k = 0; out[i].ok && k < out[i].image.rgb.size(); k += 3)
+        count_sweep_value(counts[i], {out[i].image.rgb[k], out[i].image.rgb[k + 1], out[i].image.rgb[k + 2]});
+    }
+    return counts;
   }
 
  private:
+  // Jobs gathered into pages of up to kPageBytes of data, each page one Chromium run.
+  struct Pages {
+    WebglRenderer& renderer;
+    const std::vector<RenderJob>& jobs;
+    const std::vector<size_t>& passes;
+    std::vector<RenderOutcome>& out;
+    const RenderProgress& progress;
+    std::vector<size_t> batch = {};
+    json data = json::array();
+    size_t bytes = 0;
+    void add(size_t i, json job) {
+      bytes += job.dump().size();
+      data.push_back(std::move(job));
+      batch.push_back(i);
+      if (bytes >= kPageBytes) flush();
+    }
+    void flush() {
+      if (batch.empty()) return;
+      renderer.run_page(jobs, batch, passes, data, out);
+      for (size_t k : batch)
+        if (progress.finished) progress.finished(k);
+      batch.clear();
+      data = json::array();
+      bytes = 0;
+    }
+  };
   json job_data(const RenderJob& job, size_t& passes, std::string& error);
   void run_page(const std::vector<RenderJob>& jobs, const std::vector<size_t>& batch, const std::vector<size_t>& passes,
                 const json& data, std::vector<RenderOutcome>& out);
@@ -275,28 +310,29 @@ void WebglRenderer::run_page(const std::vector<RenderJob>& jobs, const std::vect
   }
 }
 
-// Chromium on the page: its DOM after the script ran, or "" with `error` set.
+// Chromium on the page: its DOM after the script ran, or "" with `error` set. The page
+// (megabytes of base64) and the DOM live in a folder of their own, removed after the run;
+// the job's workdir keeps the shaders (.webgl.frag).
 std::string WebglRenderer::chromium_dom(const RenderJob& first, const std::string& html, std::string& log,
                                         std::string& error) {
-  const fs::path folder = first.folder();
+  static int runs = 0;
+  const fs::path folder = fs::temp_directory_path() / fmt::format("facet-webgl-{}-{}", ::getpid(), runs++);
   fs::create_directories(folder);
-  const fs::path file = folder / (job_name(first) + ".webgl.html"), dom = folder / (job_name(first) + ".webgl.dom.html");
-  const fs::path profile = folder / fmt::format("chromium-profile-{}", ::getpid());
+  const fs::path file = folder / (job_name(first) + ".html"), dom = folder / "dom.html";
   write_file_atomic(file.string(), html);
   // stdout (the DOM) to a file; stderr (Chromium's own messages) is the log.
   ProcessResult r = run_process({"timeout", "600", "sh", "-c", "exec \"$0\" \"$@\" > \"$FACET_DOM\"", chromium_,
                                  "--headless=new", "--use-angle=swiftshader", "--enable-unsafe-swiftshader",
-                                 "--no-sandbox", "--no-first-run", "--user-data-dir=" + profile.string(),
+                                 "--no-sandbox", "--no-first-run", "--user-data-dir=" + (folder / "profile").string(),
                                  "--dump-dom", "file://" + fs::absolute(file).string()},
                                 "", {"FACET_DOM=" + dom.string()});
-  std::error_code ec;
-  fs::remove_all(profile, ec);
   log = r.output;
-  if (r.exit_code != 0) {
-    error = fmt::format("chromium exited with {}: {}", r.exit_code, r.output.substr(0, 2000));
-    return "";
-  }
-  return read_file(dom.string());
+  std::string text;
+  if (r.exit_code != 0) error = fmt::format("chromium exited with {}: {}", r.exit_code, r.output.substr(0, 2000));
+  else text = read_file(dom.string());
+  std::error_code ec;
+  fs::remove_all(folder, ec);
+  return text;
 }
 
 }  // namespace

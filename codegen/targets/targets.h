@@ -54,7 +54,7 @@ std::string glsl_gbuffer_shading_source(const Material& m, Target dialect);
 
 // The robustness sweep's programs (facet/sweep.h): the material's functions
 // under a main that evaluates the sweep grid.
-std::string glsl_sweep_source(const Material& m);
+std::string glsl_sweep_source(const Material& m, Target dialect = Target::Glsl);  // Glsl or Essl
 std::string osl_sweep_source(const Material& m);
 std::string generate_pov_sweep(const Material& m);
 

@@ -507,6 +507,27 @@ TEST(SweepDetection, GlslFaultAtTheHorizonIsCounted) {
   EXPECT_EQ(c.nan, expected);
 }
 
+// The ES 3.00 sweep in Chromium's WebGL2 counts the same injected fault on the same cells.
+TEST(SweepDetection, WebglFaultAtTheHorizonIsCounted) {
+  std::unique_ptr<Renderer> webgl = make_renderer("webgl");
+  ASSERT_EQ(webgl->unavailable(), "");
+  Material m = sweep_material();
+  std::string bad = inject(glsl_sweep_source(m, Target::Essl),
+                           "facet_color = vec4(facet_reflect(n, l, v, facet_tangent(n)), 1.0);",
+                           "facet_color = vec4(facet_reflect(n, l, v, facet_tangent(n)), 1.0);\n"
+                           "    float z = dot(n, l);\n"
+                           "    if (z == 0.0) facet_color.r = -1.0;\n"
+                           "    facet_color.g += z / z - 1.0;  // NaN at z = 0\n");
+  std::vector<SweepCount> c = webgl->sweep({{m, ""}, {m, bad}}, {kSweepGrid, 0, ""});
+  EXPECT_TRUE(c[0].ok()) << c[0].error;
+  ASSERT_TRUE(c[1].error.empty()) << c[1].error;
+  size_t expected = horizon_cells(kSweepGrid);
+  ASSERT_GT(expected, 0u);
+  EXPECT_EQ(c[1].samples, size_t(kSweepGrid) * kSweepGrid);
+  EXPECT_EQ(c[1].negative, expected);
+  EXPECT_EQ(c[1].nan, expected);
+}
+
 TEST(SweepDetection, OslFaultAtTheHorizonIsCounted) {
   Material m = sweep_material(), faulty = m;
   faulty.name = "lambert_with_a_fault";

@@ -16,6 +16,7 @@
 #include "core/diagnostics.h"
 #include "core/io.h"
 #include "docs/docs.h"
+#include "renderers/renderer.h"
 #include "test_support.h"
 
 namespace facet {
@@ -227,7 +228,7 @@ TEST(PlotCli, HelpTeachesWithExamples) {
 
 // ---------------------------------------------------------------- facet docs
 
-// Two models through all four renderers (small spheres), with the fixture's cost rows.
+// Two models through every renderer of the registry (small spheres), with the fixture's cost rows.
 TEST(DocsCli, PagesHoldEveryImageAndTheMeasurements) {
   fs::path dir = scratch("full");
   fs::remove_all(dir);
@@ -240,10 +241,13 @@ TEST(DocsCli, PagesHoldEveryImageAndTheMeasurements) {
     std::vector<std::string> images;
     for (const auto& l : links(html))
       if (l.find(".png") != std::string::npos || l.find(".svg") != std::string::npos) images.push_back(l);
-    EXPECT_EQ(images.size(), 2u * 2u + 4u) << model << ": two light angles × (polar, lobe3d) and four spheres";
-    for (const char* renderer : {"reference", "glsl", "osl", "pov"})
-      EXPECT_NE(html.find(std::string("_single_") + renderer + ".png"), std::string::npos) << model << " " << renderer;
-    EXPECT_EQ(count(html, "<span class=pass>pass</span>"), 3u) << model << ": glsl, osl and pov each pass";
+    const std::vector<std::string> renderers = renderer_names();
+    EXPECT_EQ(images.size(), 2u * 2u + renderers.size())
+        << model << ": two light angles × (polar, lobe3d) and a sphere a renderer";
+    for (const std::string& renderer : renderers)
+      EXPECT_NE(html.find("_single_" + renderer + ".png"), std::string::npos) << model << " " << renderer;
+    EXPECT_EQ(count(html, "<span class=pass>pass</span>"), renderers.size() - 1)
+        << model << ": every renderer but the reference passes";
     EXPECT_NE(html.find("max |Δ|/max(1,|ref|)"), std::string::npos);
   }
   std::string lambert = read_file((dir / "models/lambert.html").string());
@@ -287,7 +291,8 @@ TEST(DocsCli, AFailedRendererIsShownWithItsReason) {
   std::string page = read_file((dir / "models/lambert.html").string());
   EXPECT_NE(page.find("<span class=fail>FAILED</span> to render"), std::string::npos) << page;
   EXPECT_NE(page.find("/nonexistent/python3"), std::string::npos) << "the reason names the Python that did not run";
-  EXPECT_EQ(count(page, "not rendered: left out with --renderers"), 2u) << "glsl and pov";
+  EXPECT_EQ(count(page, "not rendered: left out with --renderers"), renderer_names().size() - 2)
+      << "every renderer but the reference and osl";
   EXPECT_NE(page.find("Not measured"), std::string::npos);
   std::string index = read_file((dir / "index.html").string());
   EXPECT_NE(index.find(">failed</td>"), std::string::npos);
