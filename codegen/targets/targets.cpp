@@ -28,12 +28,14 @@ const char* target_name(Target t) {
     case Target::Essl: return "essl";
     case Target::Osl: return "osl";
     case Target::Pov: return "pov";
+    case Target::Hlsl: return "hlsl";
   }
   return "?";
 }
 
 const std::vector<Target>& all_targets() {
-  static const std::vector<Target> all = {Target::Glsl, Target::Glsl450, Target::Essl, Target::Osl, Target::Pov};
+  static const std::vector<Target> all = {Target::Glsl, Target::Glsl450, Target::Essl, Target::Osl, Target::Pov,
+                                               Target::Hlsl};
   return all;
 }
 
@@ -103,6 +105,7 @@ std::string generate(const Material& m, const GenerateOptions& o) {
     case Target::Essl: return generate_glsl(m, o);
     case Target::Osl: return generate_osl(m, o);
     case Target::Pov: return generate_pov(m, o);
+    case Target::Hlsl: return generate_hlsl(m, o);
   }
   return {};
 }

@@ -13,7 +13,7 @@
 
 namespace facet {
 
-enum class Target { Glsl, Glsl450, Essl, Osl, Pov };
+enum class Target { Glsl, Glsl450, Essl, Osl, Pov, Hlsl };
 std::optional<Target> parse_target(const std::string& name);
 const char* target_name(Target t);
 const std::vector<Target>& all_targets();
@@ -52,9 +52,18 @@ GlslParts glsl_parts(const MaterialProgram& p, Target dialect, const std::string
 // facet_gbuffer_visibility_high; Vulkan: set 1, bindings 0-6) and writes facet_color.
 std::string glsl_gbuffer_shading_source(const Material& m, Target dialect);
 
+// HLSL in the same pieces (templates/hlsl): the library, the light loop (the FacetScene
+// cbuffer, facet_shade, which asks facet_visibility(p, l, d, i) for light i) and the
+// standalone Shader Model 5 main.
+struct HlslParts {
+  std::string header, library, lights, main;
+};
+HlslParts hlsl_parts(const MaterialProgram& p, const std::string& source);
+
 // The robustness sweep's programs (facet/sweep.h): the material's functions
 // under a main that evaluates the sweep grid.
 std::string glsl_sweep_source(const Material& m, Target dialect = Target::Glsl);  // Glsl or Essl
+std::string hlsl_sweep_source(const Material& m);  // a pixel shader: one direction set per pixel
 std::string osl_sweep_source(const Material& m);
 std::string generate_pov_sweep(const Material& m);
 
