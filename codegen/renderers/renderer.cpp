@@ -32,6 +32,10 @@ const std::vector<RendererEntry>& renderer_registry() {
         "the same shading pass over the OpenGL ray caster's G-buffer as vulkan",
         false},
        make_vulkan_hlsl_renderer},
+      {{"webgl", "WebGL2", "WebGL2 (ESSL)", "Chromium WebGL2: generated ES 3.00 GLSL",
+        "the generated ES 3.00 shader shading the GL ray caster's G-buffer in headless Chromium's WebGL2 "
+        "(ANGLE on SwiftShader), RGBA32F", false},
+       make_webgl_renderer},
   };
   return registry;
 }

@@ -1,7 +1,7 @@
 // facet — the renderers that prove the targets agree, behind one interface: each
 // turns materials and scenes into linear float images sampled at pixel centres,
 // and runs its target's robustness sweep. The registry knows them by the names
-// users type: reference, glsl, osl, pov.
+// users type: reference, glsl, osl, pov, webgl.
 #pragma once
 
 #include <cstddef>
@@ -129,7 +129,7 @@ struct RendererEntry {
   std::unique_ptr<Renderer> (*make)(const RendererInfo& info, const RendererSettings& settings);
 };
 
-// reference, glsl, osl, pov: the order the commands run and show them in.
+// reference, glsl, osl, pov, webgl: the order the commands run and show them in.
 const std::vector<RendererEntry>& renderer_registry();
 const RendererInfo* find_renderer(const std::string& name);  // null for an unknown name
 std::vector<std::string> renderer_names();

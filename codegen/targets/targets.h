@@ -62,7 +62,7 @@ HlslParts hlsl_parts(const MaterialProgram& p, const std::string& source);
 
 // The robustness sweep's programs (facet/sweep.h): the material's functions
 // under a main that evaluates the sweep grid. GLSL's in `dialect` Glsl (uniform vec2
-// facet_resolution) or Glsl450 (Vulkan: the grid's side from the push constants, ivec2).
+// facet_resolution; Essl the same) or Glsl450 (Vulkan: the grid's side from the push constants, ivec2).
 std::string glsl_sweep_source(const Material& m, Target dialect = Target::Glsl);
 std::string hlsl_sweep_source(const Material& m);  // a pixel shader: one direction set per pixel
 std::string osl_sweep_source(const Material& m);

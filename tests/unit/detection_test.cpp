@@ -155,6 +155,35 @@ TEST(Detection, VulkanExponentOffByOneAndMissingPiFail) {
   }
 }
 
+// WebGL2 in Chromium (the ES 3.00 shading pass over the GL ray caster's G-buffer): the
+// generated code passes, an exponent off by one and a missing π fail, and a shader that
+// does not compile comes back as the renderer's error with WebGL's own log.
+TEST(Detection, WebglMissingPiAndExponentOffByOneFail) {
+  std::unique_ptr<Renderer> webgl = make_renderer("webgl");
+  ASSERT_EQ(webgl->unavailable(), "");
+  Fixture phong = fixture("blinn_phong", "webgl");
+  const std::string good = glsl_gbuffer_shading_source(phong.material, Target::Essl);
+  Fixture cook = fixture("cook_torrance", "webgl");
+  std::vector<RenderJob> jobs(4, phong.job);
+  jobs[0].code_override = good;
+  jobs[1].code_override = inject(good, "pow(max(NoH, 0.0), n)", "pow(max(NoH, 0.0), n + 1.0)");
+  jobs[2] = cook.job;
+  jobs[2].code_override = inject(glsl_gbuffer_shading_source(cook.material, Target::Essl), "return PI / 4.0 * D * G * F",
+                                 "return 1.0 / 4.0 * D * G * F");
+  jobs[3].code_override = inject(good, "facet_color = vec4(facet_shade(", "facet_color = vec5(facet_shade(");
+  std::vector<RenderOutcome> out = webgl->render(jobs);
+  EXPECT_TRUE(judged(phong, out[0]).pass);
+  ComparisonRow exponent = judged(phong, out[1]), pi = judged(cook, out[2]);
+  EXPECT_FALSE(exponent.pass) << "exponent + 1: max |Δ|/max(1,|ref|) " << exponent.metrics.max_excess;
+  EXPECT_FALSE(pi.pass) << "no π: max |Δ|/max(1,|ref|) " << pi.metrics.max_excess;
+  std::cout << "webgl: exponent + 1 worst " << exponent.metrics.max_excess << ", no π worst " << pi.metrics.max_excess
+            << "\n";
+  EXPECT_FALSE(out[3].ok);
+  EXPECT_NE(out[3].error.find("did not compile in WebGL"), std::string::npos) << out[3].error;
+  EXPECT_NE(out[3].error.find("vec5"), std::string::npos) << out[3].error;  // WebGL's log names it
+  std::cout << "webgl, a shader that does not compile: " << out[3].error << "\n";
+}
+
 TEST(Detection, PovMissingPiFails) {
   Fixture f = fixture("cook_torrance", "pov");
   GenerateOptions o;
@@ -528,6 +557,27 @@ TEST(SweepDetection, HlslFaultAtTheHorizonIsCounted) {
   EXPECT_EQ(c.samples, size_t(kSweepGrid) * kSweepGrid);
   EXPECT_EQ(c.negative, expected);
   EXPECT_EQ(c.nan, expected);
+}
+
+// The ES 3.00 sweep in Chromium's WebGL2 counts the same injected fault on the same cells.
+TEST(SweepDetection, WebglFaultAtTheHorizonIsCounted) {
+  std::unique_ptr<Renderer> webgl = make_renderer("webgl");
+  ASSERT_EQ(webgl->unavailable(), "");
+  Material m = sweep_material();
+  std::string bad = inject(glsl_sweep_source(m, Target::Essl),
+                           "facet_color = vec4(facet_reflect(n, l, v, facet_tangent(n)), 1.0);",
+                           "facet_color = vec4(facet_reflect(n, l, v, facet_tangent(n)), 1.0);\n"
+                           "    float z = dot(n, l);\n"
+                           "    if (z == 0.0) facet_color.r = -1.0;\n"
+                           "    facet_color.g += z / z - 1.0;  // NaN at z = 0\n");
+  std::vector<SweepCount> c = webgl->sweep({{m, ""}, {m, bad}}, {kSweepGrid, 0, ""});
+  EXPECT_TRUE(c[0].ok()) << c[0].error;
+  ASSERT_TRUE(c[1].error.empty()) << c[1].error;
+  size_t expected = horizon_cells(kSweepGrid);
+  ASSERT_GT(expected, 0u);
+  EXPECT_EQ(c[1].samples, size_t(kSweepGrid) * kSweepGrid);
+  EXPECT_EQ(c[1].negative, expected);
+  EXPECT_EQ(c[1].nan, expected);
 }
 
 TEST(SweepDetection, OslFaultAtTheHorizonIsCounted) {
