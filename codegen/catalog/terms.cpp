@@ -230,13 +230,15 @@ FunctionPtr visibility_smith_ggx() {
     FunctionBuilder fb("V_smith_ggx",
                        "Smith 1967 for GGX (Walter et al. 2007), separable, as a visibility term: "
                        "V = G1(n·l) G1(n·v) / (4 (n·l)(n·v)) = 1 / ((n·l + s_l)(n·v + s_v)), "
-                       "s_x = √(α² + (1−α²)x²)",
+                       "s_x = √(α² + (1−α²)x²) = √(α²(1 − x²) + x²)",
                        "The 2·2/4 of G1's numerators and n·l n·v cancel: no division by n·v, which the\n"
-                       "form ρ = π D G F / (4 n·v) needs.");
+                       "form ρ = π D G F / (4 n·v) needs. s_x² is summed as α²·max(1 − x², 0) + x², two\n"
+                       "terms ≥ 0: α² + (1 − α²)x² cancels at x ≈ 1 for large α (α = 1e4: 1e8 − 1e8 in\n"
+                       "float32), and SwiftShader rounded it below 0, a NaN under the root.");
     Expr NoL = fb.param("NoL"), NoV = fb.param("NoV"), alpha = fb.param("alpha");
     Expr a2 = fb.let("a2", alpha * alpha);
-    Expr sl = fb.let("s_l", sqrt(a2 + (1.0 - a2) * NoL * NoL));
-    Expr sv = fb.let("s_v", sqrt(a2 + (1.0 - a2) * NoV * NoV));
+    Expr sl = fb.let("s_l", sqrt(a2 * max(1.0 - NoL * NoL, 0.0) + NoL * NoL));
+    Expr sv = fb.let("s_v", sqrt(a2 * max(1.0 - NoV * NoV, 0.0) + NoV * NoV));
     return fb.returns(1.0 / ((NoL + sl) * (NoV + sv)));
   }();
   return f;
