@@ -13,7 +13,7 @@
 
 namespace facet {
 
-enum class Target { Glsl, Glsl450, Essl, Osl, Pov };
+enum class Target { Glsl, Glsl450, Essl, Osl, Pov, Wgsl };
 std::optional<Target> parse_target(const std::string& name);
 const char* target_name(Target t);
 const std::vector<Target>& all_targets();
@@ -45,6 +45,14 @@ struct GlslParts {
   std::string header, library, lights, main;
 };
 GlslParts glsl_parts(const MaterialProgram& p, Target dialect, const std::string& source);
+
+// WGSL in pieces, as GLSL: the library (constants, textures, terms, facet_reflect), the
+// lights (the FacetScene uniform buffer, facet_shade, which calls facet_visibility(p, l,
+// d, light) that the code around defines) and the standalone @fragment entry point.
+struct WgslParts {
+  std::string header, library, lights, main;
+};
+WgslParts wgsl_parts(const MaterialProgram& p, const std::string& source);
 
 // The robustness sweep's programs (facet/sweep.h): the material's functions
 // under a main that evaluates the sweep grid.
