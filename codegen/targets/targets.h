@@ -53,10 +53,18 @@ struct WgslParts {
   std::string header, library, lights, main;
 };
 WgslParts wgsl_parts(const MaterialProgram& p, const std::string& source);
+// The G-buffer shading pass in WGSL (the wgpu renderer's): the material's library and
+// light loop under templates/wgsl/gbuffer_shade.wgsl, whose facet_vertex draws one
+// full-screen triangle and whose facet_gbuffer_shade reads the seven G-buffer images
+// (@group(1), bindings 0–6) at its pixel; the material's images are @group(0) from binding 1.
+std::string wgsl_gbuffer_shading_source(const Material& m);
 
 // The robustness sweep's programs (facet/sweep.h): the material's functions
 // under a main that evaluates the sweep grid.
 std::string glsl_sweep_source(const Material& m);
+// WGSL's: facet_vertex and facet_sweep (templates/wgsl/sweep.wgsl), the grid's side in the
+// uniform buffer at @group(0) @binding(0).
+std::string wgsl_sweep_source(const Material& m);
 std::string osl_sweep_source(const Material& m);
 std::string generate_pov_sweep(const Material& m);
 

@@ -9,6 +9,7 @@
 #include "catalog/catalog.h"
 #include "core/vec.h"
 #include "targets/glsl_lights.h"
+#include "targets/sweep_grid.h"
 #include "targets/targets.h"
 #include "targets/targets_internal.h"
 #include "targets/templates.h"
@@ -273,6 +274,23 @@ WgslParts wgsl_parts(const MaterialProgram& p, const std::string& source) {
   }
   parts.main = render_template("wgsl/main.wgsl", {{"inputs", in}, {"sample", sample}});
   return parts;
+}
+
+std::string wgsl_gbuffer_shading_source(const Material& m) {
+  MaterialProgram p = compile(m);
+  WgslParts parts = wgsl_parts(p, m.source);
+  std::string sample = p.has_textures() ? "    facet_sample_textures(uv.xy, uv.zw);\n" : "";
+  if (p.normal_mapped()) sample += "    facet_uv_tangent = frame.xyz;\n    facet_uv_handedness = frame.w;\n";
+  return parts.header + "\n" + parts.library + "\n" + parts.lights +
+         render_template("wgsl/gbuffer_shade.wgsl", {{"sample", sample}});
+}
+
+std::string wgsl_sweep_source(const Material& m) {
+  WgslParts parts = wgsl_parts(compile(m), m.source);
+  WgslPrinter pr;
+  std::string grid;
+  for (const auto& f : ir::dependencies(sweep_grid())) grid += pr.function(f) + "\n";
+  return parts.header + "\n" + parts.library + "\n" + grid + render_template("wgsl/sweep.wgsl", {});
 }
 
 std::string generate_wgsl(const Material& m, const GenerateOptions& o) {

@@ -4,7 +4,9 @@ material lit by one directional light along −z, the bottom rows in shadow (G-b
 visibility 0), one corner "another pass's object" (drawn black) and background elsewhere.
 The expected image is k_d · n_z where lit, in facet's order (top row first).
 
-    wgpu_harness_test.py FACET HARNESS_DIR OUTDIR [--wrong]
+    wgpu_harness_test.py FACET SOURCE_DIR OUTDIR [--wrong]
+
+(the shading pass: templates/wgsl/gbuffer_shade.wgsl; the harness: codegen/renderers/harness/)
 
 --wrong feeds a deliberately wrong G-buffer (rows top first, as a y-down framebuffer would
 leave them): the comparison must then fail (exit 1), which the ctest asks of it.
@@ -69,7 +71,8 @@ def read_pfm(path):
 
 
 def main():
-    facet, harness, out = sys.argv[1:4]
+    facet, source, out = sys.argv[1:4]
+    harness = os.path.join(source, "codegen", "renderers", "harness")
     wrong = "--wrong" in sys.argv
     os.makedirs(out, exist_ok=True)
     material = os.path.join(out, "lambert.json")
@@ -78,7 +81,7 @@ def main():
     code = subprocess.run([facet, "generate", material, "--target", "wgsl"], capture_output=True, text=True,
                           check=True).stdout
     library = code[:code.index("// ---- Standalone entry point")]
-    with open(os.path.join(harness, "gbuffer_shade.wgsl"), encoding="utf-8") as f:
+    with open(os.path.join(source, "templates", "wgsl", "gbuffer_shade.wgsl"), encoding="utf-8") as f:
         shading = f.read().replace("{{sample}}", "")
     with open(os.path.join(out, "pass.wgsl"), "w", encoding="utf-8") as f:
         f.write(library + shading)

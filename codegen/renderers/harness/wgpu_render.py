@@ -11,6 +11,9 @@ JOB.json: {"jobs": [{"name", "width", "height",
                                 float32 RGBA from the top row down, at @group(0) @binding(binding),
                      "output": where the image goes: OUTPUT.pfm (RGB) and OUTPUT.alpha.pfm}]}
 
+or {"sweeps": [{"name", "wgsl": the robustness sweep (templates/wgsl/sweep.wgsl), "grid"}]}: each
+drawn on grid × grid pixels and its raw values counted (NaN, Inf and negative channels).
+
 Each job is drawn into an rgba32float texture by WebGPU (wgpu-native; Mesa's lavapipe here),
 one full-screen triangle running the WGSL's facet_gbuffer_shade, read back and written as
 PFM. JOB.json.result.json then says, per job, ok, seconds and, when not ok, naga's or
@@ -90,15 +93,33 @@ def bind_groups(device, job):
 
 def draw(device, job):
     """The job's image, rows from the top, height × width × 4 float32."""
-    w, h = job["width"], job["height"]
-    with open(job["wgsl"], encoding="utf-8") as f:
-        module = device.create_shader_module(code=f.read())
     layouts, groups = bind_groups(device, job)
+    return full_screen(device, job["wgsl"], "facet_gbuffer_shade", layouts, groups, job["width"], job["height"])
+
+
+def sweep(device, item):
+    """The sweep's counts: every channel of grid × grid direction sets."""
+    grid = item["grid"]
+    buf = device.create_buffer_with_data(data=np.array([grid, grid, 0, 0], dtype="<f4").tobytes(),
+                                         usage=wgpu.BufferUsage.UNIFORM)
+    layout = device.create_bind_group_layout(entries=[{
+        "binding": 0, "visibility": wgpu.ShaderStage.FRAGMENT, "buffer": {"type": wgpu.BufferBindingType.uniform}}])
+    group = device.create_bind_group(layout=layout, entries=[{"binding": 0, "resource": {"buffer": buf}}])
+    rgb = full_screen(device, item["wgsl"], "facet_sweep", [layout], [group], grid, grid)[:, :, :3]
+    nan, inf = np.isnan(rgb), np.isinf(rgb)
+    return {"ok": True, "samples": grid * grid, "nan": int(nan.sum()), "inf": int(inf.sum()),
+            "negative": int((~nan & ~inf & (rgb < 0)).sum())}
+
+
+def full_screen(device, wgsl, entry_point, layouts, groups, w, h):
+    """`entry_point` of the WGSL file on w × h pixels (facet_vertex's one triangle), read back."""
+    with open(wgsl, encoding="utf-8") as f:
+        module = device.create_shader_module(code=f.read())
     pipeline = device.create_render_pipeline(
         layout=device.create_pipeline_layout(bind_group_layouts=layouts),
         vertex={"module": module, "entry_point": "facet_vertex"},
         primitive={"topology": wgpu.PrimitiveTopology.triangle_list},
-        fragment={"module": module, "entry_point": "facet_gbuffer_shade",
+        fragment={"module": module, "entry_point": entry_point,
                   "targets": [{"format": wgpu.TextureFormat.rgba32float}]})
     target = device.create_texture(size=(w, h, 1), format=wgpu.TextureFormat.rgba32float,
                                    usage=wgpu.TextureUsage.RENDER_ATTACHMENT | wgpu.TextureUsage.COPY_SRC)
@@ -125,6 +146,17 @@ def main():
         write_atomic(job_file + ".result.json", json.dumps({"error": "wgpu found no adapter"}).encode())
         return 1
     device = adapter.request_device_sync()
+    info = adapter.info
+    about = {"adapter": f"{info.get('device', '?')} ({info.get('backend_type', '?')})", "wgpu": wgpu.__version__}
+    if "sweeps" in batch:
+        counts = []
+        for item in batch["sweeps"]:
+            try:
+                counts.append(sweep(device, item))
+            except Exception as e:  # naga's or wgpu's words, for this material alone
+                counts.append({"ok": False, "error": f"{type(e).__name__}: {e}".strip()})
+        write_atomic(job_file + ".result.json", json.dumps({**about, "sweeps": counts}).encode())
+        return 0
     results = []
     for job in batch["jobs"]:
         start = time.perf_counter()
@@ -135,10 +167,7 @@ def main():
             results.append({"ok": True, "seconds": time.perf_counter() - start})
         except Exception as e:  # naga's or wgpu's words, for this job alone
             results.append({"ok": False, "error": f"{type(e).__name__}: {e}".strip()})
-    info = adapter.info
-    write_atomic(job_file + ".result.json", json.dumps({
-        "adapter": f"{info.get('device', '?')} ({info.get('backend_type', '?')})",
-        "wgpu": wgpu.__version__, "results": results}).encode())
+    write_atomic(job_file + ".result.json", json.dumps({**about, "results": results}).encode())
     return 0
 
 
