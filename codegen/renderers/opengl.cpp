@@ -19,6 +19,7 @@
 #include "core/io.h"
 #include "reference/raycaster.h"
 #include "renderers/backends.h"
+#include "renderers/gbuffer.h"
 #include "renderers/harness.h"
 #include "renderers/opengl.h"
 #include "scene/tangents.h"
@@ -115,36 +116,45 @@ void add_bottom_up(const std::vector<float>& px, RenderOutcome& out) {
   }
 }
 
-// An RGBA32F framebuffer, bound while it lives: every draw renders into one.
+// An RGBA32F framebuffer of `attachments` colour buffers (draw buffers 0, 1, …),
+// bound while it lives: every draw renders into one.
 class FloatFramebuffer {
  public:
-  FloatFramebuffer(int width, int height) : width_(width), height_(height) {
+  FloatFramebuffer(int width, int height, int attachments = 1)
+      : width_(width), height_(height), rbo_(size_t(attachments), 0) {
     glGenFramebuffers(1, &fbo_);
     glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
-    glGenRenderbuffers(1, &rbo_);
-    glBindRenderbuffer(GL_RENDERBUFFER, rbo_);
-    glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA32F, width, height);
-    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, rbo_);
+    glGenRenderbuffers(GLsizei(rbo_.size()), rbo_.data());
+    std::vector<GLenum> buffers;
+    for (size_t i = 0; i < rbo_.size(); ++i) {
+      glBindRenderbuffer(GL_RENDERBUFFER, rbo_[i]);
+      glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA32F, width, height);
+      buffers.push_back(GLenum(GL_COLOR_ATTACHMENT0 + i));
+      glFramebufferRenderbuffer(GL_FRAMEBUFFER, buffers.back(), GL_RENDERBUFFER, rbo_[i]);
+    }
+    glDrawBuffers(GLsizei(buffers.size()), buffers.data());
     glViewport(0, 0, width, height);
   }
   ~FloatFramebuffer() {
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    glDeleteRenderbuffers(1, &rbo_);
+    glDeleteRenderbuffers(GLsizei(rbo_.size()), rbo_.data());
     glDeleteFramebuffers(1, &fbo_);
   }
   FloatFramebuffer(const FloatFramebuffer&) = delete;
   FloatFramebuffer& operator=(const FloatFramebuffer&) = delete;
   bool complete() const { return glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE; }
-  // RGBA, rows bottom-up as GL stores them.
-  std::vector<float> read() const {
+  // Colour buffer `attachment`: RGBA, rows bottom-up as GL stores them.
+  std::vector<float> read(int attachment = 0) const {
     std::vector<float> px(size_t(width_) * size_t(height_) * 4);
+    glReadBuffer(GLenum(GL_COLOR_ATTACHMENT0 + attachment));
     glReadPixels(0, 0, width_, height_, GL_RGBA, GL_FLOAT, px.data());
     return px;
   }
 
  private:
   int width_, height_;
-  GLuint fbo_ = 0, rbo_ = 0;
+  GLuint fbo_ = 0;
+  std::vector<GLuint> rbo_;
 };
 
 }  // namespace
@@ -265,17 +275,19 @@ std::vector<SweepCount> GlRenderer::sweep(const std::vector<SweepJob>& jobs, con
   return out;
 }
 
-std::string GlRenderer::fragment_source(const Material& m) {
+std::string GlRenderer::fragment_source(const Material& m, bool gbuffer) {
   MaterialProgram p = compile(m);
   GlslParts parts = glsl_parts(p, Target::Glsl, m.source);
   std::string sample = p.has_textures() ? "    facet_sample_textures(facet_uv(hit, p, best, 0), facet_uv(hit, p, best, 1));\n" : "";
   if (p.normal_mapped())
     sample += "    vec4 frame = facet_uv_tangent_at(hit, p, best);\n"
               "    facet_uv_tangent = frame.xyz;\n    facet_uv_handedness = frame.w;\n";
-  return "#version 330 core\n" + parts.header + parts.library + parts.lights +
+  return std::string("#version 330 core\n") + (gbuffer ? "#define FACET_GBUFFER\n" : "") + parts.header +
+         parts.library + parts.lights +
          render_harness("raycast.glsl", {{"sphere", std::to_string(kSphere)},
                                          {"square", std::to_string(kSquare)},
                                          {"mesh", std::to_string(kMesh)},
+                                         {"directional", std::to_string(glsl_light::kDirectional)},
                                          {"sample", sample}});
 }
 
@@ -437,14 +449,10 @@ void set_camera(const Uniforms& u, const Scene& s, int width, int height) {
 void set_lights(const Uniforms& u, const Scene& s) {
   glUniform1i(u.loc("facet_light_count"), int(s.lights.size()));
   for (size_t i = 0; i < s.lights.size(); ++i) {
-    const Light& l = s.lights[i];
-    std::string at = fmt::format("facet_lights[{}].", i);
-    const Vec3& where = l.type == Light::Type::Directional ? l.direction : l.position;
-    u.vec4(at + "position", where.x, where.y, where.z, glsl_light::type_code(l.type));
-    u.vec4(at + "color", l.color[0], l.color[1], l.color[2], l.exponent);
-    u.vec4(at + "spot", l.direction.x, l.direction.y, l.direction.z, std::cos(l.cutoff * M_PI / 180.0));
-    const Attenuation& a = l.attenuation;
-    u.vec4(at + "attenuation", a.constant, a.linear, a.quadratic, glsl_light::law_code(a.law));
+    const std::array<float, 16> e = glsl_light::encode(s.lights[i]);
+    const char* fields[] = {"position", "color", "spot", "attenuation"};
+    for (int f = 0; f < 4; ++f)
+      glUniform4fv(u.loc(fmt::format("facet_lights[{}].{}", i, fields[f])), 1, &e[size_t(f) * 4]);
   }
 }
 
@@ -478,24 +486,100 @@ void set_objects(const Uniforms& u, const Scene& s, const MeshBuffers& meshes, c
   glUniform1f(u.loc("facet_shadow_offset"), float(kGlShadowOffset * std::max(scale, 1.0)));
 }
 
-// The distinct materials of the scene, in object order (one pass each), and each object's pass.
-std::string material_passes(const Scene& s, const Material* fallback, std::vector<const Material*>& passes,
-                            std::vector<size_t>& pass_of) {
-  pass_of.assign(s.objects.size(), 0);
-  try {
-    for (size_t i = 0; i < s.objects.size(); ++i) {
-      const Material* m = &s.material_of(i, fallback);
-      auto it = std::find(passes.begin(), passes.end(), m);
-      pass_of[i] = size_t(it - passes.begin());
-      if (it == passes.end()) passes.push_back(m);
-    }
-  } catch (const std::exception& e) {
-    return e.what();
-  }
+// Why the GL harness cannot draw this job, or "".
+std::string job_limits(const RenderJob& job, size_t passes) {
+  const Scene& s = job.scene;
+  if (s.lights.size() > size_t(kMaxLights) || s.objects.size() > size_t(kMaxObjects))
+    return fmt::format("the GLSL renderer takes at most {} lights and {} objects", kMaxLights, kMaxObjects);
+  if (!job.code_override.empty() && passes != 1) return "code_override needs a scene with one material";
   return "";
 }
 
+// A job's scene as the harness draws it, pass by pass: its material passes, its
+// meshes' texture buffers (bound while it lives).
+struct PassScene {
+  explicit PassScene(const RenderJob& j)
+      : job(j), passes(material_passes(j, &pass_of)),
+        meshes(mesh_buffers(j.scene, j.material ? &*j.material : nullptr)), textures(meshes) {}
+  const RenderJob& job;
+  std::vector<size_t> pass_of;
+  std::vector<const Material*> passes;
+  MeshBuffers meshes;
+  MeshTextures textures;
+  // "<material>_<scene>[_<pass's material>]<suffix>": the file a pass's source is written to.
+  std::string file(size_t pass, const std::string& suffix) const {
+    std::string base = (job.material ? identifier(job.material->name) + "_" : std::string()) + identifier(job.scene.name);
+    if (passes.size() > 1) base += "_" + identifier(passes[pass]->name);
+    return base + suffix;
+  }
+};
+
+// Pass `pass` of the scene drawn with `source` (written into the job's workdir as
+// `file`) into the bound framebuffer, every uniform and texture the harness reads
+// set: "", or why not.
+std::string draw_pass(GLuint vertex, GLuint vao, const PassScene& ps, size_t pass, const std::string& source,
+                      const std::string& file) {
+  const RenderJob& job = ps.job;
+  if (!job.workdir.empty()) {
+    std::filesystem::create_directories(job.workdir);
+    write_file_atomic((std::filesystem::path(job.workdir) / file).string(), source);
+  }
+  std::string error;
+  GLuint prog = fragment_program(vertex, source, "the GLSL of \"" + ps.passes[pass]->name + "\"", error);
+  if (!prog) return error;
+  glUseProgram(prog);
+  const Uniforms u{prog};
+  set_camera(u, job.scene, job.width, job.height);
+  set_lights(u, job.scene);
+  set_objects(u, job.scene, ps.meshes, ps.pass_of, pass);
+  ps.textures.bind(prog);
+  const MaterialImages images(compile(*ps.passes[pass]));
+  images.bind(prog);
+  glClearColor(0, 0, 0, 0);
+  glClear(GL_COLOR_BUFFER_BIT);
+  glBindVertexArray(vao);
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  glDeleteProgram(prog);
+  if (GLenum e = glGetError(); e != GL_NO_ERROR) return fmt::format("OpenGL error 0x{:x}", e);
+  return "";
+}
+
+// Each pass draws the scene with one material's program, its objects shaded and the others black; the passes add up.
+RenderOutcome draw_passes(GLuint vertex, GLuint vao, const PassScene& ps) {
+  RenderOutcome out;
+  const RenderJob& job = ps.job;
+  FloatFramebuffer fb(job.width, job.height);
+  if (!fb.complete()) {
+    out.error = "no RGBA32F framebuffer";
+    return out;
+  }
+  out.image = Image(job.width, job.height);
+  out.alpha.assign(size_t(job.width) * size_t(job.height), 0);
+  for (size_t k = 0; k < ps.passes.size(); ++k) {
+    std::string source = !job.code_override.empty() ? job.code_override : GlRenderer::fragment_source(*ps.passes[k]);
+    out.error = draw_pass(vertex, vao, ps, k, source, ps.file(k, ".frag"));
+    if (!out.error.empty()) return out;
+    add_bottom_up(fb.read(), out);
+  }
+  out.ok = true;
+  return out;
+}
+
 }  // namespace
+
+std::vector<const Material*> material_passes(const RenderJob& job, std::vector<size_t>* pass_of) {
+  const Scene& s = job.scene;
+  const Material* fallback = job.material ? &*job.material : nullptr;
+  std::vector<const Material*> passes;
+  if (pass_of) pass_of->assign(s.objects.size(), 0);
+  for (size_t i = 0; i < s.objects.size(); ++i) {
+    const Material* m = &s.material_of(i, fallback);
+    auto it = std::find(passes.begin(), passes.end(), m);
+    if (pass_of) (*pass_of)[i] = size_t(it - passes.begin());
+    if (it == passes.end()) passes.push_back(m);
+  }
+  return passes;
+}
 
 std::vector<RenderOutcome> GlRenderer::render(const std::vector<RenderJob>& jobs, const RenderProgress& progress) {
   std::vector<RenderOutcome> out;
@@ -508,77 +592,69 @@ std::vector<RenderOutcome> GlRenderer::render(const std::vector<RenderJob>& jobs
 
 RenderOutcome GlRenderer::render(const RenderJob& job) {
   RenderOutcome out;
+  auto start = std::chrono::steady_clock::now();
   if (!ok()) {
     out.error = error_;
     return out;
   }
-  const Scene& s = job.scene;
-  if (s.lights.size() > size_t(kMaxLights) || s.objects.size() > size_t(kMaxObjects)) {
-    out.error = fmt::format("the GLSL renderer takes at most {} lights and {} objects", kMaxLights, kMaxObjects);
-    return out;
+  try {
+    const PassScene ps(job);
+    if ((out.error = job_limits(job, ps.passes.size())).empty()) out = draw_passes(state_->vertex, state_->vao, ps);
+  } catch (const std::exception& e) {
+    out.error = e.what();
   }
-  auto start = std::chrono::steady_clock::now();
-  std::vector<const Material*> passes;
-  std::vector<size_t> pass_of;
-  out.error = material_passes(s, job.material ? &*job.material : nullptr, passes, pass_of);
-  if (!out.error.empty()) return out;
-  if (!job.code_override.empty() && passes.size() != 1) {
-    out.error = "code_override needs a scene with one material";
-    return out;
-  }
-  out = render_passes(job, passes, pass_of);
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
 }
 
-// Each pass draws the scene with one material's program, its objects shaded and the others black; the passes add up.
-RenderOutcome GlRenderer::render_passes(const RenderJob& job, const std::vector<const Material*>& passes,
-                                        const std::vector<size_t>& pass_of) {
-  RenderOutcome out;
-  const Scene& s = job.scene;
-  const Material* fallback = job.material ? &*job.material : nullptr;
-  MeshBuffers meshes = mesh_buffers(s, fallback);
-  MeshTextures textures(meshes);
-  FloatFramebuffer fb(job.width, job.height);
-  if (!fb.complete()) {
-    out.error = "no RGBA32F framebuffer";
+GBufferOutcome GlRenderer::gbuffer(const RenderJob& job, size_t pass) {
+  GBufferOutcome out;
+  if (!ok()) {
+    out.error = error_;
     return out;
   }
-  out.image = Image(job.width, job.height);
-  out.alpha.assign(size_t(job.width) * size_t(job.height), 0);
-  for (size_t k = 0; k < passes.size(); ++k) {
-    std::string source = !job.code_override.empty() ? job.code_override : fragment_source(*passes[k]);
-    if (!job.workdir.empty()) {
-      std::filesystem::create_directories(job.workdir);
-      std::string base = (fallback ? identifier(fallback->name) + "_" : std::string()) + identifier(s.name);
-      if (passes.size() > 1) base += "_" + identifier(passes[k]->name);
-      write_file_atomic((std::filesystem::path(job.workdir) / (base + ".frag")).string(), source);
-    }
-    GLuint prog = fragment_program(state_->vertex, source, "the GLSL of \"" + passes[k]->name + "\"", out.error);
-    if (!prog) return out;
-    glUseProgram(prog);
-    const Uniforms u{prog};
-    set_camera(u, s, job.width, job.height);
-    set_lights(u, s);
-    set_objects(u, s, meshes, pass_of, k);
-    textures.bind(prog);
-    const MaterialImages images(compile(*passes[k]));
-    images.bind(prog);
-    glClearColor(0, 0, 0, 0);
-    glClear(GL_COLOR_BUFFER_BIT);
-    glBindVertexArray(state_->vao);
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-    std::vector<float> px = fb.read();
-    glDeleteProgram(prog);
-    if (GLenum e = glGetError(); e != GL_NO_ERROR) {
-      out.error = fmt::format("OpenGL error 0x{:x}", e);
+  try {
+    const PassScene ps(job);
+    if (!(out.error = job_limits(job, ps.passes.size())).empty()) return out;
+    if (pass >= ps.passes.size()) throw std::out_of_range(fmt::format("no material pass {} in the job", pass));
+    FloatFramebuffer fb(job.width, job.height, GBuffer::kImages);
+    if (!fb.complete()) throw std::runtime_error("no framebuffer of seven RGBA32F images");
+    std::string source = fragment_source(*ps.passes[pass], true);
+    if (!(out.error = draw_pass(state_->vertex, state_->vao, ps, pass, source, ps.file(pass, ".gbuffer.frag"))).empty())
       return out;
+    GBuffer& g = out.gbuffer;
+    g.width = job.width;
+    g.height = job.height;
+    for (int i = 0; i < GBuffer::kImages; ++i) g.images[size_t(i)] = fb.read(i);
+    const Scene& s = job.scene;
+    g.camera_position = {float(s.camera.position.x), float(s.camera.position.y), float(s.camera.position.z)};
+    g.ambient = {float(s.ambient[0]), float(s.ambient[1]), float(s.ambient[2])};
+    g.light_count = int(s.lights.size());
+    for (const Light& l : s.lights) {
+      const std::array<float, 16> e = glsl_light::encode(l);
+      g.lights.insert(g.lights.end(), e.begin(), e.end());
     }
-    add_bottom_up(px, out);
+    out.ok = true;
+  } catch (const std::exception& e) {
+    out.error = e.what();
   }
-  out.ok = true;
   return out;
 }
+
+std::vector<std::pair<std::string, std::vector<double>>> shading_uniforms(const GBuffer& g) {
+  auto values = [](const float* v, size_t n) { return std::vector<double>(v, v + n); };
+  std::vector<std::pair<std::string, std::vector<double>>> out = {
+      {"facet_camera_position", values(g.camera_position.data(), 3)},
+      {"facet_ambient", values(g.ambient.data(), 3)},
+      {"facet_light_count", {double(g.light_count)}}};
+  const char* fields[] = {"position", "color", "spot", "attenuation"};
+  for (int i = 0; i < g.light_count; ++i)
+    for (int f = 0; f < 4; ++f)
+      out.push_back({fmt::format("facet_lights[{}].{}", i, fields[f]), values(&g.lights[size_t(i * 16 + f * 4)], 4)});
+  return out;
+}
+
+GBufferOutcome cast_gbuffer(GlRenderer& gl, const RenderJob& job, size_t pass) { return gl.gbuffer(job, pass); }
 
 namespace {
 
@@ -625,10 +701,47 @@ std::string set_uniform(const std::map<std::string, std::pair<GLint, GLenum>>& a
   return error;
 }
 
+// The shaders' textures (GlRenderer::draw()'s), made while it lives.
+class DrawTextures {
+ public:
+  explicit DrawTextures(const std::vector<std::vector<ShaderTexture>>& images) : images_(images), textures_(images.size()) {
+    for (size_t i = 0; i < images.size(); ++i)
+      for (const ShaderTexture& t : images[i]) {
+        GLuint tex = 0;
+        glGenTextures(1, &tex);
+        glBindTexture(GL_TEXTURE_2D, tex);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
+        glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, t.width, t.height, 0, GL_RGBA, GL_FLOAT, t.rgba.data());
+        textures_[i].push_back(tex);
+      }
+  }
+  ~DrawTextures() {
+    for (const auto& t : textures_)
+      if (!t.empty()) glDeleteTextures(GLsizei(t.size()), t.data());
+  }
+  DrawTextures(const DrawTextures&) = delete;
+  DrawTextures& operator=(const DrawTextures&) = delete;
+  // Shader i's textures on units 0, 1, …, its program in use.
+  void bind(size_t i, GLuint prog) const {
+    for (size_t k = 0; i < textures_.size() && k < textures_[i].size(); ++k) {
+      glActiveTexture(GLenum(GL_TEXTURE0 + k));
+      glBindTexture(GL_TEXTURE_2D, textures_[i][k]);
+      glUniform1i(glGetUniformLocation(prog, images_[i][k].name.c_str()), GLint(k));
+    }
+  }
+
+ private:
+  const std::vector<std::vector<ShaderTexture>>& images_;
+  std::vector<std::vector<GLuint>> textures_;
+};
+
 }  // namespace
 
 std::vector<RenderOutcome> GlRenderer::draw(const std::vector<ShaderDraw>& shaders, int width, int height,
-                                            const std::function<void(size_t, bool)>& around) {
+                                            const std::function<void(size_t, bool)>& around,
+                                            const std::vector<std::vector<ShaderTexture>>& images) {
   std::vector<RenderOutcome> out(shaders.size());
   if (!ok()) {
     for (auto& o : out) o.error = error_;
@@ -637,8 +750,10 @@ std::vector<RenderOutcome> GlRenderer::draw(const std::vector<ShaderDraw>& shade
   FloatFramebuffer fb(width, height);
   glBindVertexArray(state_->vao);
   std::vector<GLuint> programs(shaders.size(), 0);
+  const DrawTextures textures(images);
   auto use = [&](size_t i) {
     glUseProgram(programs[i]);
+    textures.bind(i, programs[i]);
     glClearColor(0, 0, 0, 0);
     glClear(GL_COLOR_BUFFER_BIT);
   };

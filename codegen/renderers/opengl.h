@@ -7,6 +7,7 @@
 #include <utility>
 #include <vector>
 
+#include "renderers/gbuffer.h"
 #include "renderers/renderer.h"
 
 namespace facet {
@@ -19,6 +20,14 @@ struct ShaderDraw {
   std::string name;
   std::string fragment_source;
   std::vector<std::pair<std::string, std::vector<double>>> uniforms;
+};
+// A texture for GlRenderer::draw(): an RGBA32F image, nearest-filtered (read it with
+// texelFetch), bound to the sampler2D uniform of its name; rgba holds width × height
+// texels, row 0 first.
+struct ShaderTexture {
+  std::string name;
+  int width = 0, height = 0;
+  std::vector<float> rgba;
 };
 
 // OpenGL through EGL (Mesa llvmpipe headless): the generated GLSL 3.30 library
@@ -41,21 +50,24 @@ class GlRenderer : public Renderer {
   RenderOutcome render(const RenderJob& job);
   // A program from glsl_sweep_source() drawn on grid × grid pixels, its raw values counted.
   std::vector<SweepCount> sweep(const std::vector<SweepJob>& jobs, const SweepSettings& settings) override;
-  // The fragment shader render() compiles for one material: the generated GLSL under the ray caster.
-  static std::string fragment_source(const Material& m);
+  // The fragment shader render() compiles for one material: the generated GLSL under the ray caster;
+  // with `gbuffer`, the same under FACET_GBUFFER, which writes the G-buffer instead (renderers/gbuffer.h).
+  static std::string fragment_source(const Material& m, bool gbuffer = false);
+  // The G-buffer of material pass `pass` of `job` (renderers/gbuffer.h, cast_gbuffer()).
+  GBufferOutcome gbuffer(const RenderJob& job, size_t pass);
   // Each shader over the full-screen triangle on width × height pixels: every
   // program is compiled and drawn once first (llvmpipe JIT-compiles a shader at its
   // first draw), then each is drawn twice more, the second time between
   // around(i, true) and around(i, false), glFinish() included, and read back. One outcome per shader,
-  // its image the second draw's (rows from the top, alpha as coverage).
+  // its image the second draw's (rows from the top, alpha as coverage). textures[i], when
+  // there, are shader i's textures (on units 0, 1, …).
   std::vector<RenderOutcome> draw(const std::vector<ShaderDraw>& shaders, int width, int height,
-                                  const std::function<void(size_t, bool)>& around = {});
+                                  const std::function<void(size_t, bool)>& around = {},
+                                  const std::vector<std::vector<ShaderTexture>>& textures = {});
 
  private:
   struct State;
   RenderOutcome sweep_draw(const std::string& fragment_source, int grid);
-  RenderOutcome render_passes(const RenderJob& job, const std::vector<const Material*>& passes,
-                              const std::vector<size_t>& pass_of);
   State* state_ = nullptr;
   std::string error_, description_;
 };

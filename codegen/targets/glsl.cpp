@@ -184,6 +184,37 @@ GlslParts glsl_parts(const MaterialProgram& p, Target dialect, const std::string
   return parts;
 }
 
+namespace {
+
+// The G-buffer shading pass's samplers and output: set 1 in Vulkan (set 0 holds the
+// scene's block and the material's images), highp in ES (a sampler's default is lowp).
+std::string gbuffer_declarations(Target dialect) {
+  const char* names[] = {"position", "normal", "view", "uv_tangent", "uv", "visibility_low", "visibility_high"};
+  std::string out;
+  for (int i = 0; i < 7; ++i) {
+    std::string layout = dialect == Target::Glsl450 ? fmt::format("layout(set = 1, binding = {}) ", i) : "";
+    out += fmt::format("{}uniform highp sampler2D facet_gbuffer_{};  // image {}\n", layout, names[i], i);
+  }
+  return out + (dialect == Target::Glsl450 ? "layout(location = 0) out vec4 facet_color;\n" : "out vec4 facet_color;\n");
+}
+
+}  // namespace
+
+std::string glsl_gbuffer_shading_source(const Material& m, Target dialect) {
+  MaterialProgram p = compile(m);
+  GlslParts parts = glsl_parts(p, dialect, m.source);
+  std::string sample;
+  if (p.has_textures()) sample = "    facet_sample_textures(uvs.xy, uvs.zw);\n";
+  if (p.normal_mapped()) sample += "    facet_uv_tangent = frame.xyz;\n    facet_uv_handedness = frame.w;\n";
+  // Vulkan's gl_FragCoord has y down: the G-buffer's row is counted from the bottom.
+  std::string texel = dialect == Target::Glsl450
+                          ? "ivec2(int(gl_FragCoord.x), textureSize(facet_gbuffer_position, 0).y - 1 - int(gl_FragCoord.y))"
+                          : "ivec2(gl_FragCoord.xy)";
+  return version_line(dialect) + "\n" + parts.header + "\n" + parts.library + "\n" + parts.lights +
+         render_template("glsl/gbuffer_shade.glsl",
+                         {{"declarations", gbuffer_declarations(dialect)}, {"texel", texel}, {"sample", sample}});
+}
+
 std::string glsl_sweep_source(const Material& m) {
   GlslParts parts = glsl_parts(compile(m), Target::Glsl, m.source);
   targets::CPrinter printer({});

@@ -4,6 +4,8 @@
 // comments included, are filled from them.
 #pragma once
 
+#include <array>
+#include <cmath>
 #include <map>
 #include <string>
 
@@ -32,6 +34,21 @@ inline int law_code(Attenuation::Law law) {
     case Attenuation::Law::None: break;
   }
   return kNoAttenuation;
+}
+
+// A light as FacetLight's four vec4, in order: position (xyz: the position, or the
+// direction a directional light travels; w: type_code), color (rgb; a: the spot
+// exponent), spot (xyz: the cone's axis; w: cos(cutoff)), attenuation (c1, c2, c3; w: law_code).
+inline std::array<float, 16> encode(const Light& l) {
+  const Vec3& where = l.type == Light::Type::Directional ? l.direction : l.position;
+  const Attenuation& a = l.attenuation;
+  const double v[16] = {where.x, where.y, where.z, double(type_code(l.type)),
+                        l.color[0], l.color[1], l.color[2], l.exponent,
+                        l.direction.x, l.direction.y, l.direction.z, std::cos(l.cutoff * M_PI / 180.0),
+                        a.constant, a.linear, a.quadratic, double(law_code(a.law))};
+  std::array<float, 16> out;
+  for (size_t i = 0; i < 16; ++i) out[i] = float(v[i]);
+  return out;
 }
 
 // The template's placeholders, {{point}} … {{polynomial}}: each code as an

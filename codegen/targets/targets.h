@@ -46,6 +46,12 @@ struct GlslParts {
 };
 GlslParts glsl_parts(const MaterialProgram& p, Target dialect, const std::string& source);
 
+// The G-buffer shading pass (renderers/gbuffer.h) in `dialect` (Glsl, Glsl450, Essl):
+// the material's library and light loop under templates/glsl/gbuffer_shade.glsl's main,
+// which reads the seven G-buffer images at its pixel (samplers facet_gbuffer_position …
+// facet_gbuffer_visibility_high; Vulkan: set 1, bindings 0-6) and writes facet_color.
+std::string glsl_gbuffer_shading_source(const Material& m, Target dialect);
+
 // WGSL in pieces, as GLSL: the library (constants, textures, terms, facet_reflect), the
 // lights (the FacetScene uniform buffer, facet_shade, which calls facet_visibility(p, l,
 // d, light) that the code around defines) and the standalone @fragment entry point.

@@ -9,9 +9,13 @@ struct FacetLight {
 };
 {{uniforms}}
 
-// How much of a light reaches p along l over distance d: 1 unlit by shadows,
-// 0 in shadow. Defined by the code that includes this shader.
-float facet_visibility(vec3 p, vec3 l, float d);
+// How much of light `light` (its index in facet_lights) reaches p along l over
+// distance d: 1 unlit by shadows, 0 in shadow. Defined by the code that includes
+// this shader: the standalone main's returns 1 (an engine's shadow lookup goes
+// there), facet's GL ray caster casts a shadow ray and ignores the index, and the
+// G-buffer shading pass (glsl/gbuffer_shade.glsl) reads the light's visibility
+// from the G-buffer by its index.
+float facet_visibility(vec3 p, vec3 l, float d, int light);
 
 // MODELS.md: L = m_a ⊗ A + Σ att(d) · spot · C ⊗ (k_d ⊗ ρ_d + k_s ⊗ ρ_s) + m_e
 vec3 facet_shade(vec3 p, vec3 n, vec3 v, vec3 t)
@@ -39,7 +43,7 @@ vec3 facet_shade(vec3 p, vec3 n, vec3 v, vec3 t)
         // Below the horizon reflectance() is 0: skip the visibility query there. The surface's
         // own normal n says which lights are above it; the lobes read ns.
         if (factor > 0.0 && dot(n, l) > 0.0)
-            radiance += factor * facet_visibility(p, l, d) * light.color.rgb * facet_reflect(ns, l, v, t);
+            radiance += factor * facet_visibility(p, l, d, i) * light.color.rgb * facet_reflect(ns, l, v, t);
     }
     return radiance;
 }

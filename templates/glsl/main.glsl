@@ -14,7 +14,7 @@ void main()
 }
 
 // This standalone shader casts no shadows; an engine puts its shadow lookup here.
-float facet_visibility(vec3 p, vec3 l, float d)
+float facet_visibility(vec3 p, vec3 l, float d, int light)
 {
     return 1.0;
 }

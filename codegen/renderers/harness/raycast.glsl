@@ -2,7 +2,10 @@
 // ---- facet's validation ray caster: the scene's analytic spheres and squares
 // and its triangle meshes (a BVH in texture buffers), one ray per pixel centre
 // (gl_FragCoord), shadows by shadow rays. Each pass shades the objects of one
-// material; the others are drawn black and the passes are summed.
+// material; the others are drawn black and the passes are summed. With
+// FACET_GBUFFER defined, main writes the G-buffer (renderers/gbuffer.h) instead of
+// shading: seven RGBA32F images, one draw buffer each, which the other renderers'
+// shading passes (templates/glsl/gbuffer_shade.glsl) read.
 #define FACET_MAX_OBJECTS 16
 uniform vec2 facet_resolution;
 uniform vec3 facet_camera_forward;
@@ -20,7 +23,17 @@ uniform samplerBuffer facet_triangles;  // 6 texels a triangle: p0, p1, p2, n0, 
 uniform samplerBuffer facet_texcoords;  // 3 texels a triangle: vertex k's (uv set 0, uv set 1)
 uniform samplerBuffer facet_tangents;   // 3 texels a triangle: corner k's tangent (xyz, w), normal-mapped meshes
 uniform float facet_shadow_offset;      // shadow rays start this far out
+#ifdef FACET_GBUFFER
+layout(location = 0) out vec4 facet_gbuffer_position;    // xyz p; w 1 shaded, 0 drawn black, -1 background
+layout(location = 1) out vec4 facet_gbuffer_normal;      // the unit normal n
+layout(location = 2) out vec4 facet_gbuffer_view;        // v = -(the ray's unit direction)
+layout(location = 3) out vec4 facet_gbuffer_uv_tangent;  // facet_uv_tangent_at(): t, w = ±1
+layout(location = 4) out vec4 facet_gbuffer_uv;          // uv sets 0 (xy) and 1 (zw)
+layout(location = 5) out vec4 facet_gbuffer_visibility_low;   // lights 0-3: 1 lit, 0 in shadow
+layout(location = 6) out vec4 facet_gbuffer_visibility_high;  // lights 4-7
+#else
 out vec4 facet_color;
+#endif
 
 // The object and triangle being shaded: a sphere or a square is convex and
 // cannot shadow itself where n·l > 0, nor can a flat triangle; a float hit
@@ -126,7 +139,8 @@ FacetHit facet_intersect(int i, vec3 origin, vec3 dir, float t_min, int skip)
     return FacetHit(t, -1, vec2(0.0));
 }
 
-float facet_visibility(vec3 p, vec3 l, float d)
+// Every light alike: a shadow ray from p towards it (`light` unused).
+float facet_visibility(vec3 p, vec3 l, float d, int light)
 {
     for (int i = 0; i < FACET_MAX_OBJECTS; ++i) {
         if (i >= facet_object_count) break;
@@ -179,18 +193,41 @@ vec4 facet_uv_tangent_at(int i, vec3 p, FacetHit h)
     return vec4(c.xyz, c.w >= 0.0 ? 1.0 : -1.0);
 }
 
-void main()
+// The camera ray through this pixel centre (dir) and the nearest object it meets
+// (best); -1 when none.
+int facet_camera_hit(out vec3 dir, out FacetHit best)
 {
     vec2 ndc = 2.0 * gl_FragCoord.xy / facet_resolution - 1.0;
-    vec3 dir = normalize(facet_camera_forward + facet_camera_right * (ndc.x * facet_camera_tan.x)
-                         + facet_camera_up * (ndc.y * facet_camera_tan.y));
-    FacetHit best = FacetHit(-1.0, -1, vec2(0.0));
+    dir = normalize(facet_camera_forward + facet_camera_right * (ndc.x * facet_camera_tan.x)
+                    + facet_camera_up * (ndc.y * facet_camera_tan.y));
+    best = FacetHit(-1.0, -1, vec2(0.0));
     int hit = -1;
     for (int i = 0; i < FACET_MAX_OBJECTS; ++i) {
         if (i >= facet_object_count) break;
         FacetHit h = facet_intersect(i, facet_camera_position, dir, 0.0, -1);
         if (h.t > 0.0 && (best.t < 0.0 || h.t < best.t)) { best = h; hit = i; }
     }
+    return hit;
+}
+
+// Object `hit`'s unit normal at p (a mesh's: its vertices' normals blended).
+vec3 facet_normal_at(int hit, vec3 p, FacetHit best)
+{
+    float kind = facet_object_normal[hit].w;
+    if (kind == {{sphere}}.0) return normalize(p - facet_object_shape[hit].xyz);
+    if (kind == {{square}}.0) return facet_object_normal[hit].xyz;
+    int t = best.triangle * 6;
+    return normalize(texelFetch(facet_triangles, t + 3).xyz * (1.0 - best.uv.x - best.uv.y)
+                     + texelFetch(facet_triangles, t + 4).xyz * best.uv.x
+                     + texelFetch(facet_triangles, t + 5).xyz * best.uv.y);
+}
+
+#ifndef FACET_GBUFFER
+void main()
+{
+    vec3 dir;
+    FacetHit best;
+    int hit = facet_camera_hit(dir, best);
     if (hit < 0) {
         facet_color = vec4(0.0);
         return;
@@ -202,17 +239,42 @@ void main()
     vec3 p = facet_camera_position + dir * best.t;
     facet_shaded_object = hit;
     facet_shaded_triangle = best.triangle;
-    vec3 n;
-    float kind = facet_object_normal[hit].w;
-    if (kind == {{sphere}}.0) {
-        n = normalize(p - facet_object_shape[hit].xyz);
-    } else if (kind == {{square}}.0) {
-        n = facet_object_normal[hit].xyz;
-    } else {
-        int t = best.triangle * 6;
-        n = normalize(texelFetch(facet_triangles, t + 3).xyz * (1.0 - best.uv.x - best.uv.y)
-                      + texelFetch(facet_triangles, t + 4).xyz * best.uv.x
-                      + texelFetch(facet_triangles, t + 5).xyz * best.uv.y);
-    }
+    vec3 n = facet_normal_at(hit, p, best);
 {{sample}}    facet_color = vec4(facet_shade(p, n, -dir, facet_tangent(n)), 1.0);
 }
+#else
+// Light i's visibility at p, for every light the scene has (0 beyond them): its
+// direction and distance found as facet_shade finds them.
+float facet_light_visibility(int i, vec3 p)
+{
+    if (i >= facet_light_count) return 0.0;
+    FacetLight light = facet_lights[i];
+    if (light.position.w == {{directional}}.0) return facet_visibility(p, -normalize(light.position.xyz), 1e30, i);
+    vec3 to_light = light.position.xyz - p;
+    float d = length(to_light);
+    return facet_visibility(p, to_light / d, d, i);
+}
+
+void main()
+{
+    vec3 dir;
+    FacetHit best;
+    int hit = facet_camera_hit(dir, best);
+    facet_gbuffer_position = vec4(0.0, 0.0, 0.0, hit < 0 ? -1.0 : 0.0);
+    facet_gbuffer_normal = facet_gbuffer_view = facet_gbuffer_uv_tangent = facet_gbuffer_uv = vec4(0.0);
+    facet_gbuffer_visibility_low = facet_gbuffer_visibility_high = vec4(0.0);
+    if (hit < 0 || facet_object_shaded[hit] == 0) return;
+    vec3 p = facet_camera_position + dir * best.t;
+    facet_shaded_object = hit;
+    facet_shaded_triangle = best.triangle;
+    facet_gbuffer_position = vec4(p, 1.0);
+    facet_gbuffer_normal = vec4(facet_normal_at(hit, p, best), 0.0);
+    facet_gbuffer_view = vec4(-dir, 0.0);
+    facet_gbuffer_uv_tangent = facet_uv_tangent_at(hit, p, best);
+    facet_gbuffer_uv = vec4(facet_uv(hit, p, best, 0), facet_uv(hit, p, best, 1));
+    facet_gbuffer_visibility_low = vec4(facet_light_visibility(0, p), facet_light_visibility(1, p),
+                                        facet_light_visibility(2, p), facet_light_visibility(3, p));
+    facet_gbuffer_visibility_high = vec4(facet_light_visibility(4, p), facet_light_visibility(5, p),
+                                         facet_light_visibility(6, p), facet_light_visibility(7, p));
+}
+#endif
