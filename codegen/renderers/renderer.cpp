@@ -22,6 +22,11 @@ const std::vector<RendererEntry>& renderer_registry() {
       {{"pov", "POV-Ray", "POV-Ray", "POV-Ray 3.7: generated scene",
         "the generated POV-Ray scene, 16-bit linear PNG, antialiasing off", false},
        make_povray_renderer},
+      {{"wgpu", "wgpu", "wgpu (WGSL)", "wgpu: generated WGSL (WebGPU on Vulkan)",
+        "the generated WGSL shading the GL ray caster's G-buffer in WebGPU (pip wgpu: wgpu-native on Vulkan, "
+        "Mesa lavapipe without a GPU), rgba32float",
+        false},
+       make_wgpu_renderer},
   };
   return registry;
 }
