@@ -157,7 +157,15 @@ bool WgpuRenderer::prepare(const RenderJob& job, json& entries, RenderOutcome& o
       return false;
     }
     std::string base = job_name(job) + (passes.size() > 1 ? "_" + identifier(passes[k]->name) : "");
-    entries.push_back(pass_entry(job, *passes[k], g.gbuffer, dir, base));
+    // Jobs of one batch may share a name and a folder (a test's variants of one material): numbered then.
+    auto taken = [&](const std::string& b) {
+      for (const auto& e : entries)
+        if (e["output"] == (dir / b).string() + "_wgpu") return true;
+      return false;
+    };
+    std::string unique = base;
+    for (int n = 2; taken(unique); ++n) unique = fmt::format("{}_{}", base, n);
+    entries.push_back(pass_entry(job, *passes[k], g.gbuffer, dir, unique));
   }
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return true;
