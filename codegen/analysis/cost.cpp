@@ -44,6 +44,13 @@ std::string cost_fragment_source(const Material& m) {
   return cost_frame_source(parts.header + parts.library);
 }
 
+std::string hlsl_cost_frame_source(const std::string& library) { return library + render_harness("cost.hlsl"); }
+
+std::string hlsl_cost_fragment_source(const Material& m) {
+  HlslParts parts = hlsl_parts(compile(m), m.source.empty() ? "the catalog" : m.source);
+  return hlsl_cost_frame_source(parts.header + parts.library);
+}
+
 std::vector<std::pair<std::string, std::vector<double>>> cost_frame_uniforms(int width, int height) {
   const Scene s = default_scene();
   const Camera::Basis b = s.camera.basis();
@@ -70,6 +77,14 @@ const vec3 material_ambient = vec3(0.0);
 const vec3 material_emission = vec3(0.0);
 vec3 facet_tangent(vec3 n) { return n; }
 vec3 facet_reflect(vec3 n, vec3 l, vec3 v, vec3 t) { return n + l + v; }
+)";
+
+// The same in HLSL.
+const char* kEmptyHlslLibrary = R"(
+static const float3 material_ambient = float3(0.0, 0.0, 0.0);
+static const float3 material_emission = float3(0.0, 0.0, 0.0);
+float3 facet_tangent(float3 n) { return n; }
+float3 facet_reflect(float3 n, float3 l, float3 v, float3 t) { return n + l + v; }
 )";
 
 // A constant-emission shader on the same sphere: what Cycles spends on a sample
@@ -134,24 +149,39 @@ int count_spirv(const std::string& disassembly) {
 
 }  // namespace
 
-SpirvCount spirv_instructions(const std::string& glsl, const std::string& workdir, const std::string& name) {
+namespace {
+
+// `source` compiled by `compile` (the compiler's arguments before "-o SPV SOURCE"), then
+// spirv-opt -O and counted.
+SpirvCount spirv_count(const std::string& source, const std::string& workdir, const std::string& name,
+                       const std::string& extension, std::vector<std::string> compile) {
   SpirvCount out;
   fs::create_directories(workdir);
   const fs::path base = fs::path(workdir) / identifier(name);
-  const std::string frag = base.string() + ".frag", spv = base.string() + ".spv", opt = base.string() + ".opt.spv",
+  const std::string file = base.string() + extension, spv = base.string() + ".spv", opt = base.string() + ".opt.spv",
                     dis = base.string() + ".opt.spvasm";
-  write_file_atomic(frag, glsl);
+  write_file_atomic(file, source);
   auto step = [&](const std::vector<std::string>& argv) {
     ProcessResult r = run_process(argv);
     if (r.exit_code != 0) out.error = fmt::format("{} exited with {}: {}", argv[0], r.exit_code, r.output);
     return r.exit_code == 0;
   };
-  if (!step({"glslangValidator", "-G", "--aml", "-o", spv, frag}) || !step({"spirv-opt", "-O", spv, "-o", opt}) ||
-      !step({"spirv-dis", opt, "-o", dis}))
+  compile.insert(compile.end(), {"-o", spv, file});
+  if (!step(compile) || !step({"spirv-opt", "-O", spv, "-o", opt}) || !step({"spirv-dis", opt, "-o", dis}))
     return out;
   out.disassembly = read_file(dis);
   out.instructions = count_spirv(out.disassembly);
   return out;
+}
+
+}  // namespace
+
+SpirvCount spirv_instructions(const std::string& glsl, const std::string& workdir, const std::string& name) {
+  return spirv_count(glsl, workdir, name, ".frag", {"glslangValidator", "-G", "--aml"});
+}
+
+SpirvCount hlsl_spirv_instructions(const std::string& hlsl, const std::string& workdir, const std::string& name) {
+  return spirv_count(hlsl, workdir, name, ".hlsl", {"glslangValidator", "-D", "-V", "-S", "frag", "-e", "main"});
 }
 
 // ---------------------------------------------------------------- callgrind
@@ -441,18 +471,24 @@ struct CostRun {
 void measure_glsl(const CostRun& run, std::vector<CostRow>& rows, CostBaselines& base) {
   const auto& ms = run.ms;
   const CostOptions& options = run.options;
-  run.say(fmt::format("GLSL: SPIR-V of {} shaders (glslangValidator, spirv-opt -O)", ms.size() + 1));
+  run.say(fmt::format("GLSL and HLSL: SPIR-V of {} shaders each (glslangValidator, spirv-opt -O)", ms.size() + 1));
   std::vector<ShaderDraw> draws;
   const auto uniforms = cost_frame_uniforms(options.callgrind_size, options.callgrind_size);
   for (size_t i = 0; i < ms.size(); ++i) {
     ShaderDraw d{ms[i].name, cost_fragment_source(ms[i]), uniforms};
     SpirvCount s = spirv_instructions(d.fragment_source, (run.dir / "glsl").string(), fmt::format("{}_{:03}", ms[i].name, i));
+    // The HLSL path: the same library printed as HLSL, in the same frame as a pixel shader.
+    SpirvCount h = hlsl_spirv_instructions(hlsl_cost_fragment_source(ms[i]), (run.dir / "hlsl").string(),
+                                           fmt::format("{}_{:03}", ms[i].name, i));
     rows[i].cell("glsl").figures["spirv"] = s.instructions;
-    rows[i].cell("glsl").error = s.error;
+    rows[i].cell("glsl").figures["hlsl_spirv"] = h.instructions;
+    rows[i].cell("glsl").error = s.error.empty() ? h.error : s.error;
     draws.push_back(d);
   }
   draws.push_back({"(empty frame)", cost_frame_source(kEmptyLibrary), uniforms});
   base.spirv_empty = spirv_instructions(draws.back().fragment_source, (run.dir / "glsl").string(), "empty").instructions;
+  base.hlsl_spirv_empty =
+      hlsl_spirv_instructions(hlsl_cost_frame_source(kEmptyHlslLibrary), (run.dir / "hlsl").string(), "empty").instructions;
   std::vector<CallgrindCount> counts(draws.size());
   if (options.callgrind) {
     run.say(fmt::format("GLSL: llvmpipe draws of {} shaders under callgrind, {} valgrind processes", draws.size(),
@@ -598,23 +634,25 @@ std::string pov_kind(const CostCell& p) {
 }  // namespace
 
 std::string costs_table(const std::vector<CostRow>& rows, const CostBaselines& b) {
-  std::string s = fmt::format("{:<20} {:<16} {:>6} {:>10} {:>6} {:>7} {:>9} {:>6} {:>14} {:>9} {:>6}\n", "material",
-                              "lobe", "SPIR-V", "llvmpipe/px", "×", "OSL ops", "Cycles ns", "×", "POV-Ray",
-                              "POV ns/px", "×");
+  std::string s = fmt::format("{:<20} {:<16} {:>6} {:>6} {:>10} {:>6} {:>7} {:>9} {:>6} {:>14} {:>9} {:>6}\n",
+                              "material", "lobe", "SPIR-V", "HLSL", "llvmpipe/px", "×", "OSL ops", "Cycles ns", "×",
+                              "POV-Ray", "POV ns/px", "×");
   for (const auto& r : rows) {
     const CostCell &g = r.cell("glsl"), &o = r.cell("osl"), &p = r.cell("pov");
-    std::string glsl = g.error.empty() ? fmt::format("{:>6} {:>10} {:>6}", count(g, "spirv"),
-                                                     number(g.number("callgrind_per_pixel"), 1),
+    std::string glsl = g.error.empty() ? fmt::format("{:>6} {:>6} {:>10} {:>6}", count(g, "spirv"),
+                                                     count(g, "hlsl_spirv"), number(g.number("callgrind_per_pixel"), 1),
                                                      times(g.number("callgrind_relative")))
-                                       : fmt::format("{:<24}", "error");
+                                       : fmt::format("{:<31}", "error");
     std::string osl = o.error.empty() ? fmt::format("{:>7} {:>9} {:>6}", count(o, "instructions"),
                                                     ns(o.number("ns_per_pixel")), times(o.number("relative")))
                                       : fmt::format("{:<24}", "error");
     std::string pov = fmt::format("{:>14} {:>9} {:>6}", pov_kind(p), ns(p.number("ns_per_pixel")), times(p.number("relative")));
     s += fmt::format("{:<20} {:<16} {} {} {}\n", r.name, lobes(r), glsl, osl, pov);
   }
-  s += fmt::format("the frame alone: SPIR-V {}, llvmpipe {} instr/px; Cycles, a constant-emission shader: {} ns/px\n",
-                   b.spirv_empty, number(b.callgrind_empty_per_pixel, 1), ns(b.cycles_emission_ns_per_pixel));
+  s += fmt::format("the frame alone: SPIR-V {} (HLSL {}), llvmpipe {} instr/px; Cycles, a constant-emission "
+                   "shader: {} ns/px\n",
+                   b.spirv_empty, b.hlsl_spirv_empty, number(b.callgrind_empty_per_pixel, 1),
+                   ns(b.cycles_emission_ns_per_pixel));
   for (const auto& r : rows)
     for (const auto& format : cost_format())
       if (const std::string& e = r.cell(format.target).error; !e.empty())

@@ -9,6 +9,9 @@
 //    (LP_NUM_THREADS=0 so the draw runs in the calling thread, collection on
 //    around the draw only, after an untimed first draw that JIT-compiles it;
 //    MESA_SHADER_CACHE_DISABLE so every process compiles alike).
+//    The HLSL path: the same material printed as HLSL (--target hlsl) in the same frame
+//    as a pixel shader (renderers/harness/cost.hlsl), through glslangValidator -D -V and
+//    spirv-opt -O, counted alike (the glsl cell's "hlsl_spirv").
 //  * OSL: the ops of the shader Blender's OSL compiler makes (.oso), and Cycles'
 //    render time per pixel and sample, by difference of two sample counts (the
 //    per-render set-up cancels), min over interleaved repeats, in CPU time.
@@ -75,6 +78,7 @@ const std::vector<CostTargetFormat>& cost_format();
 struct CostBaselines {
   double callgrind_empty_per_pixel = 0;  // the cost frame with facet_reflect() = 0
   int spirv_empty = 0;
+  int hlsl_spirv_empty = 0;  // the same frame as an HLSL pixel shader
   double cycles_emission_ns_per_pixel = 0;  // a constant-emission OSL shader on the same sphere
   std::string gl_renderer;   // GL_RENDERER, GL_VERSION
   std::string blender, osl;  // versions
@@ -148,6 +152,10 @@ std::string cost_frame_source(const std::string& library);
 std::string cost_raycast_source();
 // facet's generated library under the cost frame.
 std::string cost_fragment_source(const Material& m);
+// The same frame as an HLSL pixel shader (renderers/harness/cost.hlsl) under an HLSL
+// library, and facet's generated HLSL library under it: the HLSL path's SPIR-V count.
+std::string hlsl_cost_frame_source(const std::string& library);
+std::string hlsl_cost_fragment_source(const Material& m);
 // The frame's uniforms: the built-in scene "single" at width × height.
 std::vector<std::pair<std::string, std::vector<double>>> cost_frame_uniforms(int width, int height);
 
@@ -164,6 +172,8 @@ struct SpirvCount {
   std::string disassembly;  // of the optimized module
 };
 SpirvCount spirv_instructions(const std::string& glsl, const std::string& workdir, const std::string& name);
+// The same count for HLSL: glslangValidator -D -V -S frag -e main (Vulkan SPIR-V), spirv-opt -O.
+SpirvCount hlsl_spirv_instructions(const std::string& hlsl, const std::string& workdir, const std::string& name);
 
 // x86 instructions per pixel llvmpipe executes for each shader's draw, under
 // callgrind, in options.jobs valgrind processes; `error` set for a shader that failed.

@@ -97,6 +97,7 @@ json row_json(const CostRow& r) {
 
 json frame_json(const CostBaselines& b) {
   return {{"glsl_spirv", b.spirv_empty},
+          {"hlsl_spirv", b.hlsl_spirv_empty},
           {"glsl_callgrind_per_pixel", or_null(b.callgrind_empty_per_pixel)},
           {"osl_emission_ns_per_pixel", or_null(b.cycles_emission_ns_per_pixel)}};
 }

@@ -65,6 +65,12 @@ void add_terms(std::vector<ModelDef>& all) {
                 number("width", "width of the smooth transition; 0 is a hard step", Range::non_negative(), 0, false)};
     m.cycles = approximate("diffuse_toon / glossy_toon step on angles, not on ρ");
     m.pov = none("function pigment");
+    m.blender_nodes = nodes_approximate(
+        "Toon BSDF, Size and Smooth from the angles where ρ = cutoff ± width/2, colour k·2(1 − cos θ): exact for "
+        "lambert and phong with width 0 (Diffuse and Glossy Toon step on exactly their angles); linear in the angle "
+        "where facet's smoothstep is in ρ with a width (the figure: toon.json's lambert, width 0.1); no Toon BSDF "
+        "steps on the other lobes' angles (blinn_phong's angle(n, h) taken as half the mirrored one is 0.80 off)",
+        0.0969);
     all.push_back(m);
   }
   all.push_back(entry("modifier", "schlick_approximation", "Schlick's power approximation",

@@ -1,4 +1,4 @@
-// facet generate: generate GLSL, OSL or POV-Ray code from a material file.
+// facet generate: generate GLSL, HLSL, OSL or POV-Ray code from a material file.
 #include <filesystem>
 #include <iostream>
 
@@ -119,14 +119,15 @@ GenerateArgs gen;
 }  // namespace
 
 Command generate_command(CLI::App& app) {
-  auto* g = app.add_subcommand("generate", "Generate GLSL, OSL or POV-Ray code from a material file");
+  auto* g = app.add_subcommand("generate", "Generate GLSL, HLSL, OSL or POV-Ray code from a material file");
   g->add_option("material", gen.material,
                 "The material (JSON; see 'facet schema'). May be left out for --target pov when every object of "
                 "--scene has its own material");
   g->add_option("-t,--target", gen.target,
                 "glsl (GLSL 3.30 core), glsl450 (Vulkan, compiles to SPIR-V), essl (OpenGL ES 3.00), "
-                "osl (Cycles shader), pov (POV-Ray 3.7 scene), wgsl (WebGPU fragment shader)")
-      ->check(CLI::IsMember({"glsl", "glsl450", "essl", "osl", "pov", "wgsl"}))
+                "osl (Cycles shader), pov (POV-Ray 3.7 scene), hlsl (Shader Model 5 pixel shader; glslangValidator -D -V "
+                "compiles it to SPIR-V), wgsl (WebGPU fragment shader)")
+      ->check(CLI::IsMember({"glsl", "glsl450", "essl", "osl", "pov", "hlsl", "wgsl"}))
       ->capture_default_str();
   g->add_option("--scene", gen.scene,
                 "Scene for OSL's lights and POV-Ray's frame: a scene file or a built-in name (single, shadows). "
@@ -140,7 +141,7 @@ Command generate_command(CLI::App& app) {
       ->check(CLI::IsMember({"auto", "native", "exact", "fast"}))
       ->capture_default_str();
   g->add_flag("--library", gen.library,
-              "Only the functions, for an engine (GLSL, OSL, WGSL), or an include file declaring the texture (POV-Ray)");
+              "Only the functions, for an engine (GLSL, HLSL, WGSL, OSL), or an include file declaring the texture (POV-Ray)");
   g->add_option("-o,--output", gen.output, "Output file; standard output without it. Written whole or not at all");
   g->add_flag("--json", gen.json,
               "Print one JSON object describing what was generated: target, output, and for POV-Ray scenes the "
@@ -148,6 +149,7 @@ Command generate_command(CLI::App& app) {
   g->footer(
       "Examples:\n"
       "  facet generate mat.json --target glsl450 -o mat.frag && glslangValidator -V mat.frag\n"
+      "  facet generate mat.json --target hlsl -o mat.hlsl && glslangValidator -D -V -S frag -e main mat.hlsl\n"
       "  facet generate mat.json --target osl --scene shadows -o mat.osl\n"
       "  facet generate mat.json --target pov -o mat.pov      # a complete scene: sphere, camera, light\n"
       "  facet generate mat.json --target glsl --library       # just the functions: facet_reflect(n, l, v, t)\n"

@@ -43,13 +43,15 @@ json catalog_json() {
     json mj = {{"name", m.name},       {"title", m.title}, {"citation", m.citation},
                {"formula", m.formula}, {"doc", m.doc},     {"parameters", params}};
     for (const auto& f : m.forms) mj["forms"].push_back({{"what", f.what}, {"keys", f.keys}, {"optional", f.optional}});
-    if (m.section == "diffuse" || m.section == "specular") {
-      mj["cycles"] = {{"level", level_name(m.cycles.level)}, {"note", m.cycles.note}};
-      mj["pov"] = {{"level", level_name(m.pov.level)}, {"note", m.pov.note}};
-      const BlenderNodes& b = m.blender_nodes;
+    // Lobes, and the modifiers that have Blender nodes (toon): the add-on's Build Blender Nodes.
+    const BlenderNodes& b = m.blender_nodes;
+    if (m.section == "diffuse" || m.section == "specular" || !b.nodes.empty())
       mj["blender_nodes"] = {{"kind", level_name(b.level)},
                              {"nodes", b.nodes},
                              {"error", b.level == Equivalence::Level::Approximate ? json(b.error) : json(nullptr)}};
+    if (m.section == "diffuse" || m.section == "specular") {
+      mj["cycles"] = {{"level", level_name(m.cycles.level)}, {"note", m.cycles.note}};
+      mj["pov"] = {{"level", level_name(m.pov.level)}, {"note", m.pov.note}};
       // Claims from the literature; docs/physics.md holds the measurement (facet physics).
       mj["physics"] = {{"reciprocal", m.reciprocal},
                        {"energy_conserving", m.energy_conserving},

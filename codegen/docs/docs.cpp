@@ -157,17 +157,21 @@ std::string model_header(const ModelDef& m, const std::string& tag) {
          model_text(m);
 }
 
-std::string equivalence_html(const ModelDef& m) {
-  std::string h = "<table><tr><th>renderer</th><th>its own feature</th><th>note</th></tr>\n";
-  for (const auto& [who, e] : {std::pair<const char*, const Equivalence*>{"Cycles", &m.cycles}, {"POV-Ray", &m.pov}})
-    h += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td></tr>\n", who, level_name(e->level), html_escape(e->note));
-  const BlenderNodes& b = m.blender_nodes;
+// What the catalog publishes of the add-on's Build Blender Nodes: the nodes and the measured figure.
+std::string blender_nodes_html(const BlenderNodes& b) {
   std::string measured =
       b.level == Equivalence::Level::Approximate ? fmt::format(" (measured on the example materials: worst |Δ|/max(1, |ref|) {:.3g})", b.error)
       : b.level == Equivalence::Level::Exact     ? " (measured on the example materials: within 2e-3)"
                                                  : "";
-  h += fmt::format("<tr><td>Blender nodes (the add-on's Build Blender Nodes)</td><td>{}</td><td>{}{}</td></tr>\n",
-                   level_name(b.level), html_escape(b.nodes), measured);
+  return html_escape(b.nodes) + measured;
+}
+
+std::string equivalence_html(const ModelDef& m) {
+  std::string h = "<table><tr><th>renderer</th><th>its own feature</th><th>note</th></tr>\n";
+  for (const auto& [who, e] : {std::pair<const char*, const Equivalence*>{"Cycles", &m.cycles}, {"POV-Ray", &m.pov}})
+    h += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td></tr>\n", who, level_name(e->level), html_escape(e->note));
+  h += fmt::format("<tr><td>Blender nodes (the add-on's Build Blender Nodes)</td><td>{}</td><td>{}</td></tr>\n",
+                   level_name(m.blender_nodes.level), blender_nodes_html(m.blender_nodes));
   return h + "</table>\n<p class=muted>facet generates the model exactly for every target either way; this says how "
              "closely the renderer's built-in features could stand in for it. The Blender nodes' figure is measured "
              "in Cycles under one point light of radius 0, direct light only, against the reference.</p>\n";
@@ -365,7 +369,12 @@ std::string terms_page() {
                   "lights, as the catalog defines them.</p>\n";
   for (const auto& [name, title] : sections) {
     b += fmt::format("<h2>{}</h2>\n", html_escape(title));
-    for (const ModelDef* m : section(name)) b += model_header(*m, "h3") + params_table(*m);
+    for (const ModelDef* m : section(name)) {
+      b += model_header(*m, "h3") + params_table(*m);
+      if (!m->blender_nodes.nodes.empty())
+        b += fmt::format("<p><b>Blender nodes</b> (the add-on's Build Blender Nodes): {}, {}</p>\n",
+                         level_name(m->blender_nodes.level), blender_nodes_html(m->blender_nodes));
+    }
   }
   return page("facet — terms", b, false);
 }

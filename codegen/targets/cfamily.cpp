@@ -40,7 +40,7 @@ void CPrinter::color_literal_to(std::string& out, const std::array<double, 3>& c
   out += d_.color_ctor;
   out += '(';
   literal_to(out, c[0]);
-  if (c[0] != c[1] || c[1] != c[2]) {
+  if (!d_.splat_ctor || c[0] != c[1] || c[1] != c[2]) {
     out += ", ";
     literal_to(out, c[1]);
     out += ", ";
@@ -56,6 +56,16 @@ std::string CPrinter::color_literal(const std::array<double, 3>& c) const {
 }
 
 void CPrinter::as_to(std::string& out, const NodePtr& n, Type wanted) const {
+  if (wanted == Type::Color && n->type == Type::Float && !d_.splat_ctor) {
+    if (n->op == Op::Literal) {
+      color_literal_to(out, {n->value[0], n->value[0], n->value[0]});
+      return;
+    }
+    out += "(" + d_.color_type + ")(";
+    expr_to(out, n, 0);
+    out += ')';
+    return;
+  }
   if (wanted == Type::Color && n->type == Type::Float) {
     out += d_.color_ctor;
     out += '(';

@@ -1,4 +1,4 @@
-// facet — printing IR as C-like shading code (GLSL and OSL share this).
+// facet — printing IR as C-like shading code (GLSL, OSL and HLSL share this).
 #pragma once
 
 #include <map>
@@ -17,13 +17,18 @@ struct CDialect {
   std::string color_ctor = "vec3";
   std::string atan2_name = "atan";
   std::string pi_name = "PI";
+  // GLSL's vec3(x) repeats one number; HLSL's float3 constructor wants all three
+  // (fxc and dxc refuse float3(x)): a grey literal is written out in full and a
+  // number promoted to a colour is cast, (float3)(x).
+  bool splat_ctor = true;
   // OSL has no global constants: a function receives the material constants
   // it reads (directly or through its callees) as trailing parameters.
   bool constants_as_params = false;
 };
 
 // The shared writer (targets/writer.h) with C's leaves: "2.0" for 2 (ESSL has no
-// implicit int → float), colour constructors, float → colour promotion.
+// implicit int → float), colour constructors, float → colour promotion. GLSL, OSL
+// and HLSL are its dialects.
 class CPrinter : public ExprWriter {
  public:
   explicit CPrinter(CDialect d) : d_(std::move(d)) {}

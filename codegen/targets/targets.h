@@ -13,7 +13,7 @@
 
 namespace facet {
 
-enum class Target { Glsl, Glsl450, Essl, Osl, Pov, Wgsl };
+enum class Target { Glsl, Glsl450, Essl, Osl, Pov, Hlsl, Wgsl };
 std::optional<Target> parse_target(const std::string& name);
 const char* target_name(Target t);
 const std::vector<Target>& all_targets();
@@ -52,6 +52,13 @@ GlslParts glsl_parts(const MaterialProgram& p, Target dialect, const std::string
 // facet_gbuffer_visibility_high; Vulkan: set 1, bindings 0-6) and writes facet_color.
 std::string glsl_gbuffer_shading_source(const Material& m, Target dialect);
 
+// HLSL in the same pieces (templates/hlsl): the library, the light loop (the FacetScene
+// cbuffer, facet_shade, which asks facet_visibility(p, l, d, i) for light i) and the
+// standalone Shader Model 5 main.
+struct HlslParts {
+  std::string header, library, lights, main;
+};
+HlslParts hlsl_parts(const MaterialProgram& p, const std::string& source);
 // WGSL in pieces, as GLSL: the library (constants, textures, terms, facet_reflect), the
 // lights (the FacetScene uniform buffer, facet_shade, which calls facet_visibility(p, l,
 // d, light) that the code around defines) and the standalone @fragment entry point.
@@ -68,6 +75,7 @@ std::string wgsl_gbuffer_shading_source(const Material& m);
 // The robustness sweep's programs (facet/sweep.h): the material's functions
 // under a main that evaluates the sweep grid.
 std::string glsl_sweep_source(const Material& m);
+std::string hlsl_sweep_source(const Material& m);  // a pixel shader: one direction set per pixel
 // WGSL's: facet_vertex and facet_sweep (templates/wgsl/sweep.wgsl), the grid's side in the
 // uniform buffer at @group(0) @binding(0).
 std::string wgsl_sweep_source(const Material& m);

@@ -1170,6 +1170,124 @@ def test_native_nodes_match_published_error():
         raise Failure(f"GGX with Roughness = α measured {wrong:.4g}, which the published figure accepts")
 
 
+def core_native_module():
+    from facet_blender.core import native
+    return native
+
+
+def eevee_render(path, width, height):
+    """EEVEE (Next, 4.2+) at one sample, the pixel filter as narrow as it goes, linear EXR with
+    alpha and the Standard view, the lights' own soft shadows off: as near a point sampler as
+    EEVEE comes. Rows of RGBA, row 0 the BOTTOM row, like cycles_render()."""
+    scene = bpy.context.scene
+    point_sampled_cycles(scene)                    # the film, EXR and view settings
+    r = scene.render
+    r.engine = "BLENDER_EEVEE_NEXT"
+    r.filter_size = 0.0
+    scene.eevee.taa_render_samples = 1
+    scene.eevee.use_shadows = False
+    r.resolution_x, r.resolution_y, r.resolution_percentage = width, height, 100
+    r.filepath = path
+    bpy.ops.render.render(write_still=True)
+    image = bpy.data.images.load(path, check_existing=False)
+    px = list(image.pixels)
+    bpy.data.images.remove(image)
+    return [[tuple(px[4 * (j * width + i):4 * (j * width + i) + 4]) for i in range(width)] for j in range(height)]
+
+
+def eevee_deviation(material_json, name, w=40, h=40):
+    """Build Blender Nodes of a facet material on a smooth UV sphere (EEVEE draws no point
+    clouds as spheres) under native_scene(), rendered by EEVEE: worst |Δ|/max(1, |ref|)
+    against facet's reference of the analytic sphere."""
+    reset()
+    path = write_json(work(f"{name}.json"), material_json)
+    mat = new_material(name)
+    expect_ok("import_material", mat, filepath=path)
+    expect_ok("build_native_nodes", mat)
+    bpy.ops.mesh.primitive_uv_sphere_add(segments=256, ring_count=128, radius=1.0)
+    ball = bpy.context.active_object
+    ball.data.shade_smooth()
+    ball.data.materials.append(mat)
+    native_scene()
+    got = eevee_render(work(f"{name}.eevee.exr"), w, h)
+    scene_json = exporter_scene([{"type": "sphere", "name": "ball", "center": [0.0, 0.0, 0.0], "radius": 1.0}])
+    ref = facet_reference(path, scene_json, w, h, f"{name}.eevee")
+    mask = [[1 if px[3] == 1.0 else 0 for px in row] for row in got]
+    count, _, worst, where = deviation(got, ref, mask)
+    check(count > w * h // 4, f"{name}: only {count} interior pixels in EEVEE")
+    info(f"{name}: Build Blender Nodes, EEVEE vs facet reference: {count} pixels, max |Δ|/max(1,|ref|) "
+         f"{worst:.3g} at (i, j, channel, got, ref) = {where}")
+    return worst
+
+
+@test(when=lambda v: v >= (4, 2, 0), why="EEVEE Next (4.2+) renders headless on EGL here; 3.4's EEVEE needs a window")
+def test_native_nodes_render_in_eevee():
+    """Build Blender Nodes makes a material EEVEE renders too (the point of native nodes):
+    lambert, GGX as Principled and the toon step, rendered by EEVEE, against facet's
+    reference. EEVEE is a rasteriser with its own light integration, so the bound is
+    EEVEE's measured figure per model (docs/blender.md D), not the validation tolerance;
+    a Diffuse BSDF of the wrong colour fails it."""
+    cases = {"eevee_lambert": ({"name": "eevee_lambert", "diffuse": dict(examples())["lambert"]["diffuse"]}, 0.006),
+             "eevee_ggx": ({"name": "eevee_ggx", "specular": dict(examples())["ggx"]["specular"]}, 0.078)}
+    for name, (material, bound) in cases.items():
+        got = eevee_deviation(material, name)
+        check(got <= bound, f"{name}: EEVEE vs facet {got:.4g} > {bound}")
+    nodes = core_native_module().lobe_node
+    try:                     # the wrong variant: the nodes of a 10 % brighter k_d, the reference of the right one
+        core_native_module().lobe_node = lambda section, lobe, *a, **kw: nodes(
+            section, dict(lobe, color=[c * 1.1 for c in lobe["color"]]), *a, **kw)
+        got = eevee_deviation(cases["eevee_lambert"][0], "eevee_wrong")
+    finally:
+        core_native_module().lobe_node = nodes
+    check(got > cases["eevee_lambert"][1], f"a 10 % brighter Diffuse BSDF measured {got:.4g} in EEVEE, within the bound")
+    info(f"the wrong variant (k_d × 1.1) fails as it must: {got:.3g}")
+
+
+def published_toon():
+    """The toon modifier's blender_nodes in `facet models --json`."""
+    return next(m for m in catalog_json()["sections"]["modifier"] if m["name"] == "toon").get("blender_nodes")
+
+
+@test(when=lambda v: v >= (4, 2, 0), why="measured with Cycles and the 4.x Geometry Nodes sphere")
+def test_native_toon_matches_published_error():
+    """The toon modifier as Toon BSDF: on lambert and phong with width 0 the catalog's text
+    says exact, and each holds the tolerance; toon.json's lambert (with a width) gives the
+    published approximate figure; its blinn_phong, which Toon BSDF cannot step, is refused
+    by name. Toon BSDF's colour without its 2(1 − cos θ) fails the exact case."""
+    from facet_blender.core import native as core_native
+    published = published_toon()
+    check(published and published.get("kind") == "approximate", f"toon: blender_nodes {published}")
+    check("exact for lambert and phong with width 0" in published["nodes"], f"toon: {published['nodes']}")
+    cartoon = dict(examples())["toon"]
+    phong = dict(examples())["phong"]["specular"]
+    exact = {"toon_lambert_step": ("diffuse", dict(cartoon["diffuse"], toon={"cutoff": 0.4, "width": 0.0})),
+             "toon_phong_step": ("specular", dict(phong, n=4, toon={"cutoff": 0.3, "width": 0.0}))}
+    for name, (section, lobe) in exact.items():
+        got = native_deviation({"name": name, section: lobe}, name)
+        check(got <= TOL, f"{name}: Toon BSDF vs facet {got:.4g} > {TOL}")
+    # toon.json's lambert with its width: Cycles' ramp is linear in the angle.
+    got = native_deviation({"name": "toon_diffuse", "diffuse": cartoon["diffuse"]}, "toon_diffuse")
+    holds_published(got, published, "toon (toon.json's lambert, width 0.1)")
+    reset()   # toon.json's blinn_phong steps on angle(n, h), which no Toon BSDF measures
+    mat = new_material("toon_blinn_phong")
+    expect_ok("import_material", mat, filepath=write_json(work("toon_blinn_phong.json"), {
+        "name": "toon_blinn_phong", "specular": cartoon["specular"]}))
+    expect_error("build_native_nodes", mat, ["'blinn_phong' with toon", "no Blender-node equivalent"])
+    right = core_native.toon_node
+
+    def unscaled(section, lobe):
+        node = right(section, lobe)
+        return dict(node, inputs=dict(node["inputs"], Color=core_native._rgb(lobe.get("color"))))
+    core_native.toon_node = unscaled
+    try:
+        name, (section, lobe) = "wrong_toon", exact["toon_lambert_step"]
+        wrong = native_deviation({"name": name, section: lobe}, name)
+    finally:
+        core_native.toon_node = right
+    check(wrong > TOL, f"Toon BSDF without 2(1 − cos θ) measured {wrong:.4g}, within the tolerance")
+    info(f"the wrong variant (no 2(1 − cos θ) on the colour) fails as it must: {wrong:.3g} > {TOL}")
+
+
 @test()
 def test_native_nodes_build_and_rebuild():
     """In both Blenders, Build Blender Nodes on each example material whose lobes all have
@@ -1205,7 +1323,8 @@ def test_native_nodes_build_and_rebuild():
 @test()
 def test_native_nodes_panel_line():
     """Under each lobe model the panel says what the catalog publishes of its Blender
-    nodes (kind and measured error), and the Generate panel offers Build Blender Nodes."""
+    nodes (kind and measured error), or the toon modifier's when it is on, and the Generate
+    panel offers Build Blender Nodes."""
     from facet_blender.blender import ui
     published = published_nodes()
     for (section, model), nodes in published.items():
@@ -1218,6 +1337,12 @@ def test_native_nodes_panel_line():
         expected = {"exact": "exact (within 2e-3)", "none": f"none ({nodes['nodes'].split(':')[0]})",
                     "approximate": f"{nodes.get('error') or 0:.2g}"}[nodes["kind"]]
         check(expected in line, f"{model}: the panel says {line!r}, the catalog {nodes}")
+    toon = published_toon()      # with toon on, Toon BSDF replaces the lobe's node: its line instead
+    mat = new_material("line_toon", "none", "phong")
+    mat.facet.specular_phong.toon.enabled = True
+    text = panel_text(draw_panel(ui.FACET_PT_specular, mat, section="specular"))
+    check(text.count("Blender nodes:") == 1 and f"With Toon: Blender nodes: approximate" in text
+          and f"{toon['error']:.2g}" in text, f"phong with toon: the panel says {text!r}, the catalog {toon}")
     ops = {e[1] for e in draw_panel(ui.FACET_PT_generate, new_material("ops")) if e[0] == "operator"}
     check("facet.build_native_nodes" in ops, f"no Build Blender Nodes button: {ops}")
 

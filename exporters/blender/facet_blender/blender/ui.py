@@ -90,6 +90,17 @@ def draw_fields(layout, pg, group):
                     inner.prop(sub, g.id)
 
 
+def _nodes_line(catalog, model, pg, group):
+    """The Blender nodes line: the lobe's, or an enabled modifier's that replaces its node
+    (toon: Toon BSDF), named."""
+    for f in group.fields:
+        if f.kind == "group" and f.nested == "object" and getattr(pg, f.id).enabled:
+            modifier = catalog.model("modifier", f.key)
+            if modifier is not None and modifier.blender_nodes:
+                return f"With {modifier.title}: " + core_native.summary(modifier.blender_nodes)
+    return core_native.summary(model.blender_nodes)
+
+
 def _ready(context):
     mat = context_material(context)
     return state.STATE.catalog is not None and mat is not None and material_mod.has_settings(mat)
@@ -179,7 +190,8 @@ class _LobePanel:
         wrapped_label(info, context, model.formula)
         if model.citation:
             wrapped_label(info, context, model.citation)
-        wrapped_label(info, context, core_native.summary(model.blender_nodes))
+        wrapped_label(info, context, _nodes_line(catalog, model, getattr(settings, f"{self.section}_{chosen}"),
+                                                 plan.field(f"{self.section}_{chosen}").group))
         draw_fields(layout, getattr(settings, f"{self.section}_{chosen}"),
                     plan.field(f"{self.section}_{chosen}").group)
 

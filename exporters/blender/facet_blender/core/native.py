@@ -29,6 +29,16 @@ The mappings (ρ as MODELS.md defines it, relative to Lambert; Cycles' BSDFs are
 - blinn: D_TR(c) = π c² D_GGX(α = c), and Blinn's ρ lacks the 1/4 of a microfacet
   BRDF: Glossy BSDF, GGX, Roughness √c, colour × 4c² F(0).
 - emission: an Emission shader of strength 1 (radiance m_e).
+- the toon modifier, ρ' = smoothstep(c − w/2, c + w/2, ρ): Toon BSDF, which steps on an
+  angle (Cycles' bsdf_toon.h): the Diffuse one on angle(n, l), the Glossy one on the angle
+  between l and v mirrored about n. lambert's ρ = n·l and phong's ρ = (r·v)^n are
+  functions of exactly those angles, so ρ = c is an angle θ(c): Size θ(c + w/2)/(π/2),
+  Smooth (θ(c − w/2) − θ(c + w/2))/(π/2). Cycles' value is 1/(2π(1 − cos θ_s)) with
+  θ_s = min(π/2, Size + Smooth) and no cosine, so the colour is k·2(1 − cos θ_s): exact for
+  width 0; with a width Cycles' ramp is linear in the angle where facet's smoothstep is in ρ.
+  blinn_phong's ρ = (n·h)^n steps on angle(n, h), which is half the mirrored angle only in
+  the plane of incidence: measured with Size 2θ(c)/(π/2), its band is elsewhere (0.80 off at
+  n = 8), so it has no node, like the toon modifier on every other model.
 Models without such a node (Minnaert, Phong, Blinn–Phong, …) are refused by name.
 """
 
@@ -38,6 +48,7 @@ from . import UserError
 
 DIFFUSE, GLOSSY, EMISSION, ADD = "ShaderNodeBsdfDiffuse", "ShaderNodeBsdfGlossy", "ShaderNodeEmission", \
     "ShaderNodeAddShader"
+TOON = "ShaderNodeBsdfToon"
 PRINCIPLED = "ShaderNodeBsdfPrincipled"
 
 
@@ -134,6 +145,44 @@ def _specular(lobe, principled=True):
     return None
 
 
+def _power_cosine(model, lobe):
+    """x ↦ the cosine where the lobe's ρ(cos) = x, for the lobes Toon BSDF can step on
+    (their ρ is a function of the one cosine it measures)."""
+    if model == "lambert":
+        return lambda x: x
+    n = _number(lobe, "n")
+    if lobe.get("approximation") == "schlick":   # x = c / (n − n c + c)  ⇔  c = n x / (1 + x (n − 1))
+        inverse = (lambda x: n * x / (1.0 + x * (n - 1.0)))
+    else:
+        inverse = (lambda x: x ** (1.0 / n))
+    return inverse
+
+
+TOON_MODELS = {"diffuse": ("lambert",), "specular": ("phong",)}
+
+
+def toon_node(section, lobe):
+    """The Toon BSDF standing in for a toon-modified lobe (the module's docstring derives it)."""
+    model = lobe["model"]
+    if model not in TOON_MODELS[section]:
+        raise UserError(f"{section} '{model}' with toon has no Blender-node equivalent (Toon BSDF steps "
+                        f"lambert's n·l and phong's r·v only)")
+    toon = lobe["toon"]
+    cutoff, width = float(toon.get("cutoff", 0.5)), float(toon.get("width", 0.0))  # the catalog's defaults
+    inverse = _power_cosine(model, lobe)
+
+    def angle(x):    # the angle Toon BSDF measures where ρ = x; ρ ≤ 0 never reaches the band
+        return math.acos(min(1.0, inverse(min(1.0, x)))) if x > 0.0 else math.pi / 2.0
+    inner, outer = angle(cutoff + width / 2.0), angle(cutoff - width / 2.0)
+    if cutoff - width / 2.0 > 1.0:
+        inner = outer = 0.0   # ρ ≤ 1 never reaches the band: nothing is lit
+    sample = min(math.pi / 2.0, outer)
+    colour = _scaled(_rgb(lobe.get("color")), 2.0 * (1.0 - math.cos(sample)) if sample > 0.0 else 0.0)
+    return {"type": TOON, "props": {"component": "DIFFUSE" if section == "diffuse" else "GLOSSY"},
+            "inputs": {"Color": colour, "Size": min(1.0, inner / (math.pi / 2.0)),
+                       "Smooth": min(1.0, (outer - inner) / (math.pi / 2.0))}}
+
+
 def summary(blender_nodes):
     """The panel's line for a model's published blender_nodes (None: the catalog has none)."""
     if not blender_nodes:
@@ -150,7 +199,7 @@ def lobe_node(section, lobe, principled=True):
     """The node (a dict: type, inputs, props) standing in for one lobe, or UserError.
     `principled`: Blender's Principled BSDF is 4.x's (Fresnel of its IOR, F82 metals)."""
     if lobe.get("toon"):
-        raise UserError(f"{section} '{lobe['model']}' with toon has no Blender-node equivalent")
+        return toon_node(section, lobe)
     node = (_diffuse if section == "diffuse" else _specular)(lobe, principled)
     if node is None:
         raise UserError(f"{section} model '{lobe['model']}' has no Blender-node equivalent "

@@ -50,8 +50,33 @@ def test_roughness_mappings():
 def test_refusals_name_the_model():
     with pytest.raises(UserError, match="'phong' has no Blender-node equivalent"):
         native.node_plan({"diffuse": {"model": "lambert"}, "specular": {"model": "phong", "n": 10}})
-    with pytest.raises(UserError, match="toon"):
-        native.lobe_node("diffuse", {"model": "lambert", "toon": {"cutoff": 0.5}})
+    with pytest.raises(UserError, match="'blinn_phong' with toon has no Blender-node equivalent"):
+        native.lobe_node("specular", {"model": "blinn_phong", "n": 8, "toon": {"cutoff": 0.5}})
+    with pytest.raises(UserError, match="'oren_nayar' with toon"):
+        native.lobe_node("diffuse", {"model": "oren_nayar", "sigma": 0.3, "toon": {"cutoff": 0.5}})
+
+
+def test_toon_steps_on_the_angle_where_rho_is_the_cutoff():
+    """lambert: n·l = c at acos(c); phong: (r·v)^n = c at acos(c^(1/n)), Schlick's
+    x/(n − n x + x) = c at acos(n c/(1 + c(n − 1))); colour k·2(1 − cos θ_s)."""
+    step = native.lobe_node("diffuse", {"model": "lambert", "color": 0.5, "toon": {"cutoff": 0.4}})
+    assert step["type"] == native.TOON and step["props"]["component"] == "DIFFUSE"
+    assert step["inputs"]["Size"] == pytest.approx(math.acos(0.4) / (math.pi / 2)) and step["inputs"]["Smooth"] == 0
+    assert step["inputs"]["Color"] == pytest.approx((0.5 * 2 * 0.6,) * 3)
+    ramp = native.lobe_node("diffuse", {"model": "lambert", "toon": {"cutoff": 0.4, "width": 0.2}})
+    assert ramp["inputs"]["Size"] == pytest.approx(math.acos(0.5) / (math.pi / 2))
+    assert ramp["inputs"]["Smooth"] == pytest.approx((math.acos(0.3) - math.acos(0.5)) / (math.pi / 2))
+    assert ramp["inputs"]["Color"] == pytest.approx((2 * 0.7,) * 3)
+    phong = native.lobe_node("specular", {"model": "phong", "n": 4, "toon": {"cutoff": 0.3}})
+    assert phong["props"]["component"] == "GLOSSY"
+    assert phong["inputs"]["Size"] == pytest.approx(math.acos(0.3 ** 0.25) / (math.pi / 2))
+    schlick = native.lobe_node("specular", {"model": "phong", "n": 4, "approximation": "schlick",
+                                            "toon": {"cutoff": 0.3}})
+    x = 4 * 0.3 / (1 + 0.3 * 3)
+    assert x / (4 - 4 * x + x) == pytest.approx(0.3)
+    assert schlick["inputs"]["Size"] == pytest.approx(math.acos(x) / (math.pi / 2))
+    dark = native.lobe_node("diffuse", {"model": "lambert", "toon": {"cutoff": 1.5}})
+    assert dark["inputs"]["Color"] == (0.0, 0.0, 0.0)
 
 
 def test_catalog_publishes_what_the_add_on_builds(facet):

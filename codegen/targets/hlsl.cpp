@@ -1,0 +1,182 @@
+// HLSL: a Shader Model 5 pixel shader, or the functions alone. The third C dialect of
+// targets/cfamily.h: float3, atan2, lerp, rsqrt, `static const` globals, and no float3(x)
+// splat (fxc and dxc refuse it; glslang's HLSL front end would not say so).
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "targets/cfamily.h"
+#include "targets/glsl_lights.h"
+#include "targets/sweep_grid.h"
+#include "targets/targets.h"
+#include "targets/targets_internal.h"
+#include "targets/templates.h"
+#include "targets/texture_code.h"
+
+namespace facet {
+
+namespace {
+
+targets::CDialect hlsl_dialect() {
+  targets::CDialect d;
+  d.color_type = "float3";
+  d.color_ctor = "float3";
+  d.atan2_name = "atan2";
+  d.splat_ctor = false;
+  return d;
+}
+
+std::string grey(const targets::CPrinter& pr, double x) { return pr.color_literal({x, x, x}); }
+
+// The uv′ of a texture call: KHR_texture_transform's affine map of set `uv`.
+std::string hlsl_uv(const targets::CPrinter& pr, const TextureCall& c) {
+  std::string uv = fmt::format("uv{}", c.uv);
+  if (!c.transformed) return uv;
+  return fmt::format("float2({} * {uv}.x + {} * {uv}.y + {}, {} * {uv}.x + {} * {uv}.y + {})", pr.literal(c.a),
+                     pr.literal(c.b), pr.literal(c.ou), pr.literal(c.c), pr.literal(c.d), pr.literal(c.ov),
+                     fmt::arg("uv", uv));
+}
+
+// One textured parameter's statement in facet_sample_textures(): the one sampling rule
+// (docs/textures.md), as the GLSL's.
+std::string hlsl_sample(const targets::CPrinter& pr, const TextureCall& c) {
+  std::string lookup = fmt::format("facet_texture(facet_texture_{}, {}, int2({}, {}), {}, {})", c.name, hlsl_uv(pr, c),
+                                   c.wrap[0], c.wrap[1], c.bilinear ? "true" : "false", c.srgb ? "true" : "false");
+  std::string value = c.channel < 0 ? lookup + ".rgb" : lookup + "." + std::string(1, "rgba"[c.channel]);
+  if (c.color && c.channel >= 0) value = "(float3)(" + value + ")";
+  std::string factor = c.color ? pr.color_literal(c.factor) : pr.literal(c.factor[0]);
+  value = factor + " * " + value;
+  std::string lo = c.color ? grey(pr, c.lo) : pr.literal(c.lo);
+  std::string hi = c.color && std::isfinite(c.hi) ? grey(pr, c.hi) : pr.literal(c.hi);
+  value = std::isfinite(c.hi) ? fmt::format("clamp({}, {}, {})", value, lo, hi) : fmt::format("max({}, {})", value, lo);
+  return fmt::format("    {} = {};\n", c.name, value);
+}
+
+// The textures (Texture2D at t1, t2, …: Vulkan bindings 1, 2, … of set 0, as the glsl450
+// shader's samplers), their parameters' globals and facet_sample_textures(): empty for a
+// material without textures.
+std::string hlsl_textures(const MaterialProgram& p) {
+  if (!p.has_textures()) return "";
+  targets::CPrinter pr(hlsl_dialect());
+  std::string uniforms, globals, samples;
+  int binding = 1;  // binding 0 is the scene's cbuffer
+  for (const auto& c : image_calls(p)) {
+    uniforms += fmt::format("Texture2D<float4> facet_texture_{} : register(t{});  // \"{}\", {}×{}\n", c.name,
+                            binding++, c.file, c.texels->width, c.texels->height);
+    globals += fmt::format("static {} {};\n", c.color ? "float3" : "float", c.name);
+    samples += hlsl_sample(pr, c);
+  }
+  std::string mapping;
+  if (const auto& nm = p.material.normal_map) {
+    // catalog/texture.h, NormalMap: n_t from the sampled rgb, then the mapped normal.
+    globals += "// The normal map's frame at the shading point: t the unit ∂p/∂u, w = ±1 (B = w·(n × t)).\n"
+               "static float3 facet_uv_tangent;\nstatic float facet_uv_handedness = 1.0;\n";
+    mapping = render_template("hlsl/normal_map.hlsl", {{"strength", pr.literal(nm->strength)},
+                                                       {"green", nm->green_down ? "-" : ""}});
+  }
+  return render_template("hlsl/textures.hlsl", {{"uniforms", uniforms}, {"globals", globals}, {"samples", samples}}) +
+         mapping;
+}
+
+// The material's constants as `static const` globals (a plain HLSL global is a uniform).
+std::string hlsl_constants(const MaterialProgram& p, const targets::CPrinter& printer) {
+  const Material& m = p.material;
+  std::string constants;
+  auto add_constant = [&](const std::string& type, const std::string& name, const std::string& value) {
+    constants += fmt::format("static const {} {} = {};\n", type, name, value);
+  };
+  // m_a and m_e: constants, or globals facet_sample_textures() sets (kAmbientInput, kEmissionInput).
+  if (!m.ambient_texture) add_constant("float3", kAmbientInput, printer.color_literal(m.ambient));
+  if (!m.emission_texture) add_constant("float3", kEmissionInput, printer.color_literal(m.emission));
+  add_constant("float3", "tangent_axis", printer.color_literal(normalize(Vec3(m.tangent_axis)).array()));
+  for (const auto& c : p.constants()) {
+    add_constant(printer.type(c->type), c->name,
+                 c->type == ir::Type::Color ? printer.color_literal(c->value) : printer.literal(c->value[0]));
+  }
+  return constants;
+}
+
+// facet_reflect's body before its return: the inputs the lobes read, and their names.
+std::pair<std::string, std::string> hlsl_inputs(const MaterialProgram& p, const targets::CPrinter& printer) {
+  std::string inputs, arguments;
+  if (p.uses_bitangent()) inputs += "    float3 b = cross(n, t);\n";
+  if (p.uses_half_vector())
+    inputs += fmt::format("    // catalog.h, Input: h = (l + v) / max(|l + v|, ε)\n"
+                          "    float3 h = (l + v) * rsqrt(max(dot(l + v, l + v), {}));\n",
+                          printer.literal(kEpsilon * kEpsilon));
+  for (const auto& in : p.inputs) {
+    arguments += (arguments.empty() ? "" : ", ") + in;
+    if (p.is_textured(in)) continue;  // a global facet_sample_textures() set
+    // NoL → dot(n, l): the two letters either side of "o" name the vectors.
+    std::string a(1, char(std::tolower(in[0]))), b(1, char(std::tolower(in[2])));
+    inputs += fmt::format("    float {} = dot({}, {});\n", in, a, b);
+  }
+  return {inputs, arguments};
+}
+
+std::string hlsl_header(const Material& m, const std::string& what, const std::string& source) {
+  return render_template("hlsl/header.hlsl", {{"name", m.name},
+                                              {"what", what},
+                                              {"version", FACET_VERSION},
+                                              {"source", source},
+                                              {"description", describe_material(m, "//")}});
+}
+
+// The standalone main's inputs after the normal (and the optional vertex tangent), and
+// what it does before shading.
+std::pair<std::string, std::string> hlsl_main_inputs(const MaterialProgram& p) {
+  std::string in, sample;
+  if (p.has_textures()) {
+    in += "            , FACET_LOCATION(3) float2 facet_texcoord0 : TEXCOORD3  // glTF's TEXCOORD_0: v down the picture\n"
+          "            , FACET_LOCATION(4) float2 facet_texcoord1 : TEXCOORD4\n";
+    sample = "    facet_sample_textures(facet_texcoord0, facet_texcoord1);\n";
+  }
+  if (p.normal_mapped()) {
+    in += "            , FACET_LOCATION(5) float4 facet_texture_tangent : TEXCOORD5  // xyz: ∂p/∂u, w: ±1 (glTF's TANGENT)\n";
+    sample += "    facet_uv_tangent = facet_texture_tangent.xyz;\n"
+              "    facet_uv_handedness = facet_texture_tangent.w;\n";
+  }
+  return {in, sample};
+}
+
+}  // namespace
+
+HlslParts hlsl_parts(const MaterialProgram& p, const std::string& source) {
+  targets::CPrinter printer(hlsl_dialect());
+  HlslParts parts;
+  std::string functions;
+  for (const auto& f : p.functions()) functions += printer.function(f) + "\n";
+  auto [inputs, arguments] = hlsl_inputs(p, printer);
+  parts.header = hlsl_header(p.material, "HLSL pixel shader (Shader Model 5)", source);
+  parts.library = render_template("hlsl/library.hlsl", {{"constants", hlsl_constants(p, printer)},
+                                                        {"textures", hlsl_textures(p)},
+                                                        {"functions", functions},
+                                                        {"inputs", inputs},
+                                                        {"arguments", arguments}});
+  std::map<std::string, std::string> lights = glsl_light::template_values();  // the light encoding's numbers
+  lights["mapping"] = p.normal_mapped() ? "    // The lobes read the normal map's normal and a tangent that follows it.\n"
+                                          "    float3 ns = facet_normal_mapped(n, facet_uv_tangent, facet_uv_handedness);\n"
+                                          "    t = normalize(t - ns * dot(ns, t));\n"
+                                        : "    float3 ns = n;\n";
+  parts.lights = render_template("hlsl/lights.hlsl", lights);
+  auto [main_in, sample] = hlsl_main_inputs(p);
+  parts.main = render_template("hlsl/main.hlsl", {{"inputs", main_in}, {"sample", sample}});
+  return parts;
+}
+
+std::string hlsl_sweep_source(const Material& m) {
+  HlslParts parts = hlsl_parts(compile(m), m.source);
+  targets::CPrinter printer(hlsl_dialect());
+  std::string grid;
+  for (const auto& f : ir::dependencies(sweep_grid())) grid += printer.function(f) + "\n";
+  return parts.header + parts.library + "\n" + grid + render_template("hlsl/sweep.hlsl", {});
+}
+
+std::string generate_hlsl(const Material& m, const GenerateOptions& o) {
+  MaterialProgram p = compile(m);
+  HlslParts parts = hlsl_parts(p, o.source);
+  if (o.library) return hlsl_header(m, "HLSL library (include it in a shader)", o.source) + "\n" + parts.library;
+  return parts.header + "\n" + parts.library + "\n" + parts.lights + parts.main;
+}
+
+}  // namespace facet

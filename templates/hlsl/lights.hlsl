@@ -1,0 +1,53 @@
+// ---- Lights (MODELS.md "Lights"), set by the application
+#define FACET_MAX_LIGHTS 8
+struct FacetLight {
+    float4 position;     // xyz: position (point, spot), or the direction the light travels (directional)
+                         // w: type, {{point}} point, {{directional}} directional, {{spot}} spot
+    float4 color;        // rgb: colour C; a: spot exponent
+    float4 spot;         // xyz: unit cone axis s; w: cos(cutoff)
+    float4 attenuation;  // xyz: c1, c2, c3; w: law, {{no_attenuation}} none, {{inverse_square}} inverse square, {{polynomial}} polynomial
+};
+// The glsl450 shader's FacetScene block, byte for byte (std140 and HLSL's packing agree
+// here: the light array starts at byte 48, 64 bytes a light); Vulkan binding 0 of set 0.
+cbuffer FacetScene : register(b0)
+{
+    float4 facet_camera_position;  // xyz: the eye, world space
+    float4 facet_ambient;          // rgb: the scene's ambient colour A
+    int facet_light_count;
+    FacetLight facet_lights[FACET_MAX_LIGHTS];
+};
+
+// How much of light i reaches p along l over distance d: 1 unlit by shadows,
+// 0 in shadow. Defined by the code that includes this shader.
+float facet_visibility(float3 p, float3 l, float d, int i);
+
+// MODELS.md: L = m_a ⊗ A + Σ att(d) · spot · C ⊗ (k_d ⊗ ρ_d + k_s ⊗ ρ_s) + m_e
+float3 facet_shade(float3 p, float3 n, float3 v, float3 t)
+{
+    float3 radiance = material_ambient * facet_ambient.rgb + material_emission;
+{{mapping}}    for (int i = 0; i < FACET_MAX_LIGHTS; ++i) {
+        if (i >= facet_light_count) break;
+        FacetLight light = facet_lights[i];
+        float3 l;
+        float d = 1e30;  // directional lights have no distance
+        float factor = 1.0;
+        if (light.position.w == {{directional}}.0) {
+            l = -normalize(light.position.xyz);
+        } else {
+            float3 to_light = light.position.xyz - p;
+            d = length(to_light);
+            l = to_light / d;
+            if (light.attenuation.w == {{inverse_square}}.0) {
+                factor = attenuation_inverse_square(d);
+            } else if (light.attenuation.w == {{polynomial}}.0) {
+                factor = attenuation_polynomial(d, light.attenuation.x, light.attenuation.y, light.attenuation.z);
+            }
+            if (light.position.w == {{spot}}.0) factor *= spot_cone(-dot(l, light.spot.xyz), light.spot.w, light.color.a);
+        }
+        // Below the horizon reflectance() is 0: skip the visibility query there. The surface's
+        // own normal n says which lights are above it; the lobes read ns.
+        if (factor > 0.0 && dot(n, l) > 0.0)
+            radiance += factor * facet_visibility(p, l, d, i) * light.color.rgb * facet_reflect(ns, l, v, t);
+    }
+    return radiance;
+}

@@ -1,0 +1,105 @@
+// The HLSL shading pass over the G-buffer (renderers/hlsl_shading.h): for every example,
+// textured ones included, it compiles with glslang's HLSL front end to SPIR-V, its seven
+// G-buffer images at set 1, bindings 0–6, the scene's cbuffer at set 0, binding 0 and the
+// material's textures at set 0, bindings 1, 2, …; and the compile fails on a broken pass.
+#include <filesystem>
+#include <map>
+#include <regex>
+
+#include <gtest/gtest.h>
+
+#include "catalog/material.h"
+#include "catalog/program.h"
+#include "core/io.h"
+#include "renderers/hlsl_shading.h"
+#include "renderers/process.h"
+
+namespace facet {
+namespace {
+
+namespace fs = std::filesystem;
+const fs::path kSource = FACET_SOURCE_DIR;
+
+struct Compiled {
+  ProcessResult run;
+  std::string disassembly;
+};
+
+Compiled compile_hlsl(const std::string& source, const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / "facet-hlsl-test";
+  fs::create_directories(dir);
+  const std::string hlsl = (dir / (name + ".hlsl")).string(), spv = (dir / (name + ".spv")).string();
+  write_file_atomic(hlsl, source);
+  Compiled c;
+  c.run = run_process({"glslangValidator", "-D", "-V", "-S", "frag", "-e", "main", hlsl, "-o", spv});
+  if (c.run.exit_code == 0) c.disassembly = run_process({"spirv-dis", spv}).output;
+  return c;
+}
+
+// (set, binding) of every resource the SPIR-V names: "facet_gbuffer_normal" → {1, 1}.
+std::map<std::string, std::pair<int, int>> bindings(const std::string& dis) {
+  std::map<std::string, int> set, binding;
+  static const std::regex decoration(R"(OpDecorate %(\w+) (DescriptorSet|Binding) (\d+))");
+  for (auto it = std::sregex_iterator(dis.begin(), dis.end(), decoration); it != std::sregex_iterator(); ++it)
+    ((*it)[2] == "DescriptorSet" ? set : binding)[(*it)[1]] = std::stoi((*it)[3]);
+  std::map<std::string, std::pair<int, int>> out;
+  for (const auto& [name, s] : set) out[name] = {s, binding.count(name) ? binding[name] : -1};
+  return out;
+}
+
+std::vector<fs::path> examples() {
+  std::vector<fs::path> out;
+  for (const char* dir : {"examples/materials", "examples/textured"})
+    for (const auto& e : fs::directory_iterator(kSource / dir)) out.push_back(e.path());
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+TEST(HlslShading, EveryExampleCompilesWithTheContractsBindings) {
+  int compiled = 0;
+  for (const auto& path : examples()) {
+    Material m = load_material(path.string());
+    const std::string name = path.stem().string();
+    Compiled c = compile_hlsl(hlsl_shading_source(m), name);
+    ASSERT_EQ(c.run.exit_code, 0) << path << "\n" << c.run.output;
+    auto b = bindings(c.disassembly);
+    // The G-buffer images a material reads: position, normal, view and the visibilities
+    // always; the uv set with textures; the tangent frame with a normal map (glslang drops the others).
+    MaterialProgram p = compile(m);
+    std::map<std::string, int> gbuffer = {{"facet_gbuffer_position", 0}, {"facet_gbuffer_normal", 1},
+                                          {"facet_gbuffer_view", 2},     {"facet_gbuffer_lights0", 5},
+                                          {"facet_gbuffer_lights1", 6}};
+    if (p.has_textures()) gbuffer["facet_gbuffer_uv"] = 4;
+    if (p.normal_mapped()) gbuffer["facet_gbuffer_tangent"] = 3;
+    for (const auto& [image, binding] : gbuffer) {
+      ASSERT_TRUE(b.count(image)) << name << ": " << image << " not in the SPIR-V";
+      EXPECT_EQ(b[image], std::make_pair(1, binding)) << name << ": " << image;
+    }
+    int textures = 0;
+    for (const auto& [resource, at] : b)
+      if (resource.rfind("facet_texture_", 0) == 0) {
+        EXPECT_EQ(at.first, 0) << name << ": " << resource;
+        EXPECT_GE(at.second, 1) << name << ": " << resource;
+        ++textures;
+      }
+    EXPECT_EQ(textures, int(p.textured.size()) + (m.normal_map ? 1 : 0)) << name;
+    ++compiled;
+  }
+  EXPECT_GE(compiled, 29);
+}
+
+// The compile has teeth: the pass without its visibility function, or with GLSL's vec4 in
+// it, is refused.
+TEST(HlslShading, BrokenPassIsRefused) {
+  const std::string good = hlsl_shading_source(load_material((kSource / "examples/materials/phong.json").string()));
+  ASSERT_EQ(compile_hlsl(good, "phong_good").run.exit_code, 0);
+  std::string glsl = std::regex_replace(good, std::regex(R"(float4 lit = )"), "vec4 lit = ");
+  ASSERT_NE(glsl, good);
+  EXPECT_NE(compile_hlsl(glsl, "phong_vec4").run.exit_code, 0);
+  const size_t at = good.find("// Light i's visibility");
+  ASSERT_NE(at, std::string::npos);
+  EXPECT_NE(compile_hlsl(good.substr(0, at), "phong_no_visibility").run.exit_code, 0);
+}
+
+}  // namespace
+}  // namespace facet
