@@ -17,7 +17,8 @@ say() { printf '\033[1m==> %s\033[0m\n' "$*"; }
 packages=(
   build-essential cmake pkg-config git
   nlohmann-json3-dev libfmt-dev libcli11-dev libtinygltf-dev libstb-dev googletest libgtest-dev libbenchmark-dev
-  glslang-tools spirv-tools libepoxy-dev libegl-dev libegl-mesa0 libgl1-mesa-dri libgles-dev
+  glslang-tools spirv-tools spirv-cross libepoxy-dev libegl-dev libegl-mesa0 libgl1-mesa-dri libgles-dev
+  libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers
   povray blender xvfb python3 python3-venv python3-pip chromium valgrind fonts-dejavu-core
 )
 missing=()

@@ -170,6 +170,7 @@ struct SpirvCount {
   int instructions = 0;
   std::string error;
   std::string disassembly;  // of the optimized module
+  std::string module;       // the compiler's module (SPIR-V, before spirv-opt), a file in the workdir
 };
 SpirvCount spirv_instructions(const std::string& glsl, const std::string& workdir, const std::string& name);
 // The same count for HLSL: glslangValidator -D -V -S frag -e main (Vulkan SPIR-V), spirv-opt -O.

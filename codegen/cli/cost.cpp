@@ -73,7 +73,7 @@ Command cost_command(CLI::App& app) {
   coc->add_flag("--json", co.as_json, "Print {\"baseline\": \"lambert\", \"rows\": [...]} instead of the table");
   coc->add_option("--markdown", co.markdown, "Also write the table as Markdown (docs/cost.md)");
   coc->add_option("--check", co.check,
-                  "Exit 1 unless this Markdown file's counts (SPIR-V, llvmpipe instructions, OSL ops, POV-Ray "
+                  "Exit 1 unless this Markdown file's counts (SPIR-V, HLSL SPIR-V, llvmpipe instructions, OSL ops, POV-Ray "
                   "functions) are what the measurement gives; no timings are taken");
   coc->add_flag("--no-timings", co.no_timings, "Only the deterministic counts: no Cycles or POV-Ray render times");
   coc->add_flag("--no-callgrind", co.no_callgrind, "No llvmpipe instruction counts (valgrind)");
@@ -88,7 +88,8 @@ Command cost_command(CLI::App& app) {
   coc->add_option("--python", co.options.python, "The Python with bpy 4.5 (default: FACET_PYTHON, then the build's .venv)");
   coc->footer(
       "Per material (a row) and target: GLSL — SPIR-V instructions after spirv-opt -O of the single-light cost\n"
-      "frame's fragment shader, and x86 instructions per pixel of its llvmpipe draw under callgrind; OSL — ops of\n"
+      "frame's fragment shader (and of the HLSL path: --target hlsl in the same frame as a pixel shader, through\n"
+      "glslangValidator -D -V), and x86 instructions per pixel of its llvmpipe draw under callgrind; OSL — ops of\n"
       "the compiled .oso and Cycles' time per pixel and sample; POV-Ray — native finish or its function count, and\n"
       "the trace time per pixel. Times and counts also relative to Lambert. The table goes to standard output,\n"
       "progress to standard error; a tool that cannot run is an error in its rows and exit status 1.\n"

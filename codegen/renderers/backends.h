@@ -11,6 +11,8 @@ std::unique_ptr<Renderer> make_reference_renderer(const RendererInfo& info, cons
 std::unique_ptr<Renderer> make_opengl_renderer(const RendererInfo& info, const RendererSettings& settings);
 std::unique_ptr<Renderer> make_cycles_renderer(const RendererInfo& info, const RendererSettings& settings);
 std::unique_ptr<Renderer> make_povray_renderer(const RendererInfo& info, const RendererSettings& settings);
+std::unique_ptr<Renderer> make_vulkan_renderer(const RendererInfo& info, const RendererSettings& settings);
+std::unique_ptr<Renderer> make_vulkan_hlsl_renderer(const RendererInfo& info, const RendererSettings& settings);
 std::unique_ptr<Renderer> make_wgpu_renderer(const RendererInfo& info, const RendererSettings& settings);
 
 // Every job failed with `why`: what a renderer that cannot run returns.

@@ -11,12 +11,8 @@ std::string hlsl_shading_source(const Material& m) {
   HlslParts parts = hlsl_parts(p, m.source.empty() ? m.name : m.source);
   // What raycast.glsl's main does after the hit, at the G-buffer's uv and tangent frame.
   std::string sample;
-  if (p.has_textures())
-    sample += "    float4 uv = facet_gbuffer_uv.Load(facet_pixel_texel);\n"
-              "    facet_sample_textures(uv.xy, uv.zw);\n";
-  if (p.normal_mapped())
-    sample += "    float4 frame = facet_gbuffer_tangent.Load(facet_pixel_texel);\n"
-              "    facet_uv_tangent = frame.xyz;\n    facet_uv_handedness = frame.w;\n";
+  if (p.has_textures()) sample = "    facet_sample_textures(uvs.xy, uvs.zw);\n";
+  if (p.normal_mapped()) sample += "    facet_uv_tangent = frame.xyz;\n    facet_uv_handedness = frame.w;\n";
   return parts.header + parts.library + parts.lights + render_harness("gbuffer_shade.hlsl", {{"sample", sample}});
 }
 

@@ -22,6 +22,16 @@ const std::vector<RendererEntry>& renderer_registry() {
       {{"pov", "POV-Ray", "POV-Ray", "POV-Ray 3.7: generated scene",
         "the generated POV-Ray scene, 16-bit linear PNG, antialiasing off", false},
        make_povray_renderer},
+      {{"vulkan", "Vulkan", "Vulkan (GLSL 4.50)", "Vulkan: generated GLSL 4.50 (SPIR-V)",
+        "the generated glsl450 as SPIR-V (glslangValidator -V) on the first Vulkan device (Mesa lavapipe without a "
+        "GPU), RGBA32F: a shading pass over the G-buffer the OpenGL ray caster casts",
+        false},
+       make_vulkan_renderer},
+      {{"vulkan-hlsl", "Vulkan (HLSL)", "Vulkan (HLSL)", "Vulkan: generated HLSL (SPIR-V)",
+        "the generated HLSL as SPIR-V (glslangValidator -D -V -S frag -e main) on the first Vulkan device, RGBA32F: "
+        "the same shading pass over the OpenGL ray caster's G-buffer as vulkan",
+        false},
+       make_vulkan_hlsl_renderer},
       {{"wgpu", "wgpu", "wgpu (WGSL)", "wgpu: generated WGSL (WebGPU on Vulkan)",
         "the generated WGSL shading the GL ray caster's G-buffer in WebGPU (pip wgpu: wgpu-native on Vulkan, "
         "Mesa lavapipe without a GPU), rgba32float",

@@ -215,12 +215,18 @@ std::string glsl_gbuffer_shading_source(const Material& m, Target dialect) {
                          {{"declarations", gbuffer_declarations(dialect)}, {"texel", texel}, {"sample", sample}});
 }
 
-std::string glsl_sweep_source(const Material& m) {
-  GlslParts parts = glsl_parts(compile(m), Target::Glsl, m.source);
+std::string glsl_sweep_source(const Material& m, Target dialect) {
+  GlslParts parts = glsl_parts(compile(m), dialect, m.source);
   targets::CPrinter printer({});
   std::string grid;
   for (const auto& f : ir::dependencies(sweep_grid())) grid += printer.function(f) + "\n";
-  return "#version 330 core\n" + parts.header + parts.library + "\n" + grid + render_template("glsl/sweep.glsl", {});
+  const std::string declarations =
+      dialect == Target::Glsl450 ? "layout(push_constant) uniform FacetSweep { ivec2 facet_grid; };\n"
+                                   "#define facet_resolution vec2(facet_grid)\n"
+                                   "layout(location = 0) out vec4 facet_color;\n"
+                                 : "uniform vec2 facet_resolution;\nout vec4 facet_color;\n";
+  return version_line(dialect) + parts.header + parts.library + "\n" + grid +
+         render_template("glsl/sweep.glsl", {{"declarations", declarations}});
 }
 
 std::string generate_glsl(const Material& m, const GenerateOptions& o) {

@@ -73,8 +73,9 @@ WgslParts wgsl_parts(const MaterialProgram& p, const std::string& source);
 std::string wgsl_gbuffer_shading_source(const Material& m);
 
 // The robustness sweep's programs (facet/sweep.h): the material's functions
-// under a main that evaluates the sweep grid.
-std::string glsl_sweep_source(const Material& m);
+// under a main that evaluates the sweep grid. GLSL's in `dialect` Glsl (uniform vec2
+// facet_resolution) or Glsl450 (Vulkan: the grid's side from the push constants, ivec2).
+std::string glsl_sweep_source(const Material& m, Target dialect = Target::Glsl);
 std::string hlsl_sweep_source(const Material& m);  // a pixel shader: one direction set per pixel
 // WGSL's: facet_vertex and facet_sweep (templates/wgsl/sweep.wgsl), the grid's side in the
 // uniform buffer at @group(0) @binding(0).

@@ -1,9 +1,7 @@
 
 // ---- facet's robustness sweep: each pixel centre is one direction set of the
 // grid (targets/sweep_grid.h); the output is the raw reflectance, NaN and Inf included.
-uniform vec2 facet_resolution;
-out vec4 facet_color;
-
+{{declarations}}
 void main()
 {
     vec2 st = gl_FragCoord.xy / facet_resolution;

@@ -17,9 +17,12 @@ cbuffer FacetScene : register(b0)
     FacetLight facet_lights[FACET_MAX_LIGHTS];
 };
 
-// How much of light i reaches p along l over distance d: 1 unlit by shadows,
-// 0 in shadow. Defined by the code that includes this shader.
-float facet_visibility(float3 p, float3 l, float d, int i);
+// How much of light `light` (its index in facet_lights) reaches p along l over
+// distance d: 1 unlit by shadows, 0 in shadow. Defined by the code that includes
+// this shader: the standalone main's returns 1 (an engine's shadow lookup goes
+// there), the G-buffer shading pass (renderers/harness/gbuffer_shade.hlsl) reads
+// the light's visibility from the G-buffer by its index.
+float facet_visibility(float3 p, float3 l, float d, int light);
 
 // MODELS.md: L = m_a ⊗ A + Σ att(d) · spot · C ⊗ (k_d ⊗ ρ_d + k_s ⊗ ρ_s) + m_e
 float3 facet_shade(float3 p, float3 n, float3 v, float3 t)

@@ -25,7 +25,7 @@ float4 main(FACET_LOCATION(0) float3 facet_position : TEXCOORD0,  // world space
 }
 
 // This standalone shader casts no shadows; an engine puts its shadow lookup here.
-float facet_visibility(float3 p, float3 l, float d, int i)
+float facet_visibility(float3 p, float3 l, float d, int light)
 {
     return 1.0;
 }

@@ -14,6 +14,8 @@
 #include <cstring>
 #include <filesystem>
 #include <iostream>
+#include <regex>
+#include <tuple>
 
 #include <fmt/format.h>
 
@@ -21,6 +23,7 @@
 #include "analysis/validate.h"
 #include "core/io.h"
 #include "reference/raycaster.h"
+#include "renderers/process.h"
 #include "scene/scene.h"
 
 namespace fs = std::filesystem;
@@ -74,6 +77,64 @@ Args parse(int argc, char** argv) {
   return a;
 }
 
+using Uniforms = std::vector<std::pair<std::string, std::vector<double>>>;
+
+// facet's HLSL, drawn: the HLSL path's SPIR-V back to GLSL 3.30 by spirv-cross, the
+// cbuffer as one plain uniform struct whose members the frame's uniforms then name.
+ShaderDraw hlsl_as_glsl(const std::string& name, const SpirvCount& c, const Uniforms& uniforms, const Args& a) {
+  ShaderDraw d{name + " (HLSL)", "", {}};
+  const std::string glsl = a.workdir + "/" + name + "_hlsl_as.frag";
+  ProcessResult r = run_process({"spirv-cross", "--version", "330", "--no-es", "--glsl-emit-ubo-as-plain-uniforms",
+                                 c.module, "--output", glsl});
+  if (r.exit_code != 0) {
+    d.fragment_source = "spirv-cross failed: " + r.output;  // fails to compile, and says why
+    return d;
+  }
+  d.fragment_source = read_file(glsl);
+  std::smatch instance;
+  std::regex_search(d.fragment_source, instance, std::regex(R"(uniform FacetCostFrame (\w+);)"));
+  for (const auto& [uniform, values] : uniforms) d.uniforms.push_back({instance[1].str() + "." + uniform, values});
+  return d;
+}
+
+// The HLSL frame computes gl_FragCoord's y from SV_Position's, which runs down; drawn by GL,
+// whose gl_FragCoord runs up, the image comes out upside down: its rows are put back.
+void flip_rows(RenderOutcome& r) {
+  Image& im = r.image;
+  for (int y = 0; y < im.height / 2; ++y)
+    for (int x = 0; x < im.width; ++x) {
+      std::swap_ranges(im.at(x, y), im.at(x, y) + 3, im.at(x, im.height - 1 - y));
+      if (!r.alpha.empty())
+        std::swap(r.alpha[size_t(y) * im.width + x], r.alpha[size_t(im.height - 1 - y) * im.width + x]);
+    }
+}
+
+// The HLSL path of every model: facet's and the hand counts, and facet's HLSL drawn.
+struct HlslPath {
+  int frame = 0;
+  std::vector<PathCount> counts;
+  std::vector<RenderOutcome> images;
+};
+
+HlslPath hlsl_path(const std::vector<Material>& models, const Args& a, const Uniforms& uniforms, GlRenderer& gl,
+                   std::vector<std::string>& problems) {
+  HlslPath out;
+  const std::string common = read_file(a.hand + "/hlsl/common.hlsl");
+  out.frame = hlsl_spirv_instructions(hlsl_cost_frame_source(common + R"(
+float3 facet_reflect(float3 n, float3 l, float3 v, float3 t) { return n + l + v; }
+)"),
+                                      a.workdir, "frame_hlsl")
+                  .instructions;
+  std::vector<ShaderDraw> draws;
+  for (const auto& m : models) {
+    out.counts.push_back(hlsl_counts(m, a, common, problems));
+    draws.push_back(hlsl_as_glsl(m.name, out.counts.back().facet, uniforms, a));
+  }
+  out.images = gl.draw(draws, a.size, a.size);
+  for (auto& image : out.images) flip_rows(image);
+  return out;
+}
+
 std::string verdict(const ComparisonRow& r) {
   if (!r.error.empty()) return "error";
   return fmt::format("{} {:.1e}", r.pass ? "ok" : "FAIL", r.metrics.max_abs);
@@ -93,13 +154,6 @@ vec3 facet_reflect(vec3 n, vec3 l, vec3 v, vec3 t) { return n + l + v; }
                                        a.workdir, "frame")
                         .instructions;
 
-  const std::string hlsl_common = read_file(a.hand + "/hlsl/common.hlsl");
-  const int hlsl_frame = hlsl_spirv_instructions(hlsl_cost_frame_source(hlsl_common + R"(
-float3 facet_reflect(float3 n, float3 l, float3 v, float3 t) { return n + l + v; }
-)"),
-                                                 a.workdir, "frame_hlsl")
-                             .instructions;
-
   std::vector<Material> models = model_materials();
   std::vector<ShaderDraw> draws;  // facet's, then the hand version, per model
   std::vector<std::string> problems;
@@ -112,14 +166,16 @@ float3 facet_reflect(float3 n, float3 l, float3 v, float3 t) { return n + l + v;
   }
   GlRenderer gl;
   std::vector<RenderOutcome> images = gl.draw(draws, a.size, a.size);
+  HlslPath hlsl = hlsl_path(models, a, uniforms, gl, problems);
+  const int hlsl_frame = hlsl.frame;
   std::vector<CallgrindCount> counts;
   if (a.callgrind) counts = callgrind_draws(draws, a.size, a.size, CostOptions{}, a.workdir + "/callgrind");
 
   fmt::print("SPIR-V instructions after spirv-opt -O, in the cost frame ({} of them alone; the HLSL frame {}); renders "
              "against the C++ reference at {}×{} (max |Δ|)\n",
              frame, hlsl_frame, a.size, a.size);
-  fmt::print("{:<18} {:>6} {:>6} {:>6}  {:>10} {:>10}  {:>6} {:>6} {:>6}  {:<12} {:<12}{}\n", "model", "facet", "hand",
-             "ratio", "facet BRDF", "hand BRDF", "HLSL", "hand", "ratio", "facet", "hand",
+  fmt::print("{:<18} {:>6} {:>6} {:>6}  {:>10} {:>10}  {:>6} {:>6} {:>6}  {:<12} {:<12} {:<12}{}\n", "model", "facet",
+             "hand", "ratio", "facet BRDF", "hand BRDF", "HLSL", "hand", "ratio", "facet", "hand", "facet HLSL",
              a.callgrind ? "  llvmpipe instr/px facet, hand, ratio" : "");
   double worst = 0, worst_hlsl = 0;
   ValidateOptions tolerance;
@@ -132,19 +188,20 @@ float3 facet_reflect(float3 n, float3 l, float3 v, float3 t) { return n + l + v;
       continue;
     }
     Render ref = render_reference(m, scene, a.size, a.size);
-    ComparisonRow rf, rh;
-    for (auto [row, image] : {std::pair{&rf, &images[2 * k]}, std::pair{&rh, &images[2 * k + 1]}}) {
+    ComparisonRow rf, rh, rl;
+    for (auto [row, image, what] : {std::tuple{&rf, &images[2 * k], "facet"}, std::tuple{&rh, &images[2 * k + 1], "hand"},
+                                    std::tuple{&rl, &hlsl.images[k], "facet HLSL"}}) {
       *row = judge(ref, *image, false, tolerance);
       if (!row->error.empty() || !row->pass)
-        problems.push_back(fmt::format("{}: the {} render does not match the reference: {}", m.name,
-                                       row == &rf ? "facet" : "hand", row->error.empty() ? verdict(*row) : row->error));
+        problems.push_back(fmt::format("{}: the {} render does not match the reference: {}", m.name, what,
+                                       row->error.empty() ? verdict(*row) : row->error));
     }
     double ratio = double(f.instructions) / h.instructions;
     worst = std::max(worst, ratio);
     if (ratio > kMaxRatio)
       problems.push_back(fmt::format("{}: facet's {} instructions are {:.3f} × the hand version's {}", m.name,
                                      f.instructions, ratio, h.instructions));
-    PathCount hl = hlsl_counts(m, a, hlsl_common, problems);
+    const PathCount& hl = hlsl.counts[k];
     const bool hlsl_ok = hl.facet.error.empty() && hl.hand.error.empty() && hl.hand.instructions > 0;
     if (hlsl_ok) worst_hlsl = std::max(worst_hlsl, hl.ratio());
     if (hlsl_ok && hl.ratio() > kMaxRatio)
@@ -157,10 +214,10 @@ float3 facet_reflect(float3 n, float3 l, float3 v, float3 t) { return n + l + v;
                     ? fmt::format("  {:8.1f} {:8.1f} {:6.3f}", cf.per_pixel, ch.per_pixel, cf.per_pixel / ch.per_pixel)
                     : "  callgrind failed: " + (cf.error.empty() ? ch.error : cf.error).substr(0, 80);
     }
-    fmt::print("{:<18} {:>6} {:>6} {:>6.3f}  {:>10} {:>10}  {:>6} {:>6} {:>6}  {:<12} {:<12}{}\n", m.name,
+    fmt::print("{:<18} {:>6} {:>6} {:>6.3f}  {:>10} {:>10}  {:>6} {:>6} {:>6}  {:<12} {:<12} {:<12}{}\n", m.name,
                f.instructions, h.instructions, ratio, f.instructions - frame, h.instructions - frame,
                hl.facet.instructions, hl.hand.instructions, hlsl_ok ? fmt::format("{:.3f}", hl.ratio()) : "error",
-               verdict(rf), verdict(rh), dynamic);
+               verdict(rf), verdict(rh), verdict(rl), dynamic);
   }
   fmt::print("worst ratio {:.3f}, HLSL {:.3f} (limit {:.2f})\n", worst, worst_hlsl, kMaxRatio);
   for (const auto& p : problems) fmt::print("problem: {}\n", p);

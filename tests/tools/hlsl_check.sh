@@ -2,7 +2,8 @@
 # Generates a material for HLSL, the whole pixel shader and the --library, and runs
 # glslang's HLSL front end on each (glslangValidator -D -V -S frag -e main: HLSL to
 # SPIR-V, validated); the library under a small pixel-shader main that calls
-# facet_reflect (and facet_sample_textures, for a textured material). glslang accepts
+# facet_reflect (and facet_sample_textures, for a textured material); the pixel shader
+# also with -DFACET_SPIRV -DFACET_VERTEX_TANGENT. glslang accepts
 # GLSL's one-number float3(x), which fxc and dxc refuse: a grep refuses it here.
 #   hlsl_check.sh FACET MATERIAL OUTDIR [SED]
 # SED (tests only, hlsl_self_test.sh): an edit applied to the generated files first.
@@ -22,6 +23,8 @@ check() {  # check FILE.hlsl
 
 "$facet" generate "$material" --target hlsl -o "$out/$name.hlsl"
 check "$out/$name.hlsl"
+# The main's other branch: the vertex tangent, and each input at the glsl450 shader's location.
+glslangValidator -D -V -S frag -e main -DFACET_SPIRV -DFACET_VERTEX_TANGENT "$out/$name.hlsl" -o "$out/$name.vk.spv"
 "$facet" generate "$material" --target hlsl --library -o "$out/$name.lib.hlsl"
 {
   cat "$out/$name.lib.hlsl"

@@ -306,9 +306,9 @@ TEST(Cli, RenderWithEveryRenderer) {
     EXPECT_NE(r.output.find(name + " vs reference, ggx_plastic: "), std::string::npos) << name << ": " << r.output;
     EXPECT_NE(r.output.find(" 0 of "), std::string::npos) << name << ": " << r.output;
   }
-  ProcessResult r = facet({"render", (kSource / "examples/materials/ggx.json").string(), "-r", "vulkan"});
+  ProcessResult r = facet({"render", (kSource / "examples/materials/ggx.json").string(), "-r", "nosuch"});
   EXPECT_NE(r.exit_code, 0);
-  EXPECT_NE(r.output.find("vulkan"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("nosuch"), std::string::npos) << r.output;
 }
 
 // A renderer that cannot run says why, and `facet render` fails.
@@ -321,9 +321,9 @@ TEST(Cli, RenderWithARendererThatCannotRunSaysWhy) {
 }
 
 TEST(Cli, UnknownTargetIsAUsageError) {
-  ProcessResult r = facet({"generate", (kSource / "examples/materials/lambert.json").string(), "--target", "hlsl"});
+  ProcessResult r = facet({"generate", (kSource / "examples/materials/lambert.json").string(), "--target", "metal"});
   EXPECT_NE(r.exit_code, 0);
-  EXPECT_NE(r.output.find("hlsl"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("metal"), std::string::npos) << r.output;
 }
 
 TEST(Cli, PublishedSchemaIsTheGeneratedOne) {

@@ -16,6 +16,7 @@
 #include "reference/raycaster.h"
 #include "scene/shapes.h"
 #include "renderers/compare.h"
+#include "renderers/hlsl_shading.h"
 #include "renderers/opengl.h"
 #include "renderers/renderer.h"
 #include "renderers/sweep.h"
@@ -126,6 +127,32 @@ TEST(Detection, GlslMissingPiFails) {
   f.job.code_override = inject(GlRenderer::fragment_source(f.material), "return PI / 4.0 * D * G * F", "return 1.0 / 4.0 * D * G * F");
   ComparisonRow bad = judged(f, gl.render(f.job));
   EXPECT_FALSE(bad.pass) << "max |Δ|/max(1,|ref|) " << bad.metrics.max_excess;
+}
+
+// The Vulkan renderers (glsl450 and HLSL as SPIR-V over the G-buffer): the generated
+// shading pass passes, an exponent off by one and a missing π in it fail.
+TEST(Detection, VulkanExponentOffByOneAndMissingPiFail) {
+  for (const std::string name : {"vulkan", "vulkan-hlsl"}) {
+    std::unique_ptr<Renderer> vulkan = make_renderer(name);
+    ASSERT_EQ(vulkan->unavailable(), "");
+    auto source = [&](const Material& m) {
+      return name == "vulkan" ? glsl_gbuffer_shading_source(m, Target::Glsl450) : hlsl_shading_source(m);
+    };
+    Fixture bp = fixture("blinn_phong", name);
+    std::string good = source(bp.material);
+    bp.job.code_override = good;
+    EXPECT_TRUE(judged(bp, vulkan->render({bp.job}).at(0)).pass) << name;
+    bp.job.code_override = inject(good, "pow(max(NoH, 0.0), n)", "pow(max(NoH, 0.0), n + 1.0)");
+    ComparisonRow off = judged(bp, vulkan->render({bp.job}).at(0));
+    EXPECT_FALSE(off.pass) << name << ", exponent off by one: max |Δ|/max(1,|ref|) " << off.metrics.max_excess;
+    EXPECT_GT(off.metrics.over, 0u) << name;
+    Fixture ct = fixture("cook_torrance", name);
+    ct.job.code_override = inject(source(ct.material), "return PI / 4.0 * D * G * F", "return 1.0 / 4.0 * D * G * F");
+    ComparisonRow pi = judged(ct, vulkan->render({ct.job}).at(0));
+    EXPECT_FALSE(pi.pass) << name << ", missing π: max |Δ|/max(1,|ref|) " << pi.metrics.max_excess;
+    std::cout << name << ": exponent off by one " << off.metrics.max_excess << ", missing π " << pi.metrics.max_excess
+              << "\n";
+  }
 }
 
 // The wgpu renderer (the generated WGSL shading the GL ray caster's G-buffer): the
@@ -522,18 +549,43 @@ const int kSweepGrid = 256;
 
 Material sweep_material() { return load_material((kSource / "examples/materials/lambert.json").string()); }
 
+// The same fault in GLSL 3.30 on OpenGL and in GLSL 4.50 on Vulkan.
 TEST(SweepDetection, GlslFaultAtTheHorizonIsCounted) {
-  std::unique_ptr<Renderer> gl = make_renderer("glsl");
-  ASSERT_EQ(gl->unavailable(), "");
+  for (auto [name, dialect] : {std::pair{"glsl", Target::Glsl}, std::pair{"vulkan", Target::Glsl450}}) {
+    std::unique_ptr<Renderer> r = make_renderer(name);
+    ASSERT_EQ(r->unavailable(), "");
+    Material m = sweep_material();
+    SweepCount good = r->sweep({{m, ""}}, {kSweepGrid, 0, ""}).at(0);
+    EXPECT_TRUE(good.ok()) << name << ": " << good.error;
+    std::string bad = inject(glsl_sweep_source(m, dialect), "facet_color = vec4(facet_reflect(n, l, v, facet_tangent(n)), 1.0);",
+                             "facet_color = vec4(facet_reflect(n, l, v, facet_tangent(n)), 1.0);\n"
+                             "    float z = dot(n, l);\n"
+                             "    if (z == 0.0) facet_color.r = -1.0;\n"
+                             "    facet_color.g += z / z - 1.0;  // NaN at z = 0\n");
+    SweepCount c = r->sweep({{m, bad}}, {kSweepGrid, 0, ""}).at(0);
+    ASSERT_TRUE(c.error.empty()) << name << ": " << c.error;
+    size_t expected = horizon_cells(kSweepGrid);
+    ASSERT_GT(expected, 0u);
+    EXPECT_EQ(c.samples, size_t(kSweepGrid) * kSweepGrid) << name;
+    EXPECT_EQ(c.negative, expected) << name;
+    EXPECT_EQ(c.nan, expected) << name;
+  }
+}
+
+// HLSL's sweep (a pixel shader) on Vulkan, the same fault.
+TEST(SweepDetection, HlslFaultAtTheHorizonIsCounted) {
+  std::unique_ptr<Renderer> r = make_renderer("vulkan-hlsl");
+  ASSERT_EQ(r->unavailable(), "");
   Material m = sweep_material();
-  SweepCount good = gl->sweep({{m, ""}}, {kSweepGrid, 0, ""}).at(0);
+  SweepCount good = r->sweep({{m, ""}}, {kSweepGrid, 0, ""}).at(0);
   EXPECT_TRUE(good.ok()) << good.error;
-  std::string bad = inject(glsl_sweep_source(m), "facet_color = vec4(facet_reflect(n, l, v, facet_tangent(n)), 1.0);",
-                           "facet_color = vec4(facet_reflect(n, l, v, facet_tangent(n)), 1.0);\n"
+  std::string bad = inject(hlsl_sweep_source(m), "return float4(facet_reflect(n, l, v, facet_tangent(n)), 1.0);",
+                           "float4 c = float4(facet_reflect(n, l, v, facet_tangent(n)), 1.0);\n"
                            "    float z = dot(n, l);\n"
-                           "    if (z == 0.0) facet_color.r = -1.0;\n"
-                           "    facet_color.g += z / z - 1.0;  // NaN at z = 0\n");
-  SweepCount c = gl->sweep({{m, bad}}, {kSweepGrid, 0, ""}).at(0);
+                           "    if (z == 0.0) c.r = -1.0;\n"
+                           "    c.g += z / z - 1.0;  // NaN at z = 0\n"
+                           "    return c;");
+  SweepCount c = r->sweep({{m, bad}}, {kSweepGrid, 0, ""}).at(0);
   ASSERT_TRUE(c.error.empty()) << c.error;
   size_t expected = horizon_cells(kSweepGrid);
   ASSERT_GT(expected, 0u);

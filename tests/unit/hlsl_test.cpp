@@ -1,4 +1,4 @@
-// The HLSL shading pass over the G-buffer (renderers/hlsl_shading.h): for every example,
+// The HLSL shading pass over the G-buffer (renderers/hlsl_shading.h) and the HLSL sweep: for every example,
 // textured ones included, it compiles with glslang's HLSL front end to SPIR-V, its seven
 // G-buffer images at set 1, bindings 0–6, the scene's cbuffer at set 0, binding 0 and the
 // material's textures at set 0, bindings 1, 2, …; and the compile fails on a broken pass.
@@ -13,6 +13,7 @@
 #include "core/io.h"
 #include "renderers/hlsl_shading.h"
 #include "renderers/process.h"
+#include "targets/targets.h"
 
 namespace facet {
 namespace {
@@ -63,14 +64,14 @@ TEST(HlslShading, EveryExampleCompilesWithTheContractsBindings) {
     Compiled c = compile_hlsl(hlsl_shading_source(m), name);
     ASSERT_EQ(c.run.exit_code, 0) << path << "\n" << c.run.output;
     auto b = bindings(c.disassembly);
-    // The G-buffer images a material reads: position, normal, view and the visibilities
-    // always; the uv set with textures; the tangent frame with a normal map (glslang drops the others).
+    // The G-buffer images, at the glsl450 pass's bindings: glslang drops the uv set without
+    // textures and the tangent frame without a normal map, the pass reads the others always.
     MaterialProgram p = compile(m);
     std::map<std::string, int> gbuffer = {{"facet_gbuffer_position", 0}, {"facet_gbuffer_normal", 1},
-                                          {"facet_gbuffer_view", 2},     {"facet_gbuffer_lights0", 5},
-                                          {"facet_gbuffer_lights1", 6}};
+                                          {"facet_gbuffer_view", 2},     {"facet_gbuffer_visibility_low", 5},
+                                          {"facet_gbuffer_visibility_high", 6}};
     if (p.has_textures()) gbuffer["facet_gbuffer_uv"] = 4;
-    if (p.normal_mapped()) gbuffer["facet_gbuffer_tangent"] = 3;
+    if (p.normal_mapped()) gbuffer["facet_gbuffer_uv_tangent"] = 3;
     for (const auto& [image, binding] : gbuffer) {
       ASSERT_TRUE(b.count(image)) << name << ": " << image << " not in the SPIR-V";
       EXPECT_EQ(b[image], std::make_pair(1, binding)) << name << ": " << image;
@@ -88,15 +89,26 @@ TEST(HlslShading, EveryExampleCompilesWithTheContractsBindings) {
   EXPECT_GE(compiled, 29);
 }
 
+// The robustness sweep's HLSL (targets.h, hlsl_sweep_source: a pixel shader evaluating the
+// sweep grid) compiles for every example; the grid's functions and facet_reflect are in it.
+TEST(HlslSweep, EveryExampleCompiles) {
+  for (const auto& path : examples()) {
+    const std::string source = hlsl_sweep_source(load_material(path.string()));
+    EXPECT_NE(source.find("sweep_n_x("), std::string::npos) << path;
+    Compiled c = compile_hlsl(source, path.stem().string() + "_sweep");
+    EXPECT_EQ(c.run.exit_code, 0) << path << "\n" << c.run.output;
+  }
+}
+
 // The compile has teeth: the pass without its visibility function, or with GLSL's vec4 in
 // it, is refused.
 TEST(HlslShading, BrokenPassIsRefused) {
   const std::string good = hlsl_shading_source(load_material((kSource / "examples/materials/phong.json").string()));
   ASSERT_EQ(compile_hlsl(good, "phong_good").run.exit_code, 0);
-  std::string glsl = std::regex_replace(good, std::regex(R"(float4 lit = )"), "vec4 lit = ");
+  std::string glsl = std::regex_replace(good, std::regex(R"(float4 four = )"), "vec4 four = ");
   ASSERT_NE(glsl, good);
   EXPECT_NE(compile_hlsl(glsl, "phong_vec4").run.exit_code, 0);
-  const size_t at = good.find("// Light i's visibility");
+  const size_t at = good.find("// Light `light`'s visibility");
   ASSERT_NE(at, std::string::npos);
   EXPECT_NE(compile_hlsl(good.substr(0, at), "phong_no_visibility").run.exit_code, 0);
 }
