@@ -43,11 +43,12 @@ struct Variant {
 };
 
 // The values a numeric parameter takes: even steps over a finite range (a hair
-// inside an open end), else its default d times 1/4 … 4.
+// inside an open end), else — or where the range is float32's, not the model's
+// (docs/float32.md) — its default d times 1/4 … 4.
 std::vector<double> sweep_values(const ParamDef& p, bool coarse) {
   const Range& r = p.range;
   std::vector<double> out;
-  if (std::isfinite(r.min) && std::isfinite(r.max)) {
+  if (std::isfinite(r.min) && std::isfinite(r.max) && !r.float32) {
     std::vector<double> ts = coarse ? std::vector<double>{0, 0.5, 1} : std::vector<double>{0, 0.25, 0.5, 0.75, 1};
     for (double t : ts) {
       if (t == 0 && r.min_open) t = 0.05;

@@ -16,6 +16,13 @@ Value number_value(double v) {
   return x;
 }
 
+Value color_value(double v) {
+  Value x;
+  x.kind = ParamKind::Color;
+  x.rgb = {v, v, v};
+  return x;
+}
+
 // The ends of a parameter's range: the bound itself, a hair inside an open one,
 // 1e4 for an unbounded one.
 double low_end(const Range& r) { return r.min_open ? r.min + std::max(1e-6, std::fabs(r.min) * 1e-6) : r.min; }
@@ -42,28 +49,29 @@ std::vector<Material> extreme_materials() {
   for (const auto& def : catalog()) {
     if (def.section != "diffuse" && def.section != "specular") continue;
     ModelSpec low = default_spec(def), high = default_spec(def);
+    // Numbers at the ends of their ranges; colours (k_d, k_s) at the top of theirs in
+    // both, the largest product a lobe's peak can reach (a colour of 0 hides nothing
+    // the top does not show: 0 · ∞ is NaN only where the top gives ∞).
     for (const auto& p : def.params) {
-      if (p.kind != ParamKind::Number) continue;
-      low.values[p.name] = number_value(low_end(p.range));
-      high.values[p.name] = number_value(high_end(p.range));
+      if (p.kind == ParamKind::Number) {
+        low.values[p.name] = number_value(low_end(p.range));
+        high.values[p.name] = number_value(high_end(p.range));
+      } else if (p.kind == ParamKind::Color) {
+        low.values[p.name] = high.values[p.name] = color_value(high_end(p.range));
+      }
     }
     add(def, "low", low);
     add(def, "high", high);
     if (!def.param("fresnel")) continue;
-    // The Fresnel terms at their ends: f0 = 0 and 1; η below 1 (total internal
-    // reflection), exactly 1 (no reflection) and large.
-    auto color = [](double v) {
-      Value x;
-      x.kind = ParamKind::Color;
-      x.rgb = {v, v, v};
-      return x;
-    };
+    // The Fresnel terms at their ends: f0 = 0 and 1; η at the bottom of its range
+    // (total internal reflection), exactly 1 (no reflection) and the top.
+    const Range& ior = find_model("fresnel", "exact")->param("ior")->range;
     std::vector<std::pair<std::string, ModelSpec>> fresnels = {
-        {"schlick0", fresnel("schlick", {{"f0", color(0)}})},
-        {"schlick1", fresnel("schlick", {{"f0", color(1)}})},
-        {"ior_tiny", fresnel("exact", {{"ior", number_value(1e-3)}})},
+        {"schlick0", fresnel("schlick", {{"f0", color_value(0)}})},
+        {"schlick1", fresnel("schlick", {{"f0", color_value(1)}})},
+        {"ior_tiny", fresnel("exact", {{"ior", number_value(low_end(ior))}})},
         {"ior_one", fresnel("exact", {{"ior", number_value(1)}})},
-        {"ior_huge", fresnel("exact", {{"ior", number_value(1e3)}})}};
+        {"ior_huge", fresnel("exact", {{"ior", number_value(high_end(ior))}})}};
     for (auto& [name, f] : fresnels) {
       ModelSpec s = low;
       Value v;
@@ -76,10 +84,12 @@ std::vector<Material> extreme_materials() {
   }
   // Toon at its ends on a lobe that reaches both 0 and 1.
   const ModelDef& lambert = *find_model("diffuse", "lambert");
+  const ModelDef& toon = *find_model("modifier", "toon");
+  const double top_cutoff = high_end(toon.param("cutoff")->range), top_width = high_end(toon.param("width")->range);
   for (auto [name, cutoff, width] : {std::tuple{"toon_zero", 0.0, 0.0}, std::tuple{"toon_thin", 0.5, 1e-9},
-                                     std::tuple{"toon_wide", 1e4, 1e4}}) {
+                                     std::tuple{"toon_wide", top_cutoff, top_width}}) {
     ModelSpec s = default_spec(lambert);
-    ModelSpec t = default_spec(*find_model("modifier", "toon"));
+    ModelSpec t = default_spec(toon);
     t.values["cutoff"] = number_value(cutoff);
     t.values["width"] = number_value(width);
     Value v;

@@ -64,7 +64,9 @@ std::string ParamDef::allowed() const {
     }
     case ParamKind::Color:
       return "an RGB array [r, g, b] or one number for grey, each " + range.describe() + image;
-    case ParamKind::Vector: return nonzero ? "an array of three numbers, not all zero" : "an array of three numbers";
+    case ParamKind::Vector:
+      return std::string(nonzero ? "an array of three numbers, not all zero" : "an array of three numbers") + ", each " +
+             range.describe();
     case ParamKind::Model: {
       if (!fixed.empty()) {  // the shorthand form (attenuation)
         std::string s;
@@ -82,8 +84,9 @@ std::string ParamDef::allowed() const {
     }
     case ParamKind::String: return "a non-empty string";
     case ParamKind::Points:
-      if (arity == 2) return "an array of [u, v]";
-      return nonzero ? "an array of [x, y, z], none of them zero" : "an array of [x, y, z]";
+      if (arity == 2) return "an array of [u, v], each " + range.describe();
+      return std::string(nonzero ? "an array of [x, y, z], none of them zero" : "an array of [x, y, z]") + ", each " +
+             range.describe();
     case ParamKind::Triangles: return "an array of [a, b, c], indices of distinct vertices";
     case ParamKind::Index: return by_name ? "an index (a whole number ≥ 0) or a name" : "an index (a whole number ≥ 0)";
     case ParamKind::Object: {

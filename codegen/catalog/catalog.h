@@ -27,11 +27,44 @@ namespace facet {
 // ε of MODELS.md: the one tolerance every target uses (see catalog/README in the docs).
 inline constexpr double kEpsilon = 1e-4;
 
+// ---- What float32 targets can hold (docs/float32.md derives each bound from the
+// formulas): every number a material or scene file carries into GLSL, OSL or
+// POV-Ray code is bounded so that every target evaluates it without overflow.
+// Colours: k_d, k_s, m_a, m_e, a light's C, the scene's A (and texture factors).
+// With every factor of L = m_a A + Σ att spot C (k_d ρ_d + k_s ρ_s) + m_e at most
+// 1e4 and each ρ below 1e15 (n·v ≥ 1e-7), L stays below 1e24 a light: 14 orders
+// of magnitude inside float32's 3.4e38.
+inline constexpr double kColorMax = 1e4;
+// Exponents x^n of a cosine (phong, blinn_phong, heidrich_seidel n, minnaert k, a
+// spot's exponent; gaussian m): a float32 cosine may round up to 1 + 4 ulp
+// (1 + 4.8e-7), and (1 + 4.8e-7)^1e6 = e^0.48 = 1.6; Schlick's x / (n − n x + x)
+// keeps a denominator ≥ 0.52. At 1e9 the power is e^480, past float32.
+inline constexpr double kExponentMax = 1e6;
+// Roughness (m, α, α_x, α_y): the smallest non-zero tan²θ_h a float32 half vector
+// reaches is 2^-23 ≈ 1.2e-7, and exp(−1.2e-7 / m²) underflows (below e^-87.3) for
+// m < 3.7e-5: there the lobe is one half vector, only its peak 1/(π m²) grows. The
+// bound is 1e-3, where a textured roughness was already clamped (kTextureOpenMargin),
+// so that a constant and an image share it; the peak is then at most 3.2e5.
+inline constexpr double kRoughnessMin = 1e-3;
+// Every other unbounded number (σ, roughness, η, toon's cutoff and width, the
+// attenuation coefficients): beyond 1e4 its squares stay below 1e8 and the
+// formulas have reached their limits to float32 precision (σ²/(σ² + 0.57) rounds
+// to 1 beyond σ ≈ 3.1e3).
+inline constexpr double kScalarMax = 1e4;
+// Scene coordinates (positions, look_at, centres, mesh vertices, texture coordinates,
+// a sphere's radius, a square's size; directions too, which C++ normalizes): with
+// |x| ≤ 1e6 the ray caster's |o − c|², b² − 4ac and d² stay below 1e26, and a point
+// light's c₃ d² below 1e17.
+inline constexpr double kCoordinateMax = 1e6;
+
 struct Range {
   double min = -std::numeric_limits<double>::infinity();
   double max = std::numeric_limits<double>::infinity();
   bool min_open = false;
   bool max_open = false;
+  // A bound set for float32 (the helpers below), not by the model: analyses that step
+  // over a model's own range (facet physics) step around the default instead.
+  bool float32 = false;
   bool contains(double v) const;
   std::string describe() const;  // "> 0", "in [0, 1]", "any"
   static Range positive() { return {0, std::numeric_limits<double>::infinity(), true, false}; }
@@ -40,6 +73,15 @@ struct Range {
   static Range closed(double a, double b) { return {a, b, false, false}; }
   static Range left_open(double a, double b) { return {a, b, true, false}; }
   static Range open(double a, double b) { return {a, b, true, true}; }
+  // The float32 bounds above as ranges.
+  static Range color() { return {0, kColorMax, false, false, true}; }                    // [0, 1e4]
+  static Range exponent(double lo) { return {lo, kExponentMax, false, false, true}; }       // [lo, 1e6]
+  static Range positive_exponent() { return {0, kExponentMax, true, false, true}; }         // (0, 1e6]
+  static Range roughness() { return {kRoughnessMin, kScalarMax, false, false, true}; }      // [1e-3, 1e4]
+  static Range scalar() { return {0, kScalarMax, false, false, true}; }                     // [0, 1e4]
+  static Range positive_scalar() { return {0, kScalarMax, true, false, true}; }             // (0, 1e4]
+  static Range coordinate() { return {-kCoordinateMax, kCoordinateMax, false, false, true}; }  // [-1e6, 1e6]
+  static Range positive_coordinate() { return {0, kCoordinateMax, true, false, true}; }     // (0, 1e6]
 };
 
 enum class ParamKind {

@@ -43,6 +43,7 @@ inline ParamDef list(std::string name, std::string doc, ParamKind kind, bool non
   p.doc = std::move(doc);
   p.required = true;
   p.nonzero = nonzero;
+  if (kind == ParamKind::Points) p.range = Range::coordinate();
   p.fallback.kind = kind;
   return p;
 }
@@ -100,6 +101,7 @@ inline ParamDef vector(std::string name, std::string doc, std::array<double, 3> 
   p.name = std::move(name);
   p.kind = ParamKind::Vector;
   p.doc = std::move(doc);
+  p.range = Range::coordinate();
   p.required = required;
   p.fallback.kind = ParamKind::Vector;
   p.fallback.rgb = fallback;
@@ -164,7 +166,7 @@ inline void add_lobe_params(ModelDef& m) {
   const bool diffuse = m.section == "diffuse";
   m.params.insert(m.params.begin(),
                   color("color", diffuse ? "k_d, the diffuse colour" : "k_s, the specular colour",
-                        Range::non_negative(), {1, 1, 1}));
+                        Range::color(), {1, 1, 1}));
   m.params.push_back(object("toon", "Toon modifier: ρ' = smoothstep(cutoff − width/2, cutoff + width/2, ρ)",
                             "modifier", "toon"));
   m.params.front().every_lobe = m.params.back().every_lobe = true;

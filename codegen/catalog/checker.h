@@ -94,7 +94,7 @@ class Checker {
     RGB v{};
     bool ok = true;
     for (size_t i = 0; i < 3; ++i) {
-      auto x = number(j[i], index_path(path, i), p.allowed());
+      auto x = ranged(j[i], index_path(path, i), p);
       if (x) v[i] = *x;
       else ok = false;
     }
@@ -133,13 +133,13 @@ class Checker {
       std::array<double, 4> v{};
       bool ok = true;
       for (size_t k = 0; k < arity; ++k) {
-        if (!e[k].is_number() || !std::isfinite(e[k].get<double>())) ok = false;
+        if (!e[k].is_number() || !std::isfinite(e[k].get<double>()) || !p.range.contains(e[k].get<double>())) ok = false;
         else v[k] = e[k].get<double>();
         if (ok && p.kind == ParamKind::Triangles && (!e[k].is_number_integer() || v[k] < 0)) ok = false;
       }
       if (!ok) {
         bad(i, p.kind == ParamKind::Triangles ? "expected three non-negative integers"
-                                              : fmt::format("expected {} finite numbers", counts[arity]));
+                                              : fmt::format("expected {} numbers {}", counts[arity], p.range.describe()));
         continue;
       }
       if (p.kind == ParamKind::Points && p.nonzero && v[0] == 0 && v[1] == 0 && v[2] == 0) {

@@ -38,7 +38,7 @@ void add_diffuse(std::vector<ModelDef>& all) {
     m.formula = "ρ_d = (n·l)^k · max(n·v, ε)^(k−1)";
     m.doc = "A power of Lambert that keeps reciprocity. k = 1 is Lambert; k < 1 brightens the limb, "
             "as the full moon shows; k > 1 darkens it.";
-    m.params = {number("k", "limb exponent; 1 is Lambert, below 1 brightens the limb", Range::positive(), 0.8)};
+    m.params = {number("k", "limb exponent; 1 is Lambert, below 1 brightens the limb", Range::positive_exponent(), 0.8)};
     m.cycles = none("Cycles has no Minnaert closure");
     m.pov = none("POV's brilliance gives (n·l)^k but not the (n·v)^(k−1) factor: function pigment");
     m.blender_nodes = nodes_none("no Blender node has the (n·v)^(k−1) factor");
@@ -80,7 +80,7 @@ void add_diffuse(std::vector<ModelDef>& all) {
     m.doc = "Rough diffuse surfaces made of V-shaped Lambertian facets with slope deviation σ: "
             "back-scattering flattens the look of clay, plaster and the moon. The paper's "
             "qualitative model; q = 0.33, or 0.57 to account for interreflection. σ = 0 is Lambert.";
-    m.params = {number("sigma", "facet slope deviation σ in radians", Range::non_negative(), 0.3),
+    m.params = {number("sigma", "facet slope deviation σ in radians", Range::scalar(), 0.3),
                 flag("interreflection", "use q = 0.57 instead of 0.33 (interreflection)", false)};
     m.cycles = approximate("Cycles' oren_nayar closure is Fujii's improved model (with a multiscatter "
                            "term since 4.3), not the 1994 qualitative model");

@@ -20,7 +20,7 @@ ParamDef material_color(const char* name, const char* doc) {
   p.name = name;
   p.kind = ParamKind::Color;
   p.doc = doc;
-  p.range = Range::non_negative();
+  p.range = Range::color();
   p.fallback.kind = ParamKind::Color;
   return p;
 }
@@ -41,6 +41,7 @@ ParamDef tangent_axis_param() {
   p.fallback.kind = ParamKind::Vector;
   p.fallback.rgb = {0, 1, 0};
   p.nonzero = true;
+  p.range = Range::coordinate();
   return p;
 }
 
@@ -226,7 +227,7 @@ json param_schema(const ParamDef& p) {
       break;
     case ParamKind::Points:
     case ParamKind::Triangles: {
-      json item = {{"type", p.kind == ParamKind::Points ? "number" : "integer"}};
+      json item = p.kind == ParamKind::Points ? number_schema(p.range) : json{{"type", "integer"}};
       if (p.kind == ParamKind::Triangles) item["minimum"] = 0;
       const int n = p.kind == ParamKind::Points ? p.arity : 3;
       s = {{"type", "array"}, {"items", {{"type", "array"}, {"items", item}, {"minItems", n}, {"maxItems", n}}}};
@@ -244,7 +245,7 @@ json param_schema(const ParamDef& p) {
       break;
     }
     case ParamKind::Vector:
-      s = {{"type", "array"}, {"items", {{"type", "number"}}}, {"minItems", 3}, {"maxItems", 3}};
+      s = {{"type", "array"}, {"items", number_schema(p.range)}, {"minItems", 3}, {"maxItems", 3}};
       if (p.nonzero) s["not"] = {{"items", {{"const", 0}}}};
       s["default"] = p.fallback.rgb;
       break;
@@ -270,7 +271,7 @@ json param_schema(const ParamDef& p) {
     // The value itself, or {"texture": …} (catalog/texture.h).
     json def = s.contains("default") ? s["default"] : json();
     s.erase("default");
-    s = {{"anyOf", json::array({s, texture_schema(p.kind == ParamKind::Color)})}};
+    s = {{"anyOf", json::array({s, texture_schema(p.kind == ParamKind::Color, p.range)})}};
     if (!def.is_null()) s["default"] = def;
   }
   s["description"] = p.doc;

@@ -112,7 +112,7 @@ MaterialProgram compile(const Material& m) {
     Value v = material_term(m, ambient);
     if (v.texture)
       p.textured.push_back({ambient ? kAmbientInput : kEmissionInput, ambient ? "ambient" : "emission", ir::Type::Color,
-                            v, Range::non_negative()});
+                            v, Range::color()});
   }
   return p;
 }

@@ -78,7 +78,7 @@ void add_specular(std::vector<ModelDef>& all) {
     m.formula = "ρ_s = [r·v]^n, r = 2(n·l)n − l";
     m.doc = "The classic highlight: a cosine lobe of exponent n around the mirror direction. Not "
             "energy-conserving and not reciprocal, but cheap and familiar.";
-    m.params = {number("n", "exponent; larger is a tighter highlight", Range::at_least(1), 32),
+    m.params = {number("n", "exponent; larger is a tighter highlight", Range::exponent(1), 32),
                 approximation_param()};
     m.cycles = none("Cycles registers no phong closure (phong_ramp is a different, ramped lobe)");
     m.pov = exact("finish { phong k_s phong_size n } for a grey k_s without approximation or toon");
@@ -107,7 +107,7 @@ void add_specular(std::vector<ModelDef>& all) {
     m.formula = "ρ_s = [n·h]^n, h = normalize(l + v)";
     m.doc = "Phong's lobe measured around the normal with the half vector: the fixed-function "
             "OpenGL highlight. For the same look as Phong, use about four times the exponent.";
-    m.params = {number("n", "exponent; larger is a tighter highlight", Range::at_least(1), 64),
+    m.params = {number("n", "exponent; larger is a tighter highlight", Range::exponent(1), 64),
                 approximation_param()};
     m.cycles = none("Cycles has no Blinn–Phong closure");
     m.pov = exact("finish { specular k_s roughness 1/n } for a grey k_s without approximation or toon");
@@ -130,7 +130,7 @@ void add_specular(std::vector<ModelDef>& all) {
     m.citation = "Gaussian highlight, after Torrance & Sparrow 1967";
     m.formula = "ρ_s = exp(−m · acos([n·h])²)";
     m.doc = "A Gaussian in the angle between the normal and the half vector; larger m, tighter lobe.";
-    m.params = {number("m", "sharpness; larger is a tighter lobe", Range::positive(), 50)};
+    m.params = {number("m", "sharpness; larger is a tighter lobe", Range::positive_exponent(), 50)};
     m.cycles = none("Cycles has no Gaussian-lobe closure");
     m.pov = none("function pigment");
     m.blender_nodes = nodes_none("no Blender node has a Gaussian lobe in the half-angle");
@@ -150,7 +150,7 @@ void add_specular(std::vector<ModelDef>& all) {
     m.formula = "ρ_s = [√(1−(l·t)²)·√(1−(v·t)²) − (l·t)(v·t)]^n";
     m.doc = "Phong's lobe for fibres along the tangent t: brushed metal, hair, satin. The highlight is "
             "a band across the brushing direction.";
-    m.params = {number("n", "exponent; larger is a thinner band", Range::at_least(1), 32)};
+    m.params = {number("n", "exponent; larger is a thinner band", Range::exponent(1), 32)};
     m.cycles = none("Cycles has no such closure");
     m.pov = none("function pigment (POV-Ray has no tangent; facet builds it from the analytic normal)");
     m.blender_nodes = nodes_none("no Blender node has this tangent-only lobe");
@@ -171,7 +171,7 @@ void add_specular(std::vector<ModelDef>& all) {
     m.formula = "ρ_s = π D G F / (4 n·v), D = exp(−tan²θ_h/m²)/(π m² cos⁴θ_h); G = 1 and F = 1 by default";
     m.doc = "The Beckmann microfacet distribution alone; add `geometry` and `fresnel` to make it "
             "Cook–Torrance. m is the RMS slope of the facets.";
-    m.params = {number("m", "RMS facet slope", Range::positive(), 0.3), geometry_param("none"),
+    m.params = {number("m", "RMS facet slope", Range::roughness(), 0.3), geometry_param("none"),
                 model("fresnel", "Fresnel term F", "fresnel", "none")};
     m.cycles = approximate("microfacet(\"beckmann\", …) uses Smith G and no Fresnel");
     m.pov = none(kMicrofacetPov);
@@ -197,7 +197,7 @@ void add_specular(std::vector<ModelDef>& all) {
     m.formula = "ρ_s = π D G F / (4 n·v), Beckmann D, V-cavity G, exact Fresnel (η = 1.5)";
     m.doc = "The first physically based model in graphics: Beckmann facets that mask and shadow each "
             "other (V-cavities) and reflect by Fresnel's law, so highlights brighten at grazing angles.";
-    m.params = {number("m", "RMS facet slope", Range::positive(), 0.3), geometry_param("v_cavity"),
+    m.params = {number("m", "RMS facet slope", Range::roughness(), 0.3), geometry_param("v_cavity"),
                 model("fresnel", "Fresnel term F", "fresnel", "exact", {{"ior", number_value(1.5)}})};
     m.cycles = approximate("microfacet(\"beckmann\", …) with F multiplied in; Cycles' G is Smith, not V-cavity");
     m.pov = none(kMicrofacetPov);
@@ -225,7 +225,7 @@ void add_specular(std::vector<ModelDef>& all) {
     m.formula = "ρ_s = π D G F / (4 n·v), D = α²/(π((n·h)²(α²−1)+1)²), separable Smith G, Schlick F (f0 = 0.04)";
     m.doc = "The long-tailed distribution of real materials and of glTF's metallic–roughness model "
             "(α = roughness²).";
-    m.params = {number("alpha", "roughness α", Range::positive(), 0.2), geometry_param("smith_ggx"),
+    m.params = {number("alpha", "roughness α", Range::roughness(), 0.2), geometry_param("smith_ggx"),
                 model("fresnel", "Fresnel term F", "fresnel", "schlick", {{"f0", color_value(0.04)}})};
     m.cycles = approximate("microfacet(\"ggx\", …) uses height-correlated Smith G and no Fresnel");
     m.pov = none(kMicrofacetPov);
@@ -286,8 +286,8 @@ void add_specular(std::vector<ModelDef>& all) {
     m.doc = nvidia ? "The survey's rewriting of Ward's exponent; close to ward for small α, not equal."
                    : "An elliptical Gaussian of slopes with widths αx along the tangent and αy across it: "
                      "brushed metal. Fitted to measurements; αx = αy gives the isotropic model.";
-    m.params = {number("alpha_x", "slope deviation along the tangent t", Range::positive(), 0.1),
-                number("alpha_y", "slope deviation along the bitangent b = n × t", Range::positive(), 0.3)};
+    m.params = {number("alpha_x", "slope deviation along the tangent t", Range::roughness(), 0.1),
+                number("alpha_y", "slope deviation along the bitangent b = n × t", Range::roughness(), 0.3)};
     m.cycles = approximate("microfacet(\"beckmann\", N, T, αx, αy, …): the same exponent, other normalization");
     m.pov = none("function pigment (POV-Ray has no tangent; facet builds it from the analytic normal)");
     m.blender_nodes = nodes_none(

@@ -7,6 +7,12 @@
 namespace facet::catalog_detail {
 
 namespace {
+// η in [1e-3, 1e4] (docs/float32.md): at normal incidence the exact Fresnel term's
+// c(g + c) − 1 and c(g − c) + 1 both cancel to about η, which float32 computes from
+// numbers near 1 to one ulp (1.2e-7): η ≥ 1e-3 keeps their ratio to 1e-4; below
+// 1.1e-19, η² flushes to 0 and the ratio is 0/0.
+const Range kIorRange = {1e-3, kScalarMax, false, false, true};
+
 ModelDef entry(std::string section, std::string name, std::string title, std::string citation,
                std::string formula, std::string doc) {
   ModelDef m;
@@ -37,7 +43,7 @@ void add_terms(std::vector<ModelDef>& all) {
                    "Cook & Torrance 1982, after Fresnel", "g = √(η² + c² − 1), F = ½ (g−c)²/(g+c)² (1 + ((c(g+c)−1)/(c(g−c)+1))²), c = v·h",
                    "Unpolarized reflectance of a dielectric of relative index η; F = 1 under total internal "
                    "reflection (η² + c² − 1 < 0).");
-    m.params = {number("ior", "relative index of refraction η", Range::positive(), 1.5)};
+    m.params = {number("ior", "relative index of refraction η", kIorRange, 1.5)};
     all.push_back(m);
   }
   // Geometry
@@ -61,8 +67,8 @@ void add_terms(std::vector<ModelDef>& all) {
     auto m = entry("modifier", "toon", "Toon", "Lake et al. 2000, \"Stylized Rendering Techniques for Scalable Real-Time 3D Animation\"",
                    "ρ' = smoothstep(cutoff − width/2, cutoff + width/2, ρ); width 0: ρ' = [ρ ≥ cutoff]",
                    "Quantizes a lobe into flat bands, as in cartoons. Any diffuse or specular lobe takes it.");
-    m.params = {number("cutoff", "the value of ρ where the band changes", Range::non_negative(), 0.5),
-                number("width", "width of the smooth transition; 0 is a hard step", Range::non_negative(), 0, false)};
+    m.params = {number("cutoff", "the value of ρ where the band changes", Range::scalar(), 0.5),
+                number("width", "width of the smooth transition; 0 is a hard step", Range::scalar(), 0, false)};
     m.cycles = approximate("diffuse_toon / glossy_toon step on angles, not on ρ");
     m.pov = none("function pigment");
     m.blender_nodes = nodes_approximate(
@@ -99,7 +105,7 @@ void add_lights(std::vector<ModelDef>& all) {
     auto m = entry("light", "point", "Point light", "", "l = normalize(p_light − p), d = |p_light − p|",
                    "Light from a point, attenuated by the light's attenuation law.");
     m.params = {vector("position", "world position", {0, 0, 0}, true),
-                color("color", "colour C", Range::non_negative(), {1, 1, 1}), attenuation_param()};
+                color("color", "colour C", Range::color(), {1, 1, 1}), attenuation_param()};
     m.light_type = LightType::Point;
     all.push_back(m);
   }
@@ -107,7 +113,7 @@ void add_lights(std::vector<ModelDef>& all) {
     auto m = entry("light", "directional", "Directional light", "", "l = −normalize(direction)",
                    "Light from infinitely far away; never attenuated.");
     m.params = {vector("direction", "the way the light travels", {0, -1, 0}, true, true),
-                color("color", "colour C", Range::non_negative(), {1, 1, 1})};
+                color("color", "colour C", Range::color(), {1, 1, 1})};
     m.light_type = LightType::Directional;
     all.push_back(m);
   }
@@ -118,8 +124,8 @@ void add_lights(std::vector<ModelDef>& all) {
     m.params = {vector("position", "world position", {0, 0, 0}, true),
                 vector("direction", "the axis of the cone", {0, -1, 0}, true, true),
                 number("cutoff", "half-angle of the cone in degrees", Range::open(0, 90), 30),
-                number("exponent", "concentration towards the axis", Range::non_negative(), 0, false),
-                color("color", "colour C", Range::non_negative(), {1, 1, 1}), attenuation_param()};
+                number("exponent", "concentration towards the axis", Range::exponent(0), 0, false),
+                color("color", "colour C", Range::color(), {1, 1, 1}), attenuation_param()};
     m.pov = exact("spotlight with radius = falloff = cutoff and tightness = exponent");
     m.light_type = LightType::Spot;
     all.push_back(m);
@@ -142,9 +148,9 @@ void add_lights(std::vector<ModelDef>& all) {
                    "att(d) = min(1, 1/(c1 + c2 d + c3 d²))",
                    "Written {\"constant\": c1, \"linear\": c2, \"quadratic\": c3}. OpenGL's and Direct3D's "
                    "fixed-function law is the same polynomial without the min(1, ·); the two agree when c1 ≥ 1.");
-    m.params = {number("constant", "c1", Range::non_negative(), 1, false),
-                number("linear", "c2", Range::non_negative(), 0, false),
-                number("quadratic", "c3", Range::non_negative(), 0, false)};
+    m.params = {number("constant", "c1", Range::scalar(), 1, false),
+                number("linear", "c2", Range::scalar(), 0, false),
+                number("quadratic", "c3", Range::scalar(), 0, false)};
     m.pov = approximate("exact through fade when c1 ≥ 1 and one of c2, c3 is 0; otherwise in the pigment");
     m.attenuation_law = AttenuationLaw::Polynomial;
     all.push_back(m);
@@ -165,7 +171,7 @@ void add_scene_vocabulary(std::vector<ModelDef>& all) {
   {
     auto m = entry("object", "sphere", "Sphere", "", "|p − center| = radius", "An analytic sphere.");
     m.params = {text("name", "a name for reports"), text("material", "a key of the scene's \"materials\""),
-                vector("center", "centre", {0, 0, 0}, true), number("radius", "radius", Range::positive(), 1)};
+                vector("center", "centre", {0, 0, 0}, true), number("radius", "radius", Range::positive_coordinate(), 1)};
     m.object_type = ObjectType::Sphere;
     all.push_back(m);
   }
@@ -176,7 +182,7 @@ void add_scene_vocabulary(std::vector<ModelDef>& all) {
     m.params = {text("name", "a name for reports"), text("material", "a key of the scene's \"materials\""),
                 vector("point", "centre of the square", {0, 0, 0}, true),
                 vector("normal", "the side the square faces", {0, 1, 0}, true, true),
-                number("size", "half the side of the square", Range::positive(), 10, false)};
+                number("size", "half the side of the square", Range::positive_coordinate(), 10, false)};
     m.object_type = ObjectType::Plane;
     all.push_back(m);
   }

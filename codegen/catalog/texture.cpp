@@ -107,12 +107,14 @@ class TextureReader {
   }
 
   bool finite(const json& v) { return v.is_number() && std::isfinite(v.get<double>()); }
+  // A transform's numbers: |x| ≤ kScalarMax, so that uv·scale + offset stays a float32 number.
+  bool bounded(const json& v) { return v.is_number() && std::fabs(v.get<double>()) <= kScalarMax; }
 
   void pair(const json& t, const std::string& key, std::array<double, 2>& out) {
     auto it = t.find(key);
     if (it == t.end()) return;
-    if (!it->is_array() || it->size() != 2 || !finite((*it)[0]) || !finite((*it)[1])) {
-      error("transform." + key, fmt::format("expected two finite numbers [u, v], found {}", it->dump()));
+    if (!it->is_array() || it->size() != 2 || !bounded((*it)[0]) || !bounded((*it)[1])) {
+      error("transform." + key, fmt::format("expected two numbers [u, v] in [-{0}, {0}], found {1}", kScalarMax, it->dump()));
       return;
     }
     out = {(*it)[0].get<double>(), (*it)[1].get<double>()};
@@ -132,18 +134,20 @@ class TextureReader {
     pair(*it, "scale", ref_.scale);
     auto r = it->find("rotation");
     if (r != it->end()) {
-      if (!finite(*r)) error("transform.rotation", "expected a finite number (radians), found " + r->dump());
+      if (!bounded(*r))
+        error("transform.rotation", fmt::format("expected a number in [-{0}, {0}] (radians), found {1}", kScalarMax, r->dump()));
       else ref_.rotation = r->get<double>();
     }
   }
 
-  // A number (any parameter) or a colour (colour parameters), each ≥ 0 and finite.
+  // A number (any parameter) or a colour (colour parameters), each in [0, texture_factor_max(range)].
   void factor(Value& out) {
     auto it = j_.find("factor");
     if (it == j_.end()) return;
+    const double top = texture_factor_max(p_.range);
     auto one = [&](const json& v, const std::string& key, double& into) {
-      if (!finite(v) || v.get<double>() < 0) {
-        error(key, fmt::format("expected a finite number ≥ 0, found {}", v.dump()));
+      if (!finite(v) || v.get<double>() < 0 || v.get<double>() > top) {
+        error(key, fmt::format("expected a number in [0, {}], found {}", top, v.dump()));
         return;
       }
       into = v.get<double>();
@@ -196,6 +200,8 @@ std::array<double, 2> TextureRef::transform(double u, double v) const {
   const double su = scale[0] * u, sv = scale[1] * v;
   return {c * su + s * sv + offset[0], -s * su + c * sv + offset[1]};
 }
+
+double texture_factor_max(const Range& r) { return std::isfinite(r.max) ? std::max(r.max, kColorMax) : kColorMax; }
 
 std::array<double, 2> texture_bounds(const Range& r) {
   double lo = std::isfinite(r.min) ? r.min + (r.min_open ? kTextureOpenMargin : 0.0) : -HUGE_VAL;
@@ -250,7 +256,8 @@ static json texture_schema_body(bool color) {
   json factor = {{"type", "number"}, {"minimum", 0}};
   if (color)
     factor = {{"oneOf", json::array({factor, {{"type", "array"}, {"items", factor}, {"minItems", 3}, {"maxItems", 3}}})}};
-  json pair = {{"type", "array"}, {"items", {{"type", "number"}}}, {"minItems", 2}, {"maxItems", 2}};
+  json bounded = {{"type", "number"}, {"minimum", -kScalarMax}, {"maximum", kScalarMax}};
+  json pair = {{"type", "array"}, {"items", bounded}, {"minItems", 2}, {"maxItems", 2}};
   return {{"type", "object"},
           {"description", "the value from an image: clamp(factor ⊗ channel(sample(image, uv)), the parameter's range)"},
           {"required", json::array({"texture"})},
@@ -266,10 +273,17 @@ static json texture_schema_body(bool color) {
             {"transform",
              {{"type", "object"},
               {"additionalProperties", false},
-              {"properties", {{"offset", pair}, {"scale", pair}, {"rotation", {{"type", "number"}}}}}}}}}};
+              {"properties", {{"offset", pair}, {"scale", pair}, {"rotation", bounded}}}}}}}};
 }
 
-json texture_schema(bool color) { return {{"$ref", color ? "#/$defs/texture_color" : "#/$defs/texture_number"}}; }
+json texture_schema(bool color, const Range& range) {
+  // The shared definition, and this parameter's largest factor.
+  json factor = {{"type", "number"}, {"minimum", 0}, {"maximum", texture_factor_max(range)}};
+  if (color)
+    factor = {{"oneOf", json::array({factor, {{"type", "array"}, {"items", factor}, {"minItems", 3}, {"maxItems", 3}}})}};
+  return {{"allOf", json::array({{{"$ref", color ? "#/$defs/texture_color" : "#/$defs/texture_number"}},
+                                 {{"properties", {{"factor", factor}}}}})}};
+}
 
 json texture_schema_defs() {
   return {{"texture_color", texture_schema_body(true)}, {"texture_number", texture_schema_body(false)}};
@@ -326,10 +340,11 @@ std::optional<NormalMap> parse_normal_map(const json& j, const std::string& path
       else sink.error(join_path(path, key), "expected \"up\" (OpenGL's, glTF's convention) or \"down\" (DirectX's), found " + val.dump());
       ok = ok && (val == "up" || val == "down");
     } else if (key == "strength") {
-      if (val.is_number() && std::isfinite(val.get<double>())) {
+      if (val.is_number() && std::fabs(val.get<double>()) <= kScalarMax) {
         m.strength = val.get<double>();
       } else {
-        sink.error(join_path(path, key), "expected a finite number (glTF's normalTexture.scale), found " + val.dump());
+        sink.error(join_path(path, key), fmt::format("expected a number in [-{0}, {0}] (glTF's normalTexture.scale), "
+                                                     "found {1}", kScalarMax, val.dump()));
         ok = false;
       }
     } else if (std::find(kNormalMapKeys.begin(), kNormalMapKeys.end(), key) != kNormalMapKeys.end()) {
@@ -366,7 +381,11 @@ json normal_map_schema() {
   s["properties"]["green"] = {{"enum", json::array({"up", "down"})},
                               {"default", "up"},
                               {"description", "+y up the picture (OpenGL, glTF) or down (DirectX: y negated)"}};
-  s["properties"]["strength"] = {{"type", "number"}, {"default", 1}, {"description", "glTF's normalTexture.scale"}};
+  s["properties"]["strength"] = {{"type", "number"},
+                                 {"minimum", -kScalarMax},
+                                 {"maximum", kScalarMax},
+                                 {"default", 1},
+                                 {"description", "glTF's normalTexture.scale"}};
   return s;
 }
 

@@ -43,6 +43,10 @@ struct TextureRef {
 inline constexpr double kTextureOpenMargin = 1e-3;
 // The bounds a texture value is clamped to: [lo, hi] (hi may be +∞).
 std::array<double, 2> texture_bounds(const Range& r);
+// The largest factor a texture of a parameter of range `r` takes: the range's top,
+// and at least the colour bound kColorMax, so that every value of the range stays
+// reachable from a channel in (0, 1] and the factor stays a float32 number.
+double texture_factor_max(const Range& r);
 
 // {"texture": …} for parameter `p` (texturable), given at `path` of a document read
 // from `file` (relative image paths are resolved against its folder). Problems go
@@ -55,9 +59,9 @@ nlohmann::json texture_json(const Value& v);
 // `j` (a material's JSON, or any JSON holding some) with every {"texture": PATH}'s
 // image path written relative to `folder`: for a file written there, which reads it back.
 nlohmann::json relative_textures(nlohmann::json j, const std::string& folder);
-// The JSON Schema of {"texture": …}: a $ref into the material schema's $defs, which
-// texture_schema_defs() holds.
-nlohmann::json texture_schema(bool color);
+// The JSON Schema of {"texture": …} for a parameter of range `range`: a $ref into the
+// material schema's $defs, which texture_schema_defs() holds, and the largest factor.
+nlohmann::json texture_schema(bool color, const Range& range);
 nlohmann::json texture_schema_defs();
 
 // A nearest-filtered lookup closer than this (in texture coordinates) to a texel's edge

@@ -371,15 +371,17 @@ class Importer {
   Material read_material(const tinygltf::Material& g, const std::string& mpath) {
     json ext = extension_of(g.extensions_json_string, kMaterialExt);
     std::vector<std::pair<int, std::string>>& sets = texture_sets_[mpath];
-    json m = ext.is_object() && ext.contains("material")
-                 ? own_material(ext, mpath, sets)
-                 : gltf_detail::pbr_material(g, mpath, images_, sets, notes_);
+    const bool own = ext.is_object() && ext.contains("material");
+    json m = own ? own_material(ext, mpath, sets) : gltf_detail::pbr_material(g, mpath, images_, sets, notes_);
     try {
       return parse_material(m, path_);
     } catch (const InputError& e) {
+      // FACET_material's own key, or the glTF material with the key of the facet
+      // material it became (a metallic–roughness factor beyond what float32 holds).
       std::vector<Diagnostic> ds = e.diagnostics();
       for (auto& d : ds)
-        d.path = mpath + ".extensions." + kMaterialExt + ".material" + (d.path.empty() ? "" : "." + d.path);
+        d.path = own ? mpath + ".extensions." + kMaterialExt + ".material" + (d.path.empty() ? "" : "." + d.path)
+                     : mpath + " (as a facet material: " + d.path + ")";
       throw InputError(ds);
     }
   }

@@ -124,7 +124,7 @@ void bake_f0(const Pbr& p, GltfImages& images, json& f0, const std::string& mpat
                               mpath, w, h, file));
 }
 
-// GGX α = max((roughness·G)², 1e-4) texel by texel, from the metallic–roughness map.
+// GGX α = max((roughness·G)², kRoughnessMin) texel by texel, from the metallic–roughness map.
 json bake_alpha(const Pbr& p, GltfImages& images, const std::string& mpath, std::vector<std::string>& notes) {
   const TextureUse& g = *p.mr_map;
   const int w = g.texels->width, h = g.texels->height;
@@ -132,7 +132,7 @@ json bake_alpha(const Pbr& p, GltfImages& images, const std::string& mpath, std:
   for (int j = 0; j < h; ++j)
     for (int i = 0; i < w; ++i) {
       const double r = p.rough * g.texels->at(i, j)[1];
-      v[size_t(j) * size_t(w) + size_t(i)] = unorm16(std::max(r * r, 1e-4));
+      v[size_t(j) * size_t(w) + size_t(i)] = unorm16(std::max(r * r, kRoughnessMin));
     }
   const std::string file = images.bake(p.name + "_alpha", w, h, 1, v);
   notes.push_back(fmt::format("{}: baked GGX α = (roughness·G)² texel by texel ({}×{}, 16-bit linear) into {}", mpath,
@@ -253,7 +253,7 @@ json pbr_material(const tinygltf::Material& g, const std::string& mpath, GltfIma
   const bool diffuse = kd.is_object() || kd[0].get<double>() + kd[1].get<double>() + kd[2].get<double>() > 0;
   if (diffuse) m["diffuse"] = {{"model", "lambert"}, {"color", kd}};
   m["specular"] = {{"model", "ggx"},
-                   {"alpha", p.mr_map ? bake_alpha(p, images, mpath, notes) : json(std::max(p.rough * p.rough, 1e-4))},
+                   {"alpha", p.mr_map ? bake_alpha(p, images, mpath, notes) : json(std::max(p.rough * p.rough, kRoughnessMin))},
                    {"geometry", "smith_ggx"},
                    {"fresnel", {{"model", "schlick"}, {"f0", f0}}}};
   auto e = rgb3(g.emissiveFactor, 0);

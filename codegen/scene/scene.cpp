@@ -238,7 +238,7 @@ void parse_ambient(const json& doc, Scene& s, DiagnosticSink& sink) {
   if (it == doc.end()) return;
   ParamDef p;
   p.kind = ParamKind::Color;
-  p.range = Range::non_negative();
+  p.range = Range::color();
   Checker check(sink);
   if (auto c = check.color(*it, "ambient", p)) s.ambient = *c;
 }
@@ -524,7 +524,7 @@ json scene_schema() {
   };
   ParamDef ambient;
   ambient.kind = ParamKind::Color;
-  ambient.range = Range::non_negative();
+  ambient.range = Range::color();
   ambient.doc = "the scene's ambient colour A";
   json props = {{"$schema", {{"type", "string"}}},
                 {"name", {{"type", "string"}, {"minLength", 1}}},

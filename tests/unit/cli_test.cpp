@@ -54,6 +54,55 @@ INSTANTIATE_TEST_SUITE_P(Corpus, Malformed, ::testing::ValuesIn(malformed_files(
 
 TEST(Cli, MalformedCorpusHasAtLeastTwentyFiles) { EXPECT_GE(malformed_files().size(), 20u); }
 
+// Numbers float32 targets cannot hold (docs/float32.md): the issue's material, a
+// scene with a light of colour 1e39, a glTF whose emission strength is 1e39. Every
+// command that reads them refuses, naming the file, the key path and the allowed
+// range, exit 1, nothing written.
+TEST(Cli, Float32LimitsRefusedByEveryCommand) {
+  const std::string material = (kSource / "tests/malformed/float32_issue.json").string();
+  const fs::path scene = scratch("float32_scene.json");
+  write_file_atomic(scene.string(), R"({"camera": {"position": [0, 0, 4], "look_at": [0, 0, 0]},
+    "lights": [{"type": "point", "position": [2, 2, 2], "color": [1e39, 1, 1]}],
+    "objects": [{"type": "sphere", "center": [0, 0, 0], "radius": 1}]})");
+  json g = json::parse(read_file((kSource / "tests/gltf/one_triangle.gltf").string()));
+  g["materials"][0]["emissiveFactor"] = {1, 1, 1};
+  g["materials"][0]["extensions"] = {{"KHR_materials_emissive_strength", {{"emissiveStrength", 1e39}}}};
+  g["extensionsUsed"] = {"KHR_materials_emissive_strength"};
+  const fs::path gltf = scratch("float32.gltf");
+  write_file_atomic(gltf.string(), g.dump());
+  struct Case {
+    std::vector<std::string> args;  // the output is the last argument
+    std::string file, path, allowed;
+  };
+  const std::string out = scratch("float32_out").string();
+  const std::string color = "or one number for grey, each in [0, 10000]";
+  const std::vector<Case> cases = {
+      {{"generate", material, "--target", "glsl", "-o", out + ".frag"}, material, "diffuse.color[0]", color},
+      {{"generate", material, "--target", "osl", "-o", out + ".osl"}, material, "specular.n",
+       "allowed: a number in [1, 1000000]"},
+      {{"validate", material, "--renderers", "reference", "--out", out + "_validate"}, material, "diffuse.color[0]", color},
+      {{"sweep", material, "--renderers", "reference", "--workdir", out + "_sweep"}, material, "specular.n", "[1, 1000000]"},
+      {{"render", material, "-r", "reference", "-o", out + ".pfm"}, material, "diffuse.color[0]", color},
+      {{"render", (kSource / "examples/materials/lambert.json").string(), "-r", "reference", "--scene", scene.string(),
+        "-o", out + "_scene.pfm"},
+       scene.string(), "lights[0].color[0]", color},
+      {{"export-gltf", scene.string(), "-o", out + ".gltf"}, scene.string(), "lights[0].color[0]", color},
+      {{"export-gltf", "single", "--material", material, "-o", out + "_m.gltf"}, material, "diffuse.color[0]", color},
+      {{"import-gltf", gltf.string(), "-o", out + "_imported.json"}, gltf.string(), "materials[0] (as a facet material: emission[0])",
+       color},
+  };
+  for (const auto& c : cases) {
+    const std::string written = c.args.back();
+    fs::remove_all(written);
+    ProcessResult r = facet(c.args);
+    EXPECT_EQ(r.exit_code, 1) << c.args[0] << ": " << r.output;
+    EXPECT_NE(r.output.find(c.file), std::string::npos) << c.args[0] << " names the file: " << r.output;
+    EXPECT_NE(r.output.find(c.path), std::string::npos) << c.args[0] << " names " << c.path << ": " << r.output;
+    EXPECT_NE(r.output.find(c.allowed), std::string::npos) << c.args[0] << " says " << c.allowed << ": " << r.output;
+    EXPECT_FALSE(fs::exists(written)) << c.args[0] << " writes nothing";
+  }
+}
+
 TEST(Cli, AFailedGenerateLeavesThePreviousOutputIntact) {
   fs::path out = scratch("previous.frag");
   write_file_atomic(out.string(), "previous contents\n");

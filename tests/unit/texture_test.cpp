@@ -192,7 +192,12 @@ TEST(Texture, BadTexturesNameTheFileAndKey) {
   expect_error(with(R"({"texture": "a.png", "wrap": "border"})"), "diffuse.color.wrap", "mirror");
   expect_error(with(R"({"texture": "a.png", "wrap": ["clamp", 3]})"), "diffuse.color.wrap[1]", "repeat");
   expect_error(with(R"({"texture": "a.png", "uv": 2})"), "diffuse.color.uv", "0 or 1");
-  expect_error(with(R"({"texture": "a.png", "factor": -1})"), "diffuse.color.factor", "≥ 0");
+  expect_error(with(R"({"texture": "a.png", "factor": -1})"), "diffuse.color.factor", "in [0, 10000]");
+  // Numbers float32 targets cannot hold (docs/float32.md): a factor above the colour
+  // bound, a transform beyond 1e4.
+  expect_error(with(R"({"texture": "a.png", "factor": 1e39})"), "diffuse.color.factor", "in [0, 10000]");
+  expect_error(with(R"({"texture": "a.png", "transform": {"scale": [1e39, 1]}})"), "diffuse.color.transform.scale",
+               "in [-10000, 10000]");
   expect_error(with(R"({"texture": "a.png", "transform": {"scale": [1]}})"), "diffuse.color.transform.scale", "two");
   expect_error(with(R"({"texture": "a.png", "transform": {"skew": 1}})"), "diffuse.color.transform.skew", "unknown");
   expect_error(with(R"({"texture": "a.png", "colour": "srgb"})"), "diffuse.color.colour", "colorspace");

@@ -82,6 +82,7 @@ class MaterialKey:
     kind: str                 # "color" (RGB or grey number) or "vector" (three numbers)
     default: tuple
     doc: str = ""
+    maximum: float = None     # a colour's largest component (the float32 bound, docs/float32.md)
 
 
 @dataclass
@@ -137,6 +138,20 @@ def _allows_number(prop):
     return any(_allows_number(p) for key in ("oneOf", "anyOf") for p in prop.get(key, ()))
 
 
+def _number_maximum(prop):
+    """The "maximum" of the plain number a schema (or one of its alternatives) accepts, or None."""
+    if not isinstance(prop, dict):
+        return None
+    if prop.get("type") == "number":
+        return prop.get("maximum")
+    for key in ("oneOf", "anyOf"):
+        for p in prop.get(key, ()):
+            m = _number_maximum(p)
+            if m is not None:
+                return m
+    return None
+
+
 def _material_keys(schema):
     """ambient/emission/tangent_axis (and whatever facet adds later) from `facet schema`."""
     keys = []
@@ -152,7 +167,8 @@ def _material_keys(schema):
         # an anyOf with a texture object may wrap); a vector is only ever an array.
         kind = "color" if _allows_number(prop) else "vector"
         keys.append(MaterialKey(name=name, kind=kind, default=tuple(float(x) for x in default),
-                                doc=prop.get("description", "")))
+                                doc=prop.get("description", ""),
+                                maximum=_number_maximum(prop) if kind == "color" else None))
     return keys
 
 

@@ -114,7 +114,7 @@ def _scalar_field(catalog, p, fid=None, default=None):
                      min=lo, max=hi, key=p.name)
     if p.type == "color":
         return Field(fid, "color", label(p.name), doc, _as_rgb(default),
-                     min=lo, max=hi, soft_max=hi if hi is not None else 1.0, key=p.name)
+                     min=lo, max=hi, soft_max=min(hi, 1.0) if hi is not None else 1.0, key=p.name)
     if p.type == "vector":
         return Field(fid, "vector", label(p.name), doc, _as_rgb(default, (0.0, 0.0, 0.0)), key=p.name)
     if p.type == "boolean":
@@ -207,7 +207,7 @@ def material_group(catalog):
         doc = tooltip(k.doc) + (" Edited in Blender's axes (Z up); written in facet's (Y up)."
                                 if k.kind == "vector" else "")
         group.fields.append(Field(k.name, k.kind, label(k.name), doc, default, min=0.0 if k.kind == "color" else None,
-                                  soft_max=1.0 if k.kind == "color" else None, key=k.name))
+                                  max=k.maximum, soft_max=1.0 if k.kind == "color" else None, key=k.name))
     return group
 
 
