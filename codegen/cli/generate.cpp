@@ -126,8 +126,8 @@ Command generate_command(CLI::App& app) {
   g->add_option("-t,--target", gen.target,
                 "glsl (GLSL 3.30 core), glsl450 (Vulkan, compiles to SPIR-V), essl (OpenGL ES 3.00), "
                 "osl (Cycles shader), pov (POV-Ray 3.7 scene), hlsl (Shader Model 5 pixel shader; glslangValidator -D -V "
-                "compiles it to SPIR-V)")
-      ->check(CLI::IsMember({"glsl", "glsl450", "essl", "osl", "pov", "hlsl"}))
+                "compiles it to SPIR-V), wgsl (WebGPU fragment shader)")
+      ->check(CLI::IsMember({"glsl", "glsl450", "essl", "osl", "pov", "hlsl", "wgsl"}))
       ->capture_default_str();
   g->add_option("--scene", gen.scene,
                 "Scene for OSL's lights and POV-Ray's frame: a scene file or a built-in name (single, shadows). "
@@ -141,7 +141,7 @@ Command generate_command(CLI::App& app) {
       ->check(CLI::IsMember({"auto", "native", "exact", "fast"}))
       ->capture_default_str();
   g->add_flag("--library", gen.library,
-              "Only the functions, for an engine (GLSL, HLSL, OSL), or an include file declaring the texture (POV-Ray)");
+              "Only the functions, for an engine (GLSL, HLSL, WGSL, OSL), or an include file declaring the texture (POV-Ray)");
   g->add_option("-o,--output", gen.output, "Output file; standard output without it. Written whole or not at all");
   g->add_flag("--json", gen.json,
               "Print one JSON object describing what was generated: target, output, and for POV-Ray scenes the "

@@ -14,6 +14,7 @@ std::unique_ptr<Renderer> make_povray_renderer(const RendererInfo& info, const R
 std::unique_ptr<Renderer> make_vulkan_renderer(const RendererInfo& info, const RendererSettings& settings);
 std::unique_ptr<Renderer> make_vulkan_hlsl_renderer(const RendererInfo& info, const RendererSettings& settings);
 std::unique_ptr<Renderer> make_webgl_renderer(const RendererInfo& info, const RendererSettings& settings);
+std::unique_ptr<Renderer> make_wgpu_renderer(const RendererInfo& info, const RendererSettings& settings);
 
 // Every job failed with `why`: what a renderer that cannot run returns.
 std::vector<RenderOutcome> failed_renders(size_t jobs, const std::string& why);

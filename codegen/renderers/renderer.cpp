@@ -36,6 +36,11 @@ const std::vector<RendererEntry>& renderer_registry() {
         "the generated ES 3.00 shader shading the GL ray caster's G-buffer in headless Chromium's WebGL2 "
         "(ANGLE on SwiftShader), RGBA32F", false},
        make_webgl_renderer},
+      {{"wgpu", "wgpu", "wgpu (WGSL)", "wgpu: generated WGSL (WebGPU on Vulkan)",
+        "the generated WGSL shading the GL ray caster's G-buffer in WebGPU (pip wgpu: wgpu-native on Vulkan, "
+        "Mesa lavapipe without a GPU), rgba32float",
+        false},
+       make_wgpu_renderer},
   };
   return registry;
 }

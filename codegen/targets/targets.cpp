@@ -29,13 +29,14 @@ const char* target_name(Target t) {
     case Target::Osl: return "osl";
     case Target::Pov: return "pov";
     case Target::Hlsl: return "hlsl";
+    case Target::Wgsl: return "wgsl";
   }
   return "?";
 }
 
 const std::vector<Target>& all_targets() {
   static const std::vector<Target> all = {Target::Glsl, Target::Glsl450, Target::Essl, Target::Osl, Target::Pov,
-                                               Target::Hlsl};
+                                               Target::Hlsl, Target::Wgsl};
   return all;
 }
 
@@ -106,6 +107,7 @@ std::string generate(const Material& m, const GenerateOptions& o) {
     case Target::Osl: return generate_osl(m, o);
     case Target::Pov: return generate_pov(m, o);
     case Target::Hlsl: return generate_hlsl(m, o);
+    case Target::Wgsl: return generate_wgsl(m, o);
   }
   return {};
 }

@@ -13,7 +13,7 @@
 
 namespace facet {
 
-enum class Target { Glsl, Glsl450, Essl, Osl, Pov, Hlsl };
+enum class Target { Glsl, Glsl450, Essl, Osl, Pov, Hlsl, Wgsl };
 std::optional<Target> parse_target(const std::string& name);
 const char* target_name(Target t);
 const std::vector<Target>& all_targets();
@@ -59,12 +59,27 @@ struct HlslParts {
   std::string header, library, lights, main;
 };
 HlslParts hlsl_parts(const MaterialProgram& p, const std::string& source);
+// WGSL in pieces, as GLSL: the library (constants, textures, terms, facet_reflect), the
+// lights (the FacetScene uniform buffer, facet_shade, which calls facet_visibility(p, l,
+// d, light) that the code around defines) and the standalone @fragment entry point.
+struct WgslParts {
+  std::string header, library, lights, main;
+};
+WgslParts wgsl_parts(const MaterialProgram& p, const std::string& source);
+// The G-buffer shading pass in WGSL (the wgpu renderer's): the material's library and
+// light loop under templates/wgsl/gbuffer_shade.wgsl, whose facet_vertex draws one
+// full-screen triangle and whose facet_gbuffer_shade reads the seven G-buffer images
+// (@group(1), bindings 0–6) at its pixel; the material's images are @group(0) from binding 1.
+std::string wgsl_gbuffer_shading_source(const Material& m);
 
 // The robustness sweep's programs (facet/sweep.h): the material's functions
 // under a main that evaluates the sweep grid. GLSL's in `dialect` Glsl (uniform vec2
 // facet_resolution; Essl the same) or Glsl450 (Vulkan: the grid's side from the push constants, ivec2).
 std::string glsl_sweep_source(const Material& m, Target dialect = Target::Glsl);
 std::string hlsl_sweep_source(const Material& m);  // a pixel shader: one direction set per pixel
+// WGSL's: facet_vertex and facet_sweep (templates/wgsl/sweep.wgsl), the grid's side in the
+// uniform buffer at @group(0) @binding(0).
+std::string wgsl_sweep_source(const Material& m);
 std::string osl_sweep_source(const Material& m);
 std::string generate_pov_sweep(const Material& m);
 

@@ -24,5 +24,6 @@ std::string generate_glsl(const Material& m, const GenerateOptions& o);
 std::string generate_osl(const Material& m, const GenerateOptions& o);
 std::string generate_pov(const Material& m, const GenerateOptions& o);
 std::string generate_hlsl(const Material& m, const GenerateOptions& o);
+std::string generate_wgsl(const Material& m, const GenerateOptions& o);
 
 }  // namespace facet

@@ -184,6 +184,70 @@ TEST(Detection, WebglMissingPiAndExponentOffByOneFail) {
   std::cout << "webgl, a shader that does not compile: " << out[3].error << "\n";
 }
 
+// The wgpu renderer (the generated WGSL shading the GL ray caster's G-buffer): the
+// same two faults in its WGSL fail; the right WGSL passes.
+TEST(Detection, WgpuExponentOffByOneFails) {
+  Fixture f = fixture("blinn_phong", "wgpu");
+  RenderJob good = f.job, bad = f.job;
+  good.code_override = wgsl_gbuffer_shading_source(f.material);
+  bad.code_override = inject(good.code_override, "pow(max(NoH, 0.0), n)", "pow(max(NoH, 0.0), n + 1.0)");
+  std::vector<RenderOutcome> r = make_renderer("wgpu")->render({good, bad});  // one harness process
+  EXPECT_TRUE(judged(f, r.at(0)).pass);
+  ComparisonRow wrong = judged(f, r.at(1));
+  EXPECT_FALSE(wrong.pass) << "max |Δ|/max(1,|ref|) " << wrong.metrics.max_excess;
+  EXPECT_GT(wrong.metrics.over, 0u);
+  std::cout << "exponent off by one: " << wrong.metrics.over << " pixels over, worst " << wrong.metrics.max_excess << "\n";
+}
+
+TEST(Detection, WgpuMissingPiFails) {
+  Fixture f = fixture("cook_torrance", "wgpu");
+  f.job.code_override = inject(wgsl_gbuffer_shading_source(f.material), "return PI / 4.0 * D * G * F",
+                               "return 1.0 / 4.0 * D * G * F");
+  ComparisonRow bad = judged(f, render_one("wgpu", f.job));
+  EXPECT_FALSE(bad.pass) << "max |Δ|/max(1,|ref|) " << bad.metrics.max_excess;
+  std::cout << "π missing: " << bad.metrics.over << " pixels over, worst " << bad.metrics.max_excess << "\n";
+}
+
+// docs/textures.md's sampling rule made wrong in the WGSL, as for GLSL above; each
+// example's right and wrong shaders drawn in one harness process.
+TEST(Detection, WgpuTextureConventionsFailWhenWrong) {
+  struct Wrong {
+    const char* what;
+    const char* from;
+    const char* to;
+    const char* only;  // the example whose filter the fault is in, or null for both
+  };
+  const Wrong wrongs[] = {
+      {"v flipped", "let x = uv * vec2<f32>(size);", "let x = vec2<f32>(uv.x, 1.0 - uv.y) * vec2<f32>(size);", nullptr},
+      {"bilinear half a texel off", "let corner = x - 0.5;", "let corner = x;", "textured_ggx"},
+      {"nearest half a texel off", "i32(floor(x.x)), i32(floor(x.y))", "i32(floor(x.x - 0.5)), i32(floor(x.y - 0.5))",
+       "textured_lambert"},
+      {"sRGB not decoded", "return facet_srgb_decode(c);", "return c;", nullptr},
+  };
+  for (const char* example : {"textured_lambert", "textured_ggx"}) {
+    Fixture f = fixture(example, "wgpu", "textured", "shadows");
+    const std::string good = wgsl_gbuffer_shading_source(f.material);
+    std::vector<RenderJob> jobs(1, f.job);
+    jobs[0].code_override = good;
+    std::vector<const Wrong*> tried;
+    for (const auto& w : wrongs) {
+      if (w.only && std::string(example) != w.only) continue;
+      jobs.push_back(f.job);
+      jobs.back().code_override = inject(good, w.from, w.to);
+      tried.push_back(&w);
+    }
+    std::vector<RenderOutcome> r = make_renderer("wgpu")->render(jobs);
+    ComparisonRow right = judged(f, r.at(0));
+    EXPECT_TRUE(right.pass) << example << ": " << right.metrics.max_excess;
+    for (size_t i = 0; i < tried.size(); ++i) {
+      ComparisonRow bad = judged(f, r.at(i + 1));
+      EXPECT_FALSE(bad.pass) << example << ", " << tried[i]->what << ": max |Δ|/max(1,|ref|) " << bad.metrics.max_excess;
+      std::cout << example << ", " << tried[i]->what << ": " << bad.metrics.over << " pixels over, worst "
+                << bad.metrics.max_excess << "\n";
+    }
+  }
+}
+
 TEST(Detection, PovMissingPiFails) {
   Fixture f = fixture("cook_torrance", "pov");
   GenerateOptions o;
@@ -578,6 +642,26 @@ TEST(SweepDetection, WebglFaultAtTheHorizonIsCounted) {
   EXPECT_EQ(c[1].samples, size_t(kSweepGrid) * kSweepGrid);
   EXPECT_EQ(c[1].negative, expected);
   EXPECT_EQ(c[1].nan, expected);
+}
+
+TEST(SweepDetection, WgpuFaultAtTheHorizonIsCounted) {
+  std::unique_ptr<Renderer> wgpu = make_renderer("wgpu");
+  Material m = sweep_material();
+  SweepCount good = wgpu->sweep({{m, ""}}, {kSweepGrid, 0, ""}).at(0);
+  EXPECT_TRUE(good.ok()) << good.error;
+  std::string bad = inject(wgsl_sweep_source(m), "    return vec4<f32>(facet_reflect(n, l, v, facet_tangent(n)), 1.0);\n",
+                           "    var c = vec4<f32>(facet_reflect(n, l, v, facet_tangent(n)), 1.0);\n"
+                           "    let z = dot(n, l);\n"
+                           "    if (z == 0.0) {\n        c.r = -1.0;\n    }\n"
+                           "    c.g += z / z - 1.0;  // NaN at z = 0\n"
+                           "    return c;\n");
+  SweepCount c = wgpu->sweep({{m, bad}}, {kSweepGrid, 0, ""}).at(0);
+  ASSERT_TRUE(c.error.empty()) << c.error;
+  size_t expected = horizon_cells(kSweepGrid);
+  ASSERT_GT(expected, 0u);
+  EXPECT_EQ(c.samples, size_t(kSweepGrid) * kSweepGrid);
+  EXPECT_EQ(c.negative, expected);
+  EXPECT_EQ(c.nan, expected);
 }
 
 TEST(SweepDetection, OslFaultAtTheHorizonIsCounted) {

@@ -1,0 +1,56 @@
+// ---- Lights (MODELS.md "Lights"), set by the application: one uniform buffer at
+// @group(0) @binding(0), laid out as GLSL's std140 FacetScene block of --target glsl450
+// (560 bytes: camera at 0, ambient at 16, light count at 32, the lights from 48, 64 bytes each).
+const FACET_MAX_LIGHTS: i32 = 8;
+struct FacetLight {
+    position: vec4<f32>,     // xyz: position (point, spot), or the direction the light travels (directional)
+                             // w: type, {{point}} point, {{directional}} directional, {{spot}} spot
+    color: vec4<f32>,        // rgb: colour C; a: spot exponent
+    spot: vec4<f32>,         // xyz: unit cone axis s; w: cos(cutoff)
+    attenuation: vec4<f32>,  // xyz: c1, c2, c3; w: law, {{no_attenuation}} none, {{inverse_square}} inverse square, {{polynomial}} polynomial
+};
+struct FacetScene {
+    camera_position: vec4<f32>,  // xyz: the eye, world space
+    ambient: vec4<f32>,          // rgb: the scene's ambient colour A
+    light_count: i32,
+    lights: array<FacetLight, 8>,
+};
+@group(0) @binding(0) var<uniform> facet_scene: FacetScene;
+
+// MODELS.md: L = m_a ⊗ A + Σ att(d) · spot · C ⊗ (k_d ⊗ ρ_d + k_s ⊗ ρ_s) + m_e
+// facet_visibility(p, l, d, i): how much of light i reaches p along l over distance d
+// (1 unlit by shadows, 0 in shadow), defined by the code this is assembled with.
+fn facet_shade(p: vec3<f32>, n: vec3<f32>, v: vec3<f32>, surface_tangent: vec3<f32>) -> vec3<f32> {
+    var radiance = material_ambient * facet_scene.ambient.rgb + material_emission;
+    var t = surface_tangent;
+{{mapping}}    for (var i: i32 = 0; i < FACET_MAX_LIGHTS; i++) {
+        if (i >= facet_scene.light_count) {
+            break;
+        }
+        let light = facet_scene.lights[i];
+        var l: vec3<f32>;
+        var d: f32 = 1e30;  // directional lights have no distance
+        var factor: f32 = 1.0;
+        if (light.position.w == {{directional}}.0) {
+            l = -normalize(light.position.xyz);
+        } else {
+            let to_light = light.position.xyz - p;
+            d = length(to_light);
+            l = to_light / d;
+            if (light.attenuation.w == {{inverse_square}}.0) {
+                factor = attenuation_inverse_square(d);
+            } else if (light.attenuation.w == {{polynomial}}.0) {
+                factor = attenuation_polynomial(d, light.attenuation.x, light.attenuation.y, light.attenuation.z);
+            }
+            if (light.position.w == {{spot}}.0) {
+                factor *= spot_cone(-dot(l, light.spot.xyz), light.spot.w, light.color.a);
+            }
+        }
+        // Below the horizon reflectance() is 0: skip the visibility query there. The surface's
+        // own normal n says which lights are above it; the lobes read ns.
+        if (factor > 0.0 && dot(n, l) > 0.0) {
+            radiance += factor * facet_visibility(p, l, d, i) * light.color.rgb * facet_reflect(ns, l, v, t);
+        }
+    }
+    return radiance;
+}
