@@ -460,6 +460,21 @@ std::optional<double> shading(double x, double frame) {
 }
 json or_null(const std::optional<double>& x) { return x ? json(*x) : json(nullptr); }
 
+// The WGSL path's size: the bytes of `facet generate --target wgsl --library` without its
+// comment and blank lines, what a WebGPU page ships to createShaderModule for the material.
+size_t wgsl_code_bytes(const Material& m) {
+  GenerateOptions o;
+  o.target = Target::Wgsl;
+  o.library = true;
+  std::istringstream in(generate(m, o));
+  size_t bytes = 0;
+  for (std::string line; std::getline(in, line);) {
+    size_t first = line.find_first_not_of(" \t");
+    if (first != std::string::npos && line.compare(first, 2, "//") != 0) bytes += line.size() + 1;
+  }
+  return bytes;
+}
+
 // What one target's measurement works on; it fills that target's cell of every row.
 struct CostRun {
   const std::vector<Material>& ms;
@@ -483,6 +498,7 @@ void measure_glsl(const CostRun& run, std::vector<CostRow>& rows, CostBaselines&
                                            fmt::format("{}_{:03}", ms[i].name, i));
     rows[i].cell("glsl").figures["spirv"] = s.instructions;
     rows[i].cell("glsl").figures["hlsl_spirv"] = h.instructions;
+    rows[i].cell("glsl").figures["wgsl_bytes"] = static_cast<double>(wgsl_code_bytes(ms[i]));
     rows[i].cell("glsl").error = s.error.empty() ? h.error : s.error;
     draws.push_back(d);
   }
@@ -635,15 +651,16 @@ std::string pov_kind(const CostCell& p) {
 }  // namespace
 
 std::string costs_table(const std::vector<CostRow>& rows, const CostBaselines& b) {
-  std::string s = fmt::format("{:<20} {:<16} {:>6} {:>6} {:>10} {:>6} {:>7} {:>9} {:>6} {:>14} {:>9} {:>6}\n",
-                              "material", "lobe", "SPIR-V", "HLSL", "llvmpipe/px", "×", "OSL ops", "Cycles ns", "×",
-                              "POV-Ray", "POV ns/px", "×");
+  std::string s = fmt::format("{:<20} {:<16} {:>6} {:>6} {:>6} {:>10} {:>6} {:>7} {:>9} {:>6} {:>14} {:>9} {:>6}\n",
+                              "material", "lobe", "SPIR-V", "HLSL", "WGSL B", "llvmpipe/px", "×", "OSL ops", "Cycles ns",
+                              "×", "POV-Ray", "POV ns/px", "×");
   for (const auto& r : rows) {
     const CostCell &g = r.cell("glsl"), &o = r.cell("osl"), &p = r.cell("pov");
-    std::string glsl = g.error.empty() ? fmt::format("{:>6} {:>6} {:>10} {:>6}", count(g, "spirv"),
-                                                     count(g, "hlsl_spirv"), number(g.number("callgrind_per_pixel"), 1),
+    std::string glsl = g.error.empty() ? fmt::format("{:>6} {:>6} {:>6} {:>10} {:>6}", count(g, "spirv"),
+                                                     count(g, "hlsl_spirv"), count(g, "wgsl_bytes"),
+                                                     number(g.number("callgrind_per_pixel"), 1),
                                                      times(g.number("callgrind_relative")))
-                                       : fmt::format("{:<31}", "error");
+                                       : fmt::format("{:<38}", "error");
     std::string osl = o.error.empty() ? fmt::format("{:>7} {:>9} {:>6}", count(o, "instructions"),
                                                     ns(o.number("ns_per_pixel")), times(o.number("relative")))
                                       : fmt::format("{:<24}", "error");
@@ -674,7 +691,7 @@ std::string machine() {
   return fmt::format("{}, {} logical cores", model, cores);
 }
 
-const char* kMarkdownHeader = "| material | lobe | SPIR-V | HLSL SPIR-V | llvmpipe instr/px | × Lambert | shading instr/px | "
+const char* kMarkdownHeader = "| material | lobe | SPIR-V | HLSL SPIR-V | WGSL bytes | llvmpipe instr/px | × Lambert | shading instr/px | "
                               "OSL ops | Cycles ns/px | × Lambert | shading ns/px | POV-Ray | POV-Ray ns/px | × Lambert |";
 
 // One row of the Markdown table, its cells in kMarkdownHeader's order.
@@ -682,10 +699,10 @@ std::string markdown_row(const CostRow& r, const CostBaselines& b) {
   const CostCell &g = r.cell("glsl"), &o = r.cell("osl"), &p = r.cell("pov");
   const double callgrind = g.number("callgrind_per_pixel"), cycles = o.number("ns_per_pixel");
   std::string glsl = g.error.empty()
-                         ? fmt::format("{} | {} | {} | {} | {}", count(g, "spirv"), count(g, "hlsl_spirv"),
-                                       number(callgrind, 1), times(g.number("callgrind_relative")),
+                         ? fmt::format("{} | {} | {} | {} | {} | {}", count(g, "spirv"), count(g, "hlsl_spirv"),
+                                       count(g, "wgsl_bytes"), number(callgrind, 1), times(g.number("callgrind_relative")),
                                        signed_number(shading(callgrind, b.callgrind_empty_per_pixel), 1))
-                         : "error | | | |";
+                         : "error | | | | |";
   std::string osl = o.error.empty()
                         ? fmt::format("{} | {} | {} | {}", count(o, "instructions"), ns(cycles), times(o.number("relative")),
                                       signed_number(shading(cycles, b.cycles_emission_ns_per_pixel), 0))
@@ -702,8 +719,8 @@ std::string costs_markdown(const std::vector<CostRow>& rows, const CostBaselines
   s += "The survey's Appendix B (\"the relative costs of the different lighting models\"), measured: every lobe "
        "model of the catalog, alone at its defaults (`facet::model_materials()`), on each target. Generated by "
        "`facet cost --markdown docs/cost.md`";
-  s += fmt::format(" in {:.0f} s of wall time; the test `cost.table` recomputes the counts (SPIR-V, HLSL SPIR-V, "
-                   "llvmpipe instructions, OSL ops, POV-Ray functions) and fails if they differ from this file's. Do not "
+  s += fmt::format(" in {:.0f} s of wall time; the test `cost.table` recomputes the counts (SPIR-V, HLSL SPIR-V, WGSL "
+                   "bytes, llvmpipe instructions, OSL ops, POV-Ray functions) and fails if they differ from this file's. Do not "
                    "edit it by hand.\n\n",
                    wall_seconds);
   s += fmt::format("**Machine.** {}. **Tools.** {}; {}; {}; {}; Blender {} (OSL {}); {}.\n\n", machine(),
@@ -725,6 +742,9 @@ std::string costs_markdown(const std::vector<CostRow>& rows, const CostBaselines
       "`glslangValidator -D -V -S frag -e main` and `spirv-opt -O`. The frame alone is {} of them (its cbuffer and "
       "`SV_Position`'s flip to GL's y up).\n",
       b.hlsl_spirv_empty);
+  s += "- *WGSL bytes*: the size of `facet generate --target wgsl --library` for the material without its comment "
+       "and blank lines: what a WebGPU page hands `createShaderModule` besides its entry point. naga validates every "
+       "such file in ctest (`wgsl.naga.*`).\n";
   s += fmt::format(
       "- *llvmpipe instr/px*: x86 instructions callgrind counts while Mesa's llvmpipe draws that shader at "
       "{0}×{0}, divided by {0}² (background pixels included): `LP_NUM_THREADS=0` (the draw runs in the calling "
@@ -810,10 +830,11 @@ std::vector<std::string> stale_costs(const std::string& markdown, const std::vec
     if (g.error.empty()) {
       check("SPIR-V", c[2], count(g, "spirv"));
       check("HLSL SPIR-V", c[3], count(g, "hlsl_spirv"));
-      if (g.number("callgrind_per_pixel") > 0) check("llvmpipe instr/px", c[4], number(g.number("callgrind_per_pixel"), 1));
+      check("WGSL bytes", c[4], count(g, "wgsl_bytes"));
+      if (g.number("callgrind_per_pixel") > 0) check("llvmpipe instr/px", c[5], number(g.number("callgrind_per_pixel"), 1));
     }
-    if (o.error.empty()) check("OSL ops", c[7], count(o, "instructions"));
-    check("POV-Ray", c[11], pov_kind(r.cell("pov")));
+    if (o.error.empty()) check("OSL ops", c[8], count(o, "instructions"));
+    check("POV-Ray", c[12], pov_kind(r.cell("pov")));
   }
   return out;
 }

@@ -11,7 +11,8 @@
 //    MESA_SHADER_CACHE_DISABLE so every process compiles alike).
 //    The HLSL path: the same material printed as HLSL (--target hlsl) in the same frame
 //    as a pixel shader (renderers/harness/cost.hlsl), through glslangValidator -D -V and
-//    spirv-opt -O, counted alike (the glsl cell's "hlsl_spirv").
+//    spirv-opt -O, counted alike (the glsl cell's "hlsl_spirv"). The WGSL path's size:
+//    the bytes of --target wgsl --library without comment and blank lines ("wgsl_bytes").
 //  * OSL: the ops of the shader Blender's OSL compiler makes (.oso), and Cycles'
 //    render time per pixel and sample, by difference of two sample counts (the
 //    per-render set-up cancels), min over interleaved repeats, in CPU time.

@@ -73,7 +73,7 @@ Command cost_command(CLI::App& app) {
   coc->add_flag("--json", co.as_json, "Print {\"baseline\": \"lambert\", \"rows\": [...]} instead of the table");
   coc->add_option("--markdown", co.markdown, "Also write the table as Markdown (docs/cost.md)");
   coc->add_option("--check", co.check,
-                  "Exit 1 unless this Markdown file's counts (SPIR-V, HLSL SPIR-V, llvmpipe instructions, OSL ops, POV-Ray "
+                  "Exit 1 unless this Markdown file's counts (SPIR-V, HLSL SPIR-V, WGSL bytes, llvmpipe instructions, OSL ops, POV-Ray "
                   "functions) are what the measurement gives; no timings are taken");
   coc->add_flag("--no-timings", co.no_timings, "Only the deterministic counts: no Cycles or POV-Ray render times");
   coc->add_flag("--no-callgrind", co.no_callgrind, "No llvmpipe instruction counts (valgrind)");
