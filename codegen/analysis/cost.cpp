@@ -778,7 +778,10 @@ std::string costs_markdown(const std::vector<CostRow>& rows, const CostBaselines
       "trace's CPU time POV-Ray reports (`+WT1`, {0}×{0}, no antialiasing, parse time excluded) over {0}², the "
       "least of {1} interleaved rounds.\n\n",
       o.pov_size, o.repeats);
-  s += std::string(kMarkdownHeader) + "\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  const std::string header = kMarkdownHeader;
+  std::string rule = "|";  // one "---|" a column: the header's bars less one
+  for (long i = 1; i < std::count(header.begin(), header.end(), '|'); ++i) rule += "---|";
+  s += header + "\n" + rule + "\n";
   for (const auto& r : rows) s += markdown_row(r, b);
   s += fmt::format("\nThe command, to regenerate it: `facet cost --markdown docs/cost.md` (all of it, {:.0f} s here); "
                    "`facet cost --json` prints the same figures for tools.\n",
