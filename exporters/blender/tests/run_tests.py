@@ -1694,23 +1694,23 @@ def test_bundled_catalog_until_facet_is_found():
 
 @test()
 def test_facet_rejects_out_of_range_value():
-    mat = new_material("Mirror", "lambert", "ggx")
-    mat.facet.specular_ggx.alpha = 0.0          # Blender allows 0; facet needs α > 0
+    mat = new_material("Mirror", "lambert", "gaussian")
+    mat.facet.specular_gaussian.m = 0.0         # Blender allows 0 (the range's open end); facet needs m > 0
     target = work("mirror.json")
     with open(target, "w") as f:
         f.write("previous contents\n")
-    error = expect_error("export_material", mat, ["specular.alpha", "out of range", "material 'Mirror'"],
+    error = expect_error("export_material", mat, ["specular.m", "out of range", "material 'Mirror'"],
                          filepath=target)
     info(f"facet's words: {error.splitlines()[0]}")
     # Blender prefixes an error report with "Error: "; facet's own "error: " must not follow it.
     _, _, reports = run_op("export_material", mat, filepath=target)
-    check(reports and reports[-1][0] == "ERROR" and "specular.alpha" in reports[-1][1], f"reports: {reports}")
+    check(reports and reports[-1][0] == "ERROR" and "specular.m" in reports[-1][1], f"reports: {reports}")
     doubled = [l for l in error.splitlines() + reports[-1][1].splitlines()
                if re.match(r"(Error: )?error:", l)]
     check(not doubled, f"the message says error twice: {doubled}")
     with open(target) as f:
         check_equal(f.read(), "previous contents\n", "a failed export must leave the old file intact")
-    expect_error("export_glsl", mat, ["specular.alpha"], filepath=work("mirror.glsl"))
+    expect_error("export_glsl", mat, ["specular.m"], filepath=work("mirror.glsl"))
     check(not os.path.exists(work("mirror.glsl")), "GLSL written for an invalid material")
     leftovers = [f for f in os.listdir(WORK) if f.endswith(".tmp")]
     check(not leftovers, f"temporary files left behind: {leftovers}")
