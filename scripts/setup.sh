@@ -58,14 +58,14 @@ rm -f build.log
 [ $run_main -eq 1 ] || exit 0
 
 # ---- The main job: every example for every target, then the whole catalog through
-# the four renderers, compared pixel by pixel (out/validate/report.html)
+# every renderer, compared pixel by pixel with the reference (out/validate/report.html)
 say "Generating every example for every target into out/examples"
 mkdir -p out/examples
 for m in examples/materials/*.json; do
   name=$(basename "$m" .json)
-  for t in glsl glsl450 essl osl pov; do
+  for t in glsl glsl450 essl hlsl wgsl osl pov; do
     build/bin/facet generate "$m" --target "$t" -o "out/examples/$name.$t"
   done
 done
-say "facet validate: the example catalog through OpenGL, Cycles (OSL) and POV-Ray against the C++ reference"
+say "facet validate: the example catalog through OpenGL, Vulkan (GLSL 4.50, HLSL), WebGL2, wgpu (WGSL), Cycles (OSL) and POV-Ray against the C++ reference"
 build/bin/facet validate --out out/validate
