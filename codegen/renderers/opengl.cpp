@@ -8,8 +8,6 @@
 #include <filesystem>
 #include <map>
 
-#include <dlfcn.h>
-#include <link.h>
 
 #include <epoxy/egl.h>
 #include <epoxy/gl.h>
@@ -82,23 +80,6 @@ GLuint fragment_program(GLuint vertex, const std::string& source, const std::str
     return 0;
   }
   return prog;
-}
-
-// LeakSanitizer looks for leaks at exit, after EGL has unloaded Mesa's driver:
-// memory that only the driver's globals still point to then looks leaked (from
-// "<unknown module>"), since an unloaded library's data is no longer scanned.
-// In leak-checked builds every library loaded once the context exists is
-// pinned (never unloaded), so such memory stays reachable and what LeakSanitizer
-// reports is facet's own.
-void pin_loaded_libraries() {
-#ifdef FACET_LEAK_CHECKED
-  dl_iterate_phdr(
-      [](dl_phdr_info* info, size_t, void*) {
-        if (info->dlpi_name && *info->dlpi_name) dlopen(info->dlpi_name, RTLD_NOW | RTLD_NOLOAD | RTLD_NODELETE);
-        return 0;
-      },
-      nullptr);
-#endif
 }
 
 // GL rows run bottom-up; facet images top-down. Colours add up (a render's

@@ -197,6 +197,7 @@ VulkanDevice::VulkanDevice() : state_(new State) {
   try {
     state_->create_instance();
     state_->create_device(description_);
+    pin_loaded_libraries();  // the ICD's and the layers' memory stays reachable at exit (LeakSanitizer)
   } catch (const VulkanError& e) {
     error_ = std::string("Vulkan: ") + e.what();
   }
