@@ -3,6 +3,8 @@
 #include <functional>
 #include <stdexcept>
 
+#include <fmt/format.h>
+
 #include "core/vec.h"
 
 namespace facet::targets {
@@ -182,6 +184,23 @@ std::string CPrinter::function(const ir::FunctionPtr& f) const {
   w.line(s);
   w.close("}");
   return w.take();
+}
+
+std::string material_constants(const MaterialProgram& p, const CPrinter& printer, const std::string& qualifier) {
+  const Material& m = p.material;
+  const std::string color = printer.type(ir::Type::Color);
+  std::string constants;
+  auto add_constant = [&](const std::string& type, const std::string& name, const std::string& value) {
+    constants += fmt::format("{} {} {} = {};\n", qualifier, type, name, value);
+  };
+  if (!m.ambient_texture) add_constant(color, kAmbientInput, printer.color_literal(m.ambient));
+  if (!m.emission_texture) add_constant(color, kEmissionInput, printer.color_literal(m.emission));
+  add_constant(color, "tangent_axis", printer.color_literal(normalize(Vec3(m.tangent_axis)).array()));
+  for (const auto& c : p.constants()) {
+    add_constant(printer.type(c->type), c->name,
+                 c->type == ir::Type::Color ? printer.color_literal(c->value) : printer.literal(c->value[0]));
+  }
+  return constants;
 }
 
 }  // namespace facet::targets

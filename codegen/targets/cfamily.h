@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "catalog/program.h"
 #include "core/ir.h"
 #include "targets/writer.h"
 
@@ -56,6 +57,11 @@ class CPrinter : public ExprWriter {
   CDialect d_;
   mutable std::map<const ir::Function*, std::vector<ir::NodePtr>> free_cache_;
 };
+
+// The material's constants, one "<qualifier> <type> <name> = <value>;" line each in `printer`'s
+// types: m_a and m_e unless an image sets them (kAmbientInput, kEmissionInput), tangent_axis,
+// and the program's constants. GLSL's qualifier is "const", HLSL's "static const".
+std::string material_constants(const MaterialProgram& p, const CPrinter& printer, const std::string& qualifier);
 
 // "// text" lines, one per line of `text`, with `indent` before each.
 std::string comment_lines(const std::string& text, const std::string& indent, const std::string& marker = "//");

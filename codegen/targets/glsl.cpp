@@ -119,18 +119,7 @@ GlslParts glsl_parts(const MaterialProgram& p, Target dialect, const std::string
   GlslParts parts;
   const Material& m = p.material;
 
-  std::string constants;
-  auto add_constant = [&](const std::string& type, const std::string& name, const std::string& value) {
-    constants += fmt::format("const {} {} = {};\n", type, name, value);
-  };
-  // m_a and m_e: constants, or globals facet_sample_textures() sets (kAmbientInput, kEmissionInput).
-  if (!m.ambient_texture) add_constant("vec3", kAmbientInput, printer.color_literal(m.ambient));
-  if (!m.emission_texture) add_constant("vec3", kEmissionInput, printer.color_literal(m.emission));
-  add_constant("vec3", "tangent_axis", printer.color_literal(normalize(Vec3(m.tangent_axis)).array()));
-  for (const auto& c : p.constants()) {
-    add_constant(printer.type(c->type), c->name,
-                 c->type == ir::Type::Color ? printer.color_literal(c->value) : printer.literal(c->value[0]));
-  }
+  const std::string constants = targets::material_constants(p, printer, "const");
 
   std::string functions;
   for (const auto& f : p.functions()) functions += printer.function(f) + "\n";

@@ -78,24 +78,6 @@ std::string hlsl_textures(const MaterialProgram& p) {
          mapping;
 }
 
-// The material's constants as `static const` globals (a plain HLSL global is a uniform).
-std::string hlsl_constants(const MaterialProgram& p, const targets::CPrinter& printer) {
-  const Material& m = p.material;
-  std::string constants;
-  auto add_constant = [&](const std::string& type, const std::string& name, const std::string& value) {
-    constants += fmt::format("static const {} {} = {};\n", type, name, value);
-  };
-  // m_a and m_e: constants, or globals facet_sample_textures() sets (kAmbientInput, kEmissionInput).
-  if (!m.ambient_texture) add_constant("float3", kAmbientInput, printer.color_literal(m.ambient));
-  if (!m.emission_texture) add_constant("float3", kEmissionInput, printer.color_literal(m.emission));
-  add_constant("float3", "tangent_axis", printer.color_literal(normalize(Vec3(m.tangent_axis)).array()));
-  for (const auto& c : p.constants()) {
-    add_constant(printer.type(c->type), c->name,
-                 c->type == ir::Type::Color ? printer.color_literal(c->value) : printer.literal(c->value[0]));
-  }
-  return constants;
-}
-
 // facet_reflect's body before its return: the inputs the lobes read, and their names.
 std::pair<std::string, std::string> hlsl_inputs(const MaterialProgram& p, const targets::CPrinter& printer) {
   std::string inputs, arguments;
@@ -148,7 +130,9 @@ HlslParts hlsl_parts(const MaterialProgram& p, const std::string& source) {
   for (const auto& f : p.functions()) functions += printer.function(f) + "\n";
   auto [inputs, arguments] = hlsl_inputs(p, printer);
   parts.header = hlsl_header(p.material, "HLSL pixel shader (Shader Model 5)", source);
-  parts.library = render_template("hlsl/library.hlsl", {{"constants", hlsl_constants(p, printer)},
+  // `static const`: a plain HLSL global is a uniform.
+  const std::string constants = targets::material_constants(p, printer, "static const");
+  parts.library = render_template("hlsl/library.hlsl", {{"constants", constants},
                                                         {"textures", hlsl_textures(p)},
                                                         {"functions", functions},
                                                         {"inputs", inputs},
