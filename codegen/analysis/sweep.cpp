@@ -62,6 +62,17 @@ std::vector<Material> extreme_materials() {
     }
     add(def, "low", low);
     add(def, "high", high);
+    // Schlick's rational power x / (n − n x + x) in place of x^n, at both ends of n:
+    // its denominator is where a cosine past 1 turns the lobe negative.
+    if (def.param("approximation")) {
+      Value schlick;
+      schlick.kind = ParamKind::Enum;
+      schlick.choice = "schlick";
+      for (auto [suffix, spec] : {std::pair{"schlick_low", low}, std::pair{"schlick_high", high}}) {
+        spec.values["approximation"] = schlick;
+        add(def, suffix, spec);
+      }
+    }
     if (!def.param("fresnel")) continue;
     // The Fresnel terms at their ends: f0 = 0 and 1; η at the bottom of its range
     // (total internal reflection), exactly 1 (no reflection) and the top.

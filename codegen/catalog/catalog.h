@@ -36,9 +36,9 @@ inline constexpr double kEpsilon = 1e-4;
 // of magnitude inside float32's 3.4e38.
 inline constexpr double kColorMax = 1e4;
 // Exponents x^n of a cosine (phong, blinn_phong, heidrich_seidel n, minnaert k, a
-// spot's exponent; gaussian m): a float32 cosine may round up to 1 + 4 ulp
-// (1 + 4.8e-7), and (1 + 4.8e-7)^1e6 = e^0.48 = 1.6; Schlick's x / (n − n x + x)
-// keeps a denominator ≥ 0.52. At 1e9 the power is e^480, past float32.
+// spot's exponent; gaussian m): every such cosine is clamped into [0, 1]
+// (ir::unit), so x^n ≤ 1 and Schlick's x / (n − n x + x) keeps a denominator ≥ 1;
+// the number itself must stay finite in float code (an ∞ n makes n − n x NaN).
 inline constexpr double kExponentMax = 1e6;
 // Roughness (m, α, α_x, α_y): the smallest non-zero tan²θ_h a float32 half vector
 // reaches is 2^-23 ≈ 1.2e-7, and exp(−1.2e-7 / m²) underflows (below e^-87.3) for

@@ -2,8 +2,10 @@
 // so a target prints it once however many models call it.
 //
 // Guards, all the same on every target (facet sweep checks them):
-//  * pow() bases are clamped to ≥ 0: GPUs return NaN for pow(x < 0, y), and a
-//    rounding error can push a cosine a few ulps below 0.
+//  * A cosine that is a power's base is clamped into [0, 1] (ir::unit): GPUs return
+//    NaN for pow(x < 0, y), a rounding error can push a cosine a few ulps below 0, and
+//    SwiftShader's normalize() leaves dot products of unit vectors up to about 1e-4
+//    above 1, which x^n with n = 1e6 turns into ∞ (docs/float32.md).
 //  * sqrt() arguments of the form 1 − c² are clamped to ≥ 0 for the same reason,
 //    and 1 − c² is computed as (1 − c)(1 + c), exact near c = 1 in float.
 //  * Divisions by n·v, n·l or n·h are safe because the horizon rule
@@ -51,9 +53,10 @@ FunctionPtr minnaert() {
     FunctionBuilder fb("rho_minnaert",
                        "Minnaert 1941, \"The reciprocity principle in lunar photometry\": "
                        "ρ = (n·l)^k · max(n·v, ε)^(k−1)",
-                       "max(n·v, ε) keeps (n·v)^(k−1) finite at the limb when k < 1 (MODELS.md).");
+                       "max(n·v, ε) keeps (n·v)^(k−1) finite at the limb when k < 1 (MODELS.md); both\n"
+                       "cosines are clamped at 1 too, as every power's base is.");
     Expr NoL = fb.param("NoL"), NoV = fb.param("NoV"), k = fb.param("k");
-    return fb.returns(pow(pos(NoL), k) * pow(max(NoV, kEpsilon), k - 1.0));
+    return fb.returns(pow(unit(NoL), k) * pow(clamp(NoV, kEpsilon, 1.0), k - 1.0));
   }();
   return f;
 }
@@ -66,8 +69,8 @@ FunctionPtr minnaert_velvet() {
                        "At k = 1 the limb factor is (1 − n·v)^0 = 1, written out because GPUs "
                        "disagree on pow(0, 0).");
     Expr NoL = fb.param("NoL"), NoV = fb.param("NoV"), k = fb.param("k");
-    Expr limb = select(k >= 1.0, 1.0, pow(pos(1.0 - NoV), 1.0 - k));
-    return fb.returns(pow(pos(NoL), k + 1.0) * limb);
+    Expr limb = select(k >= 1.0, 1.0, pow(unit(1.0 - NoV), 1.0 - k));
+    return fb.returns(pow(unit(NoL), k + 1.0) * limb);
   }();
   return f;
 }
@@ -102,7 +105,7 @@ FunctionPtr phong() {
                        "Phong 1975, \"Illumination for Computer Generated Pictures\": ρ = [r·v]^n",
                        "r·v = 2(n·l)(n·v) − l·v for r = 2(n·l)n − l.");
     Expr NoL = fb.param("NoL"), NoV = fb.param("NoV"), LoV = fb.param("LoV"), n = fb.param("n");
-    return fb.returns(pow(pos(2.0 * NoL * NoV - LoV), n));
+    return fb.returns(pow(unit(2.0 * NoL * NoV - LoV), n));
   }();
   return f;
 }
@@ -113,7 +116,7 @@ FunctionPtr blinn_phong() {
                        "Blinn 1977, \"Models of Light Reflection for Computer Synthesized Pictures\": "
                        "ρ = [n·h]^n");
     Expr NoH = fb.param("NoH"), n = fb.param("n");
-    return fb.returns(pow(pos(NoH), n));
+    return fb.returns(pow(unit(NoH), n));
   }();
   return f;
 }
@@ -124,7 +127,7 @@ FunctionPtr schlick_power() {
                        "Schlick 1994, \"An Inexpensive BRDF Model for Physically-based Rendering\": "
                        "x^n ≈ x / (n − n x + x)");
     Expr x = fb.param("x"), n = fb.param("n");
-    Expr c = fb.let("c", pos(x));
+    Expr c = fb.let("c", unit(x));
     return fb.returns(c / (n - n * c + c));
   }();
   return f;
@@ -152,7 +155,7 @@ FunctionPtr heidrich_seidel() {
     Expr LoT = fb.param("LoT"), VoT = fb.param("VoT"), n = fb.param("n");
     // √a √b as √(a b): one root.
     Expr x = sqrt(pos(1.0 - LoT * LoT) * pos(1.0 - VoT * VoT)) - LoT * VoT;
-    return fb.returns(pow(pos(x), n));
+    return fb.returns(pow(unit(x), n));
   }();
   return f;
 }
@@ -393,7 +396,7 @@ FunctionPtr spot_cone() {
                        "OpenGL 1.0 spotlight: spot = [−l·s]^exponent inside the cutoff cone, 0 outside",
                        "SoL = −l·s, the cosine between the spot axis and the direction to the point.");
     Expr SoL = fb.param("SoL"), cos_cutoff = fb.param("cos_cutoff"), exponent = fb.param("exponent");
-    return fb.returns(select(SoL >= cos_cutoff, pow(pos(SoL), exponent), 0.0));
+    return fb.returns(select(SoL >= cos_cutoff, pow(unit(SoL), exponent), 0.0));
   }();
   return f;
 }

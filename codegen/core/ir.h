@@ -103,6 +103,10 @@ Expr select(const Cond& c, const Expr& if_true, const Expr& if_false);
 
 // [x] = max(0, x), MODELS.md's bracket.
 inline Expr pos(const Expr& x) { return max(x, 0.0); }
+// A cosine as a power's base: clamped into [0, 1], where it lies exactly. A target's
+// dot product of unit vectors can round past 1, and x^n for n up to 1e6 turns that
+// into ∞ (docs/float32.md).
+inline Expr unit(const Expr& x) { return clamp(x, 0.0, 1.0); }
 inline Expr sq(const Expr& x) { return x * x; }
 
 // A named constant of the material (a parameter value); targets declare it once.

@@ -245,13 +245,7 @@ std::vector<SweepCount> GlRenderer::sweep(const std::vector<SweepJob>& jobs, con
     SweepCount& c = out[i];
     c.target = info().name;
     const SweepJob& j = jobs[i];
-    RenderOutcome r = sweep_draw(j.source.empty() ? glsl_sweep_source(j.material) : j.source, settings.grid);
-    if (!r.ok) {
-      c.error = r.error;
-      continue;
-    }
-    for (size_t k = 0; k < r.image.rgb.size(); k += 3)
-      count_sweep_value(c, {r.image.rgb[k], r.image.rgb[k + 1], r.image.rgb[k + 2]});
+    count_sweep_outcome(c, sweep_draw(j.source.empty() ? glsl_sweep_source(j.material) : j.source, settings.grid));
   }
   return out;
 }
@@ -367,23 +361,27 @@ class MeshTextures {
   GLuint textures_[4];
 };
 
+// An RGBA32F texture holding `rgba` (width × height texels, row 0 first: texelFetch's
+// j is row j, no flip), one level, nearest: the harnesses read it by texelFetch only.
+GLuint float_texture(int width, int height, const float* rgba) {
+  GLuint tex = 0;
+  glGenTextures(1, &tex);
+  glBindTexture(GL_TEXTURE_2D, tex);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, width, height, 0, GL_RGBA, GL_FLOAT, rgba);
+  return tex;
+}
+
 // A material's images as RGBA32F textures holding the files' values, read by texelFetch
 // only (glsl/textures.glsl), on units 4, 5, …, bound to facet_texture_<parameter>.
 class MaterialImages {
  public:
   explicit MaterialImages(const MaterialProgram& p) {
     for (const auto& c : image_calls(p)) {
-      GLuint tex = 0;
-      glGenTextures(1, &tex);
-      glBindTexture(GL_TEXTURE_2D, tex);
-      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
-      glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-      // Row 0 of the file first: texelFetch's j is the file's row j (no flip).
-      glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, c.texels->width, c.texels->height, 0, GL_RGBA, GL_FLOAT,
-                   c.texels->rgba.data());
-      textures_.push_back(tex);
+      textures_.push_back(float_texture(c.texels->width, c.texels->height, c.texels->rgba.data()));
       names_.push_back("facet_texture_" + c.name);
     }
   }
@@ -563,12 +561,7 @@ std::vector<const Material*> material_passes(const RenderJob& job, std::vector<s
 }
 
 std::vector<RenderOutcome> GlRenderer::render(const std::vector<RenderJob>& jobs, const RenderProgress& progress) {
-  std::vector<RenderOutcome> out;
-  for (size_t i = 0; i < jobs.size(); ++i) {
-    out.push_back(render(jobs[i]));
-    if (progress.finished) progress.finished(i);
-  }
-  return out;
+  return render_each(jobs, progress, [&](const RenderJob& job) { return render(job); });
 }
 
 RenderOutcome GlRenderer::render(const RenderJob& job) {
@@ -687,16 +680,7 @@ class DrawTextures {
  public:
   explicit DrawTextures(const std::vector<std::vector<ShaderTexture>>& images) : images_(images), textures_(images.size()) {
     for (size_t i = 0; i < images.size(); ++i)
-      for (const ShaderTexture& t : images[i]) {
-        GLuint tex = 0;
-        glGenTextures(1, &tex);
-        glBindTexture(GL_TEXTURE_2D, tex);
-        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
-        glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, t.width, t.height, 0, GL_RGBA, GL_FLOAT, t.rgba.data());
-        textures_[i].push_back(tex);
-      }
+      for (const ShaderTexture& t : images[i]) textures_[i].push_back(float_texture(t.width, t.height, t.rgba.data()));
   }
   ~DrawTextures() {
     for (const auto& t : textures_)

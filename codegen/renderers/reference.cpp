@@ -24,12 +24,7 @@ class ReferenceRenderer : public Renderer {
   const RendererInfo& info() const override { return info_; }
 
   std::vector<RenderOutcome> render(const std::vector<RenderJob>& jobs, const RenderProgress& progress) override {
-    std::vector<RenderOutcome> out;
-    for (size_t i = 0; i < jobs.size(); ++i) {
-      out.push_back(render_one(jobs[i]));
-      if (progress.finished) progress.finished(i);
-    }
-    return out;
+    return render_each(jobs, progress, [&](const RenderJob& job) { return render_one(job); });
   }
 
   std::vector<SweepCount> sweep(const std::vector<SweepJob>& jobs, const SweepSettings& settings) override {

@@ -64,6 +64,19 @@ struct RenderProgress {
   std::function<void(const std::string&)> step;
 };
 
+// The jobs one after another through `one` (RenderJob → RenderOutcome), each reported
+// as it finishes: the render() of a renderer that draws a job at a time.
+template <class One>
+std::vector<RenderOutcome> render_each(const std::vector<RenderJob>& jobs, const RenderProgress& progress, One&& one) {
+  std::vector<RenderOutcome> out;
+  out.reserve(jobs.size());
+  for (size_t i = 0; i < jobs.size(); ++i) {
+    out.push_back(one(jobs[i]));
+    if (progress.finished) progress.finished(i);
+  }
+  return out;
+}
+
 // ---------------------------------------------------------------- the robustness sweep
 
 // One material's counts (analysis/sweep.h explains the direction sets).

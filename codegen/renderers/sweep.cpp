@@ -20,6 +20,15 @@ void count_sweep_value(SweepCount& c, const RGB& r) {
   }
 }
 
+void count_sweep_outcome(SweepCount& c, const RenderOutcome& drawn) {
+  if (!drawn.ok) {
+    c.error = drawn.error;
+    return;
+  }
+  const std::vector<float>& rgb = drawn.image.rgb;
+  for (size_t k = 0; k + 2 < rgb.size(); k += 3) count_sweep_value(c, {rgb[k], rgb[k + 1], rgb[k + 2]});
+}
+
 // The grid's direction sets, evaluated once per size through the IR.
 const std::vector<std::array<Vec3, 3>>& sweep_grid_sets(int grid) {
   static std::map<int, std::vector<std::array<Vec3, 3>>> cache;

@@ -16,6 +16,8 @@ namespace facet {
 
 // One sample's channels into `c`: NaN, Inf and negative values each in their column.
 void count_sweep_value(SweepCount& c, const RGB& value);
+// Every pixel of a harness's image into `c`, or its error where it drew nothing.
+void count_sweep_outcome(SweepCount& c, const RenderOutcome& drawn);
 
 // The grid's direction sets (n, l, v), row by row from pixel centre (0.5/grid, 0.5/grid).
 const std::vector<std::array<Vec3, 3>>& sweep_grid_sets(int grid);

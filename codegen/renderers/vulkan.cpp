@@ -749,12 +749,7 @@ class VulkanRenderer : public Renderer {
     return device_.description() + "; G-buffer: " + gl_.description();
   }
   std::vector<RenderOutcome> render(const std::vector<RenderJob>& jobs, const RenderProgress& progress) override {
-    std::vector<RenderOutcome> out;
-    for (size_t i = 0; i < jobs.size(); ++i) {
-      out.push_back(render_one(jobs[i]));
-      if (progress.finished) progress.finished(i);
-    }
-    return out;
+    return render_each(jobs, progress, [&](const RenderJob& job) { return render_one(job); });
   }
   std::vector<SweepCount> sweep(const std::vector<SweepJob>& jobs, const SweepSettings& settings) override;
 
@@ -844,13 +839,7 @@ std::vector<SweepCount> VulkanRenderer::sweep(const std::vector<SweepJob>& jobs,
       std::memcpy(d.uniforms.data(), side, sizeof side);
     }
     d.textures = material_images(jobs[i].material);
-    RenderOutcome r = device_.draw(d, settings.grid, settings.grid, folder);
-    if (!r.ok) {
-      c.error = r.error;
-      continue;
-    }
-    for (size_t k = 0; k < r.image.rgb.size(); k += 3)
-      count_sweep_value(c, {r.image.rgb[k], r.image.rgb[k + 1], r.image.rgb[k + 2]});
+    count_sweep_outcome(c, device_.draw(d, settings.grid, settings.grid, folder));
   }
   return out;
 }

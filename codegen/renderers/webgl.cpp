@@ -199,9 +199,7 @@ class WebglRenderer : public Renderer {
     std::vector<SweepCount> counts(jobs.size());
     for (size_t i = 0; i < jobs.size(); ++i) {
       counts[i].target = info_.name;
-      if (!out[i].ok) counts[i].error = out[i].error;
-      for (size_t k = 0; out[i].ok && k < out[i].image.rgb.size(); k += 3)
-        count_sweep_value(counts[i], {out[i].image.rgb[k], out[i].image.rgb[k + 1], out[i].image.rgb[k + 2]});
+      count_sweep_outcome(counts[i], out[i]);
     }
     return counts;
   }
