@@ -4,8 +4,8 @@
 // Guards, all the same on every target (facet sweep checks them):
 //  * A cosine that is a power's base is clamped into [0, 1] (ir::unit): GPUs return
 //    NaN for pow(x < 0, y), a rounding error can push a cosine a few ulps below 0, and
-//    SwiftShader's normalize() leaves dot products of unit vectors up to about 1e-4
-//    above 1, which x^n with n = 1e6 turns into ∞ (docs/float32.md).
+//    on SwiftShader (WebGL2) a cosine overshoots 1 by at least 8.9e-5: x^n overflowed
+//    there at n = 1e6 (docs/float32.md).
 //  * sqrt() arguments of the form 1 − c² are clamped to ≥ 0 for the same reason,
 //    and 1 − c² is computed as (1 − c)(1 + c), exact near c = 1 in float.
 //  * Divisions by n·v, n·l or n·h are safe because the horizon rule
