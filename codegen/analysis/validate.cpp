@@ -42,6 +42,7 @@ struct Case {
   std::string key;                   // names the images: the material file's stem, or the scene's name
   Scene scene;
   Render reference;
+  std::string uninformative;  // why the reference proves nothing (validate.h), or ""
   std::string label() const { return material ? material->name : scene.name + " (its own materials)"; }
   std::string models() const {
     std::vector<const Material*> ms;
@@ -67,13 +68,15 @@ std::string image_name(const Case& c, const std::string& renderer, const char* s
   return validate_image(c.key, c.scene.name, renderer + suffix);
 }
 
-// A renderer's image beside the reference: its preview and |Δ| × 16.
-void write_images(const fs::path& out, const Case& c, const std::string& renderer, const Image& img) {
-  write_png_preview((out / image_name(c, renderer)).string(), img);
+// A renderer's image beside the reference: its preview at the exposure `ev` (stops) and
+// |Δ| × 16 at the same exposure.
+void write_images(const fs::path& out, const Case& c, const std::string& renderer, const Image& img, double ev) {
+  const float scale = float(std::exp2(ev));
+  write_png_preview((out / image_name(c, renderer)).string(), img, scale);
   if (renderer == reference_renderer().name) return;
   Image diff(img.width, img.height);
   for (size_t i = 0; i < diff.rgb.size(); ++i) diff.rgb[i] = std::fabs(img.rgb[i] - c.reference.image.rgb[i]);
-  write_png_preview((out / image_name(c, renderer, "_diff")).string(), diff, 16.0f, false);
+  write_png_preview((out / image_name(c, renderer, "_diff")).string(), diff, 16.0f * scale, false);
 }
 
 json row_json(const ComparisonRow& r, int w, int h) {
@@ -94,6 +97,8 @@ json row_json(const ComparisonRow& r, int w, int h) {
             {"seconds", r.seconds},
             {"file", r.key}};
   if (!r.error.empty()) j["error"] = r.error;
+  if (!r.uninformative.empty()) j["uninformative"] = r.uninformative;
+  if (!r.note.empty()) j["note"] = r.note;
   if (m.worst_x >= 0)
     j["worst"] = {{"x", m.worst_x},
                   {"y", m.worst_y},
@@ -105,7 +110,10 @@ json row_json(const ComparisonRow& r, int w, int h) {
 std::string figures(const ComparisonRow& r) {
   if (!r.error.empty()) return "<div class=error>" + html_escape(r.error.substr(0, 2000)) + "</div>";
   const Metrics& m = r.metrics;
-  return fmt::format(
+  const std::string why =
+      (r.uninformative.empty() ? "" : "<div class=error>uninformative: " + html_escape(r.uninformative) + "</div>") +
+      (r.note.empty() ? "" : "<div class=muted>" + html_escape(r.note) + "</div>");
+  return why + fmt::format(
       "<div class=figs>max |Δ| {:.3g}<br>max |Δ|/max(1,|ref|) {:.3g}<br>rmse {:.3g}<br>over tolerance {}{}<br>"
       "coverage differs {:.3f} %<br>NaN/Inf {}<br>{} interior px</div>",
       m.max_abs, m.max_excess, m.rmse, m.over, r.allowed_flips ? fmt::format(" (≤ {} allowed: toon step)", r.allowed_flips) : "",
@@ -190,12 +198,14 @@ void write_report(const fs::path& out, const ValidateOptions& o, const std::vect
   html += fmt::format("<p class=\"summary {}\">{}</p>\n", result.pass ? "pass" : "fail", html_escape(result.summary));
   html += renderer_table(targets, result);
   html += fmt::format(
-      "<p class=muted>{}×{} pixels, one sample at each pixel centre. A comparison passes when |renderer − reference| ≤ "
+      "<p class=muted>{}×{} pixels, one sample at each pixel centre; previews at each scene's exposure (radiance × "
+      "2^EV, sRGB, clipped{}). A comparison passes when |renderer − reference| ≤ "
       "{:g} · max(1, |reference|) per channel on every interior pixel (the reference hit the same object at the pixel "
       "and its 8 neighbours, and no shadow ray there passes within 1e-4 of an occluder's edge), coverage differs on at "
       "most {:g} % of pixels, and no value is NaN or Inf. A hard toon step may flip {:g} % of interior pixels. "
       "Difference images show |Δ| × 16.</p>\n",
-      o.width, o.height, o.tolerance, 100 * o.coverage_tolerance, 100 * o.flip_tolerance);
+      o.width, o.height, o.exposure ? fmt::format("; --exposure {:g} for all", *o.exposure) : "", o.tolerance,
+      100 * o.coverage_tolerance, 100 * o.flip_tolerance);
 
   // Rows, failures first.
   std::vector<size_t> order(cases.size());
@@ -231,6 +241,59 @@ std::vector<std::string> example_materials() {
 
 std::string validate_image(const std::string& key, const std::string& scene, const std::string& renderer) {
   return fmt::format("images/{}_{}_{}.png", key, identifier(scene), renderer);
+}
+
+namespace {
+
+// The visible objects that show no shading: seen from behind, or reached by no light.
+std::string dark_objects(const Render& ref, const Scene& s) {
+  std::vector<size_t> pixels(s.objects.size()), back(s.objects.size()), lit(s.objects.size());
+  for (size_t i = 0; i < ref.object.size(); ++i) {
+    const int o = ref.object[i];
+    if (o < 0 || size_t(o) >= s.objects.size()) continue;
+    ++pixels[size_t(o)];
+    back[size_t(o)] += !(ref.seen[i] & Render::kFacesCamera);
+    lit[size_t(o)] += (ref.seen[i] & Render::kReceivesLight) != 0;
+  }
+  std::string out;
+  for (size_t o = 0; o < s.objects.size(); ++o) {
+    if (pixels[o] < kInformativePixels) continue;
+    std::string why;
+    if (2 * back[o] > pixels[o])
+      why = fmt::format("faces away from the camera at {:.0f} % of its {} pixels (its normals point into it?)",
+                        100.0 * double(back[o]) / double(pixels[o]), pixels[o]);
+    else if (lit[o] == 0)
+      why = fmt::format("no light reaches any of its {} pixels (every light below its horizon, outside its cone or "
+                        "in shadow)",
+                        pixels[o]);
+    if (!why.empty()) out += fmt::format("{}\"{}\" {}", out.empty() ? "" : "; ", s.objects[o].name, why);
+  }
+  return out;
+}
+
+}  // namespace
+
+std::string uninformative(const Render& ref, const Scene& s) {
+  float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+  size_t visible = 0;
+  for (size_t i = 0; i < ref.object.size(); ++i) {
+    if (ref.object[i] < 0) continue;
+    ++visible;
+    for (size_t c = 0; c < 3; ++c) {
+      lo[c] = std::min(lo[c], ref.image.rgb[i * 3 + c]);
+      hi[c] = std::max(hi[c], ref.image.rgb[i * 3 + c]);
+    }
+  }
+  if (visible == 0) return "no object is visible";
+  const float peak = std::max({hi[0], hi[1], hi[2]});
+  if (!(peak > 0)) return fmt::format("the reference is black at all {} pixels where objects are visible", visible);
+  bool constant = true;
+  for (size_t c = 0; c < 3; ++c) constant = constant && hi[c] - lo[c] <= 1e-6f * std::max(1.0f, peak);
+  if (constant)
+    return fmt::format("the reference is one colour ({:.4g}, {:.4g}, {:.4g}) at all {} pixels where objects are visible",
+                       hi[0], hi[1], hi[2], visible);
+  const std::string dark = dark_objects(ref, s);
+  return dark.empty() ? "" : "objects show no shading: " + dark;
 }
 
 ComparisonRow judge(const Render& reference, const Image& image, const std::vector<float>& alpha, bool hard_toon,
@@ -318,16 +381,17 @@ std::vector<Case> reference_cases(const Inputs& in, const ValidateOptions& o, co
   auto add = [&](Case c) {
     c.reference = c.material ? render_reference(*c.material, c.scene, o.width, o.height)
                              : render_reference(c.scene, o.width, o.height);
-    write_images(out, c, reference_renderer().name, c.reference.image);
+    c.uninformative = uninformative(c.reference, c.scene);
+    write_images(out, c, reference_renderer().name, c.reference.image, o.exposure.value_or(c.scene.exposure));
     cases.push_back(std::move(c));
     p.tick("reference " + cases.back().key + " on " + cases.back().scene.name, cases.size(), total);
   };
   for (const auto& s : in.scenes) {
     if (s.has_own_materials()) {
-      add(Case{std::nullopt, identifier(s.name), s, {}});
+      add(Case{std::nullopt, identifier(s.name), s, {}, {}});
       continue;
     }
-    for (size_t i = 0; i < in.materials.size(); ++i) add(Case{in.materials[i], in.keys[i], s, {}});
+    for (size_t i = 0; i < in.materials.size(); ++i) add(Case{in.materials[i], in.keys[i], s, {}, {}});
   }
   return cases;
 }
@@ -341,6 +405,7 @@ RenderJob job_for(const Case& c, const std::string& renderer, const ValidateOpti
   j.workdir = (out / "work" / renderer / identifier(c.scene.name)).string();
   j.max_value = 0;
   for (float v : c.reference.image.rgb) j.max_value = std::max<double>(j.max_value, v);
+  j.tolerance = o.tolerance;  // POV-Ray brackets its exposures where one cannot hold the range to it
   return j;
 }
 
@@ -351,12 +416,15 @@ void report_phase(const std::string& renderer, const ValidateResult& result, siz
   p.out << fmt::format("\r  {}: {} of {} pass in {:.1f} s\n", renderer, ok, n, result.wall.at(renderer));
   for (size_t i = start; i < result.rows.size(); ++i) {
     const auto& r = result.rows[i];
-    if (!r.pass)
+    if (!r.pass && r.error.empty() && !r.uninformative.empty() && r.metrics.over == 0)
+      p.out << fmt::format("    UNINFORMATIVE {} on {}: {}\n", r.material, r.scene, r.uninformative);
+    else if (!r.pass)
       p.out << fmt::format("    FAIL {} on {}: {}\n", r.material, r.scene,
                            r.error.empty() ? fmt::format("max |Δ|/max(1,|ref|) {:.3g}, {} pixels over, coverage "
-                                                         "{:.3f} %, NaN/Inf {}",
+                                                         "{:.3f} %, NaN/Inf {}{}",
                                                          r.metrics.max_excess, r.metrics.over,
-                                                         100 * r.coverage_mismatch, r.metrics.nan)
+                                                         100 * r.coverage_mismatch, r.metrics.nan,
+                                                         r.uninformative.empty() ? "" : "; uninformative: " + r.uninformative)
                                            : r.error.substr(0, r.error.find('\n')));
   }
 }
@@ -379,7 +447,10 @@ void run_renderer(const RendererEntry& entry, const std::vector<Case>& cases, co
     const Case& c = cases[i];
     const RenderOutcome& r = outcomes.at(i);
     ComparisonRow row = judge(c.reference, r, c.hard_toon(), o);
-    if (r.ok) write_images(out, c, name, r.image);
+    row.uninformative = c.uninformative;
+    row.pass = row.pass && row.uninformative.empty();
+    row.note = r.note;
+    if (r.ok) write_images(out, c, name, r.image, o.exposure.value_or(c.scene.exposure));
     row.material = c.label();
     row.key = c.key;
     row.renderer = name;
@@ -406,10 +477,13 @@ std::string summary(const ValidateOptions& o, const Inputs& in, const ValidateRe
   std::string what = in.need_materials
                          ? fmt::format("{} materials × {} scenes", in.materials.size(), in.scenes.size())
                          : fmt::format("{} scenes with their own materials", in.scenes.size());
+  size_t dull = 0;
+  for (const auto& r : result.rows) dull += !r.uninformative.empty();
   return fmt::format(
-      "{} of {} comparisons pass ({} × {} renderers at {}×{}); worst |Δ|/max(1,|ref|): {} (tolerance {:g}); wall "
+      "{} of {} comparisons pass{} ({} × {} renderers at {}×{}); worst |Δ|/max(1,|ref|): {} (tolerance {:g}); wall "
       "time: {}",
-      ok, result.rows.size(), what, targets.size(), o.width, o.height, worst, o.tolerance, times);
+      ok, result.rows.size(), dull ? fmt::format(", {} uninformative", dull) : "", what, targets.size(), o.width,
+      o.height, worst, o.tolerance, times);
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <map>
+#include <optional>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -28,6 +29,9 @@ struct ValidateOptions {
   double coverage_tolerance = 1e-3;    // share of pixels whose coverage may differ
   double flip_tolerance = 1e-3;        // share of interior pixels a hard toon step may flip
   bool interactive = false;            // progress as one updating line (a terminal) or a line per step
+  // The previews' exposure in stops (radiance × 2^EV, then sRGB, clipped); absent: each scene's own
+  // (Scene::exposure). The comparison is of the linear images, whatever this says.
+  std::optional<double> exposure;
 };
 
 struct ComparisonRow {
@@ -39,6 +43,9 @@ struct ComparisonRow {
   size_t allowed_flips = 0;      // interior pixels a hard toon step may flip
   bool pass = false;
   std::string error;             // why it could not run, when it could not
+  // Why the comparison proves nothing, when it does not (uninformative()): it does not pass.
+  std::string uninformative;
+  std::string note;  // a choice the renderer made (RenderOutcome::note)
   double seconds = 0;
 };
 
@@ -57,6 +64,15 @@ std::vector<std::string> example_materials();
 
 // Renders, compares, writes OUT/metrics.json, OUT/report.html and OUT/images/.
 ValidateResult validate(const ValidateOptions& options, std::ostream& progress);
+
+// Why a reference image of scene `s` cannot tell a right renderer from a wrong one, or ""
+// when it can: every renderer reading the same wrong scene agrees with it perfectly, so a
+// comparison only proves something where the image shows shading. Uninformative: nothing
+// visible; the image black or constant where objects are visible; or a visible object (of
+// at least kInformativePixels pixels) seen from behind its normal at more than half its
+// pixels, or reached by no light at any of them (each such object is named).
+std::string uninformative(const Render& reference, const Scene& s);
+inline constexpr size_t kInformativePixels = 8;
 
 // The comparison the report and the tests share. `hard_toon`: a material in the
 // image has a toon step of width 0, which may flip options.flip_tolerance of the pixels.

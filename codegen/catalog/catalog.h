@@ -35,6 +35,11 @@ inline constexpr double kEpsilon = 1e-4;
 // 1e4 and each ρ below 1e15 (n·v ≥ 1e-7), L stays below 1e24 a light: 14 orders
 // of magnitude inside float32's 3.4e38.
 inline constexpr double kColorMax = 1e4;
+// A light's colour C: real light powers in physical units reach beyond 1e4 (a 1 MW
+// Blender light is C = 1e6 / (4π²) ≈ 2.5e4; glTF's candela and lux convert to C by
+// 1 / (683 lm/W · π)), so lights take 1e6: a light then adds at most 1e6 · 2.5e16 = 2.5e22
+// (docs/float32.md), still 16 orders of magnitude inside float32.
+inline constexpr double kLightColorMax = 1e6;
 // Exponents x^n of a cosine (phong, blinn_phong, heidrich_seidel n, minnaert k, a
 // spot's exponent; gaussian m): every such cosine is clamped into [0, 1]
 // (ir::unit), so x^n ≤ 1 and Schlick's x / (n − n x + x) keeps a denominator ≥ 1;
@@ -75,6 +80,7 @@ struct Range {
   static Range open(double a, double b) { return {a, b, true, true}; }
   // The float32 bounds above as ranges.
   static Range color() { return {0, kColorMax, false, false, true}; }                    // [0, 1e4]
+  static Range light_color() { return {0, kLightColorMax, false, false, true}; }         // [0, 1e6]
   static Range exponent(double lo) { return {lo, kExponentMax, false, false, true}; }       // [lo, 1e6]
   static Range positive_exponent() { return {0, kExponentMax, true, false, true}; }         // (0, 1e6]
   static Range roughness() { return {kRoughnessMin, kScalarMax, false, false, true}; }      // [1e-3, 1e4]

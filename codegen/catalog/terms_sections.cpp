@@ -105,7 +105,7 @@ void add_lights(std::vector<ModelDef>& all) {
     auto m = entry("light", "point", "Point light", "", "l = normalize(p_light − p), d = |p_light − p|",
                    "Light from a point, attenuated by the light's attenuation law.");
     m.params = {vector("position", "world position", {0, 0, 0}, true),
-                color("color", "colour C", Range::color(), {1, 1, 1}), attenuation_param()};
+                color("color", "colour C", Range::light_color(), {1, 1, 1}), attenuation_param()};
     m.light_type = LightType::Point;
     all.push_back(m);
   }
@@ -113,7 +113,7 @@ void add_lights(std::vector<ModelDef>& all) {
     auto m = entry("light", "directional", "Directional light", "", "l = −normalize(direction)",
                    "Light from infinitely far away; never attenuated.");
     m.params = {vector("direction", "the way the light travels", {0, -1, 0}, true, true),
-                color("color", "colour C", Range::color(), {1, 1, 1})};
+                color("color", "colour C", Range::light_color(), {1, 1, 1})};
     m.light_type = LightType::Directional;
     all.push_back(m);
   }
@@ -125,7 +125,7 @@ void add_lights(std::vector<ModelDef>& all) {
                 vector("direction", "the axis of the cone", {0, -1, 0}, true, true),
                 number("cutoff", "half-angle of the cone in degrees", Range::open(0, 90), 30),
                 number("exponent", "concentration towards the axis", Range::exponent(0), 0, false),
-                color("color", "colour C", Range::color(), {1, 1, 1}), attenuation_param()};
+                color("color", "colour C", Range::light_color(), {1, 1, 1}), attenuation_param()};
     m.pov = exact("spotlight with radius = falloff = cutoff and tightness = exponent");
     m.light_type = LightType::Spot;
     all.push_back(m);
@@ -157,7 +157,8 @@ void add_lights(std::vector<ModelDef>& all) {
   }
 }
 
-void add_scene_vocabulary(std::vector<ModelDef>& all) {
+namespace {
+void add_cameras(std::vector<ModelDef>& all) {
   {
     auto m = entry("camera", "perspective", "Perspective camera", "",
                    "ray(i, j) through pixel centres; fov is the vertical field of view",
@@ -168,6 +169,25 @@ void add_scene_vocabulary(std::vector<ModelDef>& all) {
                 number("fov", "vertical field of view in degrees", Range::open(0, 180), 40, false)};
     all.push_back(m);
   }
+  {
+    auto m = entry("camera", "orthographic", "Orthographic camera", "",
+                   "ray(i, j): origin on the image plane through pixel centres, direction the view's; height is the "
+                   "view's vertical extent",
+                   "Parallel rays along look_at − position from a rectangle `height` high (the image's aspect gives "
+                   "its width) centred at `position`, rolled so `up` points up; written with \"type\": "
+                   "\"orthographic\". glTF's orthographic camera has height = 2·ymag.");
+    m.params = {vector("position", "the centre of the image rectangle", {0, 0, 4}, true),
+                vector("look_at", "a point the view direction passes through from position", {0, 0, 0}),
+                vector("up", "the world direction that is up in the image", {0, 1, 0}, false, true),
+                number("height", "the vertical extent of the view, world units", Range::positive_coordinate(), 2,
+                       false)};
+    all.push_back(m);
+  }
+}
+}  // namespace
+
+void add_scene_vocabulary(std::vector<ModelDef>& all) {
+  add_cameras(all);
   {
     auto m = entry("object", "sphere", "Sphere", "", "|p − center| = radius", "An analytic sphere.");
     m.params = {text("name", "a name for reports"), text("material", "a key of the scene's \"materials\""),

@@ -20,11 +20,13 @@ namespace {
 
 std::string gi_in, gi_out, gi_default;
 bool gi_inline = false;
+double gi_lumens_per_watt = kLumensPerWatt;
 
 int run_import_gltf() {
   GltfImportOptions opt;
   if (!gi_default.empty()) opt.default_material = load_material(gi_default);
   opt.output = gi_out;
+  opt.lumens_per_watt = gi_lumens_per_watt;
   std::vector<std::string> notes;
   std::vector<GltfImportFile> files;  // the images the glTF held and those baked, then the scene: all or none
   Scene s = import_gltf(gi_in, opt, notes, &files);
@@ -53,6 +55,10 @@ Command import_gltf_command(CLI::App& app) {
   gi->add_option("scene", gi_in, "The glTF file")->required();
   gi->add_option("-o,--output", gi_out, "The facet scene (JSON)")->required();
   gi->add_option("--default-material", gi_default, "A facet material for primitives without one");
+  gi->add_option("--lumens-per-watt", gi_lumens_per_watt,
+                 "The luminous efficacy that turns the file's candela and lux into facet's radiometric light colour "
+                 "(Blender's and glTF-Blender-IO's 683; 1 keeps photometric units)")
+      ->check(CLI::Range(1e-3, 1e6));
   gi->add_flag("--inline", gi_inline,
                "Write each mesh's positions, normals and triangles into the scene file instead of referencing the "
                "glTF file");

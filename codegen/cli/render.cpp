@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <cmath>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -14,6 +15,7 @@
 #include "cli/command.h"
 #include "core/image.h"
 #include "reference/raycaster.h"
+#include "analysis/validate.h"
 #include "renderers/compare.h"
 #include "renderers/renderer.h"
 #include "scene/scene.h"
@@ -37,6 +39,7 @@ struct RenderArgs {
   bool exact = false;
   bool one_run = false;
   double check = -1;
+  std::optional<double> exposure;  // the preview's, in stops; absent: the scene's
 };
 
 // The renderer's image of `job`; false, with the reason printed, when it failed.
@@ -50,19 +53,22 @@ bool render_with(const std::string& name, const RenderJob& job, Image& image) {
   image = r.image;
   std::string about = renderer->description();
   fmt::print(stderr, "{}{}: {:.2f} s\n", name, about.empty() ? "" : " (" + about + ")", r.seconds);
+  if (!r.note.empty()) fmt::print(stderr, "note: {}\n", r.note);
   return true;
 }
 
 // The comparison with the reference, printed; whether it passes `tol` (--check).
-bool print_comparison(const RenderArgs& a, const std::optional<Material>& m, const Render& ref, const Image& image,
-                      double tol) {
+bool print_comparison(const RenderArgs& a, const std::optional<Material>& m, const Render& ref, const Scene& ref_scene,
+                      const Image& image, double tol) {
   Metrics mt = compare_images(ref, image, interior_mask(ref), tol);
   fmt::print("{} vs reference, {}: max |Δ| {:.3g}, max |Δ|/max(1,|ref|) {:.3g}, rmse {:.3g}; {} of {} interior pixels "
              "over {:g}; NaN/Inf {}; worst at ({}, {}): ref [{:.6g} {:.6g} {:.6g}] got [{:.6g} {:.6g} {:.6g}]\n",
              a.renderer, m ? m->name : std::filesystem::path(a.scene).stem().string(), mt.max_abs, mt.max_excess, mt.rmse,
              mt.over, mt.pixels, tol, mt.nan, mt.worst_x, mt.worst_y, mt.worst_ref[0], mt.worst_ref[1], mt.worst_ref[2],
              mt.worst_got[0], mt.worst_got[1], mt.worst_got[2]);
-  return mt.over == 0 && mt.nan == 0 && mt.pixels > 0;
+  const std::string dull = uninformative(ref, ref_scene);
+  if (!dull.empty()) fmt::print("uninformative: {} — the comparison cannot tell a right renderer from a wrong one\n", dull);
+  return mt.over == 0 && mt.nan == 0 && mt.pixels > 0 && dull.empty();
 }
 
 int run_render(const RenderArgs& a) {
@@ -87,15 +93,16 @@ int run_render(const RenderArgs& a) {
     job.pov_route = *parse_pov_route(a.pov_route);
     job.max_value = 0;
     for (float v : ref.image.rgb) job.max_value = std::max<double>(job.max_value, v);
+    if (a.compare || a.check >= 0) job.tolerance = a.check >= 0 ? a.check : 2e-3;  // POV-Ray brackets to meet it
     if (!render_with(a.renderer, job, image)) return 1;
   }
   int status = 0;
   if ((a.compare || a.check >= 0) && !reference) {
-    bool pass = print_comparison(a, m, ref, image, a.check >= 0 ? a.check : 2e-3);
+    bool pass = print_comparison(a, m, ref, scene, image, a.check >= 0 ? a.check : 2e-3);
     if (a.check >= 0 && !pass) status = 3;
   }
   if (!a.output.empty()) write_pfm(a.output, image);
-  if (!a.preview.empty()) write_png_preview(a.preview, image);
+  if (!a.preview.empty()) write_png_preview(a.preview, image, float(std::exp2(a.exposure.value_or(scene.exposure))));
   if (!a.mask.empty()) {  // a binary PGM, rows from the top: 255 where the comparison looks
     std::vector<uint8_t> mask = interior_mask(ref);
     std::string pgm = fmt::format("P5\n{} {}\n255\n", w, h);
@@ -119,7 +126,10 @@ Command render_command(CLI::App& app) {
   rn->add_option("--scene", ra.scene, "A scene file or a built-in name (single, shadows)")->capture_default_str();
   rn->add_option("--size", ra.size, "Image size WIDTHxHEIGHT")->capture_default_str();
   rn->add_option("-o,--output", ra.output, "Linear float image (PFM)");
-  rn->add_option("--preview", ra.preview, "An 8-bit sRGB PNG to look at");
+  rn->add_option("--preview", ra.preview, "An 8-bit sRGB PNG to look at (radiance × 2^exposure, sRGB, clipped)");
+  rn->add_option("--exposure", ra.exposure,
+                 "The preview's exposure in stops (default: the scene's \"exposure\", else 0)")
+      ->check(CLI::Range(-40.0, 40.0));
   rn->add_option("--pov-route", ra.pov_route, "POV-Ray: auto, native, exact or fast (facet generate --pov-route)")
       ->check(CLI::IsMember({"auto", "native", "exact", "fast"}))
       ->capture_default_str();

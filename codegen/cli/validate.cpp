@@ -45,6 +45,10 @@ Command validate_command(CLI::App& app) {
   v->add_option("--out", va.out, "Where metrics.json, report.html and the images go")->capture_default_str();
   v->add_option("--python", va.python, "The Python with bpy 4.5 for Cycles (default: FACET_PYTHON, then the "
                                        "build's .venv)");
+  v->add_option("--exposure", va.exposure,
+                "The previews' exposure in stops: radiance × 2^EV through the standard view transform (sRGB, "
+                "clipped to 1); default: each scene's \"exposure\" (0 without). Comparisons are of the linear images")
+      ->check(CLI::Range(-40.0, 40.0));
   v->add_option("--tolerance", va.tolerance, "Pass when |Δ| ≤ TOL · max(1, |reference|) on every interior pixel")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);

@@ -145,19 +145,21 @@ ShadingFrame shading_frame(const Object& obj, const Reference& ref, const Corner
 void shade_pixel(const Scene& s, const std::vector<const Reference*>& shading,
                  const std::vector<CornerTangents>& tangents, double offset, double close, int x, int y, Render& r) {
   const int width = r.image.width, height = r.image.height;
-  Vec3 dir = s.camera.ray(x, y, width, height);
-  SceneHit h = nearest(s, s.camera.position, dir);
+  Vec3 eye;
+  Vec3 dir = s.camera.ray(x, y, width, height, &eye);
+  SceneHit h = nearest(s, eye, dir);
   if (h.object < 0) return;
   size_t idx = size_t(y) * size_t(width) + size_t(x);
   r.object[idx] = h.object;
   const Object& obj = s.objects[size_t(h.object)];
   const Reference& ref = *shading[size_t(h.object)];
   const Material& m = ref.material();
-  Vec3 p = s.camera.position + dir * h.hit.t;
+  Vec3 p = eye + dir * h.hit.t;
   Vec3 v = -dir;
   ShadingFrame f = shading_frame(obj, ref, tangents[size_t(h.object)], p, h.hit, v);
   RGB L = ref.emitted(f.textured, s.ambient);
   bool grazing = f.grazing;
+  uint8_t seen = dot(f.n, v) > 0 ? Render::kFacesCamera : 0;
   for (const auto& light : s.lights) {
     Vec3 l;
     double d;
@@ -171,12 +173,14 @@ void shade_pixel(const Scene& s, const std::vector<const Reference*>& shading,
     }
     if (m.normal_map && dot(f.n, l) < kNormalMapHorizon && dot(f.shading_n, l) > 0) grazing = true;
     if (blocked(s, h.object, h.hit.triangle, p, l, d, offset, close, grazing)) continue;
+    seen |= Render::kReceivesLight;
     ShadingInputs in = shading_inputs(f.shading_n, l, v, f.t);
     in.textured = f.textured.textured;
     RGB rho = ref.reflectance(in);
     for (int c = 0; c < 3; ++c) L[c] += factor * light.color[c] * rho[c];
   }
   r.grazing[idx] = grazing;
+  r.seen[idx] = seen;
   float* px = r.image.at(x, y);
   for (int c = 0; c < 3; ++c) px[c] = float(L[c]);
 }
@@ -203,6 +207,7 @@ Render render(const Material* fallback, const Scene& s, int width, int height, i
   r.image = Image(width, height);
   r.object.assign(size_t(width) * size_t(height), -1);
   r.grazing.assign(size_t(width) * size_t(height), 0);
+  r.seen.assign(size_t(width) * size_t(height), 0);
   const double offset = kShadowRayOffset * scene_scale(s);
   const double close = std::max(kCloseBlock, kGrazing * scene_scale(s));
   // Rows on every core (or `threads`): each pixel is its own, so any split gives the same image.

@@ -15,6 +15,12 @@ struct Render {
   Image image;                 // linear radiance at pixel centres
   std::vector<int> object;     // per pixel: the object hit, −1 for background
   std::vector<uint8_t> grazing;  // per pixel: a shadow ray passes within 1e-4 of an occluder's edge
+  // Per pixel, what makes it tell renderers apart: kFacesCamera where the surface's own normal
+  // faces the eye (n·v > 0), kReceivesLight where some light reaches it (above its horizon,
+  // inside its cone, not in shadow). A surface seen from behind, or reached by no light, shows
+  // 0 (or its ambient and emission) on every renderer, right or wrong.
+  static constexpr uint8_t kFacesCamera = 1, kReceivesLight = 2;
+  std::vector<uint8_t> seen;
 };
 
 // Shadow rays start this far along (relative to the scene's size) so a surface

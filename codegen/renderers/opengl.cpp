@@ -421,6 +421,7 @@ void set_camera(const Uniforms& u, const Scene& s, int width, int height) {
   u.vec3("facet_camera_right", b.right);
   u.vec3("facet_camera_up", b.up);
   glUniform2f(u.loc("facet_camera_tan"), float(b.tan_half * width / height), float(b.tan_half));
+  glUniform1i(u.loc("facet_camera_orthographic"), s.camera.orthographic ? 1 : 0);
   glUniform3f(u.loc("facet_ambient"), float(s.ambient[0]), float(s.ambient[1]), float(s.ambient[2]));
 }
 

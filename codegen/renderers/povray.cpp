@@ -32,17 +32,37 @@ const unsigned kProcesses = 2;
 
 // Exposures are powers of two, exact to undo. The last keeps the brightest pixel below clipping.
 // Bracketing starts at 16, so dim passes (an emission pass, a faint light) keep
-// their precision too, and halves down to the exposure that keeps the brightest below 1.
-std::vector<double> exposures(const RenderJob& job) {
+// their precision too, and steps down by `ratio` to the exposure that keeps the brightest
+// below 1: each pixel is read from the brightest exposure it does not clip in, at least
+// kClip / ratio of full scale, so its relative error is at most ratio · ½ / (65535 · kClip).
+std::vector<double> exposures(const RenderJob& job, double ratio) {
   std::vector<double> out;
-  double e = job.bracket ? 16 : 1;
-  if (job.bracket) out.push_back(e);
+  const bool bracket = ratio > 1;
+  double e = bracket ? 16 : 1;
+  if (bracket) out.push_back(e);
   while (job.max_value * e >= kClip) {
-    e /= 2;
-    if (job.bracket) out.push_back(e);
+    e /= bracket ? ratio : 2;
+    if (bracket) out.push_back(e);
   }
-  if (!job.bracket) out.push_back(e);
+  if (!bracket) out.push_back(e);
   return out;
+}
+
+// The bracketing ratio a job takes (1: one exposure). --exact's is 2: 16-bit relative
+// precision everywhere. A comparison's tolerance t allows an error of t · max(1, |ref|),
+// of which the exposures may take half (the rest is the renderers' own difference). One
+// exposure e errs by ½ / (65535 e) a pass, absolute: it serves while passes · ½ / (65535 e)
+// ≤ t / 2. Bracketed, a pass's value errs by at most ratio · ½ / (65535 · kClip) of itself
+// (and the passes' values add up to the pixel's), and the dimmest by ½ / (65535 · 16) a pass:
+// the coarsest power-of-two ratio within t / 2.
+double bracket_ratio(const RenderJob& job, int passes) {
+  if (job.bracket) return 2;
+  if (job.tolerance <= 0) return 1;
+  const double e = exposures(job, 1).back();
+  if (passes * 0.5 / (65535 * e) <= job.tolerance / 2) return 1;
+  double ratio = 2;
+  while (2 * ratio * 0.5 / (65535 * kClip) <= job.tolerance / 2) ratio *= 2;
+  return ratio;
 }
 
 // The harness that includes BASE.pov: frame f renders light pass f % passes at exposure f / passes.
@@ -127,7 +147,12 @@ RenderOutcome render_pov(const RenderJob& job) {
     out.error = e.what();
     return out;
   }
-  const std::vector<double> exposure = exposures(job);
+  const double ratio = bracket_ratio(job, passes);
+  const std::vector<double> exposure = exposures(job, ratio);
+  if (ratio > 1 && !job.bracket)
+    out.note = fmt::format("POV-Ray: the scene's range (brightest {:.4g}) is more than one 16-bit exposure holds to "
+                           "the tolerance; exposures bracketed, {} of them from 16 down by ×{:g}",
+                           job.max_value, exposure.size(), ratio);
   const int frames = passes * int(exposure.size());
   write_file_atomic((fs::path(dir) / (base + "_harness.pov")).string(), harness(base, passes, exposure));
   for (const auto& entry : fs::directory_iterator(dir))

@@ -32,6 +32,11 @@ struct RenderJob {
   // every pass keeps 16-bit relative precision (≤ 1.6e-5 · value); otherwise one
   // exposure for the whole image (error ≤ 7.7e-6 / exposure per pass).
   bool bracket = false;
+  // POV-Ray: the comparison's tolerance (|Δ| ≤ tolerance · max(1, |reference|)), when a
+  // comparison will judge the image: where one exposure's 16 bits cannot meet it for
+  // every pixel of the scene's range, exposures are bracketed as coarsely as it allows
+  // (RenderOutcome::note says so). 0: as `bracket` says.
+  double tolerance = 0;
   // POV-Ray: render the generated file as a user would, in one run with every
   // light at once (Facet_Light = -1: light_group copies), instead of one pass per light.
   bool one_run = false;
@@ -54,6 +59,7 @@ struct RenderOutcome {
   std::vector<float> alpha;  // coverage per pixel (1 object, 0 background); empty when the renderer has none
   double seconds = 0;
   std::string log;    // what the tool printed
+  std::string note;   // a choice the renderer made that the report shows (POV-Ray's bracketed exposures)
 };
 
 // What a renderer tells while it works, both optional: finished(i) once job i

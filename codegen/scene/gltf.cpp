@@ -40,7 +40,14 @@ const char* kObjectExt = "FACET_object";
 const char* kLightExt = "FACET_light";
 const char* kSceneExt = "FACET_scene";
 const char* kLightsExt = "KHR_lights_punctual";
-const std::set<std::string> kSupportedRequired = {kLightsExt, kMaterialExt, kObjectExt, kLightExt, kSceneExt};
+// The extensions facet reads as their specifications say, so a file may require them.
+const std::set<std::string> kSupportedRequired = {kLightsExt,
+                                                  "KHR_texture_transform",
+                                                  "KHR_materials_emissive_strength",
+                                                  kMaterialExt,
+                                                  kObjectExt,
+                                                  kLightExt,
+                                                  kSceneExt};
 
 std::array<double, 3> rgb3(const std::vector<double>& v, double fallback) {
   return {v.size() > 0 ? v[0] : fallback, v.size() > 1 ? v[1] : fallback, v.size() > 2 ? v[2] : fallback};
@@ -126,7 +133,12 @@ std::string gltf_path(const std::string& p, const std::string& camera, const std
     if (p.rfind(prefix, 0) != 0) return "";
     size_t close = p.find(']');
     size_t i = std::stoul(p.substr(prefix.size(), close - prefix.size()));
-    return i < paths.size() ? paths[i] + p.substr(close + 1) : "";
+    if (i >= paths.size()) return "";
+    // The key goes before a parenthesis that says how the part was converted.
+    const std::string& base = paths[i];
+    const size_t paren = base.find(" (");
+    const std::string rest = p.substr(close + 1);
+    return paren == std::string::npos ? base + rest : base.substr(0, paren) + rest + base.substr(paren);
   };
   if (std::string q = indexed("lights", lights); !q.empty()) return q;
   if (std::string q = indexed("objects", objects); !q.empty()) return q;
@@ -168,15 +180,28 @@ class Importer {
   }
 
  private:
+  // A required extension facet does not implement is refused (glTF 2.0 §3.12: a loader that
+  // does not support one of them must fail); one only used is named in a note, since the
+  // file then renders without it, and what facet reads instead is the core glTF.
   void check_required_extensions() const {
+    std::string supported;
+    for (const auto& e : kSupportedRequired) supported += (supported.empty() ? "" : ", ") + e;
     for (size_t i = 0; i < model_.extensionsRequired.size(); ++i) {
       const std::string& e = model_.extensionsRequired[i];
       if (!kSupportedRequired.count(e))
         reader_.fail(fmt::format("extensionsRequired[{}]", i),
-                     fmt::format("\"{}\" is required by the file and facet does not support it; supported: "
-                                 "KHR_lights_punctual and facet's own FACET_* extensions",
-                                 e));
+                     fmt::format("\"{}\" is required by the file and facet does not implement it; a file may "
+                                 "require: {}",
+                                 e, supported));
     }
+    std::string ignored;
+    size_t count = 0;
+    for (const auto& e : model_.extensionsUsed)
+      if (!kSupportedRequired.count(e)) ignored += (count++ ? ", " : "") + e;
+    if (count)
+      notes_.push_back(fmt::format("{}: extensionsUsed {} {} not implemented by facet and ignored (the file renders "
+                                   "as core glTF without {}; each material names its own)",
+                                   path_, ignored, count == 1 ? "is" : "are", count == 1 ? "it" : "them"));
   }
 
   // The index of the scene to read: the file's default one, else the first.
@@ -229,13 +254,28 @@ class Importer {
     if (size_t(node.camera) >= model_.cameras.size()) reader_.fail(npath + ".camera", "names no camera");
     const auto& cam = model_.cameras[size_t(node.camera)];
     camera_path_ = fmt::format("cameras[{}]", node.camera);
-    if (cam.type != "perspective") reader_.fail(camera_path_, "is " + cam.type + "; facet cameras are perspective");
+    if (cam.type != "perspective" && cam.type != "orthographic")
+      reader_.fail(camera_path_ + ".type", "is \"" + cam.type + "\"; glTF's cameras are perspective or orthographic");
+    // glTF 2.0 §3.10: the camera looks down its node's −Z with +Y up.
     Vec3 position = world.point(Vec3(0, 0, 0));
     Vec3 forward = normalize(world.direction(Vec3(0, 0, -1)));
     checked_["camera"] = {{"position", position.array()},
                           {"look_at", (position + forward).array()},
-                          {"up", normalize(world.direction(Vec3(0, 1, 0))).array()},
-                          {"fov", cam.perspective.yfov * 180 / kPi}};
+                          {"up", normalize(world.direction(Vec3(0, 1, 0))).array()}};
+    if (cam.type == "orthographic") {  // ymag: half the view's height (§3.10.3); the image's aspect gives the width
+      checked_["camera"]["type"] = "orthographic";
+      checked_["camera"]["height"] = 2 * cam.orthographic.ymag;
+      if (cam.orthographic.xmag != cam.orthographic.ymag)
+        notes_.push_back(fmt::format("{}: orthographic, xmag {} and ymag {}: facet takes ymag, and the image's aspect "
+                                     "ratio sets the width (as glTF viewers do)",
+                                     camera_path_, cam.orthographic.xmag, cam.orthographic.ymag));
+    } else {
+      checked_["camera"]["fov"] = cam.perspective.yfov * 180 / kPi;
+      if (cam.perspective.aspectRatio > 0)
+        notes_.push_back(fmt::format("{}: aspectRatio {} ignored; the image's own aspect ratio sets the width, "
+                                     "yfov the height",
+                                     camera_path_, cam.perspective.aspectRatio));
+    }
     have_camera_ = true;
   }
 
@@ -254,17 +294,20 @@ class Importer {
       lj = exact;
       light_paths_.push_back(npath + ".extensions." + kLightExt);
     } else {
-      light_paths_.push_back(fmt::format("extensions.KHR_lights_punctual.lights[{}]", li));
+      light_paths_.push_back(fmt::format("extensions.KHR_lights_punctual.lights[{}] (its colour × intensity / "
+                                         "({} lm/W · π) as a facet light's colour C)",
+                                         li, options_.lumens_per_watt));
       lj = punctual_light(model_.lights[size_t(li)], li);
     }
     place_light(lj, world);
     lights_.push_back(lj);
   }
 
-  // C = colour · intensity / π, inverse-square; spot cones hard at the outer angle.
+  // C = colour · intensity / (lumens per watt · π) (gltf.h, kLumensPerWatt), inverse-square;
+  // spot cones hard at the outer angle.
   json punctual_light(const tinygltf::Light& gl, int64_t li) {
     auto c = rgb3(gl.color, 1);
-    double k = gl.intensity / kPi;
+    double k = gl.intensity / (options_.lumens_per_watt * kPi);
     json lj = {{"type", gl.type}, {"color", {c[0] * k, c[1] * k, c[2] * k}}};
     if (gl.type != "directional") lj["attenuation"] = "inverse_square";
     if (gl.type == "spot") {
@@ -313,6 +356,7 @@ class Importer {
         o.reference = MeshReference{path_, true, int64_t(&node - model_.nodes.data()), "",
                                     mesh.primitives.size() > 1 ? int64_t(pi) : -1};
         PrimitivePlan plan = gltf_detail::plan_primitive(reader_, prim, ppath, npath);
+        gltf_detail::plan_deformation(reader_, plan, mesh, int(&node - model_.nodes.data()), notes_);
         budget_.add(plan.size, path_, npath, fmt::format("{}'s {}", npath, ppath));
         pending_.push_back({s_.objects.size(), std::move(plan), world});
       }
@@ -345,14 +389,27 @@ class Importer {
 
   // The key in s_.materials of glTF material `index` (read once, on first use),
   // or of the default material for a primitive without one.
+  // A primitive without a material takes glTF's default material (glTF 2.0 §3.9.1: every
+  // property at its default, base colour 1, metallic 1, roughness 1: white metal), or the one
+  // the user gave (--default-material).
   std::string material_key(int index, const std::string& where) {
     if (index < 0) {
-      if (!options_.default_material)
-        reader_.fail(where + ".material",
-                     "missing: the primitive has no material (glTF's default is white metal); give facet one "
-                     "with --default-material MATERIAL.json");
-      s_.materials["default"] = *options_.default_material;
-      return "default";
+      if (!default_key_.empty()) return default_key_;
+      default_key_ = "default";
+      while (used_keys_.count(default_key_)) default_key_ += "_";
+      used_keys_.insert(default_key_);
+      if (options_.default_material) {
+        s_.materials[default_key_] = *options_.default_material;
+      } else {
+        tinygltf::Material none;
+        none.name = "default";
+        std::vector<std::pair<int, std::string>> sets;
+        s_.materials[default_key_] =
+            parse_material(gltf_detail::pbr_material(none, "default", images_, sets, notes_), path_);
+        notes_.push_back(where + ": no material; glTF's default material taken (base colour 1, metallic 1, roughness "
+                                 "1: white metal; --default-material MATERIAL.json gives another)");
+      }
+      return default_key_;
     }
     if (size_t(index) >= model_.materials.size()) reader_.fail(where + ".material", "names no material");
     std::string& key = keys_[size_t(index)];
@@ -510,6 +567,7 @@ class Importer {
   gltf_detail::GltfImages images_;
   std::vector<std::string> keys_;  // materials by index; only those the primitives use are read
   std::set<std::string> used_keys_;
+  std::string default_key_;  // the key of the material primitives without one take, once read
   std::map<std::string, std::string> material_paths_;  // facet material key → glTF path
   std::map<std::string, std::vector<std::pair<int, std::string>>> texture_sets_;  // by glTF path: (set, key)
   std::vector<bool> on_path_;  // the nodes being visited: a cycle is an error
@@ -759,10 +817,17 @@ class Exporter {
   // The camera: a node whose −Z looks at look_at and whose +Y is up.
   void add_camera() {
     tinygltf::Camera cam;
-    cam.type = "perspective";
-    cam.perspective.yfov = s_.camera.fov * kPi / 180;
-    cam.perspective.znear = 0.01;
-    cam.perspective.zfar = far_plane();
+    if (s_.camera.orthographic) {  // ymag half the height; xmag as ymag, viewers take the aspect from the image
+      cam.type = "orthographic";
+      cam.orthographic.ymag = cam.orthographic.xmag = s_.camera.height / 2;
+      cam.orthographic.znear = 0;
+      cam.orthographic.zfar = far_plane();
+    } else {
+      cam.type = "perspective";
+      cam.perspective.yfov = s_.camera.fov * kPi / 180;
+      cam.perspective.znear = 0.01;
+      cam.perspective.zfar = far_plane();
+    }
     model_.cameras.push_back(cam);
     Camera::Basis b = s_.camera.basis();
     tinygltf::Node node;
@@ -786,7 +851,7 @@ class Exporter {
     return 1000 * extent;
   }
 
-  // Light i: KHR_lights_punctual (intensity = π · C, the inverse of the import)
+  // Light i: KHR_lights_punctual (intensity = 683 lm/W · π · C, the inverse of the import)
   // beside facet's own definition (FACET_light).
   void add_light(size_t i) {
     const Light& l = s_.lights[i];
@@ -814,7 +879,7 @@ class Exporter {
     tinygltf::Light gl;
     double k = std::max({l.color[0], l.color[1], l.color[2], 1e-12});
     gl.color = {l.color[0] / k, l.color[1] / k, l.color[2] / k};
-    gl.intensity = k * kPi;
+    gl.intensity = k * kPi * kLumensPerWatt;
     gl.type = l.type == Light::Type::Point ? "point" : l.type == Light::Type::Spot ? "spot" : "directional";
     if (l.type == Light::Type::Spot) gl.spot.innerConeAngle = gl.spot.outerConeAngle = l.cutoff * kPi / 180;
     if (l.type != Light::Type::Directional && l.attenuation.law != Attenuation::Law::InverseSquare)

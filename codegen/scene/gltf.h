@@ -11,10 +11,10 @@
 // Textures: baseColorTexture and metallicRoughnessTexture as textured parameters, baked
 // where the mapping is not a plain factor (scene/gltf_images.h, docs/textures.md); the
 // other maps are named in a note. A file without lights gets a headlight.
-// Lights: C = colour · intensity / π with inverse-square attenuation (candela and
-// lux against facet's "white Lambert at distance 1 shows C") — exact for point
-// and directional lights; spot cones are hard in facet (exact when inner = outer),
-// and a light's `range` window is not modelled.
+// Lights: C = colour · intensity / (683 lm/W · π) with inverse-square attenuation
+// (kLumensPerWatt below) — exact for point and directional lights; spot cones are hard
+// in facet (exact when inner = outer), and a light's `range` window is not modelled
+// (a note says so).
 //
 // Export: a valid glTF 2.0 file whose materials carry the full facet description
 // (FACET_material) beside the nearest metallic–roughness fallback (as the catalog
@@ -38,7 +38,18 @@
 
 namespace facet {
 
+// glTF's lights are photometric (KHR_lights_punctual: candela for point and spot lights, lux
+// for directional ones); facet's light colour C is radiometric as Blender's lights are (a white
+// Lambert surface facing a light of colour C at distance 1 shows C, and a Blender point light
+// of P watts is C = P / (4π²)). The two meet at the luminous efficacy glTF-Blender-IO converts
+// with both ways (io_scene_gltf2's PBR_WATTS_TO_LUMENS): C = colour · intensity / (683 lm/W · π).
+// So a file Blender's exporter wrote imports with the brightness Cycles rendered it with.
+inline constexpr double kLumensPerWatt = 683;
+
 struct GltfImportOptions {
+  // The luminous efficacy of the import's conversion of candela and lux (kLumensPerWatt); 1
+  // keeps photometric units (C = colour · intensity / π: the image in cd/m²).
+  double lumens_per_watt = kLumensPerWatt;
   // Shades primitives that have no material; without it they are an error.
   std::optional<Material> default_material;
   // The scene file the import is for: the images the glTF file holds (GLB buffer views,

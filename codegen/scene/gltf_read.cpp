@@ -48,12 +48,20 @@ double Mat4::det3() const {
          a(0, 2) * (a(1, 0) * a(2, 1) - a(1, 1) * a(2, 0));
 }
 
+// The cofactor matrix C (C_ij = (−1)^(i+j) M_ij, M_ij the minor of a_ij) is det·A⁻ᵀ: its
+// rows, applied to n, give the inverse transpose up to the scale normalize() removes, and
+// up to the sign of det, which a mirroring transform turns round (glTF 2.0 §3.7.2.1: the
+// normal keeps facing the side the winding, reversed with it, faces). The adjugate Cᵀ
+// instead would rotate a normal by the inverse rotation: the wrong way round.
 Vec3 Mat4::normal(const Vec3& n) const {
   const Mat4& a = *this;
-  Vec3 c0(a(1, 1) * a(2, 2) - a(1, 2) * a(2, 1), a(1, 2) * a(2, 0) - a(1, 0) * a(2, 2), a(1, 0) * a(2, 1) - a(1, 1) * a(2, 0));
-  Vec3 c1(a(0, 2) * a(2, 1) - a(0, 1) * a(2, 2), a(0, 0) * a(2, 2) - a(0, 2) * a(2, 0), a(0, 1) * a(2, 0) - a(0, 0) * a(2, 1));
-  Vec3 c2(a(0, 1) * a(1, 2) - a(0, 2) * a(1, 1), a(0, 2) * a(1, 0) - a(0, 0) * a(1, 2), a(0, 0) * a(1, 1) - a(0, 1) * a(1, 0));
-  Vec3 r = c0 * n.x + c1 * n.y + c2 * n.z;
+  const Vec3 row0(a(1, 1) * a(2, 2) - a(1, 2) * a(2, 1), a(1, 2) * a(2, 0) - a(1, 0) * a(2, 2),
+                  a(1, 0) * a(2, 1) - a(1, 1) * a(2, 0));
+  const Vec3 row1(a(0, 2) * a(2, 1) - a(0, 1) * a(2, 2), a(0, 0) * a(2, 2) - a(0, 2) * a(2, 0),
+                  a(0, 1) * a(2, 0) - a(0, 0) * a(2, 1));
+  const Vec3 row2(a(0, 1) * a(1, 2) - a(0, 2) * a(1, 1), a(0, 2) * a(1, 0) - a(0, 0) * a(1, 2),
+                  a(0, 0) * a(1, 1) - a(0, 1) * a(1, 0));
+  const Vec3 r(dot(row0, n), dot(row1, n), dot(row2, n));
   return normalize(det3() < 0 ? -r : r);
 }
 
@@ -81,40 +89,96 @@ void Reader::fail(const std::string& path, const std::string& message) const {
   throw InputError({{file_, path, message, 0, 0}});
 }
 
-// The accessor's elements lie inside its buffer view, and the view inside its buffer:
-//   accessor.byteOffset + stride·(count − 1) + element ≤ view.byteLength,
+// `count` elements of `elem` bytes at `stride` from byte `offset` of buffer view `view` lie
+// inside the view, and the view inside its buffer:
+//   offset + stride·(count − 1) + elem ≤ view.byteLength,
 //   view.byteOffset + view.byteLength ≤ buffer size,
 // checked without overflowing, before any element is read.
-AccessorView Reader::view(int index, const std::string& path, int type) const {
-  if (index < 0 || size_t(index) >= m_.accessors.size()) fail(path, fmt::format("names no accessor ({})", index));
-  const auto& a = m_.accessors[size_t(index)];
-  std::string apath = fmt::format("accessors[{}]", index);
-  if (a.sparse.isSparse) fail(apath, "sparse accessors are not supported");
-  if (a.bufferView < 0 || size_t(a.bufferView) >= m_.bufferViews.size()) fail(apath, "has no buffer view");
-  const auto& v = m_.bufferViews[size_t(a.bufferView)];
-  std::string vpath = fmt::format("bufferViews[{}]", a.bufferView);
+const unsigned char* Reader::view_bytes(int view, size_t offset, size_t count, size_t elem, size_t stride,
+                                        const std::string& owner) const {
+  if (view < 0 || size_t(view) >= m_.bufferViews.size()) fail(owner, "has no buffer view");
+  const auto& v = m_.bufferViews[size_t(view)];
+  std::string vpath = fmt::format("bufferViews[{}]", view);
   if (v.buffer < 0 || size_t(v.buffer) >= m_.buffers.size()) fail(vpath + ".buffer", "names no buffer");
   const size_t size = m_.buffers[size_t(v.buffer)].data.size();
   if (v.byteOffset > size || v.byteLength > size - v.byteOffset)
     fail(vpath, fmt::format("bytes {} to {} lie past the end of buffer {} ({} bytes)", v.byteOffset,
                             uint64_t(v.byteOffset) + v.byteLength, v.buffer, size));
+  if (stride < elem) fail(vpath + ".byteStride", "is smaller than one element");
+  const size_t room = v.byteLength;
+  bool inside = offset <= room && (count == 0 || (elem <= room - offset && (room - offset - elem) / stride >= count - 1));
+  if (!inside)
+    fail(owner, fmt::format("its {} elements of {} bytes (stride {}) from byte {} need more than the {} bytes of "
+                            "bufferViews[{}]",
+                            thousands(count), elem, stride, offset, thousands(room), view));
+  return m_.buffers[size_t(v.buffer)].data.data() + v.byteOffset + offset;
+}
+
+// A sparse accessor, or one without a buffer view, as a dense copy: the base values (the
+// view's, or zeros), then each of sparse.count indices (strictly increasing, each below
+// count) given its value (glTF 2.0 §3.6.2.4).
+AccessorView Reader::dense(int index, const tinygltf::Accessor& a, size_t elem) const {
+  const std::string apath = fmt::format("accessors[{}]", index);
+  if (auto made = dense_.find(index); made != dense_.end()) return {index, made->second.data(), a.count, elem, a.componentType};
+  std::vector<unsigned char>& out = dense_[index];
+  out.assign(a.count * elem, 0);
+  if (a.bufferView >= 0) {
+    if (size_t(a.bufferView) >= m_.bufferViews.size()) fail(apath, "has no buffer view");
+    const size_t given = m_.bufferViews[size_t(a.bufferView)].byteStride;
+    const size_t stride = given ? given : elem;
+    const unsigned char* base = view_bytes(a.bufferView, a.byteOffset, a.count, elem, stride, apath);
+    for (size_t i = 0; i < a.count; ++i) std::memcpy(out.data() + i * elem, base + i * stride, elem);
+  }
+  if (a.sparse.isSparse) {
+    const auto& sp = a.sparse;
+    const size_t n = size_t(std::max(sp.count, 0));
+    const int itype = sp.indices.componentType;
+    const int isize = tinygltf::GetComponentSizeInBytes(uint32_t(itype));
+    if (itype != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && itype != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+        itype != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+      fail(apath + ".sparse.indices.componentType", "must be an unsigned integer type");
+    const AccessorView idx{index, view_bytes(sp.indices.bufferView, size_t(std::max(sp.indices.byteOffset, 0)), n,
+                                             size_t(isize), size_t(isize), apath + ".sparse.indices"),
+                           n, size_t(isize), itype};
+    const unsigned char* values = view_bytes(sp.values.bufferView, size_t(std::max(sp.values.byteOffset, 0)), n, elem,
+                                             elem, apath + ".sparse.values");
+    for (size_t k = 0; k < n; ++k) {
+      const uint32_t at = index_at(idx, k);
+      if (at >= a.count || (k > 0 && at <= index_at(idx, k - 1)))
+        fail(apath + ".sparse.indices", fmt::format("index {} ({}) is not below count {} and above the one before",
+                                                    k, at, a.count));
+      std::memcpy(out.data() + size_t(at) * elem, values + k * elem, elem);
+    }
+  }
+  return {index, out.data(), a.count, elem, a.componentType};
+}
+
+// The accessor's elements, of glTF type `type`: read where they are, or made dense.
+AccessorView Reader::view(int index, const std::string& path, int type) const {
+  if (index < 0 || size_t(index) >= m_.accessors.size()) fail(path, fmt::format("names no accessor ({})", index));
+  const auto& a = m_.accessors[size_t(index)];
+  std::string apath = fmt::format("accessors[{}]", index);
   if (a.type != type)
     fail(apath, type == TINYGLTF_TYPE_VEC3   ? "expected VEC3 of FLOAT"
                 : type == TINYGLTF_TYPE_VEC2 ? "expected VEC2 (texture coordinates)"
+                : type == TINYGLTF_TYPE_VEC4 ? "expected VEC4"
+                : type == TINYGLTF_TYPE_MAT4 ? "expected MAT4 of FLOAT"
                                              : "indices must be SCALAR");
   int component_size = tinygltf::GetComponentSizeInBytes(uint32_t(a.componentType));
   if (component_size <= 0) fail(apath, "has an unknown componentType");
-  const size_t elem = size_t(component_size) * size_t(tinygltf::GetNumComponentsInType(uint32_t(type)));
-  AccessorView out{index, nullptr, a.count, v.byteStride ? v.byteStride : elem, a.componentType};
-  if (out.stride < elem) fail(vpath + ".byteStride", "is smaller than one element");
-  const size_t room = v.byteLength;
-  bool inside = a.byteOffset <= room && (a.count == 0 || (elem <= room - a.byteOffset &&
-                                                           (room - a.byteOffset - elem) / out.stride >= a.count - 1));
-  if (!inside)
-    fail(apath, fmt::format("its {} elements of {} bytes (stride {}) from byte {} need more than the {} bytes of "
-                            "bufferViews[{}]",
-                            thousands(a.count), elem, out.stride, a.byteOffset, thousands(room), a.bufferView));
-  out.data = m_.buffers[size_t(v.buffer)].data.data() + v.byteOffset + a.byteOffset;
+  const int width = tinygltf::GetNumComponentsInType(uint32_t(type));
+  const size_t elem = size_t(component_size) * size_t(width);
+  AccessorView out;
+  if (a.sparse.isSparse || a.bufferView < 0) {
+    out = dense(index, a, elem);
+  } else {
+    if (size_t(a.bufferView) >= m_.bufferViews.size()) fail(apath, "has no buffer view");
+    const size_t given = m_.bufferViews[size_t(a.bufferView)].byteStride;
+    out = {index, nullptr, a.count, given ? given : elem, a.componentType};
+    out.data = view_bytes(a.bufferView, a.byteOffset, a.count, elem, out.stride, apath);
+  }
+  out.width = width;
+  out.normalized = a.normalized;
   return out;
 }
 
@@ -194,6 +258,96 @@ uint32_t Reader::index_at(const AccessorView& a, size_t i) {
   return v;
 }
 
+// Component k of element i as a number: a float as it is (a non-finite one fails), a
+// normalized integer as glTF 2.0 §3.11 maps it (c / max; signed: max(c / max, −1)), any
+// other integer as it is.
+double Reader::component_at(const AccessorView& a, size_t i, int k) const {
+  const unsigned char* e = a.data + i * a.stride;
+  switch (a.component) {
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: {
+      float f;
+      std::memcpy(&f, e + 4 * k, 4);
+      if (!std::isfinite(f)) fail(fmt::format("accessors[{}]", a.accessor), fmt::format("element {} is not finite", i));
+      return f;
+    }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return a.normalized ? e[k] / 255.0 : e[k];
+    case TINYGLTF_COMPONENT_TYPE_BYTE: {
+      const double c = static_cast<int8_t>(e[k]);
+      return a.normalized ? std::max(c / 127.0, -1.0) : c;
+    }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+      uint16_t v;
+      std::memcpy(&v, e + 2 * k, 2);
+      return a.normalized ? v / 65535.0 : v;
+    }
+    case TINYGLTF_COMPONENT_TYPE_SHORT: {
+      int16_t v;
+      std::memcpy(&v, e + 2 * k, 2);
+      return a.normalized ? std::max(v / 32767.0, -1.0) : double(v);
+    }
+    default: {
+      uint32_t v;
+      std::memcpy(&v, e + 4 * k, 4);
+      return v;
+    }
+  }
+}
+
+namespace {
+
+bool float_or_normalized_unsigned(const AccessorView& a) {
+  return a.component == TINYGLTF_COMPONENT_TYPE_FLOAT ||
+         (a.normalized && (a.component == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+                           a.component == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT));
+}
+
+}  // namespace
+
+AccessorView Reader::color(int index, const std::string& path) const {
+  const bool rgb = index >= 0 && size_t(index) < m_.accessors.size() && m_.accessors[size_t(index)].type == TINYGLTF_TYPE_VEC3;
+  AccessorView a = view(index, path, rgb ? TINYGLTF_TYPE_VEC3 : TINYGLTF_TYPE_VEC4);
+  if (!float_or_normalized_unsigned(a))
+    fail(fmt::format("accessors[{}]", index), "vertex colours must be FLOAT or normalized unsigned bytes or shorts");
+  return a;
+}
+
+std::array<double, 4> Reader::color_at(const AccessorView& a, size_t i) const {
+  std::array<double, 4> c{0, 0, 0, 1};
+  for (int k = 0; k < a.width; ++k) c[size_t(k)] = component_at(a, i, k);
+  return c;
+}
+
+AccessorView Reader::joints(int index, const std::string& path) const {
+  AccessorView a = view(index, path, TINYGLTF_TYPE_VEC4);
+  if (a.component != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && a.component != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT)
+    fail(fmt::format("accessors[{}]", index), "joint indices must be unsigned bytes or shorts");
+  a.normalized = false;
+  return a;
+}
+
+AccessorView Reader::weights(int index, const std::string& path) const {
+  AccessorView a = view(index, path, TINYGLTF_TYPE_VEC4);
+  if (!float_or_normalized_unsigned(a))
+    fail(fmt::format("accessors[{}]", index), "weights must be FLOAT or normalized unsigned bytes or shorts");
+  return a;
+}
+
+AccessorView Reader::mat4(int index, const std::string& path) const {
+  AccessorView a = view(index, path, TINYGLTF_TYPE_MAT4);
+  if (a.component != TINYGLTF_COMPONENT_TYPE_FLOAT) fail(fmt::format("accessors[{}]", index), "expected MAT4 of FLOAT");
+  return a;
+}
+
+std::array<double, 4> Reader::quad_at(const AccessorView& a, size_t i) const {
+  return {component_at(a, i, 0), component_at(a, i, 1), component_at(a, i, 2), component_at(a, i, 3)};
+}
+
+Mat4 Reader::mat4_at(const AccessorView& a, size_t i) const {
+  Mat4 m;
+  for (int k = 0; k < 16; ++k) m.m[k] = component_at(a, i, k);
+  return m;
+}
+
 const std::vector<int>& Reader::parents() const {
   if (have_parents_) return parents_;
   parents_.assign(m_.nodes.size(), -1);
@@ -271,13 +425,55 @@ PrimitivePlan plan_primitive(const Reader& r, const tinygltf::Primitive& prim, c
 
 namespace {
 
-// Vertex i's TANGENT in the world transform: xyz as a direction, w negated by a mirroring
-// transform (`flip`: B = w·(n × t) turns with it).
-std::array<double, 4> world_tangent(const Reader& r, const PrimitivePlan& p, const Mat4& world, bool flip, size_t i) {
-  const std::array<double, 4> t = r.vec4_at(p.tangents, i);
-  const Vec3 d = normalize(world.direction(Vec3(t[0], t[1], t[2])));
-  return {d.x, d.y, d.z, (flip ? -1.0 : 1.0) * (t[3] < 0 ? -1.0 : 1.0)};
-}
+// Where vertex i goes: the matrix that places it (a skinned vertex's blend of its joints',
+// else the node's world matrix), and its morphed attributes in the mesh's space.
+class Vertices {
+ public:
+  Vertices(const Reader& r, const PrimitivePlan& p, const Mat4& world) : r_(r), p_(p), world_(world) {}
+
+  Mat4 matrix(size_t i) const {
+    if (!p_.skinned) return world_;
+    const auto j = r_.quad_at(p_.joints, i), w = r_.quad_at(p_.weights, i);
+    Mat4 m;
+    for (double& e : m.m) e = 0;
+    for (size_t k = 0; k < 4; ++k) {
+      if (w[k] == 0) continue;
+      if (j[k] >= double(p_.joint_matrices.size()))
+        r_.fail(p_.path + ".attributes.JOINTS_0",
+                fmt::format("vertex {} names joint {}, and the skin has {}", i, j[k], p_.joint_matrices.size()));
+      const Mat4& jm = p_.joint_matrices[size_t(j[k])];
+      for (int e = 0; e < 16; ++e) m.m[e] += w[k] * jm.m[e];
+    }
+    return m;
+  }
+  Vec3 position(size_t i) const {
+    Vec3 v = r_.vec3_at(p_.positions, i);
+    for (const auto& t : p_.morphs)
+      if (t.has_positions) v = v + r_.vec3_at(t.positions, i) * t.weight;
+    return v;
+  }
+  Vec3 normal(size_t i) const {
+    Vec3 n = r_.vec3_at(p_.normals, i);
+    for (const auto& t : p_.morphs)
+      if (t.has_normals) n = n + r_.vec3_at(t.normals, i) * t.weight;
+    return n;
+  }
+  // TANGENT in the world by `m`: xyz as a direction, w negated by a mirroring matrix
+  // (B = w·(n × t) turns with it).
+  std::array<double, 4> tangent(size_t i, const Mat4& m) const {
+    const std::array<double, 4> t = r_.vec4_at(p_.tangents, i);
+    Vec3 x(t[0], t[1], t[2]);
+    for (const auto& g : p_.morphs)
+      if (g.has_tangents) x = x + r_.vec3_at(g.tangents, i) * g.weight;
+    const Vec3 d = normalize(m.direction(x));
+    return {d.x, d.y, d.z, (m.det3() < 0 ? -1.0 : 1.0) * (t[3] < 0 ? -1.0 : 1.0)};
+  }
+
+ private:
+  const Reader& r_;
+  const PrimitivePlan& p_;
+  const Mat4& world_;
+};
 
 // Corner k of the primitive: its vertex index (in range), or k itself without indices.
 uint32_t corner(const Reader& r, const PrimitivePlan& p, size_t k) {
@@ -288,29 +484,34 @@ uint32_t corner(const Reader& r, const PrimitivePlan& p, size_t k) {
 }
 
 void smooth(const Reader& r, const PrimitivePlan& p, const Mat4& world, Mesh& mesh) {
-  const bool flip = world.det3() < 0;
+  const Vertices vs(r, p, world);
   const uint32_t base = uint32_t(mesh.positions.size());
+  std::vector<bool> mirrored(p.skinned ? p.positions.count : 0);
   for (size_t i = 0; i < p.positions.count; ++i) {
-    mesh.positions.push_back(world.point(r.vec3_at(p.positions, i)));
-    mesh.normals.push_back(world.normal(r.vec3_at(p.normals, i)));
+    const Mat4 m = vs.matrix(i);
+    if (p.skinned) mirrored[i] = m.det3() < 0;
+    mesh.positions.push_back(m.point(vs.position(i)));
+    mesh.normals.push_back(m.normal(vs.normal(i)));
     for (size_t set = 0; set < 2; ++set)
       if (p.has_texcoords[set]) mesh.texcoords[set].push_back(r.vec2_at(p.texcoords[set], i));
-    if (p.has_tangents) mesh.tangents.push_back(world_tangent(r, p, world, flip, i));
+    if (p.has_tangents) mesh.tangents.push_back(vs.tangent(i, m));
   }
+  const bool flip = world.det3() < 0;
   for (size_t t = 0; t < p.size.triangles; ++t) {
     uint32_t a = corner(r, p, 3 * t), b = corner(r, p, 3 * t + 1), c = corner(r, p, 3 * t + 2);
     if (a == b || b == c || a == c) continue;
-    if (flip) std::swap(b, c);
+    if (p.skinned ? mirrored[a] : flip) std::swap(b, c);
     mesh.triangles.push_back({base + a, base + b, base + c});
   }
 }
 
 void flat(const Reader& r, const PrimitivePlan& p, const Mat4& world, Mesh& mesh) {
-  const bool flip = world.det3() < 0;
+  const Vertices vs(r, p, world);
   for (size_t t = 0; t < p.size.triangles; ++t) {
-    Vec3 a = world.point(r.vec3_at(p.positions, corner(r, p, 3 * t)));
-    Vec3 b = world.point(r.vec3_at(p.positions, corner(r, p, 3 * t + 1)));
-    Vec3 c = world.point(r.vec3_at(p.positions, corner(r, p, 3 * t + 2)));
+    uint32_t k[3] = {corner(r, p, 3 * t), corner(r, p, 3 * t + 1), corner(r, p, 3 * t + 2)};
+    const Mat4 m[3] = {vs.matrix(k[0]), vs.matrix(k[1]), vs.matrix(k[2])};
+    Vec3 a = m[0].point(vs.position(k[0])), b = m[1].point(vs.position(k[1])), c = m[2].point(vs.position(k[2]));
+    const bool flip = m[0].det3() < 0;
     if (flip) std::swap(b, c);
     Vec3 n = cross(b - a, c - a);
     if (length(n) == 0) continue;
@@ -318,22 +519,92 @@ void flat(const Reader& r, const PrimitivePlan& p, const Mat4& world, Mesh& mesh
     uint32_t base = uint32_t(mesh.positions.size());
     mesh.positions.insert(mesh.positions.end(), {a, b, c});
     mesh.normals.insert(mesh.normals.end(), {n, n, n});
-    for (size_t set = 0; set < 2; ++set) {
-      if (!p.has_texcoords[set]) continue;
-      uint32_t k[3] = {corner(r, p, 3 * t), corner(r, p, 3 * t + 1), corner(r, p, 3 * t + 2)};
-      if (flip) std::swap(k[1], k[2]);
-      for (uint32_t v : k) mesh.texcoords[set].push_back(r.vec2_at(p.texcoords[set], v));
-    }
-    if (p.has_tangents) {
-      uint32_t k[3] = {corner(r, p, 3 * t), corner(r, p, 3 * t + 1), corner(r, p, 3 * t + 2)};
-      if (flip) std::swap(k[1], k[2]);
-      for (uint32_t v : k) mesh.tangents.push_back(world_tangent(r, p, world, flip, v));
-    }
+    size_t order[3] = {0, 1, 2};
+    if (flip) std::swap(order[1], order[2]);
+    for (size_t set = 0; set < 2; ++set)
+      if (p.has_texcoords[set])
+        for (size_t o : order) mesh.texcoords[set].push_back(r.vec2_at(p.texcoords[set], k[o]));
+    if (p.has_tangents)
+      for (size_t o : order) mesh.tangents.push_back(vs.tangent(k[o], m[o]));
     mesh.triangles.push_back({base, base + 1, base + 2});
   }
 }
 
+// Morph target `t` of the primitive at `path`: its POSITION, NORMAL and TANGENT deltas
+// (VEC3 of FLOAT), each with the vertex count of the base.
+PrimitivePlan::Morph morph_of(const Reader& r, const PrimitivePlan& p, const std::map<std::string, int>& target,
+                              double weight, const std::string& path) {
+  PrimitivePlan::Morph m;
+  m.weight = weight;
+  auto read = [&](const char* key, AccessorView& view, bool& has) {
+    auto it = target.find(key);
+    if (it == target.end()) return;
+    view = r.vec3(it->second, path + "." + key);
+    if (view.count != p.positions.count) r.fail(path + "." + key, "has a different count from POSITION");
+    has = true;
+  };
+  read("POSITION", m.positions, m.has_positions);
+  read("NORMAL", m.normals, m.has_normals);
+  read("TANGENT", m.tangents, m.has_tangents);
+  return m;
+}
+
+void plan_morphs(const Reader& r, PrimitivePlan& p, const tinygltf::Mesh& mesh, int node_index,
+                 std::vector<std::string>& notes) {
+  if (p.prim->targets.empty()) return;
+  const tinygltf::Node* node = node_index >= 0 ? &r.model().nodes[size_t(node_index)] : nullptr;
+  const std::vector<double>& w = node && !node->weights.empty() ? node->weights : mesh.weights;
+  const std::string wpath = node && !node->weights.empty() ? fmt::format("nodes[{}].weights", node_index) : "weights";
+  if (!w.empty() && w.size() != p.prim->targets.size())
+    r.fail(wpath, fmt::format("has {} weights for {} morph targets", w.size(), p.prim->targets.size()));
+  for (size_t t = 0; t < p.prim->targets.size(); ++t) {
+    const double weight = t < w.size() ? w[t] : 0.0;
+    if (!std::isfinite(weight)) r.fail(fmt::format("{}[{}]", wpath, t), "is not finite");
+    if (weight != 0)
+      p.morphs.push_back(morph_of(r, p, p.prim->targets[t], weight, fmt::format("{}.targets[{}]", p.path, t)));
+  }
+  notes.push_back(fmt::format("{}: {} morph targets, taken at the file's weights ({} not zero; glTF's rest pose)",
+                              p.path, p.prim->targets.size(), p.morphs.size()));
+}
+
+void plan_skin(const Reader& r, PrimitivePlan& p, int node_index, std::vector<std::string>& notes) {
+  const tinygltf::Node& node = r.model().nodes[size_t(node_index)];
+  const std::string npath = fmt::format("nodes[{}]", node_index);
+  if (size_t(node.skin) >= r.model().skins.size()) r.fail(npath + ".skin", "names no skin");
+  const tinygltf::Skin& skin = r.model().skins[size_t(node.skin)];
+  const std::string spath = fmt::format("skins[{}]", node.skin);
+  auto joints = p.prim->attributes.find("JOINTS_0"), weights = p.prim->attributes.find("WEIGHTS_0");
+  if (joints == p.prim->attributes.end() || weights == p.prim->attributes.end()) {
+    notes.push_back(p.path + ": its node has a skin, and it has no JOINTS_0 and WEIGHTS_0: drawn in its node's transform");
+    return;
+  }
+  p.joints = r.joints(joints->second, p.path + ".attributes.JOINTS_0");
+  p.weights = r.weights(weights->second, p.path + ".attributes.WEIGHTS_0");
+  if (p.joints.count != p.positions.count || p.weights.count != p.positions.count)
+    r.fail(p.path + ".attributes", "JOINTS_0 and WEIGHTS_0 need one element a vertex, as POSITION");
+  AccessorView ibm;
+  if (skin.inverseBindMatrices >= 0) {
+    ibm = r.mat4(skin.inverseBindMatrices, spath + ".inverseBindMatrices");
+    if (ibm.count < skin.joints.size()) r.fail(spath + ".inverseBindMatrices", "has fewer matrices than joints");
+  }
+  for (size_t k = 0; k < skin.joints.size(); ++k) {
+    const int j = skin.joints[k];
+    if (j < 0 || size_t(j) >= r.model().nodes.size()) r.fail(fmt::format("{}.joints[{}]", spath, k), "names no node");
+    p.joint_matrices.push_back(skin.inverseBindMatrices >= 0 ? r.world_matrix(j) * r.mat4_at(ibm, k) : r.world_matrix(j));
+  }
+  p.skinned = true;
+  notes.push_back(fmt::format("{}: skinned by {} ({} joints) at the pose of the file's node transforms; the node's "
+                              "own transform is ignored, as glTF says",
+                              p.path, spath, skin.joints.size()));
+}
+
 }  // namespace
+
+void plan_deformation(const Reader& r, PrimitivePlan& p, const tinygltf::Mesh& mesh, int node_index,
+                      std::vector<std::string>& notes) {
+  plan_morphs(r, p, mesh, node_index, notes);
+  if (node_index >= 0 && r.model().nodes[size_t(node_index)].skin >= 0) plan_skin(r, p, node_index, notes);
+}
 
 void append_primitive(const Reader& r, const PrimitivePlan& p, const Mat4& world, Mesh& mesh,
                       std::vector<std::string>& notes) {

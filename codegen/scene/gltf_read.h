@@ -8,6 +8,7 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -40,11 +41,16 @@ Mat4 local_matrix(const tinygltf::Node& n);
 // ---------------------------------------------------------------- accessors
 
 // An accessor's elements, checked to lie inside its buffer view and its buffer.
+// An accessor's elements, checked to lie inside its buffer view and its buffer. A sparse
+// accessor, or one without a buffer view (zeros, glTF 2.0 §3.6.2.3), is read into a dense
+// copy the Reader keeps, with the sparse values substituted (§3.6.2.4).
 struct AccessorView {
   int accessor = -1;
   const unsigned char* data = nullptr;
   size_t count = 0, stride = 0;
   int component = 0;
+  int width = 0;            // components an element: 1 SCALAR … 4 VEC4, 16 MAT4
+  bool normalized = false;  // integers as fractions (glTF 2.0 §3.11)
 };
 
 class Reader {
@@ -65,6 +71,16 @@ class Reader {
   AccessorView vec4(int index, const std::string& path) const;
   std::array<double, 4> vec4_at(const AccessorView& a, size_t i) const;
   static uint32_t index_at(const AccessorView& a, size_t i);
+  // COLOR_n: VEC3 or VEC4 of FLOAT or of normalized unsigned bytes or shorts; RGBA (alpha 1 for VEC3).
+  AccessorView color(int index, const std::string& path) const;
+  std::array<double, 4> color_at(const AccessorView& a, size_t i) const;
+  // JOINTS_n: VEC4 of unsigned bytes or shorts; WEIGHTS_n: VEC4 of FLOAT or normalized unsigned
+  // bytes or shorts; an inverse bind matrix: MAT4 of FLOAT. Elements as numbers, fails on a non-finite one.
+  AccessorView joints(int index, const std::string& path) const;
+  AccessorView weights(int index, const std::string& path) const;
+  AccessorView mat4(int index, const std::string& path) const;
+  std::array<double, 4> quad_at(const AccessorView& a, size_t i) const;
+  Mat4 mat4_at(const AccessorView& a, size_t i) const;
 
   // The parent of every node (−1: none, kSeveral: more than one), from the children lists.
   static constexpr int kSeveral = -2;
@@ -76,8 +92,15 @@ class Reader {
 
  private:
   AccessorView view(int index, const std::string& path, int type) const;
+  // The bytes of `count` elements of `elem` bytes at `stride` from byte `offset` of buffer view
+  // `view` (named by `owner`, the accessor's or its sparse part's key): checked to lie inside it.
+  const unsigned char* view_bytes(int view, size_t offset, size_t count, size_t elem, size_t stride,
+                                  const std::string& owner) const;
+  AccessorView dense(int index, const tinygltf::Accessor& a, size_t elem) const;
+  double component_at(const AccessorView& a, size_t i, int k) const;
   const tinygltf::Model& m_;
   std::string file_;
+  mutable std::map<int, std::vector<unsigned char>> dense_;  // sparse accessors, made dense
   mutable std::vector<int> parents_;
   mutable bool have_parents_ = false;
 };
@@ -101,11 +124,31 @@ struct PrimitivePlan {
   AccessorView tangents;  // TANGENT
   bool has_tangents = false;
   MeshSize size;  // at most: zero-area (flat) and degenerate triangles are dropped
+  // Morph targets of non-zero weight, at the weights the file gives (the node's, else the
+  // mesh's; glTF 2.0 §3.7.2.2): each attribute is its base plus Σ weight · the target's.
+  struct Morph {
+    double weight = 0;
+    AccessorView positions, normals, tangents;
+    bool has_positions = false, has_normals = false, has_tangents = false;
+  };
+  std::vector<Morph> morphs;
+  // A skinned primitive (glTF 2.0 §3.7.3): vertex i takes Σ_k WEIGHTS_0[i][k] ·
+  // joint_matrices[JOINTS_0[i][k]], each a joint's world matrix times its inverse bind
+  // matrix, at the pose the nodes' transforms give; its own node's transform is ignored.
+  bool skinned = false;
+  std::vector<Mat4> joint_matrices;
+  AccessorView joints, weights;
 };
 
 bool is_triangles(const tinygltf::Primitive& prim);
 PrimitivePlan plan_primitive(const Reader& r, const tinygltf::Primitive& prim, const std::string& path,
                              const std::string& where);
+// The primitive's morph targets at the weights `node` (or else `mesh`) gives, and, where
+// `node` has a skin, its skinning at the pose of the file's node transforms (the rest pose a
+// viewer shows without animation). `node_index` −1: a mesh read without a node (weights of
+// the mesh, no skin). `notes` says what was applied.
+void plan_deformation(const Reader& r, PrimitivePlan& p, const tinygltf::Mesh& mesh, int node_index,
+                      std::vector<std::string>& notes);
 // Appends the primitive in the world transform `world` to `mesh`: with NORMAL, its
 // vertices and normals (degenerate triangles dropped); without, flat normals, each
 // triangle its own three vertices (zero-area triangles dropped); a mirroring

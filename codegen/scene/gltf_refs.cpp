@@ -99,8 +99,10 @@ struct GltfReferences::Impl {
     return *f;
   }
 
-  // Which primitives of the file's mesh `mi` the reference takes, planned.
-  void plan(Pending& p, const MeshReference& ref, size_t mi, const std::string& where, DiagnosticSink& sink) {
+  // Which primitives of the file's mesh `mi` the reference takes, planned (morphed and, for a
+  // node with a skin, skinned as the import reads them; node_index −1: the mesh alone).
+  void plan(Pending& p, const MeshReference& ref, size_t mi, int node_index, const std::string& where,
+            DiagnosticSink& sink) {
     const Reader& r = *p.file->reader;
     const auto& mesh = r.model().meshes[mi];
     const std::string mpath = fmt::format("meshes[{}]", mi);
@@ -114,6 +116,8 @@ struct GltfReferences::Impl {
       if (ref.primitive >= 0 ? pi != size_t(ref.primitive) : !gltf_detail::is_triangles(mesh.primitives[pi])) continue;
       p.plans.push_back(gltf_detail::plan_primitive(r, mesh.primitives[pi], fmt::format("{}.primitives[{}]", mpath, pi),
                                                     where));
+      std::vector<std::string> notes;  // the import said them; a scene file's reference reads the same
+      gltf_detail::plan_deformation(r, p.plans.back(), mesh, node_index, notes);
       p.size.vertices += p.plans.back().size.vertices;
       p.size.triangles += p.plans.back().size.triangles;
     }
@@ -130,7 +134,7 @@ struct GltfReferences::Impl {
       auto mi = select(ref, m.meshes.size(), "meshes", *p.file, p.path, sink, [&](size_t i) { return m.meshes[i].name; });
       if (!mi) return false;
       key = fmt::format("meshes[{}]", *mi);
-      plan(p, ref, *mi, fmt::format("meshes[{}]", *mi), sink);
+      plan(p, ref, *mi, -1, fmt::format("meshes[{}]", *mi), sink);
       return true;
     }
     auto ni = select(ref, m.nodes.size(), "nodes", *p.file, p.path, sink, [&](size_t i) { return m.nodes[i].name; });
@@ -145,7 +149,7 @@ struct GltfReferences::Impl {
     }
     p.world = r.world_matrix(int(*ni));
     key = fmt::format("nodes[{}]", *ni);
-    plan(p, ref, size_t(node.mesh), fmt::format("nodes[{}]", *ni), sink);
+    plan(p, ref, size_t(node.mesh), int(*ni), fmt::format("nodes[{}]", *ni), sink);
     return true;
   }
 

@@ -19,17 +19,26 @@ Camera::Basis Camera::basis() const {
   b.forward = normalize(look_at - position);
   b.right = normalize(cross(b.forward, up));
   b.up = cross(b.right, b.forward);
-  b.tan_half = std::tan(fov * M_PI / 360.0);
+  b.tan_half = orthographic ? height / 2 : std::tan(fov * M_PI / 360.0);
   return b;
 }
 
-Vec3 Camera::ray(int i, int j, int w, int h) const {
+Vec3 Camera::ray(int i, int j, int w, int h, Vec3* origin) const {
   // Pixel centres, as POV-Ray, Cycles (sample 0) and gl_FragCoord place them.
   Basis b = basis();
   double aspect = double(w) / double(h);
   double x = (2.0 * (i + 0.5) / w - 1.0) * b.tan_half * aspect;
   double y = (1.0 - 2.0 * (j + 0.5) / h) * b.tan_half;
+  if (orthographic) {
+    if (origin) *origin = position + b.right * x + b.up * y;
+    return b.forward;
+  }
+  if (origin) *origin = position;
   return normalize(b.forward + b.right * x + b.up * y);
+}
+
+Vec3 Camera::toward_eye(const Vec3& p) const {
+  return orthographic ? -normalize(look_at - position) : normalize(position - p);
 }
 
 void Light::toward(const Vec3& p, Vec3& l, double& distance) const {
@@ -66,7 +75,8 @@ const Material& Scene::material_of(size_t i, const Material* fallback) const {
 
 namespace {
 
-const std::vector<std::string> kSceneKeys = {"$schema", "name", "camera", "ambient", "materials", "objects", "lights"};
+const std::vector<std::string> kSceneKeys = {"$schema", "name",    "camera", "ambient",
+                                             "exposure", "materials", "objects", "lights"};
 
 // A scene's material: inline, or a file named relative to the scene file.
 // Diagnostics name the scene file and the key path materials.NAME.….
@@ -217,20 +227,42 @@ void parse_name(const json& doc, Scene& s, DiagnosticSink& sink) {
 void parse_camera(const json& doc, Scene& s, DiagnosticSink& sink) {
   auto it = doc.find("camera");
   if (it == doc.end()) {
-    sink.error("camera", "missing; allowed: an object with keys \"position\", \"look_at\", \"up\", \"fov\"");
+    sink.error("camera", "missing; allowed: an object with keys \"position\", \"look_at\", \"up\", \"fov\" (or "
+                         "\"type\": \"orthographic\" and \"height\" instead of \"fov\")");
     return;
   }
   Checker check(sink);
-  auto c = check.model(*it, "camera", "camera", find_model("camera", "perspective"));
+  // A camera without "type" is perspective, as before there were two.
+  auto c = it->is_object() && it->contains("type") ? check.model(*it, "camera", "camera", nullptr, "type")
+                                                   : check.model(*it, "camera", "camera", find_model("camera", "perspective"));
   if (!c) return;
   s.camera.position = vec(*c, "position");
   s.camera.look_at = vec(*c, "look_at");
   s.camera.up = vec(*c, "up");
-  s.camera.fov = c->at("fov").number;
+  s.camera.orthographic = c->values.count("height") > 0;
+  if (s.camera.orthographic) s.camera.height = c->at("height").number;
+  else s.camera.fov = c->at("fov").number;
   Vec3 f = s.camera.look_at - s.camera.position;
   if (length(f) == 0) sink.error("camera.look_at", "equals camera.position; the camera needs a direction");
   else if (length(cross(normalize(f), normalize(s.camera.up))) < 1e-6)
     sink.error("camera.up", "is parallel to the viewing direction; allowed: any other direction");
+}
+
+// The previews' exposure in stops (Scene::exposure): within ±kExposureMax, where 2^EV stays a
+// float32 number far from its ends.
+constexpr double kExposureMax = 40;
+
+void parse_exposure(const json& doc, Scene& s, DiagnosticSink& sink) {
+  auto it = doc.find("exposure");
+  if (it == doc.end()) return;
+  if (!it->is_number() || std::fabs(it->get<double>()) > kExposureMax)
+    sink.error("exposure", fmt::format("{0}; allowed: a number of stops in [−{1:g}, {1:g}] (previews show radiance × "
+                                       "2^exposure)",
+                                       it->is_number() ? fmt::format("{:g} is out of range", it->get<double>())
+                                                       : "expected a number, found " + json_type_name(*it),
+                                       kExposureMax));
+  else
+    s.exposure = it->get<double>();
 }
 
 void parse_ambient(const json& doc, Scene& s, DiagnosticSink& sink) {
@@ -336,6 +368,7 @@ Scene parse_scene(const json& doc, const std::string& file) {
   parse_camera(doc, s, sink);
   parse_materials(doc, file, s, sink);
   parse_ambient(doc, s, sink);
+  parse_exposure(doc, s, sink);
   parse_objects(doc, s, sink);
   parse_lights(doc, s, sink);
   sink.throw_if_any();
@@ -471,9 +504,15 @@ json to_json(const Scene& s, const std::string& scene_file) {
   j["name"] = s.name;
   j["camera"] = {{"position", s.camera.position.array()},
                  {"look_at", s.camera.look_at.array()},
-                 {"up", s.camera.up.array()},
-                 {"fov", s.camera.fov}};
+                 {"up", s.camera.up.array()}};
+  if (s.camera.orthographic) {
+    j["camera"]["type"] = "orthographic";
+    j["camera"]["height"] = s.camera.height;
+  } else {
+    j["camera"]["fov"] = s.camera.fov;
+  }
   j["ambient"] = s.ambient;
+  if (s.exposure != 0) j["exposure"] = s.exposure;
   if (!s.materials.empty()) {
     j["materials"] = json::object();
     // Image paths relative to the file written (absolute in the canonical form, which may go anywhere).
@@ -516,6 +555,27 @@ json to_json(const Scene& s, const std::string& scene_file) {
   return j;
 }
 
+namespace {
+
+// Either camera, "type" naming it; a camera without "type" is perspective.
+json camera_schema() {
+  json alts = json::array();
+  const auto cameras = section("camera");
+  for (const auto* m : cameras) {
+    json c = model_schema(*m, "type");
+    if (m == cameras.front()) {  // the first, perspective, the default: "type" optional
+      json required = json::array();
+      for (const auto& r : c["required"])
+        if (r != "type") required.push_back(r);
+      c["required"] = required;
+    }
+    alts.push_back(c);
+  }
+  return {{"oneOf", alts}, {"description", "the camera: perspective (\"type\" may be left out) or orthographic"}};
+}
+
+}  // namespace
+
 json scene_schema() {
   auto alternatives = [](const char* sec) {
     json alts = json::array();
@@ -528,8 +588,14 @@ json scene_schema() {
   ambient.doc = "the scene's ambient colour A";
   json props = {{"$schema", {{"type", "string"}}},
                 {"name", {{"type", "string"}, {"minLength", 1}}},
-                {"camera", model_schema(*find_model("camera", "perspective"), "")},
+                {"camera", camera_schema()},
                 {"ambient", param_schema(ambient)},
+                {"exposure", {{"type", "number"},
+                              {"minimum", -kExposureMax},
+                              {"maximum", kExposureMax},
+                              {"description", "previews show radiance × 2^exposure through the standard view "
+                                              "transform (sRGB, clipped), as Blender's Film exposure; renderers "
+                                              "ignore it"}}},
                 {"materials", {{"type", "object"},
                                {"description", "named materials the objects refer to: material objects, or paths of "
                                                "material files relative to the scene file"},

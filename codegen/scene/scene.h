@@ -26,15 +26,23 @@ struct Camera {
   Vec3 position{0, 0, 4};
   Vec3 look_at{0, 0, 0};
   Vec3 up{0, 1, 0};
-  double fov = 40;  // vertical field of view, degrees
+  double fov = 40;  // vertical field of view, degrees (perspective)
+  // Orthographic: parallel rays along the view direction from a rectangle `height` high
+  // centred at `position` (glTF's orthographic camera: height = 2·ymag).
+  bool orthographic = false;
+  double height = 2;
 
   // The ray through pixel centre (i + 0.5, j + 0.5) of a w×h image, rows from the top.
   struct Basis {
     Vec3 forward, right, up;
-    double tan_half;  // tan(fov/2)
+    double tan_half;  // tan(fov/2); orthographic: half the height
   };
   Basis basis() const;
-  Vec3 ray(int i, int j, int w, int h) const;
+  // Its unit direction; `origin` gets where it starts (the eye, or a point of the
+  // orthographic camera's image rectangle).
+  Vec3 ray(int i, int j, int w, int h, Vec3* origin = nullptr) const;
+  // The unit direction from p towards the eye: v of the shading at p.
+  Vec3 toward_eye(const Vec3& p) const;
 };
 
 struct Attenuation {
@@ -153,6 +161,10 @@ struct Scene {
   std::string source;  // the file, or "built-in"
   Camera camera;
   RGB ambient{0, 0, 0};
+  // How previews show it: radiance × 2^exposure, then the standard view transform (sRGB
+  // encoding, clipped to [0, 1]), as Blender's Film exposure and Standard view do. Renderers
+  // ignore it: their images are linear radiance.
+  double exposure = 0;
   std::map<std::string, Material> materials;  // named materials objects refer to
   std::vector<Object> objects;
   std::vector<Light> lights;

@@ -320,6 +320,25 @@ std::string PovScene::texture_declarations() const {
   return out + "\n";
 }
 
+namespace {
+
+// The camera's statements (look_at last: it turns the vectors before it). Perspective: the
+// vertical field of view whatever the aspect; orthographic: up and right as long as the
+// view is high and wide (POV-Ray's orthographic camera takes their lengths as its extent).
+std::string camera_block(const Camera& c) {
+  const std::string eye = fmt::format("  location {}\n", pov_vector(c.position));
+  const std::string aim = fmt::format("  sky {}\n  look_at {}\n", pov_vector(c.up), pov_vector(c.look_at));
+  if (c.orthographic)
+    return fmt::format("  orthographic\n{0}  right -x*{1}*image_width/image_height\n  up y*{1}\n{2}", eye,
+                       pov_number(c.height), aim);
+  return fmt::format("  perspective\n{0}  right -x*image_width/image_height\n  up y\n  sky {1}\n"
+                     "  angle 2*degrees(atan(image_width/image_height*tan(radians({2}/2))))  // vertical field of view "
+                     "{2}°\n  look_at {3}\n",
+                     eye, pov_vector(c.up), pov_number(c.fov), pov_vector(c.look_at));
+}
+
+}  // namespace
+
 std::string PovScene::render() {
   const Camera& c = s_.camera;
   const int count = plan_.native ? 1 : plan_.passes;
@@ -335,10 +354,7 @@ std::string PovScene::render() {
   return render_template("pov/scene.pov", {{"header", header()},
                                            {"passes", std::to_string(count)},
                                            {"last", std::to_string(count - 1)},
-                                           {"location", pov_vector(c.position)},
-                                           {"sky", pov_vector(c.up)},
-                                           {"fov", pov_number(c.fov)},
-                                           {"look_at", pov_vector(c.look_at)},
+                                           {"camera", camera_block(c)},
                                            {"body", body}});
 }
 

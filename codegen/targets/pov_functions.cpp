@@ -199,16 +199,23 @@ ir::FunctionPtr PovScene::light_function(PovShading& sh, size_t i, const ir::Fun
   const Triple T = tangent ? params(fb, "Tx", "Ty", "Tz") : Triple{0.0, 0.0, 0.0};
   const std::vector<Expr> uv = uv_params(fb, sh);
   auto frame = [&](const Triple& L, const Triple& V) { return with(tangent ? args({N, L, V, T}) : args({N, L, V}), uv); };
+  // v: towards the eye, or (orthographic) the one direction against the view.
+  const Camera& c = s_.camera;
   if (l.type == Light::Type::Directional) {
-    Triple V = lets(fb, "Vx", "Vy", "Vz", s_.camera.position - P);
-    Expr dv = fb.let("Dv", length3(s_.camera.position - P));
-    ir::FunctionPtr f = fb.returns(ir::call(reflect, frame(constant(-l.direction), V / dv)));
+    Triple V = constant(c.toward_eye(Vec3(0, 0, 0)));
+    if (!c.orthographic) {
+      V = lets(fb, "Vx", "Vy", "Vz", c.position - P);
+      V = V / fb.let("Dv", length3(c.position - P));
+    }
+    ir::FunctionPtr f = fb.returns(ir::call(reflect, frame(constant(-l.direction), V)));
     sh.printer.add_own(f);
     return f;
   }
   // The lengths from the differences themselves: one helper takes all four.
-  Triple L = lets(fb, "Lx", "Ly", "Lz", l.position - P), V = lets(fb, "Vx", "Vy", "Vz", s_.camera.position - P);
-  Expr d = fb.let("D", length3(l.position - P)), dv = fb.let("Dv", length3(s_.camera.position - P));
+  Triple L = lets(fb, "Lx", "Ly", "Lz", l.position - P);
+  Triple V = c.orthographic ? constant(c.toward_eye(Vec3(0, 0, 0))) : lets(fb, "Vx", "Vy", "Vz", c.position - P);
+  Expr d = fb.let("D", length3(l.position - P));
+  if (!c.orthographic) V = V / fb.let("Dv", length3(c.position - P));
   std::optional<Expr> factor;
   auto times = [&](const Expr& x) { factor = factor ? *factor * x : x; };
   const Attenuation& a = l.attenuation;
@@ -218,7 +225,7 @@ ir::FunctionPtr PovScene::light_function(PovShading& sh, size_t i, const ir::Fun
   if (l.type == Light::Type::Spot)
     times(ir::call(terms::spot_cone(),
                    {-dot3(L / d, constant(l.direction)), std::cos(l.cutoff * kPi / 180), l.exponent}));
-  Expr reflected = ir::call(reflect, frame(L / d, V / dv));
+  Expr reflected = ir::call(reflect, frame(L / d, V));
   ir::FunctionPtr f = fb.returns(factor ? *factor * reflected : reflected);
   sh.printer.add_own(f);
   return f;

@@ -56,9 +56,14 @@ ir::FunctionPtr PovScene::table_function(PovShading& sh, size_t i) {
   const MaterialProgram& p = sh.program;
   ir::FunctionBuilder fb(fmt::format("Facet_Table{}", i), "");
   Expr x = fb.param("x"), y = fb.param("y"), z = fb.param("z"), nl = fb.param("NoL"), nv = fb.param("NoV");
-  const Vec3& e = s_.camera.position;
-  Expr vx = fb.let("Vx", e.x - x), vy = fb.let("Vy", e.y - y), vz = fb.let("Vz", e.z - z);
-  Expr dv = fb.let("Dv", ir::sqrt(vx * vx + vy * vy + vz * vz));
+  const Camera& c = s_.camera;
+  const Vec3& e = c.position;
+  const Vec3 toward = c.toward_eye(Vec3(0, 0, 0));  // orthographic: v is one direction
+  Expr vx = toward.x, vy = toward.y, vz = toward.z, dv = 1.0;
+  if (!c.orthographic) {
+    vx = fb.let("Vx", e.x - x), vy = fb.let("Vy", e.y - y), vz = fb.let("Vz", e.z - z);
+    dv = fb.let("Dv", ir::sqrt(vx * vx + vy * vy + vz * vz));
+  }
   Expr lx = -l.direction.x, ly = -l.direction.y, lz = -l.direction.z, d = 1.0;
   if (l.type != Light::Type::Directional) {
     lx = fb.let("Lx", l.position.x - x), ly = fb.let("Ly", l.position.y - y), lz = fb.let("Lz", l.position.z - z);
@@ -99,7 +104,9 @@ std::string PovScene::table_pigment(size_t o, size_t i, PovPigment p, size_t wid
   const std::string toward_light = l.type == Light::Type::Directional
                                        ? "slope { " + pov_vector(Vec3(0, 0, 0) - l.direction) + " }"
                                        : "slope { point_at " + pov_vector(l.position) + " }";
-  const std::string toward_eye = "slope { point_at " + pov_vector(s_.camera.position) + " }";
+  const std::string toward_eye = s_.camera.orthographic
+                                     ? "slope { " + pov_vector(s_.camera.toward_eye(Vec3(0, 0, 0))) + " }"
+                                     : "slope { point_at " + pov_vector(s_.camera.position) + " }";
   const ir::FunctionPtr& f = sh.tables[i];
   std::string out = "pigment {\n  " + toward_light + "\n  pigment_map {\n    [0 " + black + "]\n";
   for (int j = 0; j < kTableNodes; ++j) {

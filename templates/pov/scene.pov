@@ -7,13 +7,6 @@ global_settings { assumed_gamma 1.0 ambient_light 0 }  // linear: render with Fi
 
 // facet's world is right-handed: the negative right vector makes POV-Ray's camera right-handed too.
 camera {
-  perspective
-  location {{location}}
-  right -x*image_width/image_height
-  up y
-  sky {{sky}}
-  angle 2*degrees(atan(image_width/image_height*tan(radians({{fov}}/2))))  // vertical field of view {{fov}}°
-  look_at {{look_at}}
-}
+{{camera}}}
 
 {{body}}

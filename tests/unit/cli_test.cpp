@@ -76,6 +76,7 @@ TEST(Cli, Float32LimitsRefusedByEveryCommand) {
   };
   const std::string out = scratch("float32_out").string();
   const std::string color = "or one number for grey, each in [0, 10000]";
+  const std::string light = "or one number for grey, each in [0, 1000000]";  // kLightColorMax: real light powers
   const std::vector<Case> cases = {
       {{"generate", material, "--target", "glsl", "-o", out + ".frag"}, material, "diffuse.color[0]", color},
       {{"generate", material, "--target", "osl", "-o", out + ".osl"}, material, "specular.n",
@@ -85,8 +86,8 @@ TEST(Cli, Float32LimitsRefusedByEveryCommand) {
       {{"render", material, "-r", "reference", "-o", out + ".pfm"}, material, "diffuse.color[0]", color},
       {{"render", (kSource / "examples/materials/lambert.json").string(), "-r", "reference", "--scene", scene.string(),
         "-o", out + "_scene.pfm"},
-       scene.string(), "lights[0].color[0]", color},
-      {{"export-gltf", scene.string(), "-o", out + ".gltf"}, scene.string(), "lights[0].color[0]", color},
+       scene.string(), "lights[0].color[0]", light},
+      {{"export-gltf", scene.string(), "-o", out + ".gltf"}, scene.string(), "lights[0].color[0]", light},
       {{"export-gltf", "single", "--material", material, "-o", out + "_m.gltf"}, material, "diffuse.color[0]", color},
       {{"import-gltf", gltf.string(), "-o", out + "_imported.json"}, gltf.string(), "materials[0] (as a facet material: emission[0])",
        color},

@@ -20,6 +20,22 @@ inline std::filesystem::path scratch(const std::string& suite, const std::string
   return dir / name;
 }
 
+// RFC 4648 base64 of `bytes`, for data URIs the tests write.
+inline std::string base64(const std::string& bytes) {
+  static const char* k = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  for (size_t i = 0; i < bytes.size(); i += 3) {
+    uint32_t n = uint32_t(uint8_t(bytes[i])) << 16;
+    if (i + 1 < bytes.size()) n |= uint32_t(uint8_t(bytes[i + 1])) << 8;
+    if (i + 2 < bytes.size()) n |= uint32_t(uint8_t(bytes[i + 2]));
+    out += k[(n >> 18) & 63];
+    out += k[(n >> 12) & 63];
+    out += i + 1 < bytes.size() ? k[(n >> 6) & 63] : '=';
+    out += i + 2 < bytes.size() ? k[n & 63] : '=';
+  }
+  return out;
+}
+
 #ifdef FACET_BIN
 // The facet binary with `args`, standard input from `stdin_file` when given; output is stdout and stderr together.
 inline ProcessResult facet(const std::vector<std::string>& args, const std::string& stdin_file = "") {

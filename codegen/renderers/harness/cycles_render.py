@@ -336,12 +336,16 @@ def add_camera(bpy, scene, camera, frame):
     """The pinhole camera of the docstring's Conventions, as the scene's camera."""
     from mathutils import Matrix
     data = bpy.data.cameras.new("facet_camera")
-    data.type = "PERSP"
-    data.sensor_fit = "VERTICAL"       # `fov` is the vertical angle whatever the aspect
+    data.sensor_fit = "VERTICAL"       # `fov` (`height`) is the vertical angle (extent) whatever the aspect
     data.sensor_height = 24.0          # (mm; only the ratio to the lens matters)
-    tan_half = math.tan(math.radians(float(camera["fov"])) / 2.0)
-    tan_half *= frame.render_height / frame.height   # the margin of a tiny image, if any
-    data.lens = 12.0 / tan_half        # tan(vertical angle / 2) = (sensor_height / 2) / lens
+    margin = frame.render_height / frame.height   # the margin of a tiny image, if any
+    if camera.get("type") == "orthographic":
+        data.type = "ORTHO"
+        data.ortho_scale = float(camera["height"]) * margin   # the extent along the sensor fit: vertical
+    else:
+        data.type = "PERSP"
+        tan_half = math.tan(math.radians(float(camera["fov"])) / 2.0) * margin
+        data.lens = 12.0 / tan_half    # tan(vertical angle / 2) = (sensor_height / 2) / lens
     data.shift_x = data.shift_y = 0.0
     data.clip_start = 1e-3
     data.clip_end = 1e6

@@ -11,7 +11,8 @@ uniform vec2 facet_resolution;
 uniform vec3 facet_camera_forward;
 uniform vec3 facet_camera_right;
 uniform vec3 facet_camera_up;
-uniform vec2 facet_camera_tan;                       // tan(fov/2) · (aspect, 1)
+uniform vec2 facet_camera_tan;                       // tan(fov/2) · (aspect, 1); orthographic: half the height · (aspect, 1)
+uniform int facet_camera_orthographic;               // 1: rays parallel to facet_camera_forward from the image plane
 uniform int facet_object_count;
 uniform vec4 facet_object_shape[FACET_MAX_OBJECTS];  // sphere: centre, radius; square: centre, half-side;
                                                      // mesh: first BVH node, first triangle
@@ -193,18 +194,27 @@ vec4 facet_uv_tangent_at(int i, vec3 p, FacetHit h)
     return vec4(c.xyz, c.w >= 0.0 ? 1.0 : -1.0);
 }
 
-// The camera ray through this pixel centre (dir) and the nearest object it meets
-// (best); -1 when none.
+// Where the camera ray through this pixel starts: the eye, or (orthographic) its point of the image plane.
+vec3 facet_ray_origin;
+
+// The camera ray through this pixel centre (facet_ray_origin, dir) and the nearest object
+// it meets (best); -1 when none.
 int facet_camera_hit(out vec3 dir, out FacetHit best)
 {
     vec2 ndc = 2.0 * gl_FragCoord.xy / facet_resolution - 1.0;
-    dir = normalize(facet_camera_forward + facet_camera_right * (ndc.x * facet_camera_tan.x)
-                    + facet_camera_up * (ndc.y * facet_camera_tan.y));
+    vec3 across = facet_camera_right * (ndc.x * facet_camera_tan.x) + facet_camera_up * (ndc.y * facet_camera_tan.y);
+    if (facet_camera_orthographic != 0) {
+        facet_ray_origin = facet_camera_position + across;
+        dir = facet_camera_forward;
+    } else {
+        facet_ray_origin = facet_camera_position;
+        dir = normalize(facet_camera_forward + across);
+    }
     best = FacetHit(-1.0, -1, vec2(0.0));
     int hit = -1;
     for (int i = 0; i < FACET_MAX_OBJECTS; ++i) {
         if (i >= facet_object_count) break;
-        FacetHit h = facet_intersect(i, facet_camera_position, dir, 0.0, -1);
+        FacetHit h = facet_intersect(i, facet_ray_origin, dir, 0.0, -1);
         if (h.t > 0.0 && (best.t < 0.0 || h.t < best.t)) { best = h; hit = i; }
     }
     return hit;
@@ -236,7 +246,7 @@ void main()
         facet_color = vec4(0.0, 0.0, 0.0, 1.0);
         return;
     }
-    vec3 p = facet_camera_position + dir * best.t;
+    vec3 p = facet_ray_origin + dir * best.t;
     facet_shaded_object = hit;
     facet_shaded_triangle = best.triangle;
     vec3 n = facet_normal_at(hit, p, best);
@@ -264,7 +274,7 @@ void main()
     facet_gbuffer_normal = facet_gbuffer_view = facet_gbuffer_uv_tangent = facet_gbuffer_uv = vec4(0.0);
     facet_gbuffer_visibility_low = facet_gbuffer_visibility_high = vec4(0.0);
     if (hit < 0 || facet_object_shaded[hit] == 0) return;
-    vec3 p = facet_camera_position + dir * best.t;
+    vec3 p = facet_ray_origin + dir * best.t;
     facet_shaded_object = hit;
     facet_shaded_triangle = best.triangle;
     facet_gbuffer_position = vec4(p, 1.0);

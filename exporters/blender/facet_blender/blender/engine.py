@@ -22,7 +22,8 @@ shown only for this engine):
                 own defaults for +A, +R and +Q; +AM2 for its quality on edges).
     max_radiance  "Range": the brightest radiance kept (POV-Ray's 16-bit images hold
                 0..1: the scene is rendered × 1/Range and the Render Result scaled
-                back). Default 1.
+                back). Default 1. A render in which pixels reach it warns how many
+                clipped.
 
 The Render Result holds scene-linear radiance (alpha 1). The messages of the last render
 are kept in LAST_REPORTS [(level, message), ...] for scripts and tests.
@@ -88,6 +89,13 @@ def settings_of(props):
         return povray.EXACT
     return povray.Settings(antialias=props.antialias, threshold=props.threshold, depth=props.depth,
                            method=int(props.method), quality=props.quality)
+
+
+def clipped_pixels(samples, limit=65535 * 0.98):
+    """How many pixels of 16-bit RGB samples reach the top of the range in some channel:
+    their radiance was at least Range and is lost (POV-Ray clips at full scale)."""
+    return sum(1 for i in range(0, len(samples) - 2, 3)
+               if samples[i] >= limit or samples[i + 1] >= limit or samples[i + 2] >= limit)
 
 
 def result_rect(width, height, samples, scale):
@@ -171,6 +179,11 @@ class FACET_RE_povray(bpy.types.RenderEngine):
         result = self.begin_result(0, 0, w, h)
         result.layers[0].passes["Combined"].rect = result_rect(w, h, samples, props.max_radiance)
         self.end_result(result)
+        clipped = clipped_pixels(samples)
+        if clipped:
+            self.report_("WARNING", f"facet POV-Ray: {clipped} of {w * h} pixels ({100.0 * clipped / (w * h):.1f} %) "
+                                    f"reached Range ({props.max_radiance:g}) and clipped there: their radiance is "
+                                    f"lost; raise Range in the facet POV-Ray render panel")
         self.show_progress(1.0, f"facet POV-Ray: {w}x{h} rendered")
         self.report_("INFO", f"facet POV-Ray: {w}x{h} in {time.monotonic() - t0:.1f} s, {plan.passes} "
                              f"run{'s' * (plan.passes > 1)}" + (", validation (exact)" if props.validation else ""))
