@@ -286,14 +286,17 @@ std::string uninformative(const Render& ref, const Scene& s) {
   }
   if (visible == 0) return "no object is visible";
   const float peak = std::max({hi[0], hi[1], hi[2]});
-  if (!(peak > 0)) return fmt::format("the reference is black at all {} pixels where objects are visible", visible);
   bool constant = true;
   for (size_t c = 0; c < 3; ++c) constant = constant && hi[c] - lo[c] <= 1e-6f * std::max(1.0f, peak);
-  if (constant)
-    return fmt::format("the reference is one colour ({:.4g}, {:.4g}, {:.4g}) at all {} pixels where objects are visible",
-                       hi[0], hi[1], hi[2], visible);
+  std::string image;
+  if (!(peak > 0)) image = fmt::format("the reference is black at all {} pixels where objects are visible", visible);
+  else if (constant)
+    image = fmt::format("the reference is one colour ({:.4g}, {:.4g}, {:.4g}) at all {} pixels where objects are "
+                        "visible",
+                        hi[0], hi[1], hi[2], visible);
   const std::string dark = dark_objects(ref, s);
-  return dark.empty() ? "" : "objects show no shading: " + dark;
+  if (dark.empty()) return image;
+  return (image.empty() ? "" : image + "; ") + "objects show no shading: " + dark;
 }
 
 ComparisonRow judge(const Render& reference, const Image& image, const std::vector<float>& alpha, bool hard_toon,

@@ -376,6 +376,69 @@ TEST(Cli, UnknownTargetIsAUsageError) {
   EXPECT_NE(r.output.find("metal"), std::string::npos) << r.output;
 }
 
+// Every renderer reading the same wrong scene agrees with it perfectly: validate says which
+// scenes show no shading instead of passing them. A cube whose normals point into it (as a
+// transform that turned them the wrong way made them), a wall no light reaches, and a scene
+// without lights are each reported as uninformative, naming the object; the same cube with
+// its normals outwards passes.
+TEST(Cli, ValidateReportsScenesThatShowNoShading) {
+  const json camera = {{"position", {2, 1.5, 3}}, {"look_at", {0, 0, 0}}, {"fov", 40}};
+  json cube = {{"type", "mesh"}, {"name", "cube"}, {"positions", json::array()}, {"normals", json::array()},
+               {"triangles", json::array()}};
+  const int faces[6][3][3] = {{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}},  {{-1, 0, 0}, {0, 0, 1}, {0, 1, 0}},
+                              {{0, 1, 0}, {0, 0, 1}, {1, 0, 0}},  {{0, -1, 0}, {1, 0, 0}, {0, 0, 1}},
+                              {{0, 0, 1}, {1, 0, 0}, {0, 1, 0}},  {{0, 0, -1}, {0, 1, 0}, {1, 0, 0}}};
+  for (const auto& f : faces) {
+    const size_t base = cube["positions"].size();
+    for (const auto& c : {std::pair{-1, -1}, {1, -1}, {1, 1}, {-1, 1}}) {
+      json p = json::array();
+      for (int k = 0; k < 3; ++k) p.push_back(0.5 * (f[0][k] + c.first * f[1][k] + c.second * f[2][k]));
+      cube["positions"].push_back(p);
+      cube["normals"].push_back({f[0][0], f[0][1], f[0][2]});
+    }
+    cube["triangles"].push_back({base, base + 1, base + 2});
+    cube["triangles"].push_back({base, base + 2, base + 3});
+  }
+  json inside_out = cube;
+  for (auto& n : inside_out["normals"]) n = {-n[0].get<int>(), -n[1].get<int>(), -n[2].get<int>()};
+  const json light = {{"type", "point"}, {"position", {3, 4, 5}}, {"color", 30}, {"attenuation", "inverse_square"}};
+  // A narrow spot on the ball: the wall behind it lies outside the cone or in the ball's shadow.
+  const json spot = {{"type", "spot"},   {"position", {2, 3, 4}}, {"direction", {-2, -3, -4}},
+                     {"cutoff", 10},     {"color", 30},          {"attenuation", "inverse_square"}};
+  const json sphere = {{"type", "sphere"}, {"name", "ball"}, {"center", {0, 0, 0}}, {"radius", 1}};
+  const json wall = {{"type", "plane"}, {"name", "wall"}, {"point", {0, 0, -2.5}}, {"normal", {0, 0, 1}}, {"size", 1.5}};
+  struct Case {
+    std::string name;
+    json scene;
+    int exit_code;
+    std::string says;
+  };
+  const std::vector<Case> cases = {
+      {"outwards", {{"camera", camera}, {"objects", {cube}}, {"lights", {light}}}, 0, "1 of 1 comparisons pass"},
+      {"inside_out", {{"camera", camera}, {"objects", {inside_out}}, {"lights", {light}}}, 1,
+       "objects show no shading: \"cube\" faces away from the camera at 100 %"},
+      {"wall_unlit", {{"camera", camera}, {"objects", {sphere, wall}}, {"lights", {spot}}}, 1,
+       "objects show no shading: \"wall\" no light reaches any of its"},
+      {"no_lights", {{"camera", camera}, {"objects", {sphere}}, {"lights", json::array()}}, 1,
+       "the reference is black at all 952 pixels where objects are visible; objects show no shading: \"ball\" no "
+       "light reaches"},
+  };
+  for (const auto& c : cases) {
+    json scene = c.scene;
+    scene["name"] = c.name;
+    const fs::path file = scratch(c.name + ".json");
+    write_file_atomic(file.string(), scene.dump());
+    ProcessResult r = facet({"validate", (kSource / "examples/materials/lambert.json").string(), "--scene",
+                             file.string(), "--renderers", "reference,glsl", "--size", "64x48", "--out",
+                             scratch(c.name + "_out").string()});
+    EXPECT_EQ(r.exit_code, c.exit_code) << c.name << ": " << r.output;
+    EXPECT_NE(r.output.find(c.says), std::string::npos) << c.name << ": " << r.output;
+    if (c.exit_code) {
+      EXPECT_NE(r.output.find("1 uninformative"), std::string::npos) << c.name << ": " << r.output;
+    }
+  }
+}
+
 TEST(Cli, PublishedSchemaIsTheGeneratedOne) {
   ProcessResult r = facet({"schema"});
   ASSERT_EQ(r.exit_code, 0);

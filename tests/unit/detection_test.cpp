@@ -239,6 +239,53 @@ TEST(Detection, PovExponentOffByOneFails) {
   EXPECT_FALSE(bad.pass) << "max |Δ|/max(1,|ref|) " << bad.metrics.max_excess;
 }
 
+// The orthographic camera's conventions, as POV-Ray is given them: `up` and `right` as long
+// as the view is high and wide (POV-Ray's orthographic camera takes their lengths as its
+// extent), and v one direction against the view on the function route (a material POV-Ray
+// has no finish for). A view half as high, or v towards the camera's position as a
+// perspective camera's, fails; the generated scene passes.
+TEST(Detection, PovOrthographicCameraFailsWhenWrong) {
+  Fixture f = fixture("ward", "pov-orthographic", "materials", (kSource / "tests/scenes/orthographic.json").string());
+  ASSERT_TRUE(f.scene.camera.orthographic);
+  GenerateOptions o;
+  o.target = Target::Pov;
+  o.scene = f.scene;
+  const std::string good = generate(f.material, o);
+  f.job.code_override = good;
+  ComparisonRow right = judged(f, render_one("pov", f.job));
+  EXPECT_TRUE(right.pass) << "max |Δ|/max(1,|ref|) " << right.metrics.max_excess;
+  f.job.code_override = inject(good, "up y*3.2", "up y*1.6");
+  ComparisonRow half = judged(f, render_one("pov", f.job));
+  EXPECT_FALSE(half.pass) << "a view half as high: max |Δ|/max(1,|ref|) " << half.metrics.max_excess;
+  // The perspective camera's v (towards its position) under the orthographic camera.
+  GenerateOptions p = o;
+  p.scene->camera.orthographic = false;
+  const std::string perspective = generate(f.material, p);
+  const auto camera = [](const std::string& code) {
+    const size_t at = code.find("camera {");
+    return code.substr(at, code.find("}\n", at) + 2 - at);
+  };
+  f.job.code_override = inject(perspective, camera(perspective), camera(good));
+  ComparisonRow towards = judged(f, render_one("pov", f.job));
+  EXPECT_FALSE(towards.pass) << "v towards the eye: max |Δ|/max(1,|ref|) " << towards.metrics.max_excess;
+}
+
+// A scene of high dynamic range (tests/scenes/high_range.json: the brightest pixel 1,281
+// times the 5th percentile of the lit ones): one 16-bit exposure, scaled to keep the
+// brightest below 1, cannot hold its dim pixels to the tolerance and fails; with the
+// comparison's tolerance given, POV-Ray brackets its exposures and passes, and says so.
+TEST(Detection, PovHighRangeNeedsBracketedExposures) {
+  Fixture f = fixture("lambert", "pov-high-range", "materials", (kSource / "tests/scenes/high_range.json").string());
+  f.job.tolerance = 0;  // one exposure
+  ComparisonRow one = judged(f, render_one("pov", f.job));
+  EXPECT_FALSE(one.pass) << "one exposure: max |Δ|/max(1,|ref|) " << one.metrics.max_excess;
+  f.job.tolerance = ValidateOptions{}.tolerance;
+  RenderOutcome r = render_one("pov", f.job);
+  ComparisonRow bracketed = judged(f, r);
+  EXPECT_TRUE(bracketed.pass) << "bracketed: max |Δ|/max(1,|ref|) " << bracketed.metrics.max_excess;
+  EXPECT_NE(r.note.find("exposures bracketed"), std::string::npos) << r.note;
+}
+
 // The mesh conventions docs/povray-meshes.md measured, each proved by a wrong
 // variant that fails: POV-Ray puts an image's first row at the top (v = 1) and
 // a texel's centre half a texel in, `interpolate 2` blends a block's texels

@@ -293,5 +293,37 @@ TEST(GltfTransforms, SparseMorphTargetIsReadDense) {
   expect_cube(*s.objects[0].mesh, Mat4(), "sparse", 1.0);
 }
 
+// KHR_lights_punctual is photometric (candela, lux); facet's light colour is radiometric as
+// Blender's lights are, at glTF-Blender-IO's 683 lm/W: Blender's exporter writes a 1000 W
+// point light as 1000 / (4π) · 683 cd, which must import as Blender's own conversion of the
+// same light, C = P / (4π²); a 2 W/m² sun (683 · 2 lux) as C = S / π. A node's scale leaves
+// a light's intensity as it is (the extension's README).
+TEST(GltfLights, PhotometricUnitsImportAsBlendersRadiometricOnes) {
+  json g = cube_gltf();
+  g["extensionsUsed"] = {"KHR_lights_punctual"};
+  g["extensions"] = {{"KHR_lights_punctual",
+                      {{"lights", {{{"type", "point"}, {"intensity", 1000 / (4 * M_PI) * 683}},
+                                   {{"type", "directional"}, {"intensity", 2 * 683}, {"color", {1, 0.5, 0.25}}},
+                                   {{"type", "spot"}, {"intensity", 100 / (4 * M_PI) * 683},
+                                    {"spot", {{"innerConeAngle", 0.5}, {"outerConeAngle", 0.5}}}}}}}}};
+  g["nodes"] = {{{"name", "cube"}, {"mesh", 0}},
+                {{"name", "point"}, {"translation", {0, 3, 0}}, {"scale", {5, 5, 5}},
+                 {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}},
+                {{"name", "sun"}, {"rotation", {-kHalf, 0, 0, kHalf}}, {"extensions", {{"KHR_lights_punctual", {{"light", 1}}}}}},
+                {{"name", "spot"}, {"translation", {0, 0, 4}}, {"extensions", {{"KHR_lights_punctual", {{"light", 2}}}}}}};
+  g["scenes"] = {{{"nodes", {0, 1, 2, 3}}}};
+  Scene s = import(g, "lights.gltf");
+  ASSERT_EQ(s.lights.size(), 3u);
+  const double point = 1000 / (4 * M_PI * M_PI), sun = 2 / M_PI, spot = 100 / (4 * M_PI * M_PI);
+  for (size_t c = 0; c < 3; ++c) EXPECT_NEAR(s.lights[0].color[c], point, 1e-12 * point);
+  EXPECT_NEAR(s.lights[1].color[0], sun, 1e-12);
+  EXPECT_NEAR(s.lights[1].color[1], sun / 2, 1e-12);
+  EXPECT_NEAR(s.lights[2].color[0], spot, 1e-12 * spot);
+  EXPECT_EQ(s.lights[0].attenuation.law, Attenuation::Law::InverseSquare);
+  EXPECT_NEAR(s.lights[0].position.y, 3, 1e-12);
+  EXPECT_NEAR(s.lights[1].direction.y, -1, 1e-12);  // −Z turned −90° about x: straight down
+  EXPECT_NEAR(s.lights[2].cutoff, 0.5 * 180 / M_PI, 1e-12);
+}
+
 }  // namespace
 }  // namespace facet
