@@ -232,15 +232,19 @@ void add_scene_vocabulary(std::vector<ModelDef>& all) {
                 index("node", "the glTF file's node: its index in \"nodes\" or its name; its mesh in its world "
                               "transform", true),
                 index("primitive", "the index of one primitive of the mesh; absent: every triangle primitive",
-                      false)};
+                      false),
+                index("texcoord0", "which glTF TEXCOORD_n the mesh's texture coordinate set 0 is (default 0): "
+                                   "import-gltf names the sets a material reads beyond 0 and 1",
+                      false),
+                index("texcoord1", "which glTF TEXCOORD_n the mesh's texture coordinate set 1 is (default 1)", false)};
     for (auto& p : m.params) {
       p.required = false;  // the forms say which keys a mesh needs
       if (p.name == "texcoords" || p.name == "texcoords1") p.arity = 2;
       if (p.name == "tangents") p.arity = 4;
     }
     m.forms = {{"inline arrays", {"positions", "normals", "triangles"}, {"texcoords", "texcoords1", "tangents"}},
-               {"a glTF file's mesh", {"gltf", "mesh"}, {"primitive"}},
-               {"a glTF file's node", {"gltf", "node"}, {"primitive"}}};
+               {"a glTF file's mesh", {"gltf", "mesh"}, {"primitive", "texcoord0", "texcoord1"}},
+               {"a glTF file's node", {"gltf", "node"}, {"primitive", "texcoord0", "texcoord1"}}};
     m.object_type = ObjectType::Mesh;
     all.push_back(m);
   }

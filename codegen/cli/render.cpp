@@ -33,6 +33,7 @@ struct RenderArgs {
   std::string output;
   std::string preview;
   std::string mask;
+  std::string normals;  // the reference's surface normals and coverage (PFM)
   std::string pov_route = "auto";
   std::string workdir;
   bool compare = false;
@@ -103,6 +104,15 @@ int run_render(const RenderArgs& a) {
   }
   if (!a.output.empty()) write_pfm(a.output, image);
   if (!a.preview.empty()) write_png_preview(a.preview, image, float(std::exp2(a.exposure.value_or(scene.exposure))));
+  if (!a.normals.empty()) {  // the reference's own normals, and the object index + 1 in a second image
+    Image n(w, h), id(w, h);
+    n.rgb = ref.normal;
+    for (size_t i = 0; i < ref.object.size(); ++i)
+      for (int c = 0; c < 3; ++c) id.rgb[i * 3 + size_t(c)] = float(ref.object[i] + 1);
+    write_pfm(a.normals, n);
+    const std::filesystem::path p(a.normals);
+    write_pfm((p.parent_path() / (p.stem().string() + "_objects.pfm")).string(), id);
+  }
   if (!a.mask.empty()) {  // a binary PGM, rows from the top: 255 where the comparison looks
     std::vector<uint8_t> mask = interior_mask(ref);
     std::string pgm = fmt::format("P5\n{} {}\n255\n", w, h);
@@ -136,6 +146,10 @@ Command render_command(CLI::App& app) {
   rn->add_option("--mask", ra.mask,
                  "The pixels --compare and facet validate judge, as a binary PGM (255: inside an object, not on its "
                  "silhouette, no shadow ray grazing an occluder's edge)");
+  rn->add_option("--normals", ra.normals,
+                 "The reference's surface normals (unit xyz, world space, before any normal map; 0 where no object is "
+                 "hit) as a PFM, and beside it STEM_objects.pfm: the index + 1 of the object each pixel sees (0: "
+                 "none). For checking a scene's geometry against another reader's");
   rn->add_option("--workdir", ra.workdir, "Where the renderer's files go (default: a temporary folder)");
   rn->add_flag("--compare", ra.compare, "Print the comparison with the reference");
   rn->add_option("--check", ra.check,

@@ -181,6 +181,7 @@ void shade_pixel(const Scene& s, const std::vector<const Reference*>& shading,
   }
   r.grazing[idx] = grazing;
   r.seen[idx] = seen;
+  for (int c = 0; c < 3; ++c) r.normal[idx * 3 + size_t(c)] = float(f.n[c]);
   float* px = r.image.at(x, y);
   for (int c = 0; c < 3; ++c) px[c] = float(L[c]);
 }
@@ -208,6 +209,7 @@ Render render(const Material* fallback, const Scene& s, int width, int height, i
   r.object.assign(size_t(width) * size_t(height), -1);
   r.grazing.assign(size_t(width) * size_t(height), 0);
   r.seen.assign(size_t(width) * size_t(height), 0);
+  r.normal.assign(size_t(width) * size_t(height) * 3, 0.0f);
   const double offset = kShadowRayOffset * scene_scale(s);
   const double close = std::max(kCloseBlock, kGrazing * scene_scale(s));
   // Rows on every core (or `threads`): each pixel is its own, so any split gives the same image.

@@ -21,6 +21,8 @@ struct Render {
   // 0 (or its ambient and emission) on every renderer, right or wrong.
   static constexpr uint8_t kFacesCamera = 1, kReceivesLight = 2;
   std::vector<uint8_t> seen;
+  // Per pixel: the surface's own unit normal (before a normal map), xyz; 0 for background.
+  std::vector<float> normal;
 };
 
 // Shadow rays start this far along (relative to the scene's size) so a surface

@@ -347,6 +347,9 @@ class Importer {
       o.name = (node.name.empty() ? (mesh.name.empty() ? fmt::format("mesh{}", node.mesh) : mesh.name) : node.name) +
                (mesh.primitives.size() > 1 ? fmt::format("_{}", pi) : "");
       o.material = material_key(prim.material, ppath);
+      std::array<int64_t, 2> texcoords{0, 1};
+      if (auto mp = material_paths_.find(o.material); mp != material_paths_.end())
+        if (auto it = texcoord_sources_.find(mp->second); it != texcoord_sources_.end()) texcoords = it->second;
       if (analytic.is_object()) {
         analytic_objects_.push_back(s_.objects.size());
         analytic_json_.push_back(analytic);
@@ -354,8 +357,8 @@ class Importer {
       } else {
         o.type = Object::Type::Mesh;
         o.reference = MeshReference{path_, true, int64_t(&node - model_.nodes.data()), "",
-                                    mesh.primitives.size() > 1 ? int64_t(pi) : -1};
-        PrimitivePlan plan = gltf_detail::plan_primitive(reader_, prim, ppath, npath);
+                                    mesh.primitives.size() > 1 ? int64_t(pi) : -1, texcoords};
+        PrimitivePlan plan = gltf_detail::plan_primitive(reader_, prim, ppath, npath, texcoords);
         gltf_detail::plan_deformation(reader_, plan, mesh, int(&node - model_.nodes.data()), notes_);
         budget_.add(plan.size, path_, npath, fmt::format("{}'s {}", npath, ppath));
         pending_.push_back({s_.objects.size(), std::move(plan), world});
@@ -430,6 +433,7 @@ class Importer {
     std::vector<std::pair<int, std::string>>& sets = texture_sets_[mpath];
     const bool own = ext.is_object() && ext.contains("material");
     json m = own ? own_material(ext, mpath, sets) : gltf_detail::pbr_material(g, mpath, images_, sets, notes_);
+    if (!own) map_texture_sets(m, sets, mpath);
     try {
       return parse_material(m, path_);
     } catch (const InputError& e) {
@@ -441,6 +445,38 @@ class Importer {
                      : mpath + " (as a facet material: " + d.path + ")";
       throw InputError(ds);
     }
+  }
+
+  // glTF's textures may read any set TEXCOORD_n; a facet mesh carries two sets, 0 and 1. A
+  // material whose textures read other sets (at most two of them) has them mapped onto 0 and
+  // 1, in order, and its meshes read those sets as 0 and 1 (MeshReference::texcoords, the
+  // scene file's "texcoord0"/"texcoord1"): every texture keeps its own set and transform.
+  void map_texture_sets(json& m, std::vector<std::pair<int, std::string>>& sets, const std::string& mpath) {
+    std::vector<int64_t> distinct;
+    for (const auto& [set, key] : sets)
+      if (std::find(distinct.begin(), distinct.end(), set) == distinct.end()) distinct.push_back(set);
+    std::sort(distinct.begin(), distinct.end());
+    if (distinct.empty() || distinct.back() < 2) return;
+    if (distinct.size() > 2) {
+      std::string keys;
+      for (const auto& [set, key] : sets) keys += fmt::format("{}{} (TEXCOORD_{})", keys.empty() ? "" : ", ", key, set);
+      reader_.fail(mpath, fmt::format("its textures read {} texture coordinate sets: {}; a facet mesh carries two",
+                                      distinct.size(), keys));
+    }
+    const std::array<int64_t, 2> from{distinct[0], distinct.size() > 1 ? distinct[1] : 1};  // one set: it is 0
+    auto slot = [&](int64_t set) { return set == from[0] ? 0 : 1; };
+    std::function<void(json&)> visit = [&](json& j) {
+      if (j.is_object() && j.contains("texture") && j.contains("uv")) j["uv"] = slot(j["uv"].get<int64_t>());
+      if (j.is_structured())
+        for (auto& e : j) visit(e);
+    };
+    visit(m);
+    for (auto& [set, key] : sets) set = slot(set);
+    texcoord_sources_[mpath] = from;
+    notes_.push_back(fmt::format("{}: its textures read TEXCOORD_{}{}; its meshes carry {} as facet's set{} 0{}",
+                                 mpath, from[0], distinct.size() > 1 ? fmt::format(" and TEXCOORD_{}", from[1]) : "",
+                                 distinct.size() > 1 ? "them" : "it", distinct.size() > 1 ? "s" : "",
+                                 distinct.size() > 1 ? " and 1" : ""));
   }
 
   // FACET_material's material, each image its "images" names ({"file as the material
@@ -480,8 +516,8 @@ class Importer {
       if (sets == texture_sets_.end()) continue;
       for (const auto& [set, key] : sets->second)
         if (set >= 0 && set < 2 && o.mesh->texcoords[size_t(set)].empty())
-          reader_.fail(key, fmt::format("TEXCOORD_{}, which {} ({}) lacks", set, o.name,
-                                        o.reference ? "nodes[" + std::to_string(o.reference->index) + "]" : "a mesh"));
+          reader_.fail(key, fmt::format("TEXCOORD_{}, which {} ({}) lacks", o.reference ? o.reference->texcoords[size_t(set)] : set,
+                                        o.name, o.reference ? "nodes[" + std::to_string(o.reference->index) + "]" : "a mesh"));
     }
   }
 
@@ -569,6 +605,7 @@ class Importer {
   std::set<std::string> used_keys_;
   std::string default_key_;  // the key of the material primitives without one take, once read
   std::map<std::string, std::string> material_paths_;  // facet material key → glTF path
+  std::map<std::string, std::array<int64_t, 2>> texcoord_sources_;  // by glTF path: the sets read as 0 and 1
   std::map<std::string, std::vector<std::pair<int, std::string>>> texture_sets_;  // by glTF path: (set, key)
   std::vector<bool> on_path_;  // the nodes being visited: a cycle is an error
   struct Pending {

@@ -144,8 +144,7 @@ TextureUse GltfImages::texture(int index, int tex_coord, const std::string& exte
     if (!tc.is_number_integer()) fail(key + ".extensions.KHR_texture_transform.texCoord", "expected an integer");
     use.uv = tc.get<int>();
   }
-  if (use.uv != 0 && use.uv != 1)
-    fail(key + ".texCoord", fmt::format("TEXCOORD_{}: facet reads the sets TEXCOORD_0 and TEXCOORD_1", use.uv));
+  if (use.uv < 0) fail(key + ".texCoord", fmt::format("{}: a texture coordinate set is TEXCOORD_n, n ≥ 0", use.uv));
   use.spec["uv"] = use.uv;
   use.texels = load_texels(use.spec["texture"].get<std::string>());  // decoded by image_file
   return use;

@@ -381,7 +381,7 @@ Mat4 Reader::world_matrix(int ni) const {
 bool is_triangles(const tinygltf::Primitive& prim) { return prim.mode == TINYGLTF_MODE_TRIANGLES || prim.mode == -1; }
 
 PrimitivePlan plan_primitive(const Reader& r, const tinygltf::Primitive& prim, const std::string& path,
-                             const std::string& where) {
+                             const std::string& where, std::array<int64_t, 2> texcoords) {
   PrimitivePlan p;
   p.prim = &prim;
   p.path = path;
@@ -398,7 +398,7 @@ PrimitivePlan plan_primitive(const Reader& r, const tinygltf::Primitive& prim, c
       r.fail(path + ".attributes.NORMAL", "has a different count from POSITION");
   }
   for (size_t set = 0; set < 2; ++set) {
-    const std::string key = "TEXCOORD_" + std::to_string(set);
+    const std::string key = "TEXCOORD_" + std::to_string(texcoords[set]);
     auto tc = prim.attributes.find(key);
     p.has_texcoords[set] = tc != prim.attributes.end();
     if (!p.has_texcoords[set]) continue;

@@ -119,7 +119,7 @@ struct PrimitivePlan {
   std::string path, where;
   AccessorView positions, normals, indices;
   bool has_normals = false, has_indices = false;
-  std::array<AccessorView, 2> texcoords;  // TEXCOORD_0, TEXCOORD_1
+  std::array<AccessorView, 2> texcoords;  // the mesh's sets 0 and 1: TEXCOORD_0 and _1 unless mapped otherwise
   std::array<bool, 2> has_texcoords{false, false};
   AccessorView tangents;  // TANGENT
   bool has_tangents = false;
@@ -141,8 +141,9 @@ struct PrimitivePlan {
 };
 
 bool is_triangles(const tinygltf::Primitive& prim);
+// `texcoords`: the glTF sets TEXCOORD_n read as the mesh's sets 0 and 1.
 PrimitivePlan plan_primitive(const Reader& r, const tinygltf::Primitive& prim, const std::string& path,
-                             const std::string& where);
+                             const std::string& where, std::array<int64_t, 2> texcoords = {0, 1});
 // The primitive's morph targets at the weights `node` (or else `mesh`) gives, and, where
 // `node` has a skin, its skinning at the pose of the file's node transforms (the rest pose a
 // viewer shows without animation). `node_index` −1: a mesh read without a node (weights of

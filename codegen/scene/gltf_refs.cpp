@@ -115,7 +115,7 @@ struct GltfReferences::Impl {
     for (size_t pi = 0; pi < mesh.primitives.size(); ++pi) {
       if (ref.primitive >= 0 ? pi != size_t(ref.primitive) : !gltf_detail::is_triangles(mesh.primitives[pi])) continue;
       p.plans.push_back(gltf_detail::plan_primitive(r, mesh.primitives[pi], fmt::format("{}.primitives[{}]", mpath, pi),
-                                                    where));
+                                                    where, ref.texcoords));
       std::vector<std::string> notes;  // the import said them; a scene file's reference reads the same
       gltf_detail::plan_deformation(r, p.plans.back(), mesh, node_index, notes);
       p.size.vertices += p.plans.back().size.vertices;
@@ -185,6 +185,8 @@ void GltfReferences::add(size_t object, const MeshReference& ref, const std::str
     std::string what;  // "nodes[3]"
     if (!im.resolve(p, ref, sink, what) || p.plans.empty()) return;
     if (ref.primitive >= 0) what += fmt::format(" primitive {}", ref.primitive);
+    if (ref.texcoords != std::array<int64_t, 2>{0, 1})
+      what += fmt::format(" TEXCOORD_{} and _{}", ref.texcoords[0], ref.texcoords[1]);
     std::string key = fs::path(ref.file).lexically_normal().string() + "\n" + what;
     auto seen = im.by_key.find(key);
     if (seen != im.by_key.end()) {

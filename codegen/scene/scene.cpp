@@ -124,6 +124,8 @@ MeshReference reference_of(const ModelSpec& o, const std::string& file) {
   r.index = which.number >= 0 ? int64_t(which.number) : -1;
   r.name = which.choice;
   if (o.given.count("primitive")) r.primitive = int64_t(o.at("primitive").number);
+  for (size_t set = 0; set < 2; ++set)
+    if (o.given.count("texcoord" + std::to_string(set))) r.texcoords[set] = int64_t(o.at("texcoord" + std::to_string(set)).number);
   return r;
 }
 
@@ -483,6 +485,8 @@ json mesh_json(const Object& o, const std::string& scene_file) {
                {"gltf", relative_to(r.file, std::filesystem::path(scene_file).parent_path().string())}};
     oj[r.node ? "node" : "mesh"] = r.index >= 0 ? json(r.index) : json(r.name);
     if (r.primitive >= 0) oj["primitive"] = r.primitive;
+    for (size_t set = 0; set < 2; ++set)
+      if (r.texcoords[set] != int64_t(set)) oj["texcoord" + std::to_string(set)] = r.texcoords[set];
     return oj;
   }
   json pos = json::array(), nor = json::array(), tri = json::array();

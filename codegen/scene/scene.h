@@ -116,6 +116,8 @@ struct MeshReference {
   int64_t index = -1;     // its index, or −1 where `name` names it
   std::string name;
   int64_t primitive = -1;  // −1: every triangle primitive of the mesh
+  // The glTF sets TEXCOORD_n read as the mesh's texture coordinate sets 0 and 1.
+  std::array<int64_t, 2> texcoords{0, 1};
 };
 
 struct Object {

@@ -395,6 +395,54 @@ TEST(GltfTextures, BaseColourMapIsTheLambertColourTimesItsFactor) {
   EXPECT_EQ(back.materials.begin()->second.diffuse->at("color").texture->texels->rgba, src.rgba);
 }
 
+// glTF allows any TEXCOORD_n: a base colour map reading TEXCOORD_3 (through
+// KHR_texture_transform's texCoord, which overrides the textureInfo's) and a normal map
+// reading TEXCOORD_2 take facet's sets 0 and 1, the mesh carries TEXCOORD_2 and _3 as them,
+// and the scene file says so, so reading it back gives the same coordinates.
+TEST(GltfTextures, AnyTexcoordSetIsMappedOntoTheMeshsTwo) {
+  json g = textured_triangle(json::array({data_uri_image(small_png())}));
+  // TEXCOORD_2 and _3 as TEXCOORD_0's values, turned: (u, v) → (v, u) and (1 − u, v).
+  const float uv2[] = {0, 0, 0, 1, 1, 0}, uv3[] = {1, 0, 0, 0, 1, 1};
+  std::string bin = test::base64_decode(g["buffers"][0]["uri"].get<std::string>());
+  const size_t at = bin.size();
+  bin += std::string(reinterpret_cast<const char*>(uv2), sizeof uv2) + std::string(reinterpret_cast<const char*>(uv3), sizeof uv3);
+  g["buffers"][0] = {{"byteLength", bin.size()}, {"uri", "data:application/octet-stream;base64," + test::base64(bin)}};
+  g["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", at}, {"byteLength", 24}});
+  g["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", at + 24}, {"byteLength", 24}});
+  g["accessors"].push_back({{"bufferView", 2}, {"componentType", 5126}, {"count", 3}, {"type", "VEC2"}});
+  g["accessors"].push_back({{"bufferView", 3}, {"componentType", 5126}, {"count", 3}, {"type", "VEC2"}});
+  g["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_2"] = 2;
+  g["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_3"] = 3;
+  auto& base = g["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"];
+  base["texCoord"] = 1;
+  base["extensions"] = {{"KHR_texture_transform", {{"texCoord", 3}, {"scale", {2, 2}}}}};
+  g["materials"][0]["normalTexture"] = {{"index", 0}, {"texCoord", 2}};
+  g["extensionsUsed"] = {"KHR_texture_transform"};
+  g["extensionsRequired"] = {"KHR_texture_transform"};  // facet implements it: a file may require it
+  GltfImportOptions o;
+  o.output = scratch("texcoords_out/scene.json").string();
+  std::vector<std::string> notes;
+  std::vector<GltfImportFile> files;
+  Scene s = import_gltf(write_gltf("texcoords.gltf", g).string(), o, notes, &files);
+  const Material& m = s.materials.begin()->second;
+  EXPECT_EQ(m.diffuse->at("color").texture->uv, 1);  // TEXCOORD_3 is the mesh's set 1
+  EXPECT_EQ(m.diffuse->at("color").texture->scale, (std::array<double, 2>{2, 2}));
+  EXPECT_EQ(m.normal_map->texture().uv, 0);  // TEXCOORD_2 its set 0
+  ASSERT_EQ(s.objects.size(), 1u);
+  const Mesh& mesh = *s.objects[0].mesh;
+  for (size_t v = 0; v < 3; ++v) {
+    EXPECT_EQ(mesh.texcoords[0][v][0], uv2[2 * v]);
+    EXPECT_EQ(mesh.texcoords[1][v][1], uv3[2 * v + 1]);
+  }
+  files.push_back({o.output, to_json(s, o.output).dump()});
+  write_import_files(files);
+  const json object = json::parse(read_file(o.output))["objects"][0];
+  EXPECT_EQ(object["texcoord0"], 2) << object.dump();
+  EXPECT_EQ(object["texcoord1"], 3) << object.dump();
+  Scene back = load_scene(o.output);
+  EXPECT_EQ(back.objects[0].mesh->texcoords, mesh.texcoords);
+}
+
 TEST(GltfTextures, ExternalImageIsReferencedWhereItIs) {
   // "my image.png" beside the glTF, its URI percent-encoded; the scene is written one folder down.
   const fs::path folder = scratch("external");

@@ -36,6 +36,25 @@ inline std::string base64(const std::string& bytes) {
   return out;
 }
 
+// The bytes of a base64 data URI (what base64() encodes, after the comma).
+inline std::string base64_decode(const std::string& uri) {
+  static const std::string k = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  uint32_t acc = 0;
+  int bits = 0;
+  for (char ch : uri.substr(uri.find(',') + 1)) {
+    const size_t v = k.find(ch);
+    if (v == std::string::npos) continue;  // '=' padding
+    acc = (acc << 6) | uint32_t(v);
+    bits += 6;
+    if (bits >= 8) {
+      bits -= 8;
+      out.push_back(char((acc >> bits) & 0xff));
+    }
+  }
+  return out;
+}
+
 #ifdef FACET_BIN
 // The facet binary with `args`, standard input from `stdin_file` when given; output is stdout and stderr together.
 inline ProcessResult facet(const std::vector<std::string>& args, const std::string& stdin_file = "") {

@@ -30,7 +30,8 @@ def camera_json(scene):
     width, height = render_size(scene)
     return core_scene.camera({
         "name": obj.name, "type": cam.type, "matrix": _rows(obj.matrix_world),
-        "lens": cam.lens, "sensor_width": cam.sensor_width, "sensor_height": cam.sensor_height,
+        "lens": cam.lens, "ortho_scale": cam.ortho_scale,
+        "sensor_width": cam.sensor_width, "sensor_height": cam.sensor_height,
         "sensor_fit": cam.sensor_fit, "width": width, "height": height,
         "pixel_aspect_x": scene.render.pixel_aspect_x, "pixel_aspect_y": scene.render.pixel_aspect_y,
         "shift_x": cam.shift_x, "shift_y": cam.shift_y})
@@ -286,7 +287,8 @@ def full_scene(context, material_keys=None, reserved=(), strict=False):
         notes += more
     lights, more = lights_json(depsgraph)
     notes += more
-    return core_scene.scene(scene.name, cam, ambient, lights, objects, materials), notes, files
+    exposure = float(scene.view_settings.exposure)      # the Film's exposure: facet's previews take it
+    return core_scene.scene(scene.name, cam, ambient, lights, objects, materials, exposure), notes, files
 
 
 def lights_scene(context, catalog):

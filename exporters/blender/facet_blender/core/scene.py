@@ -70,33 +70,56 @@ def vertical_fov(lens, sensor_width, sensor_height, sensor_fit, width, height,
     return math.degrees(2.0 * math.atan(tan_half))
 
 
+def fitted_axis(sensor_fit, width, height, pixel_aspect_x=1.0, pixel_aspect_y=1.0):
+    """The image axis a Blender camera's sensor (or orthographic scale) spans: HORIZONTAL or
+    VERTICAL (AUTO: the longer side, BKE_camera_params_compute_viewplane)."""
+    if sensor_fit != "AUTO":
+        return sensor_fit
+    return "HORIZONTAL" if width * pixel_aspect_x >= height * pixel_aspect_y else "VERTICAL"
+
+
+def orthographic_height(ortho_scale, sensor_fit, width, height, pixel_aspect_x=1.0, pixel_aspect_y=1.0):
+    """The vertical extent of a Blender orthographic camera's view: Orthographic Scale spans
+    the fitted axis, so across a horizontal fit it is scale · height / width (in display
+    units, the pixel aspect included), as vertical_fov's tangent is."""
+    if fitted_axis(sensor_fit, width, height, pixel_aspect_x, pixel_aspect_y) == "VERTICAL":
+        return ortho_scale
+    return ortho_scale * (pixel_aspect_y / pixel_aspect_x) * height / width
+
+
 def camera(cam):
     """facet's camera from a plain camera description; returns (camera, notes).
 
     `cam`: {"name", "type" (PERSP/ORTHO/PANO), "matrix" (4x4 rows, world), "lens",
-    "sensor_width", "sensor_height", "sensor_fit", "width", "height" (render pixels),
-    "pixel_aspect_x", "pixel_aspect_y", "shift_x", "shift_y"}."""
+    "ortho_scale", "sensor_width", "sensor_height", "sensor_fit", "width", "height" (render
+    pixels), "pixel_aspect_x", "pixel_aspect_y", "shift_x", "shift_y"}."""
     notes = []
     name = cam.get("name", "camera")
-    if cam.get("type", "PERSP") != "PERSP":
-        raise UserError(f"camera '{name}' is {cam['type']}: facet has only a perspective camera")
+    kind = cam.get("type", "PERSP")
+    if kind not in ("PERSP", "ORTHO"):
+        raise UserError(f"camera '{name}' is {kind}: facet has perspective and orthographic cameras")
     m = cam["matrix"]
     position = [m[0][3], m[1][3], m[2][3]]
     forward = normalize(transform_direction(m, (0.0, 0.0, -1.0)))   # cameras look down local -Z
     up = normalize(transform_direction(m, (0.0, 1.0, 0.0)))         # with local +Y up
     ax, ay = cam.get("pixel_aspect_x", 1.0), cam.get("pixel_aspect_y", 1.0)
-    fov = vertical_fov(cam["lens"], cam["sensor_width"], cam["sensor_height"], cam["sensor_fit"],
-                       cam["width"], cam["height"], ax, ay)
     if ax != ay:
         notes.append(f"camera '{name}': pixel aspect {ax}:{ay} is not square; facet's pixels are (approximate)")
     if cam.get("shift_x", 0.0) or cam.get("shift_y", 0.0):
         notes.append(f"camera '{name}': lens shift has no facet equivalent and is ignored (approximate)")
+    out = {"position": to_facet(position),
+           "look_at": to_facet([p + f for p, f in zip(position, forward)]),
+           "up": to_facet(up)}
+    if kind == "ORTHO":
+        height = orthographic_height(cam["ortho_scale"], cam["sensor_fit"], cam["width"], cam["height"], ax, ay)
+        if not height > 0.0:
+            raise UserError(f"camera '{name}': orthographic scale {cam['ortho_scale']:g} gives no view")
+        return {"type": "orthographic", **out, "height": height}, notes
+    fov = vertical_fov(cam["lens"], cam["sensor_width"], cam["sensor_height"], cam["sensor_fit"],
+                       cam["width"], cam["height"], ax, ay)
     if not 0.0 < fov < 180.0:
         raise UserError(f"camera '{name}': vertical field of view {fov:.3f} degrees is not in (0, 180)")
-    return {"position": to_facet(position),
-            "look_at": to_facet([p + f for p, f in zip(position, forward)]),
-            "up": to_facet(up),
-            "fov": fov}, notes
+    return {**out, "fov": fov}, notes
 
 
 # ----------------------------------------------------------------------------- lights
@@ -328,9 +351,12 @@ def mesh_objects(name, matrix, positions, triangles, corner_normals, materials, 
 
 # ----------------------------------------------------------------------------- the scene
 
-def scene(name, camera_json, ambient, lights, objects, materials=None):
-    """The scene JSON, keys in the contract's order."""
+def scene(name, camera_json, ambient, lights, objects, materials=None, exposure=0.0):
+    """The scene JSON, keys in the contract's order; `exposure` (stops, Blender's Film
+    exposure) is written when not 0: facet's previews show radiance × 2^exposure."""
     data = {"name": name, "camera": camera_json, "ambient": clean_vector(ambient)}
+    if exposure:
+        data["exposure"] = float(exposure)
     if materials is not None:
         data["materials"] = materials
     data["objects"] = objects

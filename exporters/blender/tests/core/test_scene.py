@@ -59,8 +59,19 @@ def test_camera_looks_down_its_local_minus_z_in_facets_axes():
 def test_camera_notes_and_refusals():
     _, notes = scene.camera(camera_desc(shift_x=0.1, pixel_aspect_x=2.0))
     assert any("shift" in n for n in notes) and any("pixel aspect" in n for n in notes)
-    with pytest.raises(UserError, match="only a perspective camera"):
-        scene.camera(camera_desc(type="ORTHO"))
+    with pytest.raises(UserError, match="perspective and orthographic cameras"):
+        scene.camera(camera_desc(type="PANO"))
+
+
+def test_orthographic_scale_spans_the_fitted_axis():
+    # Orthographic Scale spans the longer side (AUTO) or the side the sensor fit names; facet's
+    # height is the vertical extent.
+    wide = scene.camera(camera_desc(type="ORTHO", ortho_scale=6.0, width=64, height=32))[0]
+    assert wide["type"] == "orthographic" and wide["height"] == pytest.approx(3.0) and "fov" not in wide
+    tall = scene.camera(camera_desc(type="ORTHO", ortho_scale=6.0, width=32, height=64))[0]
+    assert tall["height"] == pytest.approx(6.0)
+    fixed = scene.camera(camera_desc(type="ORTHO", ortho_scale=6.0, width=64, height=32, sensor_fit="VERTICAL"))[0]
+    assert fixed["height"] == pytest.approx(6.0)
 
 
 def test_default_camera_is_the_catalogs(catalog):
