@@ -213,7 +213,7 @@ Render render(const Material* fallback, const Scene& s, int width, int height, i
   r.grazing.assign(size_t(width) * size_t(height), 0);
   const double offset = kShadowRayOffset * scene_scale(s);
   const double close = std::max(kCloseBlock, kGrazing * scene_scale(s));
-  const ObjectBvh bvh = object_bvh(s);
+  const ObjectBvh bvh = object_bvh(s, true);
   // Rows on every core (or `threads`): each pixel is its own, so any split gives the same image.
   parallel_for(size_t(std::max(height, 0)), unsigned(std::max(threads, 0)), [&](size_t y) {
     for (int x = 0; x < width; ++x) shade_pixel(s, bvh, shading, tangents, offset, close, x, int(y), r);

@@ -7,6 +7,8 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <functional>
+#include <limits>
 #include <map>
 #include <memory>
 
@@ -368,7 +370,7 @@ void push_object(const Scene& s, size_t i, const MeshBuffers& meshes, size_t pas
 SceneBuffers scene_buffers(const Scene& s, const Material* fallback, const std::vector<size_t>& pass_of) {
   SceneBuffers b;
   b.meshes = mesh_buffers(s, fallback);
-  const ObjectBvh bvh = object_bvh(s);
+  const ObjectBvh bvh = object_bvh(s, false);  // its rays only meet objects: the tight boxes
   for (uint32_t i : bvh.order) push_object(s, i, b.meshes, pass_of[i], b.objects);
   for (const Mesh::Node& n : bvh.nodes) {
     const double link = n.count > 0 ? double(n.start) : double(n.right);
@@ -495,6 +497,7 @@ void set_scene(const Uniforms& u, const Scene& s, size_t pass) {
   glUniform1i(u.loc("facet_object_count"), int(s.objects.size()));
   glUniform1i(u.loc("facet_light_count"), int(s.lights.size()));
   glUniform1i(u.loc("facet_pass"), int(pass));
+  glUniform1i(u.loc("facet_probe_turns"), 2);
   glUniform1f(u.loc("facet_shadow_offset"), float(kGlShadowOffset * std::max(scale, 1.0)));
 }
 
@@ -554,6 +557,60 @@ std::string draw_once(GLuint vao) {
   return "";
 }
 
+// Lights [first, end) of a scene, a draw's share (raycast.glsl: llvmpipe cuts a shader
+// invocation's loops short past 65,535 turns).
+struct LightRange {
+  int first, end;
+};
+
+// Takes the lights of `ranges` in turn, each through draw(range, cut), which sets `cut` when the
+// draw's loops were cut short: that range again in two halves, and at most as many lights a draw
+// from then on (`most`, kept from job to pass: every cut draw costs a draw's worth of turns).
+// "", or why not.
+std::string in_turns(std::vector<LightRange> ranges, int& most,
+                     const std::function<std::string(LightRange, bool&)>& draw) {
+  while (!ranges.empty()) {
+    LightRange r = ranges.back();
+    ranges.pop_back();
+    if (r.end - r.first > most) {
+      ranges.push_back({r.first + most, r.end});
+      r.end = r.first + most;
+    }
+    bool cut = false;
+    if (std::string e = draw(r, cut); !e.empty()) return e;
+    if (!cut) continue;
+    if (r.end - r.first <= 1)
+      return "a pixel's shadow rays took more loop turns than llvmpipe allows a shader invocation (65,535) for "
+             "a single light: the scene is too deep for the GL ray caster";
+    most = (r.end - r.first) / 2;
+    ranges.push_back(r);
+  }
+  return "";
+}
+
+// Sets the draw's lights (raycast.glsl: facet_light_first, facet_light_count).
+void set_lights(GLuint prog, LightRange r) {
+  glUniform1i(glGetUniformLocation(prog, "facet_light_first"), r.first);
+  glUniform1i(glGetUniformLocation(prog, "facet_light_count"), r.end - r.first);
+}
+
+// Pass `pass` drawn with `prog` into `out`: every light at once where llvmpipe lets it, in turns
+// where not (the ambient colour with the first turn only; the turns add up).
+std::string draw_pass(GLuint prog, GLuint vao, const FloatFramebuffer& fb, const Scene& s, int& most,
+                      RenderOutcome& out) {
+  return in_turns({{0, int(s.lights.size())}}, most, [&](LightRange r, bool& cut) {
+    set_lights(prog, r);
+    const float a = r.first == 0 ? 1.0f : 0.0f;
+    glUniform3f(glGetUniformLocation(prog, "facet_ambient"), a * float(s.ambient[0]), a * float(s.ambient[1]),
+                a * float(s.ambient[2]));
+    if (std::string e = draw_once(vao); !e.empty()) return e;
+    const std::vector<float> px = fb.read();
+    for (size_t i = 3; i < px.size() && !cut; i += 4) cut = px[i] < 0;
+    if (!cut) add_bottom_up(px, out);
+    return std::string();
+  });
+}
+
 // Each pass draws the scene with one material's program, its objects shaded and the others black; the passes add up.
 RenderOutcome draw_passes(GLuint vertex, GLuint vao, const PassScene& ps) {
   RenderOutcome out;
@@ -565,40 +622,52 @@ RenderOutcome draw_passes(GLuint vertex, GLuint vao, const PassScene& ps) {
   }
   out.image = Image(job.width, job.height);
   out.alpha.assign(size_t(job.width) * size_t(job.height), 0);
+  int most = std::numeric_limits<int>::max();  // lights a draw takes, as in_turns() learns it
   for (size_t k = 0; k < ps.passes.size(); ++k) {
     std::string source = !job.code_override.empty() ? job.code_override : GlRenderer::fragment_source(*ps.passes[k]);
     std::unique_ptr<MaterialImages> images;
     GLuint prog = use_program(vertex, ps, k, source, ps.file(k, ".frag"), images, out.error);
     if (!prog) return out;
-    out.error = draw_once(vao);
+    out.error = draw_pass(prog, vao, fb, job.scene, most, out);
     glDeleteProgram(prog);
     if (!out.error.empty()) return out;
-    add_bottom_up(fb.read(), out);
   }
   out.ok = true;
   return out;
 }
 
-// The G-buffer's draws: the first writes the geometry images and visibility layers 0–2, each
-// further one three more layers (GL 3.3 promises 8 draw buffers: 5 + 3), every one casting
-// the camera rays again (a small cost beside 288 lights' shadow rays).
-std::string cast_layers(GLuint prog, GLuint vao, const FloatFramebuffer& fb, GBuffer& g) {
+// The G-buffer's draws: each writes three layers of the visibility image for its lights (GL 3.3
+// promises 8 draw buffers: 5 + 3), the first the geometry images too; every draw casts the
+// camera rays again, a small cost beside its shadow rays. A draw's lights are those of three
+// layers, fewer where llvmpipe cut its loops short (the bits of a layer's draws add up).
+std::string cast_layers(GLuint prog, GLuint vao, const FloatFramebuffer& fb, int lights, GBuffer& g) {
   const size_t texels = size_t(g.width) * size_t(g.height) * 4;
   g.images[GBuffer::Visibility].assign(texels * size_t(g.layers), 0.0f);
-  for (int first = 0; first < g.layers; first += 3) {
-    std::vector<bool> on(8, first == 0);
-    for (int k = 0; k < 3; ++k) on[size_t(5 + k)] = first + k < g.layers;
+  const int span = 3 * glsl_light::kVisibilityLayerLights;
+  std::vector<LightRange> ranges;
+  for (int first = 0; first < std::max(lights, 1); first += span) ranges.insert(ranges.begin(), {first, std::min(first + span, lights)});
+  bool geometry = true;  // not yet drawn
+  int most = span;
+  return in_turns(ranges, most, [&](LightRange r, bool& cut) {
+    const int layer = r.first / glsl_light::kVisibilityLayerLights;
+    std::vector<bool> on(8, geometry);
+    for (int k = 0; k < 3; ++k) on[size_t(5 + k)] = layer + k < g.layers;
     fb.draw_to(on);
-    glUniform1i(glGetUniformLocation(prog, "facet_first_layer"), first);
+    glUniform1i(glGetUniformLocation(prog, "facet_first_layer"), layer);
+    set_lights(prog, r);
     if (std::string e = draw_once(vao); !e.empty()) return e;
-    if (first == 0)
+    std::vector<std::vector<float>> drawn;
+    for (int k = 0; k < 3 && layer + k < g.layers; ++k) drawn.push_back(fb.read(5 + k));
+    for (const auto& d : drawn)
+      for (size_t i = 0; i < d.size() && !cut; ++i) cut = d[i] < 0;
+    if (cut) return std::string();
+    if (geometry)
       for (int i = 0; i < GBuffer::Visibility; ++i) g.images[size_t(i)] = fb.read(i);
-    for (int k = 0; k < 3 && first + k < g.layers; ++k) {
-      const std::vector<float> layer = fb.read(5 + k);
-      std::copy(layer.begin(), layer.end(), g.images[GBuffer::Visibility].begin() + ptrdiff_t(size_t(first + k) * texels));
-    }
-  }
-  return "";
+    geometry = false;
+    for (size_t k = 0; k < drawn.size(); ++k)  // disjoint bits: adding is or-ing, exact below 2^24
+      for (size_t i = 0; i < texels; ++i) g.images[GBuffer::Visibility][(size_t(layer) + k) * texels + i] += drawn[k][i];
+    return std::string();
+  });
 }
 
 }  // namespace
@@ -643,7 +712,7 @@ GBufferOutcome GlRenderer::gbuffer(const RenderJob& job) {
     GLuint prog = use_program(state_->vertex, ps, ps.passes.size(), fragment_source(*ps.passes[0], true),
                               ps.file(ps.passes.size(), ".gbuffer.frag"), images, out.error);
     if (!prog) return out;
-    out.error = cast_layers(prog, state_->vao, fb, g);
+    out.error = cast_layers(prog, state_->vao, fb, int(job.scene.lights.size()), g);
     glDeleteProgram(prog);
     if (!out.error.empty()) return out;
     const Scene& s = job.scene;

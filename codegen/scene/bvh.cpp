@@ -70,10 +70,10 @@ void build_bvh(const std::vector<Vec3>& lo, const std::vector<Vec3>& hi, const s
   if (!lo.empty()) build(0, uint32_t(lo.size()));
 }
 
-void object_box(const Object& o, Vec3& lo, Vec3& hi) {
+void object_box(const Object& o, Vec3& lo, Vec3& hi, bool grazing) {
   switch (o.type) {
     case Object::Type::Sphere: {
-      const double r = 1.5 * o.radius;
+      const double r = (grazing ? 1.5 : 1 + kBoxMargin) * o.radius;
       lo = o.center - Vec3(r, r, r);
       hi = o.center + Vec3(r, r, r);
       return;
@@ -103,11 +103,11 @@ void object_box(const Object& o, Vec3& lo, Vec3& hi) {
   }
 }
 
-ObjectBvh object_bvh(const Scene& s) {
+ObjectBvh object_bvh(const Scene& s, bool grazing) {
   const size_t n = s.objects.size();
   std::vector<Vec3> lo(n), hi(n), centroid(n);
   for (size_t i = 0; i < n; ++i) {
-    object_box(s.objects[i], lo[i], hi[i]);
+    object_box(s.objects[i], lo[i], hi[i], grazing);
     // An empty mesh's box is inverted: its centroid is any point (the origin).
     centroid[i] = lo[i].x <= hi[i].x ? (lo[i] + hi[i]) * 0.5 : Vec3();
   }

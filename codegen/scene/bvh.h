@@ -21,12 +21,13 @@ void build_bvh(const std::vector<Vec3>& lo, const std::vector<Vec3>& hi, const s
 // Slab test: does the ray origin + t·dir (inv_dir = 1/dir) enter the box at some t in [0, t_max]?
 bool ray_box(const Vec3& origin, const Vec3& inv_dir, const Vec3& lo, const Vec3& hi, double t_max);
 
-// The box of an object that every ray meeting it enters, grown so that it also holds every
-// ray the reference counts as grazing it (reference/raycaster.h, kGrazing = 1e-4 relative):
-// a sphere's by half its radius (a shadow ray's closest approach to it may lie up to a radius
-// past the ray's end), a square's and a mesh's by 1e-3 of their size. A ray that misses the
-// box changes nothing the reference or the GL ray caster computes for the object.
-void object_box(const Object& o, Vec3& lo, Vec3& hi);
+// The box of an object that every ray meeting it enters, grown by 1e-3 of its size (room for
+// float rounding); with `grazing`, grown so that it also holds every ray the reference counts as
+// grazing it (reference/raycaster.h, kGrazing = 1e-4 relative): a sphere's by half its radius (a
+// shadow ray's closest approach to it may lie up to a radius past the ray's end). A ray that
+// misses the box changes nothing the reference (with `grazing`) or the GL ray caster (without:
+// its rays only meet objects, and a tighter box is entered by fewer rays) computes for the object.
+void object_box(const Object& o, Vec3& lo, Vec3& hi, bool grazing);
 
 // The top level: a hierarchy over a scene's objects, leaves of up to kObjectsPerLeaf objects.
 struct ObjectBvh {
@@ -40,7 +41,7 @@ struct ObjectBvh {
   template <class TMax, class Visit>
   void walk(const Vec3& origin, const Vec3& dir, TMax t_max, Visit visit) const;
 };
-ObjectBvh object_bvh(const Scene& s);
+ObjectBvh object_bvh(const Scene& s, bool grazing);
 
 template <class TMax, class Visit>
 void ObjectBvh::walk(const Vec3& o, const Vec3& d, TMax t_max, Visit visit) const {

@@ -99,14 +99,17 @@ std::string light_buffer(Target t) {
         glsl_light::kLightsPerRow);
   return head +
          "// The lights, any number: light i's four vec4 (position, color, spot, attenuation) at texels\n"
-         "// 4i … 4i + 3 of an RGBA32F buffer texture.\n"
+         "// 4i … 4i + 3 of an RGBA32F buffer texture; a draw may take lights facet_light_first on (0\n"
+         "// unless set: facet's GL ray caster draws many lights in turns).\n"
          "uniform samplerBuffer facet_light_buffer;\n"
+         "uniform int facet_light_first;\n"
          "\n"
          "// Light i (i below facet_light_count): the light loop reads every light through this.\n"
          "FacetLight facet_light(int i)\n"
          "{\n"
-         "    return FacetLight(texelFetch(facet_light_buffer, 4 * i), texelFetch(facet_light_buffer, 4 * i + 1),\n"
-         "                      texelFetch(facet_light_buffer, 4 * i + 2), texelFetch(facet_light_buffer, 4 * i + 3));\n"
+         "    int at = 4 * (facet_light_first + i);\n"
+         "    return FacetLight(texelFetch(facet_light_buffer, at), texelFetch(facet_light_buffer, at + 1),\n"
+         "                      texelFetch(facet_light_buffer, at + 2), texelFetch(facet_light_buffer, at + 3));\n"
          "}";
 }
 

@@ -8,6 +8,12 @@
 // instead of shading: the five geometry images and three layers of the visibility image a
 // draw (from facet_first_layer), one draw buffer each, which the other renderers' shading
 // passes (templates/glsl/gbuffer_shade.glsl) read.
+//
+// A draw takes lights facet_light_first … + facet_light_count − 1 (facet_light(i) reads light
+// facet_light_first + i): llvmpipe ends every loop of a shader invocation once they have turned
+// 65,535 times in all (Mesa's gallivm, LP_MAX_TGSI_LOOP_ITERATIONS), and a pixel's shadow rays
+// walk the hierarchies many turns a light (500 lights over 100 objects went past it). main then
+// says so (facet_loops_cut()): the renderer draws the lights again in two halves.
 uniform vec2 facet_resolution;
 uniform vec3 facet_camera_forward;
 uniform vec3 facet_camera_right;
@@ -25,6 +31,7 @@ uniform samplerBuffer facet_triangles;  // 6 texels a triangle: p0, p1, p2, n0, 
 uniform samplerBuffer facet_texcoords;  // 3 texels a triangle: vertex k's (uv set 0, uv set 1)
 uniform samplerBuffer facet_tangents;   // 3 texels a triangle: corner k's tangent (xyz, w), normal-mapped meshes
 uniform int facet_pass;                 // the material pass drawn: its objects are shaded, the others drawn black
+uniform int facet_probe_turns;          // 2: facet_loops_cut()'s loop (a uniform, so that no compiler unrolls it)
 uniform float facet_shadow_offset;      // shadow rays start this far out
 #ifdef FACET_GBUFFER
 layout(location = 0) out vec4 facet_gbuffer_position;    // xyz p; w the material pass of the object hit, -1 background
@@ -295,25 +302,39 @@ vec3 facet_normal_at(int hit, vec3 p, FacetHit best)
                      + texelFetch(facet_triangles, t + 5).xyz * best.uv.y);
 }
 
+// Whether this invocation ran out of llvmpipe's loop turns, every loop since cut short after
+// one turn: a loop of facet_probe_turns turns then turns once. Elsewhere, never.
+bool facet_loops_cut()
+{
+    int turns = 0;
+    for (int k = 0; k < facet_probe_turns; ++k) ++turns;
+    return turns < facet_probe_turns;
+}
+
 #ifndef FACET_GBUFFER
-void main()
+// This pixel's colour: its lights facet_light_first … (the ambient and emitted terms with the first).
+vec4 facet_pixel()
 {
     vec3 dir;
     FacetHit best;
     int hit = facet_camera_hit(dir, best);
-    if (hit < 0) {
-        facet_color = vec4(0.0);
-        return;
-    }
-    if (int(facet_object(hit, 2).w) != facet_pass) {
-        facet_color = vec4(0.0, 0.0, 0.0, 1.0);
-        return;
-    }
+    if (hit < 0) return vec4(0.0);
+    if (int(facet_object(hit, 2).w) != facet_pass) return vec4(0.0, 0.0, 0.0, 1.0);
     vec3 p = facet_camera_position + dir * best.t;
     facet_shaded_object = hit;
     facet_shaded_triangle = best.triangle;
     vec3 n = facet_normal_at(hit, p, best);
-{{sample}}    facet_color = vec4(facet_shade(p, n, -dir, facet_tangent(n)), 1.0);
+{{sample}}    vec3 color = facet_shade(p, n, -dir, facet_tangent(n));
+    // The renderer sets the ambient colour to 0 past the first lights; the emitted term stays.
+    if (facet_light_first > 0) color -= material_emission;
+    return vec4(color, 1.0);
+}
+
+// Alpha −1: this pixel's loops were cut short (facet_loops_cut()).
+void main()
+{
+    vec4 color = facet_pixel();
+    facet_color = facet_loops_cut() ? vec4(0.0, 0.0, 0.0, -1.0) : color;
 }
 #else
 // 1 when light i reaches p (its shadow ray is clear), 0 in shadow; 0 without a shadow ray
@@ -337,23 +358,23 @@ int facet_light_bit(int i, vec3 p, vec3 n)
 
 // Layer `layer` of the visibility image at p: light i's bit is bit i mod {{bits}} of channel
 // (i / {{bits}}) mod 4 of layer i / {{layer_lights}}, each channel an integer below 2^{{bits}}
-// (exact in float32); 0 beyond the scene's lights.
+// (exact in float32); 0 for the lights this draw does not take (another draw's bits add up
+// with these) and beyond the scene's lights.
 vec4 facet_visibility_layer(int layer, vec3 p, vec3 n)
 {
     vec4 word = vec4(0.0);
     for (int c = 0; c < 4; ++c) {
         int bits = 0;
         for (int k = 0; k < {{bits}}; ++k) {
-            int i = layer * {{layer_lights}} + c * {{bits}} + k;
-            if (i >= facet_light_count) break;
-            bits |= facet_light_bit(i, p, n) << k;
+            int j = layer * {{layer_lights}} + c * {{bits}} + k - facet_light_first;  // this draw's light j
+            if (j >= 0 && j < facet_light_count) bits |= facet_light_bit(j, p, n) << k;
         }
         word[c] = float(bits);
     }
     return word;
 }
 
-void main()
+void facet_cast()
 {
     vec3 dir;
     FacetHit best;
@@ -374,5 +395,12 @@ void main()
     facet_gbuffer_visibility_0 = facet_visibility_layer(facet_first_layer, p, n);
     facet_gbuffer_visibility_1 = facet_visibility_layer(facet_first_layer + 1, p, n);
     facet_gbuffer_visibility_2 = facet_visibility_layer(facet_first_layer + 2, p, n);
+}
+
+// The visibility −1 everywhere: this pixel's loops were cut short (facet_loops_cut()).
+void main()
+{
+    facet_cast();
+    if (facet_loops_cut()) facet_gbuffer_visibility_0 = facet_gbuffer_visibility_1 = facet_gbuffer_visibility_2 = vec4(-1.0);
 }
 #endif
