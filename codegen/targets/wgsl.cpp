@@ -267,7 +267,7 @@ std::string wgsl_light_declarations(LightSource source) {
          "struct FacetScene {\n"
          "    camera_position: vec4<f32>,  // xyz: the eye, world space\n"
          "    ambient: vec4<f32>,          // rgb: the scene's ambient colour A\n"
-         "    light_count: i32,            // how many of lights shine, at most FACET_MAX_LIGHTS\n"
+         "    light_count: i32,            // how many of `lights` shine, at most FACET_MAX_LIGHTS\n"
          "    lights: array<FacetLight, 8>,\n"
          "};\n"
          "@group(0) @binding(0) var<uniform> facet_scene: FacetScene;\n" +
