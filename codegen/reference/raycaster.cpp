@@ -6,6 +6,7 @@
 
 #include "catalog/texture.h"
 #include "core/parallel.h"
+#include "scene/bvh.h"
 #include "scene/tangents.h"
 #include "reference/interpreter.h"
 
@@ -18,12 +19,16 @@ struct SceneHit {
   int object = -1;
 };
 
-SceneHit nearest(const Scene& s, const Vec3& o, const Vec3& d) {
+// The object the ray meets first (the lowest index among equally near ones, as a loop over
+// the objects in order finds it), walking the objects' hierarchy.
+SceneHit nearest(const Scene& s, const ObjectBvh& bvh, const Vec3& o, const Vec3& d) {
   SceneHit best;
-  for (size_t i = 0; i < s.objects.size(); ++i) {
+  bvh.walk(o, d, [&] { return best.object < 0 ? INFINITY : best.hit.t; }, [&](uint32_t i) {
     Hit h = s.objects[i].hit(o, d, 0);
-    if (h.ok() && (best.object < 0 || h.t < best.hit.t)) best = {h, int(i)};
-  }
+    if (h.ok() && (best.object < 0 || h.t < best.hit.t || (h.t == best.hit.t && int(i) < best.object)))
+      best = {h, int(i)};
+    return true;
+  });
   return best;
 }
 
@@ -53,14 +58,16 @@ void mesh_occlusion(const Mesh& m, const Vec3& o, const Vec3& d, double t_min, d
 // Is the segment p + s·l, s ∈ (offset, dist), blocked? `self` cannot shadow
 // itself when convex; a mesh skips the shading triangle. `grazing` is set when
 // the segment passes within kGrazing of an occluder's edge and nothing blocks
-// it clearly: which side such a ray falls on is a matter of rounding.
-bool blocked(const Scene& s, int self, int self_triangle, const Vec3& p, const Vec3& l, double dist, double offset,
-             double close, bool& grazing) {
+// it clearly: which side such a ray falls on is a matter of rounding. Only the objects
+// whose boxes the segment enters can block it or come that close (scene/bvh.h,
+// object_box); once one blocks it clearly, the others change nothing.
+bool blocked(const Scene& s, const ObjectBvh& bvh, int self, int self_triangle, const Vec3& p, const Vec3& l,
+             double dist, double offset, double close, bool& grazing) {
   bool hit = false, clear = false, near = false;
-  for (size_t i = 0; i < s.objects.size(); ++i) {
+  bvh.walk(p, l, [&] { return dist; }, [&](uint32_t i) {
     const Object& o = s.objects[i];
     bool own = int(i) == self;
-    if (own && o.convex()) continue;
+    if (own && o.convex()) return true;
     if (o.type == Object::Type::Sphere) {
       // Closest approach of the ray's line to the centre, ahead of p.
       double along = dot(o.center - p, l);
@@ -73,9 +80,9 @@ bool blocked(const Scene& s, int self, int self_triangle, const Vec3& p, const V
       if (along > offset && along - o.radius < dist && std::fabs(miss - o.radius) < kGrazing * o.radius) near = true;
     } else if (o.type == Object::Type::Plane) {
       double den = dot(l, o.normal);
-      if (den == 0) continue;
+      if (den == 0) return true;
       double t = dot(o.point - p, o.normal) / den;
-      if (!(t > offset && t < dist)) continue;
+      if (!(t > offset && t < dist)) return true;
       Vec3 q = p + l * t - o.point, u, v;
       o.plane_axes(u, v);
       double edge = std::max(std::fabs(dot(q, u)), std::fabs(dot(q, v)));
@@ -85,7 +92,8 @@ bool blocked(const Scene& s, int self, int self_triangle, const Vec3& p, const V
     } else {
       mesh_occlusion(*o.mesh, p, l, offset, dist, close, own ? self_triangle : -1, hit, clear, near);
     }
-  }
+    return !clear;
+  });
   if (near && !clear) grazing = true;
   return hit;
 }
@@ -142,12 +150,12 @@ ShadingFrame shading_frame(const Object& obj, const Reference& ref, const Corner
 }
 
 // One pixel: the nearest object at its centre, shaded by every light that reaches it.
-void shade_pixel(const Scene& s, const std::vector<const Reference*>& shading,
+void shade_pixel(const Scene& s, const ObjectBvh& bvh, const std::vector<const Reference*>& shading,
                  const std::vector<CornerTangents>& tangents, double offset, double close, int x, int y, Render& r) {
   const int width = r.image.width, height = r.image.height;
   Vec3 eye;
   Vec3 dir = s.camera.ray(x, y, width, height, &eye);
-  SceneHit h = nearest(s, eye, dir);
+  SceneHit h = nearest(s, bvh, eye, dir);
   if (h.object < 0) return;
   size_t idx = size_t(y) * size_t(width) + size_t(x);
   r.object[idx] = h.object;
@@ -172,7 +180,7 @@ void shade_pixel(const Scene& s, const std::vector<const Reference*>& shading,
       continue;
     }
     if (m.normal_map && dot(f.n, l) < kNormalMapHorizon && dot(f.shading_n, l) > 0) grazing = true;
-    if (blocked(s, h.object, h.hit.triangle, p, l, d, offset, close, grazing)) continue;
+    if (blocked(s, bvh, h.object, h.hit.triangle, p, l, d, offset, close, grazing)) continue;
     seen |= Render::kReceivesLight;
     ShadingInputs in = shading_inputs(f.shading_n, l, v, f.t);
     in.textured = f.textured.textured;
@@ -212,9 +220,10 @@ Render render(const Material* fallback, const Scene& s, int width, int height, i
   r.normal.assign(size_t(width) * size_t(height) * 3, 0.0f);
   const double offset = kShadowRayOffset * scene_scale(s);
   const double close = std::max(kCloseBlock, kGrazing * scene_scale(s));
+  const ObjectBvh bvh = object_bvh(s, true);
   // Rows on every core (or `threads`): each pixel is its own, so any split gives the same image.
   parallel_for(size_t(std::max(height, 0)), unsigned(std::max(threads, 0)), [&](size_t y) {
-    for (int x = 0; x < width; ++x) shade_pixel(s, shading, tangents, offset, close, x, int(y), r);
+    for (int x = 0; x < width; ++x) shade_pixel(s, bvh, shading, tangents, offset, close, x, int(y), r);
   });
   return r;
 }

@@ -2,11 +2,15 @@
 // shared/notes/opengl.md recommends. The fragment shader is facet's generated
 // GLSL 3.30 (library + light loop) under codegen/renderers/harness/raycast.glsl.
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <functional>
+#include <limits>
 #include <map>
+#include <memory>
 
 
 #include <epoxy/egl.h>
@@ -20,6 +24,7 @@
 #include "renderers/gbuffer.h"
 #include "renderers/harness.h"
 #include "renderers/opengl.h"
+#include "scene/bvh.h"
 #include "scene/tangents.h"
 #include "targets/texture_code.h"
 #include "renderers/sweep.h"
@@ -42,7 +47,6 @@ void main()
 // The shadow-ray offset: the reference's (render.h). Self-shadowing is excluded
 // by object (convex) and by triangle, so float hit points need no more room.
 const double kGlShadowOffset = kShadowRayOffset;
-const int kMaxLights = 8, kMaxObjects = 16;
 // facet_object_normal[i].w in harness/raycast.glsl (its {{sphere}} … placeholders): the object's kind.
 const int kSphere = 0, kSquare = 1, kMesh = 2;
 
@@ -124,6 +128,12 @@ class FloatFramebuffer {
   FloatFramebuffer(const FloatFramebuffer&) = delete;
   FloatFramebuffer& operator=(const FloatFramebuffer&) = delete;
   bool complete() const { return glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE; }
+  // The next draws write colour buffer i where on[i] (the others' outputs go nowhere).
+  void draw_to(const std::vector<bool>& on) const {
+    std::vector<GLenum> buffers;
+    for (size_t i = 0; i < rbo_.size(); ++i) buffers.push_back(i < on.size() && on[i] ? GLenum(GL_COLOR_ATTACHMENT0 + i) : GL_NONE);
+    glDrawBuffers(GLsizei(buffers.size()), buffers.data());
+  }
   // Colour buffer `attachment`: RGBA, rows bottom-up as GL stores them.
   std::vector<float> read(int attachment = 0) const {
     std::vector<float> px(size_t(width_) * size_t(height_) * 4);
@@ -252,18 +262,20 @@ std::vector<SweepCount> GlRenderer::sweep(const std::vector<SweepJob>& jobs, con
 
 std::string GlRenderer::fragment_source(const Material& m, bool gbuffer) {
   MaterialProgram p = compile(m);
-  GlslParts parts = glsl_parts(p, Target::Glsl, m.source);
+  GlslParts parts = glsl_parts(p, Target::Glsl, m.source, LightSource::Buffer);
   std::string sample = p.has_textures() ? "    facet_sample_textures(facet_uv(hit, p, best, 0), facet_uv(hit, p, best, 1));\n" : "";
   if (p.normal_mapped())
     sample += "    vec4 frame = facet_uv_tangent_at(hit, p, best);\n"
               "    facet_uv_tangent = frame.xyz;\n    facet_uv_handedness = frame.w;\n";
+  std::map<std::string, std::string> values = glsl_light::visibility_values();
+  values.insert({{"directional", std::to_string(glsl_light::kDirectional)},
+                 {"sphere", std::to_string(kSphere)},
+                 {"square", std::to_string(kSquare)},
+                 {"mesh", std::to_string(kMesh)},
+                 {"horizon", fmt::format("{:g}", GBuffer::kHorizon)},
+                 {"sample", sample}});
   return std::string("#version 330 core\n") + (gbuffer ? "#define FACET_GBUFFER\n" : "") + parts.header +
-         parts.library + parts.lights +
-         render_harness("raycast.glsl", {{"sphere", std::to_string(kSphere)},
-                                         {"square", std::to_string(kSquare)},
-                                         {"mesh", std::to_string(kMesh)},
-                                         {"directional", std::to_string(glsl_light::kDirectional)},
-                                         {"sample", sample}});
+         parts.library + parts.lights + render_harness("raycast.glsl", values);
 }
 
 namespace {
@@ -328,38 +340,86 @@ GLuint texture_buffer(const std::vector<float>& data, GLuint& buffer) {
   return tex;
 }
 
-// The meshes' texture buffers, bound while they live.
-class MeshTextures {
- public:
-  explicit MeshTextures(const MeshBuffers& m)
-      : textures_{texture_buffer(m.nodes, buffers_[0]), texture_buffer(m.triangles, buffers_[1]),
-                  texture_buffer(m.texcoords, buffers_[2]), texture_buffer(m.tangents, buffers_[3])} {}
-  ~MeshTextures() {
-    glDeleteTextures(4, textures_);
-    glDeleteBuffers(4, buffers_);
+// A job's scene as raycast.glsl reads it: the objects in the order of their hierarchy
+// (scene/bvh.h), 4 texels each; the hierarchy, 2 texels a node; the lights, 4 texels each
+// (targets/glsl_lights.h's encoding); the meshes'.
+struct SceneBuffers {
+  std::vector<float> objects, hierarchy, lights;
+  MeshBuffers meshes;
+};
+
+// Object i's 4 texels (raycast.glsl's facet_objects): its shape, its normal and kind, its
+// axis and material pass, its index.
+void push_object(const Scene& s, size_t i, const MeshBuffers& meshes, size_t pass, std::vector<float>& out) {
+  const Object& o = s.objects[i];
+  std::array<double, 16> t{};
+  if (o.type == Object::Type::Sphere) {
+    t = {o.center.x, o.center.y, o.center.z, o.radius, 0, 0, 0, double(kSphere)};
+  } else if (o.type == Object::Type::Plane) {
+    Vec3 a, b;
+    o.plane_axes(a, b);
+    t = {o.point.x, o.point.y, o.point.z, o.size, o.normal.x, o.normal.y, o.normal.z, double(kSquare), a.x, a.y, a.z};
+  } else {
+    t = {double(meshes.first_node[i]), 0, 0, 0, 0, 0, 0, double(kMesh)};
   }
-  MeshTextures(const MeshTextures&) = delete;
-  MeshTextures& operator=(const MeshTextures&) = delete;
-  // On texture units 0 and 1, as raycast.glsl's facet_bvh and facet_triangles.
+  t[11] = double(pass);
+  t[12] = double(i);
+  for (double v : t) out.push_back(float(v));
+}
+
+SceneBuffers scene_buffers(const Scene& s, const Material* fallback, const std::vector<size_t>& pass_of) {
+  SceneBuffers b;
+  b.meshes = mesh_buffers(s, fallback);
+  const ObjectBvh bvh = object_bvh(s, false);  // its rays only meet objects: the tight boxes
+  for (uint32_t i : bvh.order) push_object(s, i, b.meshes, pass_of[i], b.objects);
+  for (const Mesh::Node& n : bvh.nodes) {
+    const double link = n.count > 0 ? double(n.start) : double(n.right);
+    b.hierarchy.insert(b.hierarchy.end(), {float(n.lo.x), float(n.lo.y), float(n.lo.z), float(link), float(n.hi.x),
+                                           float(n.hi.y), float(n.hi.z), float(n.count)});
+  }
+  for (const Light& l : s.lights) {
+    const std::array<float, 16> e = glsl_light::encode(l);
+    b.lights.insert(b.lights.end(), e.begin(), e.end());
+  }
+  // Texture buffers may not be empty.
+  if (b.objects.empty()) b.objects.assign(16, 0);
+  if (b.hierarchy.empty()) b.hierarchy.assign(8, 0);
+  if (b.lights.empty()) b.lights.assign(16, 0);
+  return b;
+}
+
+// The scene's texture buffers, bound while they live: on units 0, 1, … in kSamplers' order.
+class SceneTextures {
+ public:
+  static constexpr int kCount = 7;
+  explicit SceneTextures(const SceneBuffers& b) {
+    const std::vector<float>* data[kCount] = {&b.meshes.nodes, &b.meshes.triangles, &b.meshes.texcoords,
+                                              &b.meshes.tangents, &b.objects, &b.hierarchy, &b.lights};
+    for (int i = 0; i < kCount; ++i) textures_[i] = texture_buffer(*data[i], buffers_[i]);
+  }
+  ~SceneTextures() {
+    glDeleteTextures(kCount, textures_);
+    glDeleteBuffers(kCount, buffers_);
+  }
+  SceneTextures(const SceneTextures&) = delete;
+  SceneTextures& operator=(const SceneTextures&) = delete;
   void bind(GLuint prog) const {
-    glActiveTexture(GL_TEXTURE0);
-    glBindTexture(GL_TEXTURE_BUFFER, textures_[0]);
-    glUniform1i(glGetUniformLocation(prog, "facet_bvh"), 0);
-    glActiveTexture(GL_TEXTURE1);
-    glBindTexture(GL_TEXTURE_BUFFER, textures_[1]);
-    glUniform1i(glGetUniformLocation(prog, "facet_triangles"), 1);
-    glActiveTexture(GL_TEXTURE2);
-    glBindTexture(GL_TEXTURE_BUFFER, textures_[2]);
-    glUniform1i(glGetUniformLocation(prog, "facet_texcoords"), 2);
-    glActiveTexture(GL_TEXTURE3);
-    glBindTexture(GL_TEXTURE_BUFFER, textures_[3]);
-    glUniform1i(glGetUniformLocation(prog, "facet_tangents"), 3);
+    static const char* kSamplers[kCount] = {"facet_bvh",     "facet_triangles", "facet_texcoords",   "facet_tangents",
+                                            "facet_objects", "facet_scene_bvh", "facet_light_buffer"};
+    for (int i = 0; i < kCount; ++i) {
+      glActiveTexture(GLenum(GL_TEXTURE0 + i));
+      glBindTexture(GL_TEXTURE_BUFFER, textures_[i]);
+      glUniform1i(glGetUniformLocation(prog, kSamplers[i]), i);
+    }
   }
 
  private:
-  GLuint buffers_[4] = {0, 0, 0, 0};
-  GLuint textures_[4];
+  GLuint buffers_[kCount] = {};
+  GLuint textures_[kCount] = {};
 };
+
+// The material's images follow the scene's texture buffers.
+constexpr int kMaterialUnit = SceneTextures::kCount;
 
 // An RGBA32F texture holding `rgba` (width × height texels, row 0 first: texelFetch's
 // j is row j, no flip), one level, nearest: the harnesses read it by texelFetch only.
@@ -376,7 +436,7 @@ GLuint float_texture(int width, int height, const float* rgba) {
 }
 
 // A material's images as RGBA32F textures holding the files' values, read by texelFetch
-// only (glsl/textures.glsl), on units 4, 5, …, bound to facet_texture_<parameter>.
+// only (glsl/textures.glsl), on units kMaterialUnit, …, bound to facet_texture_<parameter>.
 class MaterialImages {
  public:
   explicit MaterialImages(const MaterialProgram& p) {
@@ -392,9 +452,9 @@ class MaterialImages {
   MaterialImages& operator=(const MaterialImages&) = delete;
   void bind(GLuint prog) const {
     for (size_t i = 0; i < textures_.size(); ++i) {
-      glActiveTexture(GLenum(GL_TEXTURE4 + i));
+      glActiveTexture(GLenum(GL_TEXTURE0 + kMaterialUnit + i));
       glBindTexture(GL_TEXTURE_2D, textures_[i]);
-      glUniform1i(glGetUniformLocation(prog, names_[i].c_str()), GLint(4 + i));
+      glUniform1i(glGetUniformLocation(prog, names_[i].c_str()), GLint(kMaterialUnit + i));
     }
   }
 
@@ -425,103 +485,131 @@ void set_camera(const Uniforms& u, const Scene& s, int width, int height) {
   glUniform3f(u.loc("facet_ambient"), float(s.ambient[0]), float(s.ambient[1]), float(s.ambient[2]));
 }
 
-// The generated GLSL's facet_lights[], encoded as targets/glsl_lights.h says.
-void set_lights(const Uniforms& u, const Scene& s) {
-  glUniform1i(u.loc("facet_light_count"), int(s.lights.size()));
-  for (size_t i = 0; i < s.lights.size(); ++i) {
-    const std::array<float, 16> e = glsl_light::encode(s.lights[i]);
-    const char* fields[] = {"position", "color", "spot", "attenuation"};
-    for (int f = 0; f < 4; ++f)
-      glUniform4fv(u.loc(fmt::format("facet_lights[{}].{}", i, fields[f])), 1, &e[size_t(f) * 4]);
-  }
-}
-
-// The objects, those of pass `pass` shaded; the shadow rays' offset, relative to the scene's size.
-void set_objects(const Uniforms& u, const Scene& s, const MeshBuffers& meshes, const std::vector<size_t>& pass_of,
-                 size_t pass) {
+// The objects (those of pass `pass` shaded), how many lights, and the shadow rays' offset,
+// relative to the scene's size.
+void set_scene(const Uniforms& u, const Scene& s, size_t pass) {
   double scale = length(s.camera.position);
-  glUniform1i(u.loc("facet_object_count"), int(s.objects.size()));
-  for (size_t i = 0; i < s.objects.size(); ++i) {
-    const Object& o = s.objects[i];
-    std::string at = fmt::format("[{}]", i);
+  for (const Object& o : s.objects) {
     Vec3 c;
     double r;
     o.bounds(c, r);
     scale = std::max(scale, length(c) + r);
-    glUniform1i(u.loc("facet_object_shaded" + at), pass_of[i] == pass ? 1 : 0);
-    if (o.type == Object::Type::Sphere) {
-      u.vec4("facet_object_shape" + at, o.center.x, o.center.y, o.center.z, o.radius);
-      u.vec4("facet_object_normal" + at, 0, 0, 0, kSphere);
-    } else if (o.type == Object::Type::Plane) {
-      Vec3 a, b;
-      o.plane_axes(a, b);
-      u.vec4("facet_object_shape" + at, o.point.x, o.point.y, o.point.z, o.size);
-      u.vec4("facet_object_normal" + at, o.normal.x, o.normal.y, o.normal.z, kSquare);
-      u.vec4("facet_object_axis" + at, a.x, a.y, a.z, 0);
-    } else {
-      u.vec4("facet_object_shape" + at, meshes.first_node[i], 0, 0, 0);
-      u.vec4("facet_object_normal" + at, 0, 0, 0, kMesh);
-    }
   }
+  glUniform1i(u.loc("facet_object_count"), int(s.objects.size()));
+  glUniform1i(u.loc("facet_light_count"), int(s.lights.size()));
+  glUniform1i(u.loc("facet_pass"), int(pass));
+  glUniform1i(u.loc("facet_probe_turns"), 2);
   glUniform1f(u.loc("facet_shadow_offset"), float(kGlShadowOffset * std::max(scale, 1.0)));
 }
 
-// Why the GL harness cannot draw this job, or "".
-std::string job_limits(const RenderJob& job, size_t passes) {
-  const Scene& s = job.scene;
-  if (s.lights.size() > size_t(kMaxLights) || s.objects.size() > size_t(kMaxObjects))
-    return fmt::format("the GLSL renderer takes at most {} lights and {} objects", kMaxLights, kMaxObjects);
-  if (!job.code_override.empty() && passes != 1) return "code_override needs a scene with one material";
-  return "";
-}
-
 // A job's scene as the harness draws it, pass by pass: its material passes, its
-// meshes' texture buffers (bound while it lives).
+// buffers (bound while it lives).
 struct PassScene {
   explicit PassScene(const RenderJob& j)
       : job(j), passes(material_passes(j, &pass_of)),
-        meshes(mesh_buffers(j.scene, j.material ? &*j.material : nullptr)), textures(meshes) {}
+        buffers(scene_buffers(j.scene, j.material ? &*j.material : nullptr, pass_of)), textures(buffers) {
+    if (!job.code_override.empty() && passes.size() != 1)
+      throw std::runtime_error("code_override needs a scene with one material");
+  }
   const RenderJob& job;
   std::vector<size_t> pass_of;
   std::vector<const Material*> passes;
-  MeshBuffers meshes;
-  MeshTextures textures;
-  // "<material>_<scene>[_<pass's material>]<suffix>": the file a pass's source is written to.
+  SceneBuffers buffers;
+  SceneTextures textures;
+  // "<material>_<scene>[_<pass's material>]<suffix>": the file a pass's source is written to
+  // (every pass's, past the last pass: the G-buffer's).
   std::string file(size_t pass, const std::string& suffix) const {
     std::string base = (job.material ? identifier(job.material->name) + "_" : std::string()) + identifier(job.scene.name);
-    if (passes.size() > 1) base += "_" + identifier(passes[pass]->name);
+    if (passes.size() > 1 && pass < passes.size()) base += "_" + identifier(passes[pass]->name);
     return base + suffix;
   }
 };
 
-// Pass `pass` of the scene drawn with `source` (written into the job's workdir as
-// `file`) into the bound framebuffer, every uniform and texture the harness reads
-// set: "", or why not.
-std::string draw_pass(GLuint vertex, GLuint vao, const PassScene& ps, size_t pass, const std::string& source,
-                      const std::string& file) {
+// The program of `source` (written into the job's workdir as `file`) in use for pass `pass`,
+// every uniform and texture the harness reads set, the pass's material's images bound while
+// `images` lives: 0, with `error` set, when it does not compile.
+GLuint use_program(GLuint vertex, const PassScene& ps, size_t pass, const std::string& source, const std::string& file,
+                   std::unique_ptr<MaterialImages>& images, std::string& error) {
   const RenderJob& job = ps.job;
   if (!job.workdir.empty()) {
     std::filesystem::create_directories(job.workdir);
     write_file_atomic((std::filesystem::path(job.workdir) / file).string(), source);
   }
-  std::string error;
-  GLuint prog = fragment_program(vertex, source, "the GLSL of \"" + ps.passes[pass]->name + "\"", error);
-  if (!prog) return error;
+  const Material& m = *ps.passes[std::min(pass, ps.passes.size() - 1)];
+  GLuint prog = fragment_program(vertex, source, "the GLSL of \"" + m.name + "\"", error);
+  if (!prog) return 0;
   glUseProgram(prog);
   const Uniforms u{prog};
   set_camera(u, job.scene, job.width, job.height);
-  set_lights(u, job.scene);
-  set_objects(u, job.scene, ps.meshes, ps.pass_of, pass);
+  set_scene(u, job.scene, pass);
   ps.textures.bind(prog);
-  const MaterialImages images(compile(*ps.passes[pass]));
-  images.bind(prog);
+  images = std::make_unique<MaterialImages>(compile(m));
+  images->bind(prog);
+  return prog;
+}
+
+// One full-screen draw into the bound framebuffer: "", or GL's error.
+std::string draw_once(GLuint vao) {
   glClearColor(0, 0, 0, 0);
   glClear(GL_COLOR_BUFFER_BIT);
   glBindVertexArray(vao);
   glDrawArrays(GL_TRIANGLES, 0, 3);
-  glDeleteProgram(prog);
   if (GLenum e = glGetError(); e != GL_NO_ERROR) return fmt::format("OpenGL error 0x{:x}", e);
   return "";
+}
+
+// Lights [first, end) of a scene, a draw's share (raycast.glsl: llvmpipe cuts a shader
+// invocation's loops short past 65,535 turns).
+struct LightRange {
+  int first, end;
+};
+
+// Takes the lights of `ranges` in turn, each through draw(range, cut), which sets `cut` when the
+// draw's loops were cut short: that range again in two halves, and at most as many lights a draw
+// from then on (`most`, kept from job to pass: every cut draw costs a draw's worth of turns).
+// "", or why not.
+std::string in_turns(std::vector<LightRange> ranges, int& most,
+                     const std::function<std::string(LightRange, bool&)>& draw) {
+  while (!ranges.empty()) {
+    LightRange r = ranges.back();
+    ranges.pop_back();
+    if (r.end - r.first > most) {
+      ranges.push_back({r.first + most, r.end});
+      r.end = r.first + most;
+    }
+    bool cut = false;
+    if (std::string e = draw(r, cut); !e.empty()) return e;
+    if (!cut) continue;
+    if (r.end - r.first <= 1)
+      return "a pixel's shadow rays took more loop turns than llvmpipe allows a shader invocation (65,535) for "
+             "a single light: the scene is too deep for the GL ray caster";
+    most = (r.end - r.first) / 2;
+    ranges.push_back(r);
+  }
+  return "";
+}
+
+// Sets the draw's lights (raycast.glsl: facet_light_first, facet_light_count).
+void set_lights(GLuint prog, LightRange r) {
+  glUniform1i(glGetUniformLocation(prog, "facet_light_first"), r.first);
+  glUniform1i(glGetUniformLocation(prog, "facet_light_count"), r.end - r.first);
+}
+
+// Pass `pass` drawn with `prog` into `out`: every light at once where llvmpipe lets it, in turns
+// where not (the ambient colour with the first turn only; the turns add up).
+std::string draw_pass(GLuint prog, GLuint vao, const FloatFramebuffer& fb, const Scene& s, int& most,
+                      RenderOutcome& out) {
+  return in_turns({{0, int(s.lights.size())}}, most, [&](LightRange r, bool& cut) {
+    set_lights(prog, r);
+    const float a = r.first == 0 ? 1.0f : 0.0f;
+    glUniform3f(glGetUniformLocation(prog, "facet_ambient"), a * float(s.ambient[0]), a * float(s.ambient[1]),
+                a * float(s.ambient[2]));
+    if (std::string e = draw_once(vao); !e.empty()) return e;
+    const std::vector<float> px = fb.read();
+    for (size_t i = 3; i < px.size() && !cut; i += 4) cut = px[i] < 0;
+    if (!cut) add_bottom_up(px, out);
+    return std::string();
+  });
 }
 
 // Each pass draws the scene with one material's program, its objects shaded and the others black; the passes add up.
@@ -535,35 +623,55 @@ RenderOutcome draw_passes(GLuint vertex, GLuint vao, const PassScene& ps) {
   }
   out.image = Image(job.width, job.height);
   out.alpha.assign(size_t(job.width) * size_t(job.height), 0);
+  int most = std::numeric_limits<int>::max();  // lights a draw takes, as in_turns() learns it
   for (size_t k = 0; k < ps.passes.size(); ++k) {
     std::string source = !job.code_override.empty() ? job.code_override : GlRenderer::fragment_source(*ps.passes[k]);
-    out.error = draw_pass(vertex, vao, ps, k, source, ps.file(k, ".frag"));
+    std::unique_ptr<MaterialImages> images;
+    GLuint prog = use_program(vertex, ps, k, source, ps.file(k, ".frag"), images, out.error);
+    if (!prog) return out;
+    out.error = draw_pass(prog, vao, fb, job.scene, most, out);
+    glDeleteProgram(prog);
     if (!out.error.empty()) return out;
-    add_bottom_up(fb.read(), out);
   }
   out.ok = true;
   return out;
 }
 
+// The G-buffer's draws: each writes three layers of the visibility image for its lights (GL 3.3
+// promises 8 draw buffers: 5 + 3), the first the geometry images too; every draw casts the
+// camera rays again, a small cost beside its shadow rays. A draw's lights are those of three
+// layers, fewer where llvmpipe cut its loops short (the bits of a layer's draws add up).
+std::string cast_layers(GLuint prog, GLuint vao, const FloatFramebuffer& fb, int lights, GBuffer& g) {
+  const size_t texels = size_t(g.width) * size_t(g.height) * 4;
+  g.images[GBuffer::Visibility].assign(texels * size_t(g.layers), 0.0f);
+  const int span = 3 * glsl_light::kVisibilityLayerLights;
+  std::vector<LightRange> ranges;
+  for (int first = 0; first < std::max(lights, 1); first += span) ranges.insert(ranges.begin(), {first, std::min(first + span, lights)});
+  bool geometry = true;  // not yet drawn
+  int most = span;
+  return in_turns(ranges, most, [&](LightRange r, bool& cut) {
+    const int layer = r.first / glsl_light::kVisibilityLayerLights;
+    std::vector<bool> on(8, geometry);
+    for (int k = 0; k < 3; ++k) on[size_t(5 + k)] = layer + k < g.layers;
+    fb.draw_to(on);
+    glUniform1i(glGetUniformLocation(prog, "facet_first_layer"), layer);
+    set_lights(prog, r);
+    if (std::string e = draw_once(vao); !e.empty()) return e;
+    std::vector<std::vector<float>> drawn;
+    for (int k = 0; k < 3 && layer + k < g.layers; ++k) drawn.push_back(fb.read(5 + k));
+    for (const auto& d : drawn)
+      for (size_t i = 0; i < d.size() && !cut; ++i) cut = d[i] < 0;
+    if (cut) return std::string();
+    if (geometry)
+      for (int i = 0; i < GBuffer::Visibility; ++i) g.images[size_t(i)] = fb.read(i);
+    geometry = false;
+    for (size_t k = 0; k < drawn.size(); ++k)  // disjoint bits: adding is or-ing, exact below 2^24
+      for (size_t i = 0; i < texels; ++i) g.images[GBuffer::Visibility][(size_t(layer) + k) * texels + i] += drawn[k][i];
+    return std::string();
+  });
+}
+
 }  // namespace
-
-std::vector<const Material*> material_passes(const RenderJob& job, std::vector<size_t>* pass_of) {
-  const Scene& s = job.scene;
-  const Material* fallback = job.material ? &*job.material : nullptr;
-  std::vector<const Material*> passes;
-  if (pass_of) pass_of->assign(s.objects.size(), 0);
-  for (size_t i = 0; i < s.objects.size(); ++i) {
-    const Material* m = &s.material_of(i, fallback);
-    auto it = std::find(passes.begin(), passes.end(), m);
-    if (pass_of) (*pass_of)[i] = size_t(it - passes.begin());
-    if (it == passes.end()) passes.push_back(m);
-  }
-  return passes;
-}
-
-std::vector<RenderOutcome> GlRenderer::render(const std::vector<RenderJob>& jobs, const RenderProgress& progress) {
-  return render_each(jobs, progress, [&](const RenderJob& job) { return render(job); });
-}
 
 RenderOutcome GlRenderer::render(const RenderJob& job) {
   RenderOutcome out;
@@ -574,7 +682,7 @@ RenderOutcome GlRenderer::render(const RenderJob& job) {
   }
   try {
     const PassScene ps(job);
-    if ((out.error = job_limits(job, ps.passes.size())).empty()) out = draw_passes(state_->vertex, state_->vao, ps);
+    out = draw_passes(state_->vertex, state_->vao, ps);
   } catch (const std::exception& e) {
     out.error = e.what();
   }
@@ -582,7 +690,11 @@ RenderOutcome GlRenderer::render(const RenderJob& job) {
   return out;
 }
 
-GBufferOutcome GlRenderer::gbuffer(const RenderJob& job, size_t pass) {
+std::vector<RenderOutcome> GlRenderer::render(const std::vector<RenderJob>& jobs, const RenderProgress& progress) {
+  return render_each(jobs, progress, [&](const RenderJob& job) { return render(job); });
+}
+
+GBufferOutcome GlRenderer::gbuffer(const RenderJob& job) {
   GBufferOutcome out;
   if (!ok()) {
     out.error = error_;
@@ -590,17 +702,20 @@ GBufferOutcome GlRenderer::gbuffer(const RenderJob& job, size_t pass) {
   }
   try {
     const PassScene ps(job);
-    if (!(out.error = job_limits(job, ps.passes.size())).empty()) return out;
-    if (pass >= ps.passes.size()) throw std::out_of_range(fmt::format("no material pass {} in the job", pass));
-    FloatFramebuffer fb(job.width, job.height, GBuffer::kImages);
-    if (!fb.complete()) throw std::runtime_error("no framebuffer of seven RGBA32F images");
-    std::string source = fragment_source(*ps.passes[pass], true);
-    if (!(out.error = draw_pass(state_->vertex, state_->vao, ps, pass, source, ps.file(pass, ".gbuffer.frag"))).empty())
-      return out;
     GBuffer& g = out.gbuffer;
     g.width = job.width;
     g.height = job.height;
-    for (int i = 0; i < GBuffer::kImages; ++i) g.images[size_t(i)] = fb.read(i);
+    g.layers = GBuffer::layers_for(int(job.scene.lights.size()));
+    FloatFramebuffer fb(job.width, job.height, 8);
+    if (!fb.complete()) throw std::runtime_error("no framebuffer of eight RGBA32F images");
+    // Every pass's objects at once: the first material only brings the light loop's declarations.
+    std::unique_ptr<MaterialImages> images;
+    GLuint prog = use_program(state_->vertex, ps, ps.passes.size(), fragment_source(*ps.passes[0], true),
+                              ps.file(ps.passes.size(), ".gbuffer.frag"), images, out.error);
+    if (!prog) return out;
+    out.error = cast_layers(prog, state_->vao, fb, int(job.scene.lights.size()), g);
+    glDeleteProgram(prog);
+    if (!out.error.empty()) return out;
     const Scene& s = job.scene;
     g.camera_position = {float(s.camera.position.x), float(s.camera.position.y), float(s.camera.position.z)};
     g.ambient = {float(s.ambient[0]), float(s.ambient[1]), float(s.ambient[2])};
@@ -616,20 +731,7 @@ GBufferOutcome GlRenderer::gbuffer(const RenderJob& job, size_t pass) {
   return out;
 }
 
-std::vector<std::pair<std::string, std::vector<double>>> shading_uniforms(const GBuffer& g) {
-  auto values = [](const float* v, size_t n) { return std::vector<double>(v, v + n); };
-  std::vector<std::pair<std::string, std::vector<double>>> out = {
-      {"facet_camera_position", values(g.camera_position.data(), 3)},
-      {"facet_ambient", values(g.ambient.data(), 3)},
-      {"facet_light_count", {double(g.light_count)}}};
-  const char* fields[] = {"position", "color", "spot", "attenuation"};
-  for (int i = 0; i < g.light_count; ++i)
-    for (int f = 0; f < 4; ++f)
-      out.push_back({fmt::format("facet_lights[{}].{}", i, fields[f]), values(&g.lights[size_t(i * 16 + f * 4)], 4)});
-  return out;
-}
-
-GBufferOutcome cast_gbuffer(GlRenderer& gl, const RenderJob& job, size_t pass) { return gl.gbuffer(job, pass); }
+GBufferOutcome cast_gbuffer(GlRenderer& gl, const RenderJob& job) { return gl.gbuffer(job); }
 
 namespace {
 
@@ -676,16 +778,34 @@ std::string set_uniform(const std::map<std::string, std::pair<GLint, GLenum>>& a
   return error;
 }
 
+// A ShaderTexture as GL's: its target and name.
+std::pair<GLenum, GLuint> shader_texture(const ShaderTexture& t, std::vector<GLuint>& buffers) {
+  if (t.buffer) {
+    buffers.push_back(0);
+    return {GL_TEXTURE_BUFFER, texture_buffer(t.rgba, buffers.back())};
+  }
+  if (t.layers == 0) return {GL_TEXTURE_2D, float_texture(t.width, t.height, t.rgba.data())};
+  GLuint tex = 0;
+  glGenTextures(1, &tex);
+  glBindTexture(GL_TEXTURE_2D_ARRAY, tex);
+  glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAX_LEVEL, 0);
+  glTexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_RGBA32F, t.width, t.height, t.layers, 0, GL_RGBA, GL_FLOAT, t.rgba.data());
+  return {GL_TEXTURE_2D_ARRAY, tex};
+}
+
 // The shaders' textures (GlRenderer::draw()'s), made while it lives.
 class DrawTextures {
  public:
   explicit DrawTextures(const std::vector<std::vector<ShaderTexture>>& images) : images_(images), textures_(images.size()) {
     for (size_t i = 0; i < images.size(); ++i)
-      for (const ShaderTexture& t : images[i]) textures_[i].push_back(float_texture(t.width, t.height, t.rgba.data()));
+      for (const ShaderTexture& t : images[i]) textures_[i].push_back(shader_texture(t, buffers_));
   }
   ~DrawTextures() {
-    for (const auto& t : textures_)
-      if (!t.empty()) glDeleteTextures(GLsizei(t.size()), t.data());
+    for (const auto& shader : textures_)
+      for (const auto& t : shader) glDeleteTextures(1, &t.second);
+    if (!buffers_.empty()) glDeleteBuffers(GLsizei(buffers_.size()), buffers_.data());
   }
   DrawTextures(const DrawTextures&) = delete;
   DrawTextures& operator=(const DrawTextures&) = delete;
@@ -693,14 +813,15 @@ class DrawTextures {
   void bind(size_t i, GLuint prog) const {
     for (size_t k = 0; i < textures_.size() && k < textures_[i].size(); ++k) {
       glActiveTexture(GLenum(GL_TEXTURE0 + k));
-      glBindTexture(GL_TEXTURE_2D, textures_[i][k]);
+      glBindTexture(textures_[i][k].first, textures_[i][k].second);
       glUniform1i(glGetUniformLocation(prog, images_[i][k].name.c_str()), GLint(k));
     }
   }
 
  private:
   const std::vector<std::vector<ShaderTexture>>& images_;
-  std::vector<std::vector<GLuint>> textures_;
+  std::vector<std::vector<std::pair<GLenum, GLuint>>> textures_;
+  std::vector<GLuint> buffers_;
 };
 
 }  // namespace

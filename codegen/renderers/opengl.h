@@ -22,12 +22,15 @@ struct ShaderDraw {
   std::vector<std::pair<std::string, std::vector<double>>> uniforms;
 };
 // A texture for GlRenderer::draw(): an RGBA32F image, nearest-filtered (read it with
-// texelFetch), bound to the sampler2D uniform of its name; rgba holds width × height
-// texels, row 0 first.
+// texelFetch), bound to the sampler uniform of its name; rgba holds width × height
+// texels, row 0 first; with `layers`, a 2D array (sampler2DArray) of that many such images
+// one after the other; with `buffer`, a buffer texture (samplerBuffer) of rgba's texels.
 struct ShaderTexture {
   std::string name;
   int width = 0, height = 0;
   std::vector<float> rgba;
+  int layers = 0;
+  bool buffer = false;
 };
 
 // OpenGL through EGL (Mesa llvmpipe headless): the generated GLSL 3.30 library
@@ -53,8 +56,8 @@ class GlRenderer : public Renderer {
   // The fragment shader render() compiles for one material: the generated GLSL under the ray caster;
   // with `gbuffer`, the same under FACET_GBUFFER, which writes the G-buffer instead (renderers/gbuffer.h).
   static std::string fragment_source(const Material& m, bool gbuffer = false);
-  // The G-buffer of material pass `pass` of `job` (renderers/gbuffer.h, cast_gbuffer()).
-  GBufferOutcome gbuffer(const RenderJob& job, size_t pass);
+  // The G-buffer of `job`, every material pass at once (renderers/gbuffer.h, cast_gbuffer()).
+  GBufferOutcome gbuffer(const RenderJob& job);
   // Each shader over the full-screen triangle on width × height pixels: every
   // program is compiled and drawn once first (llvmpipe JIT-compiles a shader at its
   // first draw), then each is drawn twice more, the second time between

@@ -224,20 +224,25 @@ bool VulkanDevice::validation_layers() const { return state_->layers; }
 // ---------------------------------------------------------------- the scene's uniform block
 
 std::vector<unsigned char> facet_scene_block(const Scene& s) {
-  // std140: vec4 camera (0), vec4 ambient (16), int count (32), FacetLight[8] from 48, 64 bytes each.
-  std::vector<float> f(560 / 4, 0.0f);
+  // std140: vec4 camera (0), vec4 ambient (16), int count (32), padded to 48.
+  std::vector<float> f(48 / 4, 0.0f);
   const Vec3& eye = s.camera.position;
   const float head[8] = {float(eye.x), float(eye.y), float(eye.z), 1,
                          float(s.ambient[0]), float(s.ambient[1]), float(s.ambient[2]), 0};
   std::copy(head, head + 8, f.begin());
-  const int32_t count = int32_t(std::min<size_t>(s.lights.size(), 8));
-  for (size_t i = 0; i < size_t(count); ++i) {
-    const std::array<float, 16> light = glsl_light::encode(s.lights[i]);
-    std::copy(light.begin(), light.end(), f.begin() + ptrdiff_t(12 + 16 * i));
-  }
+  const int32_t count = int32_t(s.lights.size());
   std::vector<unsigned char> out(f.size() * 4);
   std::memcpy(out.data(), f.data(), out.size());
   std::memcpy(out.data() + 32, &count, 4);
+  return out;
+}
+
+std::vector<unsigned char> facet_light_buffer(const Scene& s) {
+  std::vector<unsigned char> out(s.lights.size() * 64);
+  for (size_t i = 0; i < s.lights.size(); ++i) {
+    const std::array<float, 16> light = glsl_light::encode(s.lights[i]);
+    std::memcpy(out.data() + i * 64, light.data(), 64);
+  }
   return out;
 }
 
@@ -317,14 +322,15 @@ struct GpuImage {
   VkImageView view = VK_NULL_HANDLE;
 };
 
-// A device-local RGBA32F image and its view.
+// A device-local RGBA32F image and its view; with `layers` (> 0), a 2D array of that many.
 template <class State>
-GpuImage float_image(const State& s, Trash& trash, int width, int height, VkImageUsageFlags usage) {
+GpuImage float_image(const State& s, Trash& trash, int width, int height, VkImageUsageFlags usage, int layers = 0) {
   auto ci = make<VkImageCreateInfo>(VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO);
   ci.imageType = VK_IMAGE_TYPE_2D;
   ci.format = VK_FORMAT_R32G32B32A32_SFLOAT;
   ci.extent = {uint32_t(width), uint32_t(height), 1};
-  ci.mipLevels = ci.arrayLayers = 1;
+  ci.mipLevels = 1;
+  ci.arrayLayers = uint32_t(std::max(layers, 1));
   ci.samples = VK_SAMPLE_COUNT_1_BIT;
   ci.tiling = VK_IMAGE_TILING_OPTIMAL;
   ci.usage = usage;
@@ -344,9 +350,9 @@ GpuImage float_image(const State& s, Trash& trash, int width, int height, VkImag
   vk(vkBindImageMemory(device, g.image, memory, 0), "vkBindImageMemory");
   auto vi = make<VkImageViewCreateInfo>(VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO);
   vi.image = g.image;
-  vi.viewType = VK_IMAGE_VIEW_TYPE_2D;
+  vi.viewType = layers > 0 ? VK_IMAGE_VIEW_TYPE_2D_ARRAY : VK_IMAGE_VIEW_TYPE_2D;
   vi.format = ci.format;
-  vi.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+  vi.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, ci.arrayLayers};
   vk(vkCreateImageView(device, &vi, nullptr, &g.view), "vkCreateImageView");
   VkImageView view = g.view;
   trash([=] { vkDestroyImageView(device, view, nullptr); });
@@ -354,7 +360,8 @@ GpuImage float_image(const State& s, Trash& trash, int width, int height, VkImag
 }
 
 void image_barrier(VkCommandBuffer cb, VkImage image, VkImageLayout from, VkImageLayout to, VkAccessFlags src,
-                   VkAccessFlags dst, VkPipelineStageFlags src_stage, VkPipelineStageFlags dst_stage) {
+                   VkAccessFlags dst, VkPipelineStageFlags src_stage, VkPipelineStageFlags dst_stage,
+                   uint32_t layers = 1) {
   auto b = make<VkImageMemoryBarrier>(VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER);
   b.oldLayout = from;
   b.newLayout = to;
@@ -362,7 +369,7 @@ void image_barrier(VkCommandBuffer cb, VkImage image, VkImageLayout from, VkImag
   b.dstAccessMask = dst;
   b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
   b.image = image;
-  b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+  b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, layers};
   vkCmdPipelineBarrier(cb, src_stage, dst_stage, 0, 0, nullptr, 0, nullptr, 1, &b);
 }
 
@@ -375,21 +382,21 @@ namespace {
 // The descriptor sets of a VulkanDraw (vulkan.h): their layouts, the sets, and the
 // images' uploads to record before the render pass.
 struct Bindings {
-  VkDescriptorSetLayout layouts[2] = {VK_NULL_HANDLE, VK_NULL_HANDLE};
-  VkDescriptorSet sets[2] = {VK_NULL_HANDLE, VK_NULL_HANDLE};
+  static constexpr uint32_t kSets = 3;
+  VkDescriptorSetLayout layouts[kSets] = {VK_NULL_HANDLE, VK_NULL_HANDLE, VK_NULL_HANDLE};
+  VkDescriptorSet sets[kSets] = {VK_NULL_HANDLE, VK_NULL_HANDLE, VK_NULL_HANDLE};
   struct Upload {
     HostBuffer staging;
     GpuImage image;
-    int width, height;
+    int width, height, layers;
   };
   std::vector<Upload> uploads;
 };
 
-VkDescriptorSetLayout set_layout(VkDevice device, Trash& trash, size_t uniforms, size_t images) {
+// A set of bindings 0, 1, … of `types`.
+VkDescriptorSetLayout set_layout(VkDevice device, Trash& trash, const std::vector<VkDescriptorType>& types) {
   std::vector<VkDescriptorSetLayoutBinding> b;
-  for (size_t i = 0; i < uniforms + images; ++i)
-    b.push_back({uint32_t(i), i < uniforms ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER : VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-                 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr});
+  for (size_t i = 0; i < types.size(); ++i) b.push_back({uint32_t(i), types[i], 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr});
   auto ci = make<VkDescriptorSetLayoutCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO);
   ci.bindingCount = uint32_t(b.size());
   ci.pBindings = b.data();
@@ -400,10 +407,10 @@ VkDescriptorSetLayout set_layout(VkDevice device, Trash& trash, size_t uniforms,
 }
 
 void allocate_sets(VkDevice device, Trash& trash, const VulkanDraw& d, Bindings& b) {
-  std::vector<VkDescriptorPoolSize> sizes = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1}};
+  std::vector<VkDescriptorPoolSize> sizes = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1}, {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1}};
   if (size_t n = d.textures.size() + d.images.size()) sizes.push_back({VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, uint32_t(n)});
   auto pi = make<VkDescriptorPoolCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO);
-  pi.maxSets = 2;
+  pi.maxSets = Bindings::kSets;
   pi.poolSizeCount = uint32_t(sizes.size());
   pi.pPoolSizes = sizes.data();
   VkDescriptorPool pool;
@@ -411,7 +418,7 @@ void allocate_sets(VkDevice device, Trash& trash, const VulkanDraw& d, Bindings&
   trash([=] { vkDestroyDescriptorPool(device, pool, nullptr); });
   auto ai = make<VkDescriptorSetAllocateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO);
   ai.descriptorPool = pool;
-  ai.descriptorSetCount = 2;
+  ai.descriptorSetCount = Bindings::kSets;
   ai.pSetLayouts = b.layouts;
   vk(vkAllocateDescriptorSets(device, &ai, b.sets), "vkAllocateDescriptorSets");
 }
@@ -443,10 +450,11 @@ void bind_images(const State& s, Trash& trash, const std::vector<VulkanImage>& i
                  std::vector<VkWriteDescriptorSet>& writes) {
   for (size_t i = 0; i < images.size(); ++i) {
     const VulkanImage& t = images[i];
-    const size_t bytes = size_t(t.width) * size_t(t.height) * 16;
+    const size_t bytes = size_t(t.width) * size_t(t.height) * size_t(std::max(t.layers, 1)) * 16;
     Bindings::Upload up{host_buffer(s, trash, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT),
-                        float_image(s, trash, t.width, t.height, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT),
-                        t.width, t.height};
+                        float_image(s, trash, t.width, t.height, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
+                                    t.layers),
+                        t.width, t.height, std::max(t.layers, 1)};
     std::memcpy(up.staging.data, t.rgba, bytes);
     infos.push_back({sampler, up.image.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL});
     writes.push_back(write(set, first + uint32_t(i), VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER));
@@ -455,18 +463,36 @@ void bind_images(const State& s, Trash& trash, const std::vector<VulkanImage>& i
   }
 }
 
-// The uniform block and the images (staged for upload), written into the sets.
+// A host buffer holding `bytes` (at least `least` bytes, zeros past them), written into
+// binding `binding` of `set` as a descriptor of `type` (`info` keeps its buffer info alive).
+template <class State>
+void bind_buffer(const State& s, Trash& trash, const std::vector<unsigned char>& bytes, size_t least,
+                 VkDescriptorType type, VkDescriptorSet set, uint32_t binding, VkDescriptorBufferInfo& info,
+                 std::vector<VkWriteDescriptorSet>& writes) {
+  const bool uniform = type == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+  HostBuffer h = host_buffer(s, trash, std::max(bytes.size(), least),
+                             uniform ? VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT : VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  if (!bytes.empty()) std::memcpy(h.data, bytes.data(), bytes.size());
+  info = {h.buffer, 0, VK_WHOLE_SIZE};
+  writes.push_back(write(set, binding, type));
+  writes.back().pBufferInfo = &info;
+}
+
+// The uniform block, the images (staged for upload) and the storage buffer, written into the sets.
 template <class State>
 Bindings bindings(const State& s, Trash& trash, const VulkanDraw& d) {
   Bindings b;
-  b.layouts[0] = set_layout(s.device, trash, 1, d.textures.size());
-  b.layouts[1] = set_layout(s.device, trash, 0, d.images.size());
+  std::vector<VkDescriptorType> set0(d.textures.size() + 1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
+  set0[0] = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+  b.layouts[0] = set_layout(s.device, trash, set0);
+  b.layouts[1] = set_layout(s.device, trash, std::vector<VkDescriptorType>(d.images.size(), VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER));
+  b.layouts[2] = set_layout(s.device, trash, {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
   allocate_sets(s.device, trash, d, b);
-  HostBuffer u = host_buffer(s, trash, d.uniforms.size(), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
-  if (!d.uniforms.empty()) std::memcpy(u.data, d.uniforms.data(), d.uniforms.size());
-  const VkDescriptorBufferInfo block{u.buffer, 0, VK_WHOLE_SIZE};
-  std::vector<VkWriteDescriptorSet> writes = {write(b.sets[0], 0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER)};
-  writes.back().pBufferInfo = &block;
+  std::vector<VkWriteDescriptorSet> writes;
+  VkDescriptorBufferInfo block, storage;
+  bind_buffer(s, trash, d.uniforms, 16, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, b.sets[0], 0, block, writes);
+  // A light's 64 bytes at least: a runtime array's binding holds one element (WebGPU's rule too).
+  bind_buffer(s, trash, d.storage, 64, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, b.sets[2], 0, storage, writes);
   std::vector<VkDescriptorImageInfo> infos;
   infos.reserve(d.textures.size() + d.images.size());
   if (!d.textures.empty() || !d.images.empty()) {
@@ -480,15 +506,16 @@ Bindings bindings(const State& s, Trash& trash, const VulkanDraw& d) {
 
 void record_uploads(VkCommandBuffer cb, const Bindings& b) {
   for (const auto& up : b.uploads) {
+    const uint32_t layers = uint32_t(up.layers);
     image_barrier(cb, up.image.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 0,
-                  VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT);
-    VkBufferImageCopy copy{};
-    copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+                  VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, layers);
+    VkBufferImageCopy copy{};  // the layers one after the other in the staging buffer
+    copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, layers};
     copy.imageExtent = {uint32_t(up.width), uint32_t(up.height), 1};
     vkCmdCopyBufferToImage(cb, up.staging.buffer, up.image.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
     image_barrier(cb, up.image.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
                   VK_ACCESS_TRANSFER_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                  VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT);
+                  VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, layers);
   }
 }
 
@@ -548,7 +575,7 @@ ColorTarget color_target(const State& s, Trash& trash, int width, int height) {
 VkPipelineLayout pipeline_layout(VkDevice device, Trash& trash, const Bindings& b) {
   VkPushConstantRange push{VK_SHADER_STAGE_FRAGMENT_BIT, 0, 8};  // ivec2 (width, height)
   auto ci = make<VkPipelineLayoutCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO);
-  ci.setLayoutCount = 2;
+  ci.setLayoutCount = Bindings::kSets;
   ci.pSetLayouts = b.layouts;
   ci.pushConstantRangeCount = 1;
   ci.pPushConstantRanges = &push;
@@ -627,7 +654,8 @@ void record(VkCommandBuffer cb, const Recording& r) {
   bi.pClearValues = &clear;
   vkCmdBeginRenderPass(cb, &bi, VK_SUBPASS_CONTENTS_INLINE);
   vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_GRAPHICS, r.pipeline);
-  vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_GRAPHICS, r.layout, 0, 2, r.bindings->sets, 0, nullptr);
+  vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_GRAPHICS, r.layout, 0, Bindings::kSets, r.bindings->sets, 0,
+                          nullptr);
   const int32_t size[2] = {r.width, r.height};
   vkCmdPushConstants(cb, r.layout, VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof size, size);
   vkCmdDraw(cb, 3, 1, 0, 0);
@@ -724,8 +752,6 @@ RenderOutcome VulkanDevice::draw(const VulkanDraw& d, int width, int height, con
 
 namespace {
 
-const int kMaxVulkanLights = 8;  // FacetScene's FACET_MAX_LIGHTS
-
 // The material's images (image_calls() order: set 0, bindings 1…).
 std::vector<VulkanImage> material_images(const Material& m) {
   std::vector<VulkanImage> out;
@@ -755,7 +781,7 @@ class VulkanRenderer : public Renderer {
 
  private:
   RenderOutcome render_one(const RenderJob& job);
-  RenderOutcome shade(const RenderJob& job, const Material& m, const std::string& name, const GBuffer& g);
+  RenderOutcome shade(const RenderJob& job, const Material& m, const std::string& name, const GBuffer& g, size_t pass);
   RendererInfo info_;
   bool hlsl_;
   VulkanDevice device_;
@@ -763,8 +789,9 @@ class VulkanRenderer : public Renderer {
   std::string error_;
 };
 
+// Material pass `pass` over the G-buffer.
 RenderOutcome VulkanRenderer::shade(const RenderJob& job, const Material& m, const std::string& name,
-                                    const GBuffer& g) {
+                                    const GBuffer& g, size_t pass) {
   VulkanDraw d;
   d.name = name;
   d.hlsl = hlsl_;
@@ -772,15 +799,19 @@ RenderOutcome VulkanRenderer::shade(const RenderJob& job, const Material& m, con
              : hlsl_                    ? hlsl_shading_source(m)
                                         : glsl_gbuffer_shading_source(m, Target::Glsl450);
   d.uniforms = facet_scene_block(job.scene);
+  d.storage = facet_light_buffer(job.scene);
   d.textures = material_images(m);
-  for (const auto& image : g.images) d.images.push_back({g.width, g.height, image.data()});
+  const std::vector<float> position = g.pass_position(pass);
+  d.images.push_back({g.width, g.height, position.data()});
+  for (int i = 1; i < GBuffer::kImages; ++i)
+    d.images.push_back({g.width, g.height, g.images[size_t(i)].data(), i == GBuffer::Visibility ? g.layers : 0});
   return device_.draw(d, job.width, job.height, job.folder());
 }
 
 RenderOutcome VulkanRenderer::render_one(const RenderJob& job) {
   RenderOutcome out;
-  if (!error_.empty() || job.scene.lights.size() > size_t(kMaxVulkanLights)) {
-    out.error = !error_.empty() ? error_ : fmt::format("the Vulkan renderer takes at most {} lights", kMaxVulkanLights);
+  if (!error_.empty()) {
+    out.error = error_;
     return out;
   }
   auto start = std::chrono::steady_clock::now();
@@ -798,14 +829,14 @@ RenderOutcome VulkanRenderer::render_one(const RenderJob& job) {
   const size_t pixels = size_t(job.width) * size_t(job.height);
   out.image = Image(job.width, job.height);
   out.alpha.assign(pixels, 0);
+  const GBufferOutcome g = cast_gbuffer(gl_, job);  // once for every pass
+  if (!g.ok) {
+    out.error = "the G-buffer: " + g.error;
+    return out;
+  }
   for (size_t k = 0; k < passes.size(); ++k) {
-    GBufferOutcome g = cast_gbuffer(gl_, job, k);
-    if (!g.ok) {
-      out.error = "the G-buffer: " + g.error;
-      return out;
-    }
     const std::string name = job_name(job) + (passes.size() > 1 ? "_" + identifier(passes[k]->name) : "");
-    RenderOutcome pass = shade(job, *passes[k], name, g.gbuffer);
+    RenderOutcome pass = shade(job, *passes[k], name, g.gbuffer, k);
     if (!pass.ok) {
       out.error = pass.error;
       return out;

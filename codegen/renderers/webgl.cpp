@@ -95,13 +95,19 @@ std::string page_result(const std::string& dom) {
   return out;
 }
 
-// One pass of the page: its shader, light uniforms and textures (the G-buffer's
-// seven images, then the material's own).
-json page_pass(const Material& m, const GBuffer& g, const std::string& fragment) {
+// Material pass `pass` of the page: its shader, light uniforms and textures (the G-buffer's
+// six images as the pass reads them, the lights, then the material's own).
+json page_pass(const Material& m, const GBuffer& g, size_t pass, const std::string& fragment) {
   json textures = json::array();
-  for (int i = 0; i < GBuffer::kImages; ++i)
-    textures.push_back({{"name", GBuffer::sampler(i)}, {"width", g.width}, {"height", g.height},
-                        {"data", base64(g.images[size_t(i)])}});
+  for (int i = 0; i < GBuffer::kImages; ++i) {
+    json t = {{"name", GBuffer::sampler(i)}, {"width", g.width}, {"height", g.height},
+              {"data", base64(i == GBuffer::Position ? g.pass_position(pass) : g.images[size_t(i)])}};
+    if (i == GBuffer::Visibility) t["layers"] = g.layers;
+    textures.push_back(t);
+  }
+  const LightTexture lights = light_texture(g);
+  textures.push_back({{"name", "facet_light_texture"}, {"width", lights.width}, {"height", lights.height},
+                      {"data", base64(lights.rgba)}});
   for (const auto& c : image_calls(compile(m)))
     textures.push_back({{"name", "facet_texture_" + c.name}, {"width", c.texels->width},
                         {"height", c.texels->height}, {"data", base64(c.texels->rgba)}});
@@ -243,7 +249,8 @@ class WebglRenderer : public Renderer {
   GlRenderer gl_;
 };
 
-// A job's page data, every material pass's G-buffer and shader: null with `error` set when it cannot.
+// A job's page data, every material pass's shader and G-buffer (cast once for them all): null
+// with `error` set when it cannot.
 json WebglRenderer::job_data(const RenderJob& job, size_t& count, std::string& error) {
   std::vector<const Material*> passes;
   try {
@@ -257,12 +264,12 @@ json WebglRenderer::job_data(const RenderJob& job, size_t& count, std::string& e
     return nullptr;
   }
   json data = {{"width", job.width}, {"height", job.height}, {"passes", json::array()}};
+  const GBufferOutcome g = cast_gbuffer(gl_, job);  // once for every pass
+  if (!g.ok) {
+    error = "the G-buffer: " + g.error;
+    return nullptr;
+  }
   for (size_t k = 0; k < passes.size(); ++k) {
-    GBufferOutcome g = cast_gbuffer(gl_, job, k);
-    if (!g.ok) {
-      error = "the G-buffer: " + g.error;
-      return nullptr;
-    }
     std::string fragment = job.code_override.empty() ? glsl_gbuffer_shading_source(*passes[k], Target::Essl)
                                                      : job.code_override;
     if (!job.workdir.empty()) {
@@ -270,7 +277,7 @@ json WebglRenderer::job_data(const RenderJob& job, size_t& count, std::string& e
       const std::string base = job_name(job) + (passes.size() > 1 ? "_" + identifier(passes[k]->name) : "");
       write_file_atomic((fs::path(job.workdir) / (base + ".webgl.frag")).string(), fragment);
     }
-    data["passes"].push_back(page_pass(*passes[k], g.gbuffer, fragment));
+    data["passes"].push_back(page_pass(*passes[k], g.gbuffer, k, fragment));
   }
   count = passes.size();
   return data;

@@ -30,18 +30,22 @@ using nlohmann::json;
 
 namespace {
 
-// templates/wgsl/lights.wgsl's FacetScene, laid out as GLSL's std140 block: camera at 0,
-// ambient at 16, the light count at 32, the lights from 48, 64 bytes each; 560 bytes.
-constexpr int kMaxLights = 8;
-constexpr size_t kSceneBytes = 48 + kMaxLights * 64;
-
+// The shading pass's FacetScene (targets.h, LightSource::Buffer), laid out as the head of
+// GLSL's std140 block: camera at 0, ambient at 16, the light count at 32; 48 bytes.
 std::string scene_uniform_bytes(const GBuffer& g) {
-  std::string b(kSceneBytes, '\0');
+  std::string b(48, '\0');
   std::memcpy(&b[0], g.camera_position.data(), 12);
   std::memcpy(&b[16], g.ambient.data(), 12);
   const int32_t count = g.light_count;
   std::memcpy(&b[32], &count, 4);
-  std::memcpy(&b[48], g.lights.data(), std::min(g.lights.size(), size_t(kMaxLights) * 16) * sizeof(float));
+  return b;
+}
+
+// Its storage buffer of lights, 64 bytes each; one light's bytes at least (a runtime-sized
+// array's binding must hold one element).
+std::string light_bytes(const GBuffer& g) {
+  std::string b(std::max<size_t>(g.lights.size(), 16) * sizeof(float), '\0');
+  if (!g.lights.empty()) std::memcpy(&b[0], g.lights.data(), g.lights.size() * sizeof(float));
   return b;
 }
 
@@ -57,14 +61,17 @@ std::string run_from_anywhere(const std::string& python) {
   return p.is_relative() && p.has_parent_path() ? fs::absolute(p).string() : python;
 }
 
-// One pass of one job for the harness: the shading pass's WGSL, its uniforms, the
-// G-buffer and the material's images written into `dir` as `base`.*.
-json pass_entry(const RenderJob& job, const Material& m, const GBuffer& g, const fs::path& dir, const std::string& base) {
+// Material pass `pass` of one job for the harness: the shading pass's WGSL, its uniforms and
+// lights, the G-buffer as the pass reads it and the material's images written into `dir` as `base`.*.
+json pass_entry(const RenderJob& job, const Material& m, const GBuffer& g, size_t pass, const fs::path& dir,
+                const std::string& base) {
   const std::string stem = (dir / base).string();
   write_file_atomic(stem + ".wgsl", job.code_override.empty() ? wgsl_gbuffer_shading_source(m) : job.code_override);
   write_file_atomic(stem + ".uniforms", scene_uniform_bytes(g));
-  std::vector<const std::vector<float>*> images;
-  for (const auto& image : g.images) images.push_back(&image);
+  write_file_atomic(stem + ".lights", light_bytes(g));
+  const std::vector<float> position = g.pass_position(pass);
+  std::vector<const std::vector<float>*> images = {&position};
+  for (int i = 1; i < GBuffer::kImages; ++i) images.push_back(&g.images[size_t(i)]);
   write_floats(stem + ".gbuffer", images);
   json textures = json::array();
   int binding = 1;  // templates/wgsl: binding 0 is the scene's uniform buffer
@@ -76,9 +83,10 @@ json pass_entry(const RenderJob& job, const Material& m, const GBuffer& g, const
   }
   fs::remove(stem + "_wgpu.pfm");
   fs::remove(stem + "_wgpu.alpha.pfm");
-  return {{"name", m.name},      {"width", g.width},          {"height", g.height},
-          {"wgsl", stem + ".wgsl"}, {"uniforms", stem + ".uniforms"}, {"gbuffer", stem + ".gbuffer"},
-          {"textures", textures}, {"output", stem + "_wgpu"}};
+  return {{"name", m.name},         {"width", g.width},           {"height", g.height},
+          {"layers", g.layers},      {"wgsl", stem + ".wgsl"},     {"uniforms", stem + ".uniforms"},
+          {"lights", stem + ".lights"}, {"gbuffer", stem + ".gbuffer"}, {"textures", textures},
+          {"output", stem + "_wgpu"}};
 }
 
 // What the harness drew for one pass, added into `out` (the passes add up; coverage is their maximum).
@@ -132,10 +140,6 @@ class WgpuRenderer : public Renderer {
 };
 
 bool WgpuRenderer::prepare(const RenderJob& job, json& entries, RenderOutcome& out) const {
-  if (job.scene.lights.size() > size_t(kMaxLights)) {
-    out.error = fmt::format("the wgpu renderer takes at most {} lights (the G-buffer's visibility images)", kMaxLights);
-    return false;
-  }
   const auto start = std::chrono::steady_clock::now();
   std::vector<const Material*> passes;
   try {
@@ -150,12 +154,12 @@ bool WgpuRenderer::prepare(const RenderJob& job, json& entries, RenderOutcome& o
   }
   fs::create_directories(job.folder());
   const fs::path dir = fs::absolute(job.folder());
+  const GBufferOutcome g = cast_gbuffer(gl(), job);  // once for every pass
+  if (!g.ok) {
+    out.error = "the G-buffer: " + g.error;
+    return false;
+  }
   for (size_t k = 0; k < passes.size(); ++k) {
-    GBufferOutcome g = cast_gbuffer(gl(), job, k);
-    if (!g.ok) {
-      out.error = "the G-buffer: " + g.error;
-      return false;
-    }
     std::string base = job_name(job) + (passes.size() > 1 ? "_" + identifier(passes[k]->name) : "");
     // Jobs of one batch may share a name and a folder (a test's variants of one material): numbered then.
     auto taken = [&](const std::string& b) {
@@ -165,7 +169,7 @@ bool WgpuRenderer::prepare(const RenderJob& job, json& entries, RenderOutcome& o
     };
     std::string unique = base;
     for (int n = 2; taken(unique); ++n) unique = fmt::format("{}_{}", base, n);
-    entries.push_back(pass_entry(job, *passes[k], g.gbuffer, dir, unique));
+    entries.push_back(pass_entry(job, *passes[k], g.gbuffer, k, dir, unique));
   }
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return true;

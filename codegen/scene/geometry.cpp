@@ -2,9 +2,9 @@
 // triangle meshes through a bounding volume hierarchy.
 #include <algorithm>
 #include <cmath>
-#include <numeric>
 #include <stdexcept>
 
+#include "scene/bvh.h"
 #include "scene/scene.h"
 
 namespace facet {
@@ -32,63 +32,17 @@ bool ray_triangle(const Vec3& o, const Vec3& d, const Vec3& p0, const Vec3& p1, 
   return true;
 }
 
-// Slab test: does the ray enter the box before `t_max`?
-bool ray_box(const Vec3& o, const Vec3& inv_d, const Vec3& lo, const Vec3& hi, double t_max) {
-  double t0 = 0, t1 = t_max;
-  for (int a = 0; a < 3; ++a) {
-    double near = (lo[a] - o[a]) * inv_d[a], far = (hi[a] - o[a]) * inv_d[a];
-    if (near > far) std::swap(near, far);
-    if (std::isnan(near)) near = -INFINITY;  // 0 · ∞ on a slab plane
-    if (std::isnan(far)) far = INFINITY;
-    t0 = std::max(t0, near);
-    t1 = std::min(t1, far);
-    if (t0 > t1) return false;
-  }
-  return true;
-}
-
 }  // namespace
 
 void Mesh::build_bvh() {
-  nodes.clear();
-  order.resize(triangles.size());
-  std::iota(order.begin(), order.end(), 0u);
-  std::vector<Vec3> centroid(triangles.size());
+  std::vector<Vec3> lo(triangles.size()), hi(triangles.size()), centroid(triangles.size());
   for (size_t i = 0; i < triangles.size(); ++i) {
     const auto& tri = triangles[i];
+    lo[i] = vmin(vmin(positions[tri[0]], positions[tri[1]]), positions[tri[2]]);
+    hi[i] = vmax(vmax(positions[tri[0]], positions[tri[1]]), positions[tri[2]]);
     centroid[i] = (positions[tri[0]] + positions[tri[1]] + positions[tri[2]]) / 3.0;
   }
-  // Median split on the longest axis of the centroids, leaves of up to 4 triangles.
-  std::function<void(uint32_t, uint32_t)> build = [&](uint32_t start, uint32_t end) {
-    size_t id = nodes.size();
-    nodes.push_back({});
-    Vec3 lo(INFINITY, INFINITY, INFINITY), hi(-INFINITY, -INFINITY, -INFINITY);
-    Vec3 clo = lo, chi = hi;
-    for (uint32_t i = start; i < end; ++i) {
-      for (uint32_t k : triangles[order[i]]) {
-        lo = vmin(lo, positions[k]);
-        hi = vmax(hi, positions[k]);
-      }
-      clo = vmin(clo, centroid[order[i]]);
-      chi = vmax(chi, centroid[order[i]]);
-    }
-    nodes[id].lo = lo;
-    nodes[id].hi = hi;
-    if (end - start <= 4) {
-      nodes[id].start = start;
-      nodes[id].count = end - start;
-      return;
-    }
-    Vec3 ext = chi - clo;
-    int axis = ext.x >= ext.y && ext.x >= ext.z ? 0 : ext.y >= ext.z ? 1 : 2;
-    uint32_t mid = start + (end - start) / 2;
-    std::nth_element(order.begin() + start, order.begin() + mid, order.begin() + end,
-                     [&](uint32_t a, uint32_t b) { return centroid[a][axis] < centroid[b][axis]; });
-    build(start, mid);
-    nodes[id].right = int32_t(nodes.size());
-    build(mid, end);
-  };
-  if (!triangles.empty()) build(0, uint32_t(triangles.size()));
+  facet::build_bvh(lo, hi, centroid, 4, nodes, order);
 }
 
 void Mesh::candidates(const Vec3& o, const Vec3& d, double t_max, double margin,

@@ -1,11 +1,15 @@
 // Smooth test meshes of any size (shapes.h).
 #include "scene/shapes.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <map>
 #include <memory>
+#include <string>
 #include <tuple>
+
+#include <fmt/format.h>
 
 namespace facet {
 
@@ -140,6 +144,106 @@ Scene mesh_bench_scene(size_t triangles) {
   l.color = {60, 58, 55};
   l.attenuation.law = Attenuation::Law::InverseSquare;
   s.lights.push_back(l);
+  return s;
+}
+
+namespace {
+
+// Object k of many_objects_scene's grid (k ≥ 1), in its cell centred at (x, 0, z).
+Object grid_object(size_t k, double x, double z) {
+  Object o;
+  o.name = "object" + std::to_string(k);
+  // A size between 0.22 and 0.32 that varies from cell to cell (the golden ratio's fraction).
+  const double f = double(k) * 0.6180339887;
+  const double size = 0.22 + 0.1 * (f - std::floor(f));
+  if (k % 10 == 3) {
+    static const std::array<Mesh (*)(const Vec3&, double), 3> kinds = {
+        [](const Vec3& c, double s) { return icosphere(2, c, s); },
+        [](const Vec3& c, double s) { return torus(12, 6, c, 0.7 * s, 0.3 * s); },
+        [](const Vec3& c, double s) { return creased_box(2, c, 0.8 * s, 0.08); }};
+    Mesh m = kinds[(k / 10) % 3](Vec3(x, size + 0.05, z), size);
+    m.build_bvh();
+    o.type = Object::Type::Mesh;
+    o.mesh = std::make_shared<const Mesh>(std::move(m));
+  } else if (k % 10 == 7) {
+    o.type = Object::Type::Plane;
+    o.point = Vec3(x, 0.45, z);
+    o.normal = normalize(Vec3(0.3 * std::cos(f), 1, 0.3 * std::sin(f)));
+    o.size = size;
+  } else {
+    o.center = Vec3(x, size + 0.05, z);
+    o.radius = size;
+  }
+  return o;
+}
+
+// Light j of n, above the grid of half-width `half`: point, spot, directional in turn.
+Light grid_light(size_t j, size_t n, double half) {
+  Light l;
+  const double angle = double(j) * 2.399963229728653;  // the golden angle: an even spread
+  const double r = 0.9 * half * std::sqrt((double(j) + 0.5) / double(n)), height = 2.5 + double(j % 5) * 0.4;
+  const double scale = 3.0 / double(n);
+  l.color = {scale * (0.8 + 0.2 * std::cos(angle)), scale * 0.9, scale * (0.8 + 0.2 * std::sin(angle))};
+  l.position = Vec3(r * std::cos(angle), height, r * std::sin(angle));
+  static const std::array<Attenuation::Law, 3> laws = {Attenuation::Law::None, Attenuation::Law::InverseSquare,
+                                                       Attenuation::Law::Polynomial};
+  if (j % 3 == 2) {
+    l.type = Light::Type::Directional;
+    l.direction = normalize(Vec3(0.5 * std::sin(angle), -1, 0.5 * std::cos(angle)));
+    return l;
+  }
+  l.attenuation.law = laws[(j / 3) % 3];
+  // Brighter where the law dims: about as bright on the floor below as without attenuation.
+  double gain = 1;
+  if (l.attenuation.law == Attenuation::Law::InverseSquare) gain = height * height;
+  if (l.attenuation.law == Attenuation::Law::Polynomial) {  // 1 / (1 + 0.1 d²): a POV-Ray fade too
+    l.attenuation.quadratic = 0.1;
+    gain = 2;
+  }
+  for (double& c : l.color) c *= gain;
+  if (j % 3 == 1) {
+    l.type = Light::Type::Spot;
+    l.direction = normalize(Vec3(-0.3 * std::cos(angle), -1, -0.3 * std::sin(angle)));
+    l.cutoff = 50;
+    l.exponent = 2;
+  }
+  return l;
+}
+
+}  // namespace
+
+Scene many_objects_scene(size_t objects, size_t lights, const std::vector<Material>& materials) {
+  Scene s;
+  s.name = fmt::format("many_{}x{}", objects, lights);
+  s.source = "built-in";
+  for (const Material& m : materials) s.materials[m.name] = m;
+  const size_t cells = objects > 1 ? objects - 1 : 0;
+  const size_t side = size_t(std::ceil(std::sqrt(double(cells))));
+  const double half = 0.5 * double(std::max<size_t>(side, 1));
+  auto shade = [&](Object& o, size_t k) {
+    if (!materials.empty()) o.material = materials[k % materials.size()].name;
+  };
+  if (objects > 0) {
+    Object floor;
+    floor.type = Object::Type::Plane;
+    floor.name = "floor";
+    floor.point = Vec3(0, 0, 0);
+    floor.normal = Vec3(0, 1, 0);
+    floor.size = half + 0.5;
+    shade(floor, 0);
+    s.objects.push_back(floor);
+  }
+  for (size_t k = 1; k <= cells; ++k) {
+    const size_t cell = k - 1;
+    Object o = grid_object(k, double(cell % side) + 0.5 - half, double(cell / side) + 0.5 - half);
+    shade(o, k);
+    s.objects.push_back(std::move(o));
+  }
+  for (size_t j = 0; j < lights; ++j) s.lights.push_back(grid_light(j, lights, half));
+  s.ambient = {0.02, 0.02, 0.02};
+  s.camera.position = Vec3(0, 0.75 * half + 1.5, 1.05 * half + 2.5);
+  s.camera.look_at = Vec3(0, 0, 0.1 * half);
+  s.camera.fov = 50;
   return s;
 }
 

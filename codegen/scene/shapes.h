@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstddef>
+#include <vector>
 
 #include "scene/scene.h"
 
@@ -22,6 +23,16 @@ Mesh creased_box(int n, const Vec3& center, double half, double bump);
 // The three side by side, about `triangles` in all, under one point light and a
 // camera that sees them all; every object shaded with the material under test.
 Scene mesh_bench_scene(size_t triangles);
+
+// A floor square and `objects` − 1 objects on a grid over it — mostly spheres, every tenth
+// a small mesh (an icosphere, a torus or a creased box in turn: 48 to 144 triangles), every
+// tenth a small tilted square — under `lights` lights: point, spot and directional in turn,
+// the points' and spots' attenuation none, inverse-square and polynomial in turn, their
+// colours scaled so that the scene's brightness does not grow with their number. The
+// camera sees the whole grid. Object k (the floor is 0) is shaded with
+// materials[k mod materials.size()], which the scene carries by name. The same numbers
+// give the same scene; the many-objects benchmark and tests draw it (docs/many_objects.md).
+Scene many_objects_scene(size_t objects, size_t lights, const std::vector<Material>& materials);
 
 // Recomputes m.normals: area-weighted face normals summed at each vertex.
 void smooth_normals(Mesh& m);

@@ -34,19 +34,83 @@ std::string version_line(Target t) {
   }
 }
 
+// The light loop's accessor, where the lights are an array facet_lights.
+const char* kLightAccessor =
+    "\n"
+    "// Light i (i below facet_light_count): the light loop reads every light through this.\n"
+    "FacetLight facet_light(int i)\n"
+    "{\n"
+    "    return facet_lights[i];\n"
+    "}";
+
+// The engine-facing lights (LightSource::Uniforms): a uniform array of FACET_MAX_LIGHTS, in
+// Vulkan the FacetScene block's.
 std::string light_uniforms(Target t) {
   if (t == Target::Glsl450) {
-    return "layout(std140, set = 0, binding = 0) uniform FacetScene {\n"
-           "    vec4 facet_camera_position;  // xyz: the eye, world space\n"
-           "    vec4 facet_ambient;          // rgb: the scene's ambient colour A\n"
-           "    int facet_light_count;\n"
-           "    FacetLight facet_lights[FACET_MAX_LIGHTS];\n"
-           "};";
+    return std::string("#define FACET_MAX_LIGHTS 8\n"
+                       "layout(std140, set = 0, binding = 0) uniform FacetScene {\n"
+                       "    vec4 facet_camera_position;  // xyz: the eye, world space\n"
+                       "    vec4 facet_ambient;          // rgb: the scene's ambient colour A\n"
+                       "    int facet_light_count;       // how many of facet_lights shine, at most FACET_MAX_LIGHTS\n"
+                       "    FacetLight facet_lights[FACET_MAX_LIGHTS];\n"
+                       "};\n") +
+           kLightAccessor;
   }
-  return "uniform vec3 facet_camera_position;  // the eye, world space\n"
-         "uniform vec3 facet_ambient;          // the scene's ambient colour A\n"
-         "uniform int facet_light_count;\n"
-         "uniform FacetLight facet_lights[FACET_MAX_LIGHTS];";
+  return std::string("#define FACET_MAX_LIGHTS 8\n"
+                     "uniform vec3 facet_camera_position;  // the eye, world space\n"
+                     "uniform vec3 facet_ambient;          // the scene's ambient colour A\n"
+                     "uniform int facet_light_count;       // how many of facet_lights shine, at most FACET_MAX_LIGHTS\n"
+                     "uniform FacetLight facet_lights[FACET_MAX_LIGHTS];\n") +
+         kLightAccessor;
+}
+
+// facet's own renderers' lights (LightSource::Buffer): any number, from a buffer or texture
+// (targets/glsl_lights.h says where).
+std::string light_buffer(Target t) {
+  if (t == Target::Glsl450)
+    return fmt::format(
+        "layout(std140, set = 0, binding = 0) uniform FacetScene {{\n"
+        "    vec4 facet_camera_position;  // xyz: the eye, world space\n"
+        "    vec4 facet_ambient;          // rgb: the scene's ambient colour A\n"
+        "    int facet_light_count;\n"
+        "}};\n"
+        "// The lights, any number: a storage buffer of FacetLight, 64 bytes each.\n"
+        "layout(std430, set = {}, binding = 0) readonly buffer FacetLights {{\n"
+        "    FacetLight facet_lights[];\n"
+        "}};\n{}",
+        glsl_light::kLightSet, kLightAccessor);
+  const std::string head = "uniform vec3 facet_camera_position;  // the eye, world space\n"
+                           "uniform vec3 facet_ambient;          // the scene's ambient colour A\n"
+                           "uniform int facet_light_count;\n";
+  if (t == Target::Essl)
+    return head + fmt::format(
+        "// The lights, any number: an RGBA32F texture of {0} lights a row, light i's four vec4 (position,\n"
+        "// color, spot, attenuation) at texels (4·(i mod {0}) + k, i / {0}), k = 0 … 3.\n"
+        "uniform highp sampler2D facet_light_texture;\n"
+        "\n"
+        "// Light i (i below facet_light_count): the light loop reads every light through this.\n"
+        "FacetLight facet_light(int i)\n"
+        "{{\n"
+        "    ivec2 at = ivec2(4 * (i % {0}), i / {0});\n"
+        "    return FacetLight(texelFetch(facet_light_texture, at, 0), texelFetch(facet_light_texture, at + ivec2(1, 0), 0),\n"
+        "                      texelFetch(facet_light_texture, at + ivec2(2, 0), 0),\n"
+        "                      texelFetch(facet_light_texture, at + ivec2(3, 0), 0));\n"
+        "}}",
+        glsl_light::kLightsPerRow);
+  return head +
+         "// The lights, any number: light i's four vec4 (position, color, spot, attenuation) at texels\n"
+         "// 4i … 4i + 3 of an RGBA32F buffer texture; a draw may take lights facet_light_first on (0\n"
+         "// unless set: facet's GL ray caster draws many lights in turns).\n"
+         "uniform samplerBuffer facet_light_buffer;\n"
+         "uniform int facet_light_first;\n"
+         "\n"
+         "// Light i (i below facet_light_count): the light loop reads every light through this.\n"
+         "FacetLight facet_light(int i)\n"
+         "{\n"
+         "    int at = 4 * (facet_light_first + i);\n"
+         "    return FacetLight(texelFetch(facet_light_buffer, at), texelFetch(facet_light_buffer, at + 1),\n"
+         "                      texelFetch(facet_light_buffer, at + 2), texelFetch(facet_light_buffer, at + 3));\n"
+         "}";
 }
 
 std::string main_inputs(Target t) {
@@ -114,7 +178,7 @@ std::string glsl_textures(const MaterialProgram& p, Target dialect) {
 
 }  // namespace
 
-GlslParts glsl_parts(const MaterialProgram& p, Target dialect, const std::string& source) {
+GlslParts glsl_parts(const MaterialProgram& p, Target dialect, const std::string& source, LightSource light_source) {
   targets::CPrinter printer({});
   GlslParts parts;
   const Material& m = p.material;
@@ -149,7 +213,10 @@ GlslParts glsl_parts(const MaterialProgram& p, Target dialect, const std::string
                                                         {"inputs", inputs},
                                                         {"arguments", arguments}});
   std::map<std::string, std::string> lights = glsl_light::template_values();  // the light encoding's numbers
-  lights["uniforms"] = light_uniforms(dialect);
+  const bool buffer = light_source == LightSource::Buffer;
+  lights["declarations"] = buffer ? light_buffer(dialect) : light_uniforms(dialect);
+  // An engine's uniform array holds FACET_MAX_LIGHTS: a larger count reads no further.
+  lights["count"] = buffer ? "facet_light_count" : "min(facet_light_count, FACET_MAX_LIGHTS)";
   lights["mapping"] = p.normal_mapped() ? "    // The lobes read the normal map's normal and a tangent that follows it.\n"
                                           "    vec3 ns = facet_normal_mapped(n, facet_uv_tangent, facet_uv_handedness);\n"
                                           "    t = normalize(t - ns * dot(ns, t));\n"
@@ -176,13 +243,15 @@ GlslParts glsl_parts(const MaterialProgram& p, Target dialect, const std::string
 namespace {
 
 // The G-buffer shading pass's samplers and output: set 1 in Vulkan (set 0 holds the
-// scene's block and the material's images), highp in ES (a sampler's default is lowp).
+// scene's block and the material's images, set 2 the lights), highp in ES (a sampler's
+// default is lowp).
 std::string gbuffer_declarations(Target dialect) {
-  const char* names[] = {"position", "normal", "view", "uv_tangent", "uv", "visibility_low", "visibility_high"};
+  const char* names[] = {"position", "normal", "view", "uv_tangent", "uv", "visibility"};
   std::string out;
-  for (int i = 0; i < 7; ++i) {
+  for (int i = 0; i < 6; ++i) {
     std::string layout = dialect == Target::Glsl450 ? fmt::format("layout(set = 1, binding = {}) ", i) : "";
-    out += fmt::format("{}uniform highp sampler2D facet_gbuffer_{};  // image {}\n", layout, names[i], i);
+    out += fmt::format("{}uniform highp {} facet_gbuffer_{};  // image {}\n", layout, i < 5 ? "sampler2D" : "sampler2DArray",
+                       names[i], i);
   }
   return out + (dialect == Target::Glsl450 ? "layout(location = 0) out vec4 facet_color;\n" : "out vec4 facet_color;\n");
 }
@@ -191,7 +260,7 @@ std::string gbuffer_declarations(Target dialect) {
 
 std::string glsl_gbuffer_shading_source(const Material& m, Target dialect) {
   MaterialProgram p = compile(m);
-  GlslParts parts = glsl_parts(p, dialect, m.source);
+  GlslParts parts = glsl_parts(p, dialect, m.source, LightSource::Buffer);
   std::string sample;
   if (p.has_textures()) sample = "    facet_sample_textures(uvs.xy, uvs.zw);\n";
   if (p.normal_mapped()) sample += "    facet_uv_tangent = frame.xyz;\n    facet_uv_handedness = frame.w;\n";
@@ -199,9 +268,10 @@ std::string glsl_gbuffer_shading_source(const Material& m, Target dialect) {
   std::string texel = dialect == Target::Glsl450
                           ? "ivec2(int(gl_FragCoord.x), textureSize(facet_gbuffer_position, 0).y - 1 - int(gl_FragCoord.y))"
                           : "ivec2(gl_FragCoord.xy)";
+  std::map<std::string, std::string> values = glsl_light::visibility_values();
+  values.insert({{"declarations", gbuffer_declarations(dialect)}, {"texel", texel}, {"sample", sample}});
   return version_line(dialect) + "\n" + parts.header + "\n" + parts.library + "\n" + parts.lights +
-         render_template("glsl/gbuffer_shade.glsl",
-                         {{"declarations", gbuffer_declarations(dialect)}, {"texel", texel}, {"sample", sample}});
+         render_template("glsl/gbuffer_shade.glsl", values);
 }
 
 std::string glsl_sweep_source(const Material& m, Target dialect) {

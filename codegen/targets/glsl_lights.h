@@ -1,7 +1,10 @@
 // facet — how the generated GLSL's FacetLight (templates/glsl/lights.glsl) encodes
 // a light: an application fills facet_lights[] with these numbers (facet's own
-// OpenGL renderer does, renderers/opengl.cpp), and the template's numbers, its
-// comments included, are filled from them.
+// renderers fill a buffer of them, renderers/opengl.cpp), and the template's numbers, its
+// comments included, are filled from them. Also where facet's own renderers put the lights
+// (targets.h, LightSource::Buffer) and how the G-buffer holds each light's visibility
+// (renderers/gbuffer.h): the shading passes of every language decode what the GL ray
+// caster encodes by these numbers.
 #pragma once
 
 #include <array>
@@ -36,6 +39,17 @@ inline int law_code(Attenuation::Law law) {
   return kNoAttenuation;
 }
 
+// LightSource::Buffer: ES 3.00's light texture holds this many lights a row (4 texels each;
+// 1,024 texels, within ES 3.00's least maximum texture size, 2,048); glsl450's storage buffer,
+// HLSL's StructuredBuffer and WGSL's storage buffer of lights are descriptor set (bind group)
+// kLightSet, binding 0.
+inline constexpr int kLightsPerRow = 256, kLightSet = 2;
+
+// The G-buffer's visibility image: light i's bit is bit i mod kVisibilityBits of channel
+// (i / kVisibilityBits) mod 4 of layer i / kVisibilityLayerLights; a channel holds an integer
+// below 2^24, which float32 holds exactly.
+inline constexpr int kVisibilityBits = 24, kVisibilityLayerLights = 4 * kVisibilityBits;
+
 // A light as FacetLight's four vec4, in order: position (xyz: the position, or the
 // direction a directional light travels; w: type_code), color (rgb; a: the spot
 // exponent), spot (xyz: the cone's axis; w: cos(cutoff)), attenuation (c1, c2, c3; w: law_code).
@@ -60,6 +74,12 @@ inline std::map<std::string, std::string> template_values() {
           {"no_attenuation", std::to_string(kNoAttenuation)},
           {"inverse_square", std::to_string(kInverseSquare)},
           {"polynomial", std::to_string(kPolynomial)}};
+}
+
+// The visibility image's numbers as the shading passes' and the ray caster's placeholders:
+// {{bits}} (kVisibilityBits) and {{layer_lights}} (kVisibilityLayerLights).
+inline std::map<std::string, std::string> visibility_values() {
+  return {{"bits", std::to_string(kVisibilityBits)}, {"layer_lights", std::to_string(kVisibilityLayerLights)}};
 }
 
 }  // namespace facet::glsl_light

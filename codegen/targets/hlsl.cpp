@@ -121,9 +121,44 @@ std::pair<std::string, std::string> hlsl_main_inputs(const MaterialProgram& p) {
   return {in, sample};
 }
 
+// The light loop's lights (templates/hlsl/lights.hlsl's {{declarations}}): the engine-facing
+// cbuffer with an array of FACET_MAX_LIGHTS, laid out as glsl450's FacetScene block, or for
+// facet's own renderers the cbuffer without the array and a StructuredBuffer of any length
+// (Vulkan: set glsl_light::kLightSet, binding 0, as glsl450's storage buffer).
+std::string hlsl_light_declarations(LightSource source) {
+  const std::string accessor = "\n"
+                               "// Light i (i below facet_light_count): the light loop reads every light through this.\n"
+                               "FacetLight facet_light(int i)\n"
+                               "{\n"
+                               "    return facet_lights[i];\n"
+                               "}";
+  if (source == LightSource::Buffer)
+    return fmt::format("// The head of glsl450's FacetScene block, byte for byte; Vulkan binding 0 of set 0.\n"
+                       "cbuffer FacetScene : register(b0)\n"
+                       "{{\n"
+                       "    float4 facet_camera_position;  // xyz: the eye, world space\n"
+                       "    float4 facet_ambient;          // rgb: the scene's ambient colour A\n"
+                       "    int facet_light_count;\n"
+                       "}};\n"
+                       "// The lights, any number: 64 bytes each, as glsl450's storage buffer.\n"
+                       "StructuredBuffer<FacetLight> facet_lights : register(t0, space{});\n{}",
+                       glsl_light::kLightSet, accessor);
+  return "#define FACET_MAX_LIGHTS 8\n"
+         "// The glsl450 shader's FacetScene block, byte for byte (std140 and HLSL's packing agree\n"
+         "// here: the light array starts at byte 48, 64 bytes a light); Vulkan binding 0 of set 0.\n"
+         "cbuffer FacetScene : register(b0)\n"
+         "{\n"
+         "    float4 facet_camera_position;  // xyz: the eye, world space\n"
+         "    float4 facet_ambient;          // rgb: the scene's ambient colour A\n"
+         "    int facet_light_count;         // how many of facet_lights shine, at most FACET_MAX_LIGHTS\n"
+         "    FacetLight facet_lights[FACET_MAX_LIGHTS];\n"
+         "};\n" +
+         accessor;
+}
+
 }  // namespace
 
-HlslParts hlsl_parts(const MaterialProgram& p, const std::string& source) {
+HlslParts hlsl_parts(const MaterialProgram& p, const std::string& source, LightSource light_source) {
   targets::CPrinter printer(hlsl_dialect());
   HlslParts parts;
   std::string functions;
@@ -142,6 +177,9 @@ HlslParts hlsl_parts(const MaterialProgram& p, const std::string& source) {
                                           "    float3 ns = facet_normal_mapped(n, facet_uv_tangent, facet_uv_handedness);\n"
                                           "    t = normalize(t - ns * dot(ns, t));\n"
                                         : "    float3 ns = n;\n";
+  lights["declarations"] = hlsl_light_declarations(light_source);
+  // An engine's cbuffer holds FACET_MAX_LIGHTS: a larger count reads no further.
+  lights["count"] = light_source == LightSource::Buffer ? "facet_light_count" : "min(facet_light_count, FACET_MAX_LIGHTS)";
   parts.lights = render_template("hlsl/lights.hlsl", lights);
   auto [main_in, sample] = hlsl_main_inputs(p);
   parts.main = render_template("hlsl/main.hlsl", {{"inputs", main_in}, {"sample", sample}});

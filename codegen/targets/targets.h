@@ -39,17 +39,30 @@ std::string generate(const Material& m, const GenerateOptions& options);
 
 // ---- Parts the renderers assemble themselves.
 
+// Where the light loop (facet_shade) reads its lights: every light through FacetLight
+// facet_light(int i), i below the light count. Uniforms: what `facet generate` writes for an
+// engine, a uniform array of FACET_MAX_LIGHTS (8; GLSL and HLSL: in the FacetScene block or
+// cbuffer at set 0, binding 0; WGSL: its uniform buffer). Buffer: any number, as facet's own
+// renderers pass them (targets/glsl_lights.h): GLSL 3.30 a samplerBuffer facet_light_buffer
+// (4 texels a light), ES 3.00 a sampler2D facet_light_texture (kLightsPerRow lights a row),
+// glsl450 a storage buffer, HLSL a StructuredBuffer and WGSL a storage buffer at set (group)
+// kLightSet, binding 0; the FacetScene block, cbuffer or uniform buffer keeps the camera, the
+// ambient colour and the count.
+enum class LightSource { Uniforms, Buffer };
+
 // GLSL in pieces: the library (constants, terms, facet_reflect), the light loop
-// (uniforms, facet_shade) and the standalone main.
+// (the lights' declarations, facet_shade) and the standalone main.
 struct GlslParts {
   std::string header, library, lights, main;
 };
-GlslParts glsl_parts(const MaterialProgram& p, Target dialect, const std::string& source);
+GlslParts glsl_parts(const MaterialProgram& p, Target dialect, const std::string& source,
+                     LightSource lights = LightSource::Uniforms);
 
 // The G-buffer shading pass (renderers/gbuffer.h) in `dialect` (Glsl, Glsl450, Essl):
-// the material's library and light loop under templates/glsl/gbuffer_shade.glsl's main,
-// which reads the seven G-buffer images at its pixel (samplers facet_gbuffer_position …
-// facet_gbuffer_visibility_high; Vulkan: set 1, bindings 0-6) and writes facet_color.
+// the material's library and light loop (LightSource::Buffer) under
+// templates/glsl/gbuffer_shade.glsl's main, which reads the six G-buffer images at its pixel
+// (samplers facet_gbuffer_position … facet_gbuffer_uv, and facet_gbuffer_visibility, a 2D
+// array; Vulkan: set 1, bindings 0-5) and writes facet_color.
 std::string glsl_gbuffer_shading_source(const Material& m, Target dialect);
 
 // HLSL in the same pieces (templates/hlsl): the library, the light loop (the FacetScene
@@ -58,18 +71,19 @@ std::string glsl_gbuffer_shading_source(const Material& m, Target dialect);
 struct HlslParts {
   std::string header, library, lights, main;
 };
-HlslParts hlsl_parts(const MaterialProgram& p, const std::string& source);
+HlslParts hlsl_parts(const MaterialProgram& p, const std::string& source, LightSource lights = LightSource::Uniforms);
 // WGSL in pieces, as GLSL: the library (constants, textures, terms, facet_reflect), the
 // lights (the FacetScene uniform buffer, facet_shade, which calls facet_visibility(p, l,
 // d, light) that the code around defines) and the standalone @fragment entry point.
 struct WgslParts {
   std::string header, library, lights, main;
 };
-WgslParts wgsl_parts(const MaterialProgram& p, const std::string& source);
+WgslParts wgsl_parts(const MaterialProgram& p, const std::string& source, LightSource lights = LightSource::Uniforms);
 // The G-buffer shading pass in WGSL (the wgpu renderer's): the material's library and
-// light loop under templates/wgsl/gbuffer_shade.wgsl, whose facet_vertex draws one
-// full-screen triangle and whose facet_gbuffer_shade reads the seven G-buffer images
-// (@group(1), bindings 0–6) at its pixel; the material's images are @group(0) from binding 1.
+// light loop (LightSource::Buffer) under templates/wgsl/gbuffer_shade.wgsl, whose
+// facet_vertex draws one full-screen triangle and whose facet_gbuffer_shade reads the six
+// G-buffer images (@group(1), bindings 0–5; 5 a 2D array) at its pixel; the material's
+// images are @group(0) from binding 1.
 std::string wgsl_gbuffer_shading_source(const Material& m);
 
 // The robustness sweep's programs (facet/sweep.h): the material's functions

@@ -239,9 +239,44 @@ std::string header(const Material& m, const char* what, const std::string& sourc
                                               {"description", describe_material(m, "//")}});
 }
 
+// The light loop's lights (templates/wgsl/lights.wgsl's {{declarations}}): the engine-facing
+// uniform buffer with an array of FACET_MAX_LIGHTS, laid out as glsl450's std140 FacetScene
+// block, or for facet's own renderers the uniform buffer without the array and a storage
+// buffer of any length at @group(glsl_light::kLightSet) @binding(0).
+std::string wgsl_light_declarations(LightSource source) {
+  const std::string accessor = "\n"
+                               "// Light i (i below the light count): the light loop reads every light through this.\n"
+                               "fn facet_light(i: i32) -> FacetLight {{\n"
+                               "    return {};\n"
+                               "}}";
+  if (source == LightSource::Buffer)
+    return fmt::format("// The head of glsl450's FacetScene block: camera at 0, ambient at 16, the light count at 32.\n"
+                       "struct FacetScene {{\n"
+                       "    camera_position: vec4<f32>,  // xyz: the eye, world space\n"
+                       "    ambient: vec4<f32>,          // rgb: the scene's ambient colour A\n"
+                       "    light_count: i32,\n"
+                       "}};\n"
+                       "@group(0) @binding(0) var<uniform> facet_scene: FacetScene;\n"
+                       "// The lights, any number: 64 bytes each, as glsl450's storage buffer.\n"
+                       "@group({}) @binding(0) var<storage, read> facet_lights: array<FacetLight>;\n{}",
+                       glsl_light::kLightSet, fmt::format(accessor, "facet_lights[i]"));
+  return "// One uniform buffer at @group(0) @binding(0), laid out as GLSL's std140 FacetScene block of\n"
+         "// --target glsl450 (560 bytes: camera at 0, ambient at 16, light count at 32, the lights from\n"
+         "// 48, 64 bytes each).\n"
+         "const FACET_MAX_LIGHTS: i32 = 8;\n"
+         "struct FacetScene {\n"
+         "    camera_position: vec4<f32>,  // xyz: the eye, world space\n"
+         "    ambient: vec4<f32>,          // rgb: the scene's ambient colour A\n"
+         "    light_count: i32,            // how many of `lights` shine, at most FACET_MAX_LIGHTS\n"
+         "    lights: array<FacetLight, 8>,\n"
+         "};\n"
+         "@group(0) @binding(0) var<uniform> facet_scene: FacetScene;\n" +
+         fmt::format(accessor, "facet_scene.lights[i]");
+}
+
 }  // namespace
 
-WgslParts wgsl_parts(const MaterialProgram& p, const std::string& source) {
+WgslParts wgsl_parts(const MaterialProgram& p, const std::string& source, LightSource light_source) {
   WgslPrinter pr;
   WgslParts parts;
   std::string functions;
@@ -258,6 +293,10 @@ WgslParts wgsl_parts(const MaterialProgram& p, const std::string& source) {
                                           "    let ns = facet_normal_mapped(n, facet_uv_tangent, facet_uv_handedness);\n"
                                           "    t = normalize(t - ns * dot(ns, t));\n"
                                         : "    let ns = n;\n";
+  lights["declarations"] = wgsl_light_declarations(light_source);
+  // An engine's uniform buffer holds FACET_MAX_LIGHTS: a larger count reads no further.
+  lights["count"] = light_source == LightSource::Buffer ? "facet_scene.light_count"
+                                                        : "min(facet_scene.light_count, FACET_MAX_LIGHTS)";
   parts.lights = render_template("wgsl/lights.wgsl", lights);
   std::string in = "    @location(0) position: vec3<f32>,  // world space\n"
                    "    @location(1) normal: vec3<f32>,    // world space\n";
@@ -278,11 +317,12 @@ WgslParts wgsl_parts(const MaterialProgram& p, const std::string& source) {
 
 std::string wgsl_gbuffer_shading_source(const Material& m) {
   MaterialProgram p = compile(m);
-  WgslParts parts = wgsl_parts(p, m.source);
+  WgslParts parts = wgsl_parts(p, m.source, LightSource::Buffer);
   std::string sample = p.has_textures() ? "    facet_sample_textures(uv.xy, uv.zw);\n" : "";
   if (p.normal_mapped()) sample += "    facet_uv_tangent = frame.xyz;\n    facet_uv_handedness = frame.w;\n";
-  return parts.header + "\n" + parts.library + "\n" + parts.lights +
-         render_template("wgsl/gbuffer_shade.wgsl", {{"sample", sample}});
+  std::map<std::string, std::string> values = glsl_light::visibility_values();
+  values["sample"] = sample;
+  return parts.header + "\n" + parts.library + "\n" + parts.lights + render_template("wgsl/gbuffer_shade.wgsl", values);
 }
 
 std::string wgsl_sweep_source(const Material& m) {

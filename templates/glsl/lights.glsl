@@ -1,5 +1,4 @@
 // ---- Lights (MODELS.md "Lights"), set by the application
-#define FACET_MAX_LIGHTS 8
 struct FacetLight {
     vec4 position;     // xyz: position (point, spot), or the direction the light travels (directional)
                        // w: type, {{point}} point, {{directional}} directional, {{spot}} spot
@@ -7,9 +6,9 @@ struct FacetLight {
     vec4 spot;         // xyz: unit cone axis s; w: cos(cutoff)
     vec4 attenuation;  // xyz: c1, c2, c3; w: law, {{no_attenuation}} none, {{inverse_square}} inverse square, {{polynomial}} polynomial
 };
-{{uniforms}}
+{{declarations}}
 
-// How much of light `light` (its index in facet_lights) reaches p along l over
+// How much of light `light` (the i of facet_light(i)) reaches p along l over
 // distance d: 1 unlit by shadows, 0 in shadow. Defined by the code that includes
 // this shader: the standalone main's returns 1 (an engine's shadow lookup goes
 // there), facet's GL ray caster casts a shadow ray and ignores the index, and the
@@ -21,9 +20,8 @@ float facet_visibility(vec3 p, vec3 l, float d, int light);
 vec3 facet_shade(vec3 p, vec3 n, vec3 v, vec3 t)
 {
     vec3 radiance = material_ambient * facet_ambient.rgb + material_emission;
-{{mapping}}    for (int i = 0; i < FACET_MAX_LIGHTS; ++i) {
-        if (i >= facet_light_count) break;
-        FacetLight light = facet_lights[i];
+{{mapping}}    for (int i = 0; i < {{count}}; ++i) {
+        FacetLight light = facet_light(i);
         vec3 l;
         float d = 1e30;  // directional lights have no distance
         float factor = 1.0;

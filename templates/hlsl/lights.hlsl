@@ -1,5 +1,4 @@
 // ---- Lights (MODELS.md "Lights"), set by the application
-#define FACET_MAX_LIGHTS 8
 struct FacetLight {
     float4 position;     // xyz: position (point, spot), or the direction the light travels (directional)
                          // w: type, {{point}} point, {{directional}} directional, {{spot}} spot
@@ -7,17 +6,9 @@ struct FacetLight {
     float4 spot;         // xyz: unit cone axis s; w: cos(cutoff)
     float4 attenuation;  // xyz: c1, c2, c3; w: law, {{no_attenuation}} none, {{inverse_square}} inverse square, {{polynomial}} polynomial
 };
-// The glsl450 shader's FacetScene block, byte for byte (std140 and HLSL's packing agree
-// here: the light array starts at byte 48, 64 bytes a light); Vulkan binding 0 of set 0.
-cbuffer FacetScene : register(b0)
-{
-    float4 facet_camera_position;  // xyz: the eye, world space
-    float4 facet_ambient;          // rgb: the scene's ambient colour A
-    int facet_light_count;
-    FacetLight facet_lights[FACET_MAX_LIGHTS];
-};
+{{declarations}}
 
-// How much of light `light` (its index in facet_lights) reaches p along l over
+// How much of light `light` (the i of facet_light(i)) reaches p along l over
 // distance d: 1 unlit by shadows, 0 in shadow. Defined by the code that includes
 // this shader: the standalone main's returns 1 (an engine's shadow lookup goes
 // there), the G-buffer shading pass (renderers/harness/gbuffer_shade.hlsl) reads
@@ -28,9 +19,8 @@ float facet_visibility(float3 p, float3 l, float d, int light);
 float3 facet_shade(float3 p, float3 n, float3 v, float3 t)
 {
     float3 radiance = material_ambient * facet_ambient.rgb + material_emission;
-{{mapping}}    for (int i = 0; i < FACET_MAX_LIGHTS; ++i) {
-        if (i >= facet_light_count) break;
-        FacetLight light = facet_lights[i];
+{{mapping}}    for (int i = 0; i < {{count}}; ++i) {
+        FacetLight light = facet_light(i);
         float3 l;
         float d = 1e30;  // directional lights have no distance
         float factor = 1.0;

@@ -1,7 +1,4 @@
-// ---- Lights (MODELS.md "Lights"), set by the application: one uniform buffer at
-// @group(0) @binding(0), laid out as GLSL's std140 FacetScene block of --target glsl450
-// (560 bytes: camera at 0, ambient at 16, light count at 32, the lights from 48, 64 bytes each).
-const FACET_MAX_LIGHTS: i32 = 8;
+// ---- Lights (MODELS.md "Lights"), set by the application
 struct FacetLight {
     position: vec4<f32>,     // xyz: position (point, spot), or the direction the light travels (directional)
                              // w: type, {{point}} point, {{directional}} directional, {{spot}} spot
@@ -9,13 +6,7 @@ struct FacetLight {
     spot: vec4<f32>,         // xyz: unit cone axis s; w: cos(cutoff)
     attenuation: vec4<f32>,  // xyz: c1, c2, c3; w: law, {{no_attenuation}} none, {{inverse_square}} inverse square, {{polynomial}} polynomial
 };
-struct FacetScene {
-    camera_position: vec4<f32>,  // xyz: the eye, world space
-    ambient: vec4<f32>,          // rgb: the scene's ambient colour A
-    light_count: i32,
-    lights: array<FacetLight, 8>,
-};
-@group(0) @binding(0) var<uniform> facet_scene: FacetScene;
+{{declarations}}
 
 // MODELS.md: L = m_a ⊗ A + Σ att(d) · spot · C ⊗ (k_d ⊗ ρ_d + k_s ⊗ ρ_s) + m_e
 // facet_visibility(p, l, d, i): how much of light i reaches p along l over distance d
@@ -23,11 +14,8 @@ struct FacetScene {
 fn facet_shade(p: vec3<f32>, n: vec3<f32>, v: vec3<f32>, surface_tangent: vec3<f32>) -> vec3<f32> {
     var radiance = material_ambient * facet_scene.ambient.rgb + material_emission;
     var t = surface_tangent;
-{{mapping}}    for (var i: i32 = 0; i < FACET_MAX_LIGHTS; i++) {
-        if (i >= facet_scene.light_count) {
-            break;
-        }
-        let light = facet_scene.lights[i];
+{{mapping}}    for (var i: i32 = 0; i < {{count}}; i++) {
+        let light = facet_light(i);
         var l: vec3<f32>;
         var d: f32 = 1e30;  // directional lights have no distance
         var factor: f32 = 1.0;

@@ -1,7 +1,9 @@
 """The wgpu renderer's harness (codegen/renderers/harness/wgpu_render.py) on a hand-made
 G-buffer, without facet's ray caster: a unit sphere seen along −z (orthographic), a Lambert
-material lit by one directional light along −z, the bottom rows in shadow (G-buffer
-visibility 0), one corner "another pass's object" (drawn black) and background elsewhere.
+material lit by one directional light along −z, the bottom rows in shadow (light 0's bit of
+the G-buffer's visibility image 0), one corner "another pass's object" (drawn black) and
+background elsewhere. The light comes from the standalone WGSL's uniform buffer (the renderer's
+own passes read a storage buffer of lights, which the harness binds too: validate.wgpu.* draw it).
 The expected image is k_d · n_z where lit, in facet's order (top row first).
 
     wgpu_harness_test.py FACET SOURCE_DIR OUTDIR [--wrong]
@@ -24,8 +26,9 @@ COLOR = (0.6, 0.3, 0.2)
 
 
 def gbuffer(wrong):
-    """Seven images, rows from the bottom up (the contract), and the expected RGBA, rows from the top."""
-    g = np.zeros((7, H, W, 4), dtype=np.float32)
+    """Six images (the sixth the visibility, one layer), rows from the bottom up (the contract), and the
+    expected RGBA, rows from the top."""
+    g = np.zeros((6, H, W, 4), dtype=np.float32)
     expected = np.zeros((H, W, 4), dtype=np.float32)
     for row in range(H):  # row 0: the bottom
         for x in range(W):
@@ -46,8 +49,8 @@ def gbuffer(wrong):
             g[1, row, x] = (*n, 0.0)
             g[2, row, x] = (0.0, 0.0, 1.0, 0.0)
             g[3, row, x] = (1.0, 0.0, 0.0, 1.0)
-            g[5, row, x] = (lit, 1.0, 1.0, 1.0)
-            g[6, row, x] = (1.0, 1.0, 1.0, 1.0)
+            # Light 0's bit is bit 0 of channel 0; the other bits (lights the scene lacks) all set.
+            g[5, row, x] = (float((1 << 24) - 2) + lit, float((1 << 24) - 1), float((1 << 24) - 1), float((1 << 24) - 1))
             expected[top_row, x] = (*(c * n[2] * lit for c in COLOR), 1.0)
     if wrong:
         g = g[:, ::-1].copy()
@@ -82,16 +85,18 @@ def main():
                           check=True).stdout
     library = code[:code.index("// ---- Standalone entry point")]
     with open(os.path.join(source, "templates", "wgsl", "gbuffer_shade.wgsl"), encoding="utf-8") as f:
-        shading = f.read().replace("{{sample}}", "")
+        shading = f.read().replace("{{sample}}", "").replace("{{bits}}", "24").replace("{{layer_lights}}", "96")
     with open(os.path.join(out, "pass.wgsl"), "w", encoding="utf-8") as f:
         f.write(library + shading)
     g, expected = gbuffer(wrong)
     g.astype("<f4").tofile(os.path.join(out, "gbuffer.raw"))
     with open(os.path.join(out, "uniforms.raw"), "wb") as f:
         f.write(uniforms())
-    job = {"jobs": [{"name": "lambert", "width": W, "height": H, "wgsl": os.path.join(out, "pass.wgsl"),
-                     "uniforms": os.path.join(out, "uniforms.raw"), "gbuffer": os.path.join(out, "gbuffer.raw"),
-                     "textures": [], "output": os.path.join(out, "image")}]}
+    with open(os.path.join(out, "lights.raw"), "wb") as f:
+        f.write(uniforms()[48:112])
+    job = {"jobs": [{"name": "lambert", "width": W, "height": H, "layers": 1, "wgsl": os.path.join(out, "pass.wgsl"),
+                     "uniforms": os.path.join(out, "uniforms.raw"), "lights": os.path.join(out, "lights.raw"),
+                     "gbuffer": os.path.join(out, "gbuffer.raw"), "textures": [], "output": os.path.join(out, "image")}]}
     job_file = os.path.join(out, "job.json")
     with open(job_file, "w") as f:
         json.dump(job, f)

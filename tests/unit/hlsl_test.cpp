@@ -1,7 +1,8 @@
 // The HLSL shading pass over the G-buffer (renderers/hlsl_shading.h) and the HLSL sweep: for every example,
-// textured ones included, it compiles with glslang's HLSL front end to SPIR-V, its seven
-// G-buffer images at set 1, bindings 0–6, the scene's cbuffer at set 0, binding 0 and the
-// material's textures at set 0, bindings 1, 2, …; and the compile fails on a broken pass.
+// textured ones included, it compiles with glslang's HLSL front end to SPIR-V, its six
+// G-buffer images at set 1, bindings 0–5, the scene's cbuffer at set 0, binding 0, the
+// material's textures at set 0, bindings 1, 2, … and the lights' StructuredBuffer at set 2,
+// binding 0; and the compile fails on a broken pass.
 #include <filesystem>
 #include <map>
 #include <regex>
@@ -67,15 +68,20 @@ TEST(HlslShading, EveryExampleCompilesWithTheContractsBindings) {
     // The G-buffer images, at the glsl450 pass's bindings: glslang drops the uv set without
     // textures and the tangent frame without a normal map, the pass reads the others always.
     MaterialProgram p = compile(m);
-    std::map<std::string, int> gbuffer = {{"facet_gbuffer_position", 0}, {"facet_gbuffer_normal", 1},
-                                          {"facet_gbuffer_view", 2},     {"facet_gbuffer_visibility_low", 5},
-                                          {"facet_gbuffer_visibility_high", 6}};
+    std::map<std::string, int> gbuffer = {{"facet_gbuffer_position", 0},
+                                          {"facet_gbuffer_normal", 1},
+                                          {"facet_gbuffer_view", 2},
+                                          {"facet_gbuffer_visibility", 5}};
     if (p.has_textures()) gbuffer["facet_gbuffer_uv"] = 4;
     if (p.normal_mapped()) gbuffer["facet_gbuffer_uv_tangent"] = 3;
     for (const auto& [image, binding] : gbuffer) {
       ASSERT_TRUE(b.count(image)) << name << ": " << image << " not in the SPIR-V";
       EXPECT_EQ(b[image], std::make_pair(1, binding)) << name << ": " << image;
     }
+    // The StructuredBuffer's variable: glslang names its block type facet_lights, the variable facet_lights_0.
+    const auto lights = b.count("facet_lights_0") ? b.find("facet_lights_0") : b.find("facet_lights");
+    ASSERT_NE(lights, b.end()) << name << ": the lights' StructuredBuffer not in the SPIR-V";
+    EXPECT_EQ(lights->second, std::make_pair(2, 0)) << name;
     int textures = 0;
     for (const auto& [resource, at] : b)
       if (resource.rfind("facet_texture_", 0) == 0) {
@@ -105,7 +111,7 @@ TEST(HlslSweep, EveryExampleCompiles) {
 TEST(HlslShading, BrokenPassIsRefused) {
   const std::string good = hlsl_shading_source(load_material((kSource / "examples/materials/phong.json").string()));
   ASSERT_EQ(compile_hlsl(good, "phong_good").run.exit_code, 0);
-  std::string glsl = std::regex_replace(good, std::regex(R"(float4 four = )"), "vec4 four = ");
+  std::string glsl = std::regex_replace(good, std::regex(R"(float4 word = )"), "vec4 word = ");
   ASSERT_NE(glsl, good);
   EXPECT_NE(compile_hlsl(glsl, "phong_vec4").run.exit_code, 0);
   const size_t at = good.find("// Light `light`'s visibility");

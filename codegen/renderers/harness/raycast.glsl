@@ -1,40 +1,58 @@
 
-// ---- facet's validation ray caster: the scene's analytic spheres and squares
-// and its triangle meshes (a BVH in texture buffers), one ray per pixel centre
-// (gl_FragCoord), shadows by shadow rays. Each pass shades the objects of one
-// material; the others are drawn black and the passes are summed. With
-// FACET_GBUFFER defined, main writes the G-buffer (renderers/gbuffer.h) instead of
-// shading: seven RGBA32F images, one draw buffer each, which the other renderers'
-// shading passes (templates/glsl/gbuffer_shade.glsl) read.
-#define FACET_MAX_OBJECTS 16
+// ---- facet's validation ray caster: the scene's analytic spheres and squares and its
+// triangle meshes, one ray per pixel centre (gl_FragCoord), shadows by shadow rays. The
+// objects, any number, are in a texture buffer under a bounding volume hierarchy over them
+// (scene/bvh.h, object_bvh(): the one the reference walks), each mesh's triangles under its
+// own. Each pass shades the objects of one material; the others are drawn black and the
+// passes are summed. With FACET_GBUFFER defined, main writes the G-buffer (renderers/gbuffer.h)
+// instead of shading: the five geometry images and three layers of the visibility image a
+// draw (from facet_first_layer), one draw buffer each, which the other renderers' shading
+// passes (templates/glsl/gbuffer_shade.glsl) read.
+//
+// A draw takes lights facet_light_first … + facet_light_count − 1 (facet_light(i) reads light
+// facet_light_first + i): llvmpipe ends every loop of a shader invocation once they have turned
+// 65,535 times in all (Mesa's gallivm, LP_MAX_TGSI_LOOP_ITERATIONS), and a pixel's shadow rays
+// walk the hierarchies many turns a light (500 lights over 100 objects went past it). main then
+// says so (facet_loops_cut()): the renderer draws the lights again in two halves.
 uniform vec2 facet_resolution;
 uniform vec3 facet_camera_forward;
 uniform vec3 facet_camera_right;
 uniform vec3 facet_camera_up;
-uniform vec2 facet_camera_tan;                       // tan(fov/2) · (aspect, 1); orthographic: half the height · (aspect, 1)
-uniform int facet_camera_orthographic;               // 1: rays parallel to facet_camera_forward from the image plane
+uniform vec2 facet_camera_tan;          // tan(fov/2) · (aspect, 1); orthographic: half the height · (aspect, 1)
+uniform int facet_camera_orthographic;  // 1: rays parallel to facet_camera_forward from the image plane
 uniform int facet_object_count;
-uniform vec4 facet_object_shape[FACET_MAX_OBJECTS];  // sphere: centre, radius; square: centre, half-side;
-                                                     // mesh: first BVH node, first triangle
-uniform vec4 facet_object_normal[FACET_MAX_OBJECTS]; // w: {{sphere}} sphere, {{square}} square (xyz its normal), {{mesh}} mesh
-uniform vec4 facet_object_axis[FACET_MAX_OBJECTS];   // square: the in-plane axis u (v = normal × u)
-uniform int facet_object_shaded[FACET_MAX_OBJECTS];  // 1: shaded in this pass
-uniform samplerBuffer facet_bvh;        // 2 texels a node: (lo, right child or first triangle), (hi, count)
+uniform samplerBuffer facet_objects;    // 4 texels an object, in the hierarchy's order: 0 its shape (sphere: centre,
+                                        // radius; square: centre, half-side; mesh: first BVH node); 1 xyz the
+                                        // square's normal, w the kind ({{sphere}} sphere, {{square}} square, {{mesh}} mesh);
+                                        // 2 xyz the square's in-plane axis u (v = normal × u), w the object's
+                                        // material pass; 3 x its index in the scene
+uniform samplerBuffer facet_scene_bvh;  // 2 texels a node: (lo, right child or first object), (hi, object count)
+uniform samplerBuffer facet_bvh;        // the meshes': 2 texels a node: (lo, right child or first triangle), (hi, count)
 uniform samplerBuffer facet_triangles;  // 6 texels a triangle: p0, p1, p2, n0, n1, n2
 uniform samplerBuffer facet_texcoords;  // 3 texels a triangle: vertex k's (uv set 0, uv set 1)
 uniform samplerBuffer facet_tangents;   // 3 texels a triangle: corner k's tangent (xyz, w), normal-mapped meshes
+uniform int facet_pass;                 // the material pass drawn: its objects are shaded, the others drawn black
+uniform int facet_probe_turns;          // 2: facet_loops_cut()'s loop (a uniform, so that no compiler unrolls it)
 uniform float facet_shadow_offset;      // shadow rays start this far out
 #ifdef FACET_GBUFFER
-layout(location = 0) out vec4 facet_gbuffer_position;    // xyz p; w 1 shaded, 0 drawn black, -1 background
+layout(location = 0) out vec4 facet_gbuffer_position;    // xyz p; w the material pass of the object hit, -1 background
 layout(location = 1) out vec4 facet_gbuffer_normal;      // the unit normal n
 layout(location = 2) out vec4 facet_gbuffer_view;        // v = -(the ray's unit direction)
 layout(location = 3) out vec4 facet_gbuffer_uv_tangent;  // facet_uv_tangent_at(): t, w = ±1
 layout(location = 4) out vec4 facet_gbuffer_uv;          // uv sets 0 (xy) and 1 (zw)
-layout(location = 5) out vec4 facet_gbuffer_visibility_low;   // lights 0-3: 1 lit, 0 in shadow
-layout(location = 6) out vec4 facet_gbuffer_visibility_high;  // lights 4-7
+layout(location = 5) out vec4 facet_gbuffer_visibility_0;  // visibility layer facet_first_layer
+layout(location = 6) out vec4 facet_gbuffer_visibility_1;  // … + 1
+layout(location = 7) out vec4 facet_gbuffer_visibility_2;  // … + 2
+uniform int facet_first_layer;
 #else
 out vec4 facet_color;
 #endif
+
+// Texel k of object i (facet_objects).
+vec4 facet_object(int i, int k)
+{
+    return texelFetch(facet_objects, 4 * i + k);
+}
 
 // The object and triangle being shaded: a sphere or a square is convex and
 // cannot shadow itself where n·l > 0, nor can a flat triangle; a float hit
@@ -112,13 +130,18 @@ FacetHit facet_intersect_mesh(int first_node, vec3 o, vec3 d, float t_min, int s
 FacetHit facet_intersect(int i, vec3 origin, vec3 dir, float t_min, int skip)
 {
     FacetHit none = FacetHit(-1.0, -1, vec2(0.0));
-    vec4 s = facet_object_shape[i];
-    float kind = facet_object_normal[i].w;
+    vec4 s = facet_object(i, 0);
+    float kind = facet_object(i, 1).w;
     if (kind == {{sphere}}.0) {
         vec3 oc = origin - s.xyz;
         float b = dot(oc, dir);
         float c = dot(oc, oc) - s.w * s.w;
-        float disc = b * b - c;
+        // r² − |oc − b·dir|², not b² − c: for a small sphere far away b² and c are nearly equal and
+        // their difference loses most of float's digits (a hit point of a sphere of radius 0.25 at
+        // 13 units was 1e-4 off; Haines et al., "Precision Improvements for Ray/Sphere
+        // Intersection", Ray Tracing Gems, 2019). dir is a unit vector.
+        vec3 h = oc - b * dir;
+        float disc = s.w * s.w - dot(h, h);
         if (disc < 0.0) return none;
         float q = b > 0.0 ? -(b + sqrt(disc)) : -(b - sqrt(disc));  // no cancellation
         float t0 = q, t1 = c / q;
@@ -128,29 +151,93 @@ FacetHit facet_intersect(int i, vec3 origin, vec3 dir, float t_min, int skip)
         return none;
     }
     if (kind == {{mesh}}.0) return facet_intersect_mesh(int(s.x), origin, dir, t_min, skip);
-    vec3 n = facet_object_normal[i].xyz;
+    vec3 n = facet_object(i, 1).xyz;
     float den = dot(dir, n);
     if (den == 0.0) return none;
     float t = dot(s.xyz - origin, n) / den;
     if (!(t > t_min)) return none;
     vec3 q = origin + dir * t - s.xyz;
-    vec3 u = facet_object_axis[i].xyz;
+    vec3 u = facet_object(i, 2).xyz;
     vec3 v = cross(n, u);
     if (abs(dot(q, u)) > s.w || abs(dot(q, v)) > s.w) return none;
     return FacetHit(t, -1, vec2(0.0));
 }
 
-// Every light alike: a shadow ray from p towards it (`light` unused).
+// Does the ray origin + t·dir enter node `node` of the objects' hierarchy at some t in
+// [0, t_max]? Its texels in a and b.
+bool facet_enters(int node, vec3 origin, vec3 inv_d, float t_max, out vec4 a, out vec4 b)
+{
+    a = texelFetch(facet_scene_bvh, node * 2);
+    b = texelFetch(facet_scene_bvh, node * 2 + 1);
+    return facet_ray_box(origin, inv_d, a.xyz, b.xyz, t_max);
+}
+
+// Every light alike: a shadow ray from p towards it (`light` unused), through the objects
+// whose boxes it enters before d.
 float facet_visibility(vec3 p, vec3 l, float d, int light)
 {
-    for (int i = 0; i < FACET_MAX_OBJECTS; ++i) {
-        if (i >= facet_object_count) break;
-        bool own = i == facet_shaded_object;
-        if (own && facet_object_normal[i].w != {{mesh}}.0) continue;
-        FacetHit h = facet_intersect(i, p, l, facet_shadow_offset, own ? facet_shaded_triangle : -1);
-        if (h.t > 0.0 && h.t < d) return 0.0;
+    if (facet_object_count == 0) return 1.0;
+    vec3 inv_d = 1.0 / l;
+    int stack[32];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+        int node = stack[--top];
+        vec4 a, b;
+        if (!facet_enters(node, p, inv_d, d, a, b)) continue;
+        int count = int(b.w);
+        if (count == 0) {
+            if (top < 30) {  // a median split's depth is log2(objects): far below
+                stack[top++] = int(a.w);
+                stack[top++] = node + 1;
+            }
+            continue;
+        }
+        for (int k = 0; k < count; ++k) {
+            int i = int(a.w) + k;
+            bool own = i == facet_shaded_object;
+            if (own && facet_object(i, 1).w != {{mesh}}.0) continue;
+            FacetHit h = facet_intersect(i, p, l, facet_shadow_offset, own ? facet_shaded_triangle : -1);
+            if (h.t > 0.0 && h.t < d) return 0.0;
+        }
     }
     return 1.0;
+}
+
+// The object the ray origin + t·dir (t > 0) meets first, its hit in `best`; -1 when none.
+// Among equally near ones the lowest scene index, as the reference picks.
+int facet_nearest(vec3 origin, vec3 dir, out FacetHit best)
+{
+    best = FacetHit(-1.0, -1, vec2(0.0));
+    int hit = -1;
+    if (facet_object_count == 0) return hit;
+    vec3 inv_d = 1.0 / dir;
+    int stack[32];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+        int node = stack[--top];
+        vec4 a, b;
+        if (!facet_enters(node, origin, inv_d, best.t < 0.0 ? 1e30 : best.t, a, b)) continue;
+        int count = int(b.w);
+        if (count == 0) {
+            if (top < 30) {
+                stack[top++] = int(a.w);
+                stack[top++] = node + 1;
+            }
+            continue;
+        }
+        for (int k = 0; k < count; ++k) {
+            int i = int(a.w) + k;
+            FacetHit h = facet_intersect(i, origin, dir, 0.0, -1);
+            if (h.t > 0.0 && (best.t < 0.0 || h.t < best.t
+                              || (h.t == best.t && facet_object(i, 3).x < facet_object(hit, 3).x))) {
+                best = h;
+                hit = i;
+            }
+        }
+    }
+    return hit;
 }
 
 // docs/textures.md: texture coordinates set `set` at p. A sphere's: longitude from +z
@@ -159,15 +246,15 @@ float facet_visibility(vec3 p, vec3 l, float d, int light)
 // barycentrically.
 vec2 facet_uv(int i, vec3 p, FacetHit h, int set)
 {
-    float kind = facet_object_normal[i].w;
-    vec4 s = facet_object_shape[i];
+    float kind = facet_object(i, 1).w;
+    vec4 s = facet_object(i, 0);
     if (kind == {{sphere}}.0) {
         vec3 d = (p - s.xyz) / s.w;
         return vec2(0.5 + atan(d.x, d.z) / (2.0 * PI), acos(clamp(d.y, -1.0, 1.0)) / PI);
     }
     if (kind == {{square}}.0) {
-        vec3 a = facet_object_axis[i].xyz;
-        vec3 b = cross(facet_object_normal[i].xyz, a);
+        vec3 a = facet_object(i, 2).xyz;
+        vec3 b = cross(facet_object(i, 1).xyz, a);
         vec3 q = p - s.xyz;
         return vec2(0.5 + dot(q, a) / (2.0 * s.w), 0.5 - dot(q, b) / (2.0 * s.w));
     }
@@ -182,12 +269,12 @@ vec2 facet_uv(int i, vec3 p, FacetHit h, int set)
 // barycentric blend of its corners' tangents, w the sign of their blended w.
 vec4 facet_uv_tangent_at(int i, vec3 p, FacetHit h)
 {
-    float kind = facet_object_normal[i].w;
+    float kind = facet_object(i, 1).w;
     if (kind == {{sphere}}.0) {
-        vec3 d = p - facet_object_shape[i].xyz;
+        vec3 d = p - facet_object(i, 0).xyz;
         return vec4(normalize(vec3(d.z, 0.0, -d.x)), 1.0);
     }
-    if (kind == {{square}}.0) return vec4(facet_object_axis[i].xyz, 1.0);
+    if (kind == {{square}}.0) return vec4(facet_object(i, 2).xyz, 1.0);
     int t = h.triangle * 3;
     vec4 c = texelFetch(facet_tangents, t) * (1.0 - h.uv.x - h.uv.y) + texelFetch(facet_tangents, t + 1) * h.uv.x
              + texelFetch(facet_tangents, t + 2) * h.uv.y;
@@ -210,81 +297,120 @@ int facet_camera_hit(out vec3 dir, out FacetHit best)
         facet_ray_origin = facet_camera_position;
         dir = normalize(facet_camera_forward + across);
     }
-    best = FacetHit(-1.0, -1, vec2(0.0));
-    int hit = -1;
-    for (int i = 0; i < FACET_MAX_OBJECTS; ++i) {
-        if (i >= facet_object_count) break;
-        FacetHit h = facet_intersect(i, facet_ray_origin, dir, 0.0, -1);
-        if (h.t > 0.0 && (best.t < 0.0 || h.t < best.t)) { best = h; hit = i; }
-    }
-    return hit;
+    return facet_nearest(facet_ray_origin, dir, best);
 }
 
 // Object `hit`'s unit normal at p (a mesh's: its vertices' normals blended).
 vec3 facet_normal_at(int hit, vec3 p, FacetHit best)
 {
-    float kind = facet_object_normal[hit].w;
-    if (kind == {{sphere}}.0) return normalize(p - facet_object_shape[hit].xyz);
-    if (kind == {{square}}.0) return facet_object_normal[hit].xyz;
+    float kind = facet_object(hit, 1).w;
+    if (kind == {{sphere}}.0) return normalize(p - facet_object(hit, 0).xyz);
+    if (kind == {{square}}.0) return facet_object(hit, 1).xyz;
     int t = best.triangle * 6;
     return normalize(texelFetch(facet_triangles, t + 3).xyz * (1.0 - best.uv.x - best.uv.y)
                      + texelFetch(facet_triangles, t + 4).xyz * best.uv.x
                      + texelFetch(facet_triangles, t + 5).xyz * best.uv.y);
 }
 
+// Whether this invocation ran out of llvmpipe's loop turns, every loop since cut short after
+// one turn: a loop of facet_probe_turns turns then turns once. Elsewhere, never.
+bool facet_loops_cut()
+{
+    int turns = 0;
+    for (int k = 0; k < facet_probe_turns; ++k) ++turns;
+    return turns < facet_probe_turns;
+}
+
 #ifndef FACET_GBUFFER
-void main()
+// This pixel's colour: its lights facet_light_first … (the ambient and emitted terms with the first).
+vec4 facet_pixel()
 {
     vec3 dir;
     FacetHit best;
     int hit = facet_camera_hit(dir, best);
-    if (hit < 0) {
-        facet_color = vec4(0.0);
-        return;
-    }
-    if (facet_object_shaded[hit] == 0) {
-        facet_color = vec4(0.0, 0.0, 0.0, 1.0);
-        return;
-    }
+    if (hit < 0) return vec4(0.0);
+    if (int(facet_object(hit, 2).w) != facet_pass) return vec4(0.0, 0.0, 0.0, 1.0);
     vec3 p = facet_ray_origin + dir * best.t;
     facet_shaded_object = hit;
     facet_shaded_triangle = best.triangle;
     vec3 n = facet_normal_at(hit, p, best);
-{{sample}}    facet_color = vec4(facet_shade(p, n, -dir, facet_tangent(n)), 1.0);
-}
-#else
-// Light i's visibility at p, for every light the scene has (0 beyond them): its
-// direction and distance found as facet_shade finds them.
-float facet_light_visibility(int i, vec3 p)
-{
-    if (i >= facet_light_count) return 0.0;
-    FacetLight light = facet_lights[i];
-    if (light.position.w == {{directional}}.0) return facet_visibility(p, -normalize(light.position.xyz), 1e30, i);
-    vec3 to_light = light.position.xyz - p;
-    float d = length(to_light);
-    return facet_visibility(p, to_light / d, d, i);
+{{sample}}    vec3 color = facet_shade(p, n, -dir, facet_tangent(n));
+    // The renderer sets the ambient colour to 0 past the first lights; the emitted term stays.
+    if (facet_light_first > 0) color -= material_emission;
+    return vec4(color, 1.0);
 }
 
+// Alpha −1: this pixel's loops were cut short (facet_loops_cut()).
 void main()
+{
+    vec4 color = facet_pixel();
+    facet_color = facet_loops_cut() ? vec4(0.0, 0.0, 0.0, -1.0) : color;
+}
+#else
+// 1 when light i reaches p (its shadow ray is clear), 0 in shadow; 0 without a shadow ray
+// where the surface faces away from it by more than {{horizon}} (n·l < -{{horizon}}): the
+// light loop asks only where n·l > 0, and no renderer's rounding of n·l comes near that.
+int facet_light_bit(int i, vec3 p, vec3 n)
+{
+    FacetLight light = facet_light(i);
+    vec3 l;
+    float d = 1e30;  // directional lights have no distance
+    if (light.position.w == {{directional}}.0) {
+        l = -normalize(light.position.xyz);
+    } else {
+        vec3 to_light = light.position.xyz - p;
+        d = length(to_light);
+        l = to_light / d;
+    }
+    if (dot(n, l) < -{{horizon}}) return 0;
+    return facet_visibility(p, l, d, i) > 0.0 ? 1 : 0;
+}
+
+// Layer `layer` of the visibility image at p: light i's bit is bit i mod {{bits}} of channel
+// (i / {{bits}}) mod 4 of layer i / {{layer_lights}}, each channel an integer below 2^{{bits}}
+// (exact in float32); 0 for the lights this draw does not take (another draw's bits add up
+// with these) and beyond the scene's lights.
+vec4 facet_visibility_layer(int layer, vec3 p, vec3 n)
+{
+    vec4 word = vec4(0.0);
+    for (int c = 0; c < 4; ++c) {
+        int bits = 0;
+        for (int k = 0; k < {{bits}}; ++k) {
+            int j = layer * {{layer_lights}} + c * {{bits}} + k - facet_light_first;  // this draw's light j
+            if (j >= 0 && j < facet_light_count) bits |= facet_light_bit(j, p, n) << k;
+        }
+        word[c] = float(bits);
+    }
+    return word;
+}
+
+void facet_cast()
 {
     vec3 dir;
     FacetHit best;
     int hit = facet_camera_hit(dir, best);
-    facet_gbuffer_position = vec4(0.0, 0.0, 0.0, hit < 0 ? -1.0 : 0.0);
+    facet_gbuffer_position = vec4(0.0, 0.0, 0.0, hit < 0 ? -1.0 : facet_object(hit, 2).w);
     facet_gbuffer_normal = facet_gbuffer_view = facet_gbuffer_uv_tangent = facet_gbuffer_uv = vec4(0.0);
-    facet_gbuffer_visibility_low = facet_gbuffer_visibility_high = vec4(0.0);
-    if (hit < 0 || facet_object_shaded[hit] == 0) return;
+    facet_gbuffer_visibility_0 = facet_gbuffer_visibility_1 = facet_gbuffer_visibility_2 = vec4(0.0);
+    if (hit < 0) return;
     vec3 p = facet_ray_origin + dir * best.t;
     facet_shaded_object = hit;
     facet_shaded_triangle = best.triangle;
-    facet_gbuffer_position = vec4(p, 1.0);
-    facet_gbuffer_normal = vec4(facet_normal_at(hit, p, best), 0.0);
+    vec3 n = facet_normal_at(hit, p, best);
+    facet_gbuffer_position.xyz = p;
+    facet_gbuffer_normal = vec4(n, 0.0);
     facet_gbuffer_view = vec4(-dir, 0.0);
     facet_gbuffer_uv_tangent = facet_uv_tangent_at(hit, p, best);
     facet_gbuffer_uv = vec4(facet_uv(hit, p, best, 0), facet_uv(hit, p, best, 1));
-    facet_gbuffer_visibility_low = vec4(facet_light_visibility(0, p), facet_light_visibility(1, p),
-                                        facet_light_visibility(2, p), facet_light_visibility(3, p));
-    facet_gbuffer_visibility_high = vec4(facet_light_visibility(4, p), facet_light_visibility(5, p),
-                                         facet_light_visibility(6, p), facet_light_visibility(7, p));
+    facet_gbuffer_visibility_0 = facet_visibility_layer(facet_first_layer, p, n);
+    facet_gbuffer_visibility_1 = facet_visibility_layer(facet_first_layer + 1, p, n);
+    facet_gbuffer_visibility_2 = facet_visibility_layer(facet_first_layer + 2, p, n);
+}
+
+// The visibility −1 everywhere: this pixel's loops were cut short (facet_loops_cut()).
+void main()
+{
+    facet_cast();
+    if (facet_loops_cut()) facet_gbuffer_visibility_0 = facet_gbuffer_visibility_1 = facet_gbuffer_visibility_2 = vec4(-1.0);
 }
 #endif

@@ -2,11 +2,13 @@
 
     python wgpu_render.py JOB.json
 
-JOB.json: {"jobs": [{"name", "width", "height",
-                     "wgsl": the shading pass (the generated WGSL and harness/gbuffer_shade.wgsl),
+JOB.json: {"jobs": [{"name", "width", "height", "layers": the visibility image's,
+                     "wgsl": the shading pass (the generated WGSL and templates/wgsl/gbuffer_shade.wgsl),
                      "uniforms": the FacetScene uniform buffer's bytes (templates/wgsl/lights.wgsl),
-                     "gbuffer": the seven G-buffer images, float32 RGBA, one after another, each
+                     "lights": the lights' storage buffer's bytes, 64 a light (@group(2) @binding(0)),
+                     "gbuffer": the six G-buffer images, float32 RGBA, one after another, each
                                 width × height texels from the bottom row up (the G-buffer contract),
+                                the sixth (the visibility) `layers` such images,
                      "textures": [{"binding", "width", "height", "file"}]: the material's images,
                                 float32 RGBA from the top row down, at @group(0) @binding(binding),
                      "output": where the image goes: OUTPUT.pfm (RGB) and OUTPUT.alpha.pfm}]}
@@ -27,7 +29,7 @@ import time
 import numpy as np
 import wgpu
 
-GBUFFER_IMAGES = 7
+GBUFFER_IMAGES = 6  # the last, the visibility, a 2D array of the job's "layers"
 
 
 def write_atomic(path, data):
@@ -45,19 +47,19 @@ def write_pfm(path, rows_from_top, channels):
     write_atomic(path, header + body)
 
 
-def float_texture(device, width, height, texels):
-    """An rgba32float texture holding `texels` (height × width × 4 float32, row 0 first)."""
-    tex = device.create_texture(size=(width, height, 1), format=wgpu.TextureFormat.rgba32float,
+def float_texture(device, width, height, texels, layers=1):
+    """An rgba32float texture holding `texels` (layers × height × width × 4 float32, row 0 first)."""
+    tex = device.create_texture(size=(width, height, layers), format=wgpu.TextureFormat.rgba32float,
                                 usage=wgpu.TextureUsage.TEXTURE_BINDING | wgpu.TextureUsage.COPY_DST)
     device.queue.write_texture({"texture": tex}, np.ascontiguousarray(texels, dtype="<f4"),
-                               {"bytes_per_row": width * 16, "rows_per_image": height}, (width, height, 1))
+                               {"bytes_per_row": width * 16, "rows_per_image": height}, (width, height, layers))
     return tex
 
 
-def texture_entry(binding):
+def texture_entry(binding, array=False):
+    dimension = wgpu.TextureViewDimension.d2_array if array else wgpu.TextureViewDimension.d2
     return {"binding": binding, "visibility": wgpu.ShaderStage.FRAGMENT,
-            "texture": {"sample_type": wgpu.TextureSampleType.unfilterable_float,
-                        "view_dimension": wgpu.TextureViewDimension.d2}}
+            "texture": {"sample_type": wgpu.TextureSampleType.unfilterable_float, "view_dimension": dimension}}
 
 
 def read_floats(path, count, what):
@@ -68,7 +70,8 @@ def read_floats(path, count, what):
 
 
 def bind_groups(device, job):
-    """Group 0: the scene's uniform buffer and the material's images; group 1: the G-buffer."""
+    """Group 0: the scene's uniform buffer and the material's images; group 1: the G-buffer;
+    group 2: the lights."""
     w, h = job["width"], job["height"]
     with open(job["uniforms"], "rb") as f:
         uniform_bytes = f.read()
@@ -80,14 +83,24 @@ def bind_groups(device, job):
         tex = float_texture(device, t["width"], t["height"], texels.reshape(t["height"], t["width"], 4))
         entries0.append(texture_entry(t["binding"]))
         binds0.append({"binding": t["binding"], "resource": tex.create_view()})
-    gbuffer = read_floats(job["gbuffer"], GBUFFER_IMAGES * w * h * 4, "the G-buffer").reshape(GBUFFER_IMAGES, h, w, 4)
+    layers = job["layers"]
+    images = GBUFFER_IMAGES - 1 + layers
+    gbuffer = read_floats(job["gbuffer"], images * w * h * 4, "the G-buffer").reshape(images, h, w, 4)
     entries1, binds1 = [], []
     for k in range(GBUFFER_IMAGES):
-        entries1.append(texture_entry(k))
-        binds1.append({"binding": k, "resource": float_texture(device, w, h, gbuffer[k]).create_view()})
-    layouts = [device.create_bind_group_layout(entries=entries0), device.create_bind_group_layout(entries=entries1)]
-    groups = [device.create_bind_group(layout=layouts[0], entries=binds0),
-              device.create_bind_group(layout=layouts[1], entries=binds1)]
+        array = k == GBUFFER_IMAGES - 1
+        tex = float_texture(device, w, h, gbuffer[k:] if array else gbuffer[k], layers if array else 1)
+        entries1.append(texture_entry(k, array))
+        view = tex.create_view(dimension=wgpu.TextureViewDimension.d2_array) if array else tex.create_view()
+        binds1.append({"binding": k, "resource": view})
+    with open(job["lights"], "rb") as f:
+        light_bytes = f.read()
+    lights = device.create_buffer_with_data(data=light_bytes, usage=wgpu.BufferUsage.STORAGE)
+    entries2 = [{"binding": 0, "visibility": wgpu.ShaderStage.FRAGMENT,
+                 "buffer": {"type": wgpu.BufferBindingType.read_only_storage}}]
+    binds2 = [{"binding": 0, "resource": {"buffer": lights, "offset": 0, "size": len(light_bytes)}}]
+    layouts = [device.create_bind_group_layout(entries=e) for e in (entries0, entries1, entries2)]
+    groups = [device.create_bind_group(layout=layouts[i], entries=b) for i, b in enumerate((binds0, binds1, binds2))]
     return layouts, groups
 
 
