@@ -2,7 +2,9 @@
 // facet writes each material's OSL for the scene, a job file naming them, and
 // runs codegen/renderers/harness/cycles_render.py (embedded in the binary) once
 // for every batch of jobs that share a scene and size.
+#include <cmath>
 #include <cstdlib>
+#include <map>
 #include <filesystem>
 #include <set>
 
@@ -14,6 +16,7 @@
 #include "renderers/harness.h"
 #include "renderers/process.h"
 #include "scene/tangents.h"
+#include "targets/texture_code.h"
 #include "targets/targets.h"
 
 namespace facet {
@@ -41,11 +44,53 @@ std::string as_run_from_anywhere(const std::string& python) {
 // The sweep's grid side at most.
 const int kMaxSweepGrid = 512;
 
+// An image's texels without their alpha, as a binary PPM of 16 bits a channel (k/255 and
+// k/65535 are both whole multiples of 1/65535: exact), rows from the top as OpenImageIO reads them.
+void write_rgb_copy(const Texels& t, const std::string& path) {
+  std::string out = fmt::format("P6\n{} {}\n65535\n", t.width, t.height);
+  for (int j = 0; j < t.height; ++j)
+    for (int i = 0; i < t.width; ++i)
+      for (int k = 0; k < 3; ++k) {
+        const long v = std::lround(double(t.at(i, j)[k]) * 65535.0);
+        out += char(v >> 8);
+        out += char(v & 255);
+      }
+  write_file_atomic(path, out);
+}
+
+// Cycles' image reader (OpenImageIO) premultiplies a PNG's colour by its alpha, which facet's
+// rule does not: every image of `materials` whose alpha is below 1 somewhere and whose colour
+// is read gets a copy without alpha beside the shaders (GenerateOptions::image_files).
+std::map<std::string, std::string> rgb_copies(const std::vector<const Material*>& materials, const fs::path& dir,
+                                              const std::string& base) {
+  std::map<std::string, std::string> copies;
+  for (const Material* m : materials) {
+    std::vector<TextureCall> calls = image_calls(compile(*m));
+    if (auto a = alpha_call(*m)) calls.push_back(*a);
+    for (const TextureCall& c : calls) {
+      const Texels& t = *c.texels;
+      bool translucent = false;
+      for (size_t i = 3; i < t.rgba.size() && !translucent; i += 4) translucent = t.rgba[i] < 1;
+      if (c.channel == 3 || !translucent || copies.count(t.path)) continue;
+      const std::string path = (dir / fmt::format("{}_image{}.ppm", base, copies.size())).string();
+      write_rgb_copy(t, path);
+      copies[t.path] = path;
+    }
+  }
+  return copies;
+}
+
 // One job's entry in the batch's job file: one shader per material (the
 // material under test for objects without their own, and each scene material
 // the objects name), and where Blender writes the image.
 json batch_item(const RenderJob& j, const fs::path& dir) {
   std::string base = job_name(j);
+  std::vector<const Material*> used;
+  if (j.material) used.push_back(&*j.material);
+  for (const auto& o : j.scene.objects)
+    if (!o.material.empty()) used.push_back(&j.scene.materials.at(o.material));
+  const std::map<std::string, std::string> copies = j.code_override.empty() ? rgb_copies(used, dir, base)
+                                                                            : std::map<std::string, std::string>{};
   auto write_osl = [&](const Material& m, const std::string& file) {
     std::string path = (dir / file).string();
     if (!j.code_override.empty()) {
@@ -55,6 +100,8 @@ json batch_item(const RenderJob& j, const fs::path& dir) {
       o.target = Target::Osl;
       o.scene = j.scene;
       o.source = m.source;
+      o.fallback = j.material ? &*j.material : nullptr;
+      o.image_files = copies;
       write_file_atomic(path, generate(m, o));
     }
     return path;

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "targets/cfamily.h"
+#include "targets/osl_cutouts.h"
 #include "targets/sweep_grid.h"
 #include "targets/targets.h"
 #include "targets/targets_internal.h"
@@ -26,7 +27,7 @@ targets::CDialect osl_dialect() {
 }
 
 // facet's world is y-up; Blender's is z-up: (x, y, z) → (x, −z, y).
-Vec3 to_blender(const Vec3& p) { return {p.x, -p.z, p.y}; }
+Vec3 to_blender(const Vec3& p) { return targets::osl_blender(p); }
 
 std::string triple(const targets::CPrinter& pr, const char* type, const Vec3& v) {
   return fmt::format("{}({}, {}, {})", type, pr.literal(v.x), pr.literal(v.y), pr.literal(v.z));
@@ -44,9 +45,10 @@ struct ShaderParams {
 };
 
 // Light i's block of the shader, its parameters added to `params`; the lobes read `normal`
-// (Nn, or Ns under a normal map) while Nn decides which lights are above the surface.
+// (Nn, or Ns under a normal map) while Nn decides which lights are above the surface. Where
+// the scene has cut-outs (`cutouts`), shadow rays go on past the surfaces cut out (facet_blocked).
 std::string light_block(const targets::CPrinter& pr, const Light& l, size_t i, ShaderParams& params,
-                        const std::string& constant_args, const char* normal) {
+                        const std::string& constant_args, const char* normal, bool cutouts) {
   std::string id = fmt::format("light{}_", i);
   params.add("color", id + "color", pr.color_literal(l.color));
   std::string body;
@@ -56,7 +58,7 @@ std::string light_block(const targets::CPrinter& pr, const Light& l, size_t i, S
     body += "        float d = 1e30;\n        float factor = 1.0;\n";
   } else {
     params.add("point", id + "position", triple(pr, "point", to_blender(l.position)));
-    body += fmt::format("        vector to_light = {}position - P;\n", id);
+    body += fmt::format("        vector to_light = {}position - Pt;\n", id);
     body += "        float d = length(to_light);\n        vector L = to_light / d;\n";
     const Attenuation& a = l.attenuation;
     if (a.law == Attenuation::Law::None) body += "        float factor = 1.0;\n";
@@ -82,7 +84,8 @@ std::string light_block(const targets::CPrinter& pr, const Light& l, size_t i, S
   }
   const char* kind = l.type == Light::Type::Point ? "point" : l.type == Light::Type::Spot ? "spot" : "directional";
   std::string out = fmt::format("    {{   // light {}: {}\n{}", i, kind, body);
-  out += "        if (factor > 0 && dot(Nn, L) > 0 && !(shadows && trace(P, L, \"maxdist\", d)))\n";
+  out += cutouts ? "        if (factor > 0 && dot(Nn, L) > 0 && !(shadows && facet_blocked(Pt, L, d, shadow_from)))\n"
+                 : "        if (factor > 0 && dot(Nn, L) > 0 && !(shadows && trace(Pt, L, \"maxdist\", d)))\n";
   out += fmt::format("            radiance += factor * {}color * facet_reflect({}, L, V, T{});\n    }}\n", id, normal,
                      constant_args);
   return out;
@@ -99,54 +102,56 @@ struct OslTextures {
 std::string osl_normal_mapping(const targets::CPrinter& pr, const NormalMap& m) {
   return fmt::format(
       "    // The normal map: n_t = normalize((2·rgb − 1) ⊗ (s, s, 1)){2}; the lobes read\n"
-      "    // Ns = normalize(n_t.x·Tu + n_t.y·Bu + n_t.z·Nn), Tu = ∂p/∂u made ⟂ Nn, Bu = w·(Nn × Tu).\n"
+      "    // Ns = normalize(n_t.x·Tu + n_t.y·Bu + n_t.z·Nn), Tu = ∂p/∂u made ⟂ Nn, Bu = w·(Nn × Tu)\n"
+      "    // (uv_tangent and w = uv_handedness: facet_uv_tangent, facet_uv_handedness).\n"
       "    color nm_c = 2 * normal_map - 1;\n"
       "    vector nm_t = normalize(vector({0} * nm_c[0], {1}{0} * nm_c[1], nm_c[2]));\n"
-      "    vector Tu = normalize(facet_uv_tangent - Nn * dot(Nn, facet_uv_tangent));\n"
-      "    vector Bu = facet_uv_handedness * cross(Nn, Tu);\n"
+      "    vector Tu = normalize(uv_tangent - Nn * dot(Nn, uv_tangent));\n"
+      "    vector Bu = uv_handedness * cross(Nn, Tu);\n"
       "    vector Ns = normalize(nm_t[0] * Tu + nm_t[1] * Bu + nm_t[2] * Nn);\n"
       "    T = normalize(T - Ns * dot(Ns, T));  // the anisotropic tangent follows the mapped normal\n",
       pr.literal(m.strength), m.green_down ? "-" : "", m.green_down ? ", y negated (green down)" : "");
 }
 
-OslTextures osl_textures(const targets::CPrinter& pr, const MaterialProgram& p, ShaderParams& params) {
+// The statements that set s0, t0, s1, t1 (glTF's coordinates) and the tangent frame at the
+// shading point, where the shader samples images (`uv`) or has a cut-out of its own (`cut`).
+std::string osl_coordinates(const MaterialProgram& p, bool uv, bool cut) {
+  std::string out;
+  if (uv)
+    out = "    // facet_uv0/1 are Blender's UV (v up); glTF's t = 1 − v.\n"
+          "    float s0 = facet_uv0[0], t0 = 1 - facet_uv0[1];\n"
+          "    float s1 = facet_uv1[0], t1 = 1 - facet_uv1[1];\n";
+  else if (cut)
+    out = "    float s0 = 0, t0 = 0, s1 = 0, t1 = 0;  // read by no image\n";
+  if (p.material.normal_map)
+    out += "    vector uv_tangent = facet_uv_tangent;\n    float uv_handedness = facet_uv_handedness;\n";
+  else if (cut)
+    out += "    vector uv_tangent = 0;  // read by no normal map\n    float uv_handedness = 1;\n";
+  return out;
+}
+
+OslTextures osl_textures(const targets::CPrinter& pr, const MaterialProgram& p, ShaderParams& params,
+                         const GenerateOptions& o, bool uv) {
   OslTextures out;
+  if (uv)
+    out.params = "    vector facet_uv0 = 0,  // texture coordinates: link a UV Map node (Blender's UV, v up)\n"
+                 "    vector facet_uv1 = 0,\n";
   if (!p.has_textures()) return out;
-  out.samples = "    // Textured parameters. facet_uv0/1 are Blender's UV (v up); glTF's t = 1 − v.\n"
-                "    float s0 = facet_uv0[0], t0 = 1 - facet_uv0[1];\n"
-                "    float s1 = facet_uv1[0], t1 = 1 - facet_uv1[1];\n";
+  out.samples = "    // Textured parameters.\n";
   for (const auto& c : image_calls(p)) {
     std::string file = "facet_texture_" + c.name;
-    // An absolute path: Cycles opens it from wherever Blender runs.
-    params.add("string", file, "\"" + std::filesystem::absolute(c.texels->path).lexically_normal().string() + "\"",
-               c.file.c_str());
-    std::string s = fmt::format("s{}", c.uv), t = fmt::format("t{}", c.uv);
-    if (c.transformed) {
-      std::string su = fmt::format("{} * {} + {} * {} + {}", pr.literal(c.a), s, pr.literal(c.b), t, pr.literal(c.ou));
-      std::string tv = fmt::format("{} * {} + {} * {} + {}", pr.literal(c.c), s, pr.literal(c.d), t, pr.literal(c.ov));
-      s = su;
-      t = tv;
-    }
-    out.samples += fmt::format("    float {0}_alpha;\n    color {0}_texel = facet_texture({1}, {2}, {3}, {4}, {5}, {6}, {7}, {8}, {9}, {0}_alpha);\n",
-                               c.name, file, c.texels->width, c.texels->height, s, t, c.wrap[0], c.wrap[1],
-                               c.bilinear ? 1 : 0, c.srgb ? 1 : 0);
-    std::string texel = c.channel < 0   ? c.name + "_texel"
-                        : c.channel == 3 ? c.name + "_alpha"
-                                         : fmt::format("{}_texel[{}]", c.name, c.channel);
+    std::string note = c.file;
+    if (targets::osl_premultiplied(c, o))
+      note += " (its alpha is below 1 somewhere: Cycles premultiplies its colour by it; read a copy without alpha)";
+    params.add("string", file, targets::osl_image_file(c, o), note.c_str());
+    const targets::OslSample sample = targets::osl_sample(pr, c, file);
     std::string type = c.color ? "color" : "float";
-    std::string factor = c.color ? pr.color_literal(c.factor) : pr.literal(c.factor[0]);
-    std::string value = factor + " * " + texel;
-    std::string lo = c.color ? "color(" + pr.literal(c.lo) + ")" : pr.literal(c.lo);
-    std::string hi = c.color ? "color(" + pr.literal(c.hi) + ")" : pr.literal(c.hi);
-    value = std::isfinite(c.hi) ? fmt::format("clamp({}, {}, {})", value, lo, hi) : fmt::format("max({}, {})", value, lo);
-    out.samples += fmt::format("    {} {} = {};\n", type, c.name, value);
+    out.samples += sample.statements + fmt::format("    {} {} = {};\n", type, c.name, sample.value);
     if (c.name == "normal_map") continue;  // read by the mapping below, not by the lobes
     if (!p.uses(c.name)) continue;  // m_a or m_e: read by the shader, not by facet_reflect
     out.reflect_params += ", " + type + " " + c.name;
     out.reflect_args += ", " + c.name;
   }
-  out.params = "    vector facet_uv0 = 0,  // texture coordinates: link a UV Map node (Blender's UV, v up)\n"
-               "    vector facet_uv1 = 0,\n";
   if (p.material.normal_map) {
     out.params += "    vector facet_uv_tangent = 0,  // the normal map's ∂p/∂u, world space (docs/textures.md, Tangent frames)\n"
                   "    float facet_uv_handedness = 1,  // w: B = w·(N × T)\n" +
@@ -208,7 +213,10 @@ std::string generate_osl(const Material& m, const GenerateOptions& o) {
   }
   arguments += constant_args;
   ShaderParams params;
-  const OslTextures textures = osl_textures(pr, p, params);
+  const Scene& scene = o.scene ? *o.scene : default_scene();
+  const targets::OslCutouts cutouts = targets::osl_cutouts(pr, m, scene, o.fallback ? *o.fallback : m, o);
+  const bool uv = p.has_textures() || cutouts.own_uv;
+  const OslTextures textures = osl_textures(pr, p, params, o, uv);
 
   std::string header = render_template(
       "osl/header.osl", {{"name", m.name},
@@ -217,13 +225,12 @@ std::string generate_osl(const Material& m, const GenerateOptions& o) {
                          {"source", o.source},
                          {"description", describe_material(m, "//")}});
   std::string library = render_template("osl/library.osl", {{"functions", functions},
-                                                            {"textures", p.has_textures() ? render_template("osl/textures.osl", {}) : ""},
+                                                            {"textures", p.has_textures() || cutouts.images ? render_template("osl/textures.osl", {}) : ""},
                                                             {"constant_params", constant_params + textures.reflect_params},
                                                             {"inputs", inputs},
                                                             {"arguments", arguments}});
   if (o.library) return header + "\n" + library;
 
-  const Scene scene = o.scene ? *o.scene : default_scene();
   // Shader parameters: the images, the material constants, then the scene's ambient and lights.
   auto color_value = [&](const RGB& c) { return pr.color_literal(c); };
   for (const auto& c : pr.free_constants(p.reflectance))
@@ -237,10 +244,14 @@ std::string generate_osl(const Material& m, const GenerateOptions& o) {
   std::string lights;
   for (size_t i = 0; i < scene.lights.size(); ++i)
     lights += light_block(pr, scene.lights[i], i, params, constant_args + textures.reflect_args,
-                          textures.mapping.empty() ? "Nn" : "Ns");
+                          textures.mapping.empty() ? "Nn" : "Ns", cutouts.any);
   std::string shader = render_template("osl/shader.osl", {{"scene", scene.name},
                                                           {"shader", "facet_" + identifier(m.name)},
                                                           {"parameters", params.text + textures.params},
+                                                          {"cutouts", cutouts.functions},
+                                                          {"coordinates", osl_coordinates(p, uv, !cutouts.test.empty())},
+                                                          {"shadow_from", cutouts.any ? "    float shadow_from = 0;  // facet_blocked: the first trace() skips the shaded primitive\n" : ""},
+                                                          {"cutout", cutouts.test},
                                                           {"samples", textures.samples + textures.mapping},
                                                           {"lights", lights}});
   return header + "\n" + library + shader;

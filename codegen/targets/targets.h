@@ -2,6 +2,7 @@
 #pragma once
 
 #include <functional>
+#include <map>
 #include <optional>
 #include <ostream>
 #include <string>
@@ -33,6 +34,13 @@ struct GenerateOptions {
   bool library = false;        // just the functions (GLSL, OSL) / an include file (POV-Ray)
   std::optional<Scene> scene;  // OSL: its lights; POV-Ray: the whole scene. Default: default_scene()
   std::string source;          // named in the header comment
+  // OSL: the material of the scene's objects that name none (default: the material generated),
+  // whose cut-outs the shader's shadow rays must see too.
+  const Material* fallback = nullptr;
+  // OSL: the file the shader reads an image's colour from (by the image's path, Texels::path)
+  // instead of the image: Cycles' image reader premultiplies a PNG's colour by its alpha, so
+  // facet's Cycles renderer hands it a copy without alpha (its alpha it reads from the image).
+  std::map<std::string, std::string> image_files;
 };
 
 std::string generate(const Material& m, const GenerateOptions& options);

@@ -48,6 +48,11 @@ std::optional<TextureCall> normal_map_call(const MaterialProgram& p) {
   return call_of({"normal_map", "normal_map", ir::Type::Color, p.material.normal_map->value, Range::closed(0, 1)});
 }
 
+std::optional<TextureCall> alpha_call(const Material& m) {
+  if (!m.masked() || !m.alpha.texture) return std::nullopt;
+  return call_of({"alpha", "alpha", ir::Type::Float, m.alpha, alpha_param().range});
+}
+
 std::vector<TextureCall> image_calls(const MaterialProgram& p) {
   std::vector<TextureCall> out = texture_calls(p);
   if (auto n = normal_map_call(p)) out.push_back(*n);

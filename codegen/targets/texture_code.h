@@ -36,5 +36,8 @@ std::vector<TextureCall> texture_calls(const MaterialProgram& p);
 std::optional<TextureCall> normal_map_call(const MaterialProgram& p);
 // Every image the material samples: texture_calls(p), then the normal map's.
 std::vector<TextureCall> image_calls(const MaterialProgram& p);
+// The cut-out's alpha (Material::alpha), named "alpha", where it comes from an image (range
+// [0, 1]); empty where it is a number or the material has no cut-out.
+std::optional<TextureCall> alpha_call(const Material& m);
 
 }  // namespace facet

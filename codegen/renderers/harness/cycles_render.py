@@ -309,7 +309,10 @@ def configure_render(bpy, scene, width, height, exr_path):
     c.filter_width = 0.01
     c.max_bounces = 0
     c.diffuse_bounces = c.glossy_bounces = c.transmission_bounces = 0
-    c.volume_bounces = c.transparent_max_bounces = 0
+    c.volume_bounces = 0
+    # A cut-out (glTF's alphaMode MASK) is a Transparent BSDF where the surface is not there: the
+    # camera path goes on through it as a transparent bounce, which max_bounces 0 does not count.
+    c.transparent_max_bounces = 64
     c.light_sampling_threshold = 0.0
     c.sample_clamp_direct = c.sample_clamp_indirect = 0.0
     c.seed = 0
