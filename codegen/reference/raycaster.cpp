@@ -30,10 +30,13 @@ constexpr double kAlphaMargin = 1e-4;
 // Whether the surface of `o` is there at hit `h` (point p) under the cut-out of material `m`:
 // alpha ≥ cutoff (glTF 2.0 §3.9.4, alphaMode MASK).
 bool present(const Object& o, const Material& m, const Vec3& p, const Hit& h, bool& fragile) {
-  const auto uv = o.uv_at(p, h);
-  const int set = m.alpha.texture ? m.alpha.texture->uv : 0;
   bool edge = false;
-  const double alpha = texture_value(m.alpha, alpha_param().range, uv[size_t(set)][0], uv[size_t(set)][1], &edge)[0];
+  double alpha = m.alpha.number;  // a number: the same everywhere
+  if (m.alpha.texture) {
+    const auto uv = o.uv_at(p, h);
+    const size_t set = size_t(m.alpha.texture->uv);
+    alpha = texture_value(m.alpha, alpha_param().range, uv[set][0], uv[set][1], &edge)[0];
+  }
   fragile = fragile || edge || std::fabs(alpha - *m.alpha_cutoff) < kAlphaMargin;
   return alpha >= *m.alpha_cutoff;
 }

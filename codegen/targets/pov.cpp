@@ -86,6 +86,11 @@ std::string lobe_native(const std::optional<ModelSpec>& lobe) {
 
 std::string material_native(const Material& m) {
   if (compile(m).has_textures()) return "its parameters come from images, which function pigments sample";
+  // POV-Ray's finish turns a normal towards the ray (trace.cpp), so it would light the inside of a
+  // sphere seen through a hole, which facet shades by its own normal, facing away: dark.
+  if (alpha_call(m))
+    return "its cut-out's alpha comes from an image: function pigments cut it out and shade a surface seen from "
+           "behind (a sphere's inside, through a hole) by its own normal, which POV-Ray's finish turns towards the eye";
   std::string why = lobe_native(m.diffuse);
   return why.empty() ? lobe_native(m.specular) : why;
 }
@@ -152,7 +157,7 @@ namespace targets {
 bool pov_table_object(const Scene& s, size_t i, const Material* fallback, PovRoute route, bool native) {
   if (native || route != PovRoute::Fast || s.objects[i].type != Object::Type::Mesh) return false;
   const MaterialProgram p = compile(s.material_of(i, fallback));
-  return !p.uses_tangent() && !p.has_textures();
+  return !p.uses_tangent() && !p.has_textures() && !alpha_call(p.material);
 }
 
 bool pov_grey(const RGB& c) { return c[0] == c[1] && c[1] == c[2]; }
@@ -283,8 +288,10 @@ void PovScene::register_mesh_files() {
 // Each textured parameter's image, written beside the scene (pov_texture.h), and its
 // sampling function; a colour from an image makes the material's pigments per channel.
 void PovScene::register_textures() {
-  for (auto& sh : shadings_)
-    for (const auto& c : image_calls(sh->program)) {
+  for (auto& sh : shadings_) {
+    std::vector<TextureCall> calls = image_calls(sh->program);
+    if (auto a = alpha_call(*sh->material)) calls.push_back(*a);
+    for (const auto& c : calls) {
       PovTexture t;
       t.call = c;
       t.image = int(textures_.size());
@@ -309,9 +316,15 @@ void PovScene::register_textures() {
       }
       ir::FunctionPtr f = pov_sample_function(t);
       sh->printer.add_own(f);
+      if (c.name == "alpha") {  // the cut-out's: read by its Facet_Kept, not by the reflectance
+        sh->alpha = f;
+        sh->alpha_uv = c.uv;
+        continue;
+      }
       sh->samples[c.name] = {f, c.uv};
       if (c.color && (c.channel < 0 || !pov_grey(c.factor))) sh->dependent = true;
     }
+  }
 }
 
 std::string PovScene::texture_declarations() const {
@@ -352,7 +365,10 @@ std::string PovScene::render() {
   if (big)                                                                             // names what lights() measured
     progress(fmt::format("POV-Ray scene written in {:.1f} s",
                          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()));
+  // A camera ray goes on through each surface cut out (transmit 1), one trace level each.
+  const bool cutouts = std::any_of(kept_.begin(), kept_.end(), [](const ir::FunctionPtr& f) { return f != nullptr; });
   return render_template("pov/scene.pov", {{"header", header()},
+                                           {"trace_level", cutouts ? " max_trace_level 64" : ""},
                                            {"passes", std::to_string(count)},
                                            {"last", std::to_string(count - 1)},
                                            {"camera", camera_block(c)},
@@ -366,6 +382,9 @@ std::string PovScene::library() {
   if (m.normal_map)  // its pigment macro takes the user's normal and no tangent frame
     throw InputError({{m.source.empty() ? m.name : m.source, "normal_map",
                        "POV-Ray's --library does not apply normal maps yet (a scene does: docs/textures.md)"}});
+  if (m.masked())  // its pigment macro holds the radiance, which has no transmit
+    throw InputError({{m.source.empty() ? m.name : m.source, "alpha_cutoff",
+                       "POV-Ray's --library does not cut out yet (a scene does: docs/textures.md)"}});
   if (plan_.native) {
     RGB e = sh.emission(s_);
     std::string emission;
@@ -556,6 +575,10 @@ std::string PovScene::native() {
   for (size_t o = 0; o < s_.objects.size(); ++o)
     if (s_.objects[o].type == Object::Type::Mesh) objects += mesh_declarations(o);
   for (size_t o = 0; o < s_.objects.size(); ++o) {
+    if (absent(o)) {
+      objects += fmt::format("// object \"{}\" is cut out everywhere (its alpha is below its cutoff)\n", s_.objects[o].name);
+      continue;
+    }
     const PovShading& sh = shading(o);
     RGB e = sh.emission(s_);
     std::string tex = pov_black(e) ? native_texture(*sh.material, 1)

@@ -253,6 +253,22 @@ ir::FunctionPtr PovScene::emission_function(PovShading& sh) {
   return f;
 }
 
+// {P}Facet_Kept(x, y, z, n[, t], S0, T0, S1, T1): 1 where the cut-out's alpha (Facet_Sample_alpha)
+// is at least its cutoff (glTF 2.0 §3.9.4, alphaMode MASK), 0 where the surface is cut out;
+// called like a light's function, so that each object hands it its texture coordinates.
+ir::FunctionPtr PovScene::kept_function(PovShading& sh) {
+  ir::FunctionBuilder fb("Facet_Kept", "");
+  params(fb, "x", "y", "z");
+  params(fb, "Nx", "Ny", "Nz");
+  if (takes_tangent(sh, *sh.program.reflectance)) params(fb, "Tx", "Ty", "Tz");
+  const std::vector<Expr> uv = uv_params(fb, sh);
+  const size_t set = size_t(sh.alpha_uv);
+  Expr alpha = ir::call(sh.alpha, {uv[2 * set], uv[2 * set + 1]});
+  ir::FunctionPtr f = fb.returns(ir::select(alpha < *sh.material->alpha_cutoff, Expr(0.0), Expr(1.0)));
+  sh.printer.add_own(f);
+  return f;
+}
+
 // `name`: `light` (a light's, or the emission's function) on object o, which takes (x, y, z):
 // the hit point on spheres and squares, uv_mapping's point on meshes.
 ir::FunctionPtr PovScene::object_function(size_t o, const std::string& name, const ir::FunctionPtr& light,
@@ -360,11 +376,14 @@ void PovScene::build_scaffolding() {
                               "{:.2g} % of the cells (highlights and grazing angles: docs/povray-meshes.md)",
                               e.worst, 100 * e.share_over);
   }
-  for (auto& sh : shadings_)
+  for (auto& sh : shadings_) {
     if (sh->material->ambient_texture || sh->material->emission_texture) sh->emission_function = emission_function(*sh);
+    if (sh->alpha) sh->kept = kept_function(*sh);
+  }
   for (size_t o = 0; o < s_.objects.size(); ++o) {
     objects_.emplace_back(s_.lights.size());
     const PovShading& sh = shading(o);
+    kept_.push_back(sh.kept ? object_function(o, fmt::format("Facet_Object{}_Kept", o), sh.kept) : nullptr);
     emissions_.push_back(sh.emission_function ? object_function(o, fmt::format("Facet_Object{}_Emission", o),
                                                                 sh.emission_function)
                                               : nullptr);
@@ -412,6 +431,7 @@ std::string PovScene::functions(bool objects) {
   for (const auto& sh : shadings_) {
     std::vector<ir::FunctionPtr> roots = reflect_roots(*sh, objects);
     if (objects && sh->emission_function) roots.push_back(sh->emission_function);
+    if (objects && sh->kept) roots.push_back(sh->kept);
     for (const auto& f : ir::dependencies(roots))
       if (is_scaffold(*f) && !is_declared(*f)) frames += sh->printer.function(f);
     if (objects && sh->normal_map[0])  // the object functions read the normal map
@@ -444,6 +464,7 @@ std::string PovScene::lights() {
     for (const auto& parts : objects_[o])
       for (const auto& f : parts) objects += shading(o).printer.function(f);
     if (emissions_[o]) objects += shading(o).printer.function(emissions_[o]);
+    if (kept_[o]) objects += shading(o).printer.function(kept_[o]);
   }
   return render_template("pov/lights.pov", {{"functions", functions}, {"objects", objects}});
 }
@@ -557,7 +578,7 @@ std::string PovScene::lit(size_t o, size_t i, double weight, double t, double sh
   // A mesh's pigment sees uv_mapping's (u, v): its object function reads the rest.
   const char* mapping = obj.type == Object::Type::Mesh ? "  uv_mapping\n" : "";
   return object(o, shrink,
-                "texture {\n" + std::string(mapping) + indented(pov_pigment(sh.printer, sh.dependent, p, width), 2) +
+                "texture {\n" + std::string(mapping) + indented(cut(o, pov_pigment(sh.printer, sh.dependent, p, width - 2)), 2) +
                     "  " + kLitFinish + "}\n",
                 mods);
 }
@@ -568,6 +589,18 @@ std::string PovScene::lit(size_t o, size_t i, double weight, double t, double sh
 std::string PovScene::emitting(size_t o, double weight, double t, double shrink, const std::string& mods) {
   const PovShading& sh = shading(o);
   if (!emissions_[o]) return object(o, shrink, emission_texture(sh.emission(s_), weight, t), mods);
+  if (kept_[o]) {  // a colour as a pigment that cut() can wrap: a plain colour map
+    const RGB e = sh.emission(s_);
+    const char* mapping = s_.objects[o].type == Object::Type::Mesh ? "  uv_mapping\n" : "";
+    const std::string color = t > 0 ? fmt::format("rgbt <{}, {}, {}, {}>", pov_number(weight * e[0]),
+                                                  pov_number(weight * e[1]), pov_number(weight * e[2]), pov_number(t))
+                                    : "rgb " + pov_rgb({weight * e[0], weight * e[1], weight * e[2]});
+    if (!emissions_[o])
+      return object(o, shrink,
+                    "texture {\n" + std::string(mapping) + indented(cut(o, "pigment { " + color + " }\n"), 2) +
+                        "  finish { ambient 0 emission Facet_Exposure diffuse 0 specular 0 phong 0 }\n}\n",
+                    mods);
+  }
   const RGB e = sh.emission(s_);  // the factors: a channel they hold at 0 stays black
   PovPigment p;
   p.weight = weight;
@@ -581,16 +614,36 @@ std::string PovScene::emitting(size_t o, double weight, double t, double shrink,
   const size_t width = kPovWidth - indent_ - 4;
   return object(o, shrink,
                 "texture {\n" + std::string(mapping) +
-                    indented(pov_pigment(sh.printer, sh.printer.channel_dependent(emissions_[o]), p, width), 2) +
+                    indented(cut(o, pov_pigment(sh.printer, sh.printer.channel_dependent(emissions_[o]), p, width - 2)), 2) +
                     "  finish { ambient 0 emission Facet_Exposure diffuse 0 specular 0 phong 0 }\n}\n",
                 mods);
+}
+
+bool PovScene::absent(size_t o) const {
+  const Material& m = *shading(o).material;
+  return m.masked() && !m.alpha.texture && m.alpha.number < *m.alpha_cutoff;
+}
+
+// The pigment's own entries under a pigment_map keyed by Facet_Object{o}_Kept: 0 clear, which
+// POV-Ray's camera rays go on through (its transmit 1) and its shadow rays pass (light × 1), 1
+// the pigment. Kept is 0 or 1, never between, so no entry is ever blended with the other.
+std::string PovScene::cut(size_t o, const std::string& pigment) const {
+  if (!kept_[o]) return pigment;
+  const size_t open = pigment.find('{'), close = pigment.rfind('}');
+  std::string body = pigment.substr(open + 1, close - open - 1);
+  while (!body.empty() && (body.front() == ' ' || body.front() == '\n')) body.erase(body.begin());
+  while (!body.empty() && (body.back() == ' ' || body.back() == '\n')) body.pop_back();
+  return fmt::format("pigment {{\n  function {{ {}(x, y, z) }}\n  pigment_map {{\n    [0 rgbt <0, 0, 0, 1>]\n"
+                     "    [1\n{}\n    ]\n  }}\n}}\n",
+                     shading(o).printer.name(kept_[o], 0), indented(body, 6));
 }
 
 // Pass `item`: light `item` alone, or after the lights the emission alone.
 std::string PovScene::pass(size_t item) {
   const size_t n = s_.lights.size();
   std::string out = item < n ? light_source(s_.lights[item]) : "";
-  for (size_t o = 0; o < s_.objects.size(); ++o) out += item < n ? lit(o, item, 1, 0, 0, "") : emitting(o, 1, 0, 0, "");
+  for (size_t o = 0; o < s_.objects.size(); ++o)
+    if (!absent(o)) out += item < n ? lit(o, item, 1, 0, 0, "") : emitting(o, 1, 0, 0, "");
   return out;
 }
 
@@ -613,12 +666,14 @@ std::string PovScene::passes() {
     double shrink = 1e-4 * double(k);
     std::string mods = k + 1 == items ? "" : "no_shadow\n";
     if (k >= n) {
-      for (size_t o = 0; o < s_.objects.size(); ++o) copies += emitting(o, weight, t, shrink, mods);
+      for (size_t o = 0; o < s_.objects.size(); ++o)
+        if (!absent(o)) copies += emitting(o, weight, t, shrink, mods);
       continue;
     }
     indent_ = 2;
     std::string group = light_source(s_.lights[k]);
-    for (size_t o = 0; o < s_.objects.size(); ++o) group += lit(o, k, weight, t, shrink, mods);
+    for (size_t o = 0; o < s_.objects.size(); ++o)
+      if (!absent(o)) group += lit(o, k, weight, t, shrink, mods);
     indent_ = 0;
     copies += "light_group {\n" + indented(group, 2) + "  global_lights off\n}\n";
   }

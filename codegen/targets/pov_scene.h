@@ -50,7 +50,13 @@ struct PovShading {
   // A normal map's raw r, g, b at (S, T) of its set (Facet_Sample_normal_map_r, _g, _b), or null.
   std::array<ir::FunctionPtr, 3> normal_map{};
   int normal_map_uv = 0;
-  bool textured() const { return !samples.empty() || normal_map[0]; }
+  // A cut-out's alpha from an image (glTF's alphaMode MASK): Facet_Sample_alpha(S, T) of its
+  // set, and {P}Facet_Kept(x, y, z, n, …), 1 where alpha ≥ the cutoff, 0 where the surface is
+  // cut out, called like a light's function by each object's Facet_Object{o}_Kept. Null where
+  // the material has no cut-out or its alpha is a number (PovScene::absent).
+  ir::FunctionPtr alpha, kept;
+  int alpha_uv = 0;
+  bool textured() const { return !samples.empty() || normal_map[0] || alpha; }
   int channels() const { return dependent ? 3 : 1; }
   std::string suffix(int ch) const;
   RGB emission(const Scene& s) const;  // m_a ⊗ A + m_e
@@ -105,6 +111,7 @@ class PovScene {
   ir::FunctionPtr reflect_function(PovShading& sh, const ir::FunctionPtr& reflectance, const std::string& suffix);
   ir::FunctionPtr light_function(PovShading& sh, size_t i, const ir::FunctionPtr& reflect, const std::string& suffix);
   ir::FunctionPtr emission_function(PovShading& sh);
+  ir::FunctionPtr kept_function(PovShading& sh);
   // `name`(x, y, z): `light` (a function of the point, its normal and its texture coordinates) on object o;
   // `light_index`: the scene light it is, where there is one (not the emission's function).
   ir::FunctionPtr object_function(size_t o, const std::string& name, const ir::FunctionPtr& light,
@@ -118,6 +125,11 @@ class PovScene {
   void register_mesh_files();
   std::string lit(size_t o, size_t i, double weight, double t, double shrink, const std::string& mods);
   std::string emitting(size_t o, double weight, double t, double shrink, const std::string& mods);
+  // `pigment` (a pigment { … } of object o) cut out where its material's alpha is below its
+  // cutoff: clear there (rgbt 1), which camera and shadow rays pass. Unchanged without a cut-out.
+  std::string cut(size_t o, const std::string& pigment) const;
+  // Whether object o is not there at all: its material's alpha is a number below its cutoff.
+  bool absent(size_t o) const;
   std::string pass(size_t item);
   std::string passes();
   std::string point_shade();
@@ -135,6 +147,7 @@ class PovScene {
   // [o][i]: Facet_Object{o}_Light{i}, or one function per lobe (PovShading::lobes).
   std::vector<std::vector<std::vector<ir::FunctionPtr>>> objects_;
   std::vector<ir::FunctionPtr> emissions_;  // [o]: Facet_Object{o}_Emission where its emission is textured
+  std::vector<ir::FunctionPtr> kept_;       // [o]: Facet_Object{o}_Kept where its material cuts it out by an image
   std::string stem_;
   std::vector<PovMeshData> data_;      // [o]: a mesh's data image on the function route
   std::vector<PovTexture> textures_;   // the images textured parameters read
