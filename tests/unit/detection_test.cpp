@@ -432,7 +432,8 @@ TEST(Detection, OslMeshOnBlendersNormalsFails) {
   const std::string good = generate(f.material, o);
   std::vector<RenderJob> jobs = {f.job, f.job};
   jobs[0].code_override = good;
-  jobs[1].code_override = inject(good, "facet_normal != 0 ? normalize(facet_normal) : normalize(N)", "normalize(N)");
+  jobs[1].code_override = inject(
+      good, "facet_normal != 0 ? normalize(facet_normal) : (backfacing() ? -normalize(N) : normalize(N))", "normalize(N)");
   jobs[1].material->name = "ward_on_blenders_normals";
   std::vector<RenderOutcome> r = make_renderer("osl")->render(jobs);
   ASSERT_EQ(r.size(), 2u);
@@ -441,6 +442,78 @@ TEST(Detection, OslMeshOnBlendersNormalsFails) {
             << "\n";
   EXPECT_TRUE(ok.pass) << "max |Δ|/max(1,|ref|) " << ok.metrics.max_excess;
   EXPECT_FALSE(bad.pass) << "max |Δ|/max(1,|ref|) " << bad.metrics.max_excess;
+}
+
+// ---------------------------------------------------------------- cut-outs
+
+// A cut-out (glTF's alphaMode MASK: the leaf's alpha, bilinear, repeated 3 × 2, cutoff 0.5) on
+// every object of the shadows scene: the sphere's holes show its far side and the floor, and
+// the cut-out occluder and sphere cast cut-out shadows. Its colour is a number, so that Cycles
+// reads no image's colour (which a code override would read premultiplied: cycles.cpp).
+Fixture cutout_fixture(const std::string& renderer) {
+  Fixture f = fixture("lambert", renderer, "materials", "shadows");
+  const std::string leaf = (kSource / "examples/textures/leaf.png").string();
+  f.material = parse_material(
+      {{"name", "cutout"},
+       {"diffuse", {{"model", "lambert"}, {"color", {0.55, 0.7, 0.3}}}},
+       {"specular", {{"model", "blinn_phong"}, {"color", 0.2}, {"n", 40}}},
+       {"alpha", {{"texture", leaf}, {"channel", "a"}, {"filter", "bilinear"}, {"transform", {{"scale", {3, 2}}}}}},
+       {"alpha_cutoff", 0.5}},
+      "cutout.json");
+  f.reference = render_reference(f.material, f.scene, kSize, kSize);
+  f.job.material = f.material;
+  return f;
+}
+
+struct WrongCutout {
+  const char* what;
+  std::string code;
+};
+
+// Each wrong variant fails the judgement the right code passes.
+void expect_cutout_faults_fail(const Fixture& f, const std::string& renderer, const std::string& good,
+                               const std::vector<WrongCutout>& wrongs) {
+  std::vector<RenderJob> jobs = {f.job};
+  jobs[0].code_override = good;
+  for (const auto& w : wrongs) {
+    jobs.push_back(f.job);
+    jobs.back().code_override = w.code;
+    jobs.back().material->name = fmt::format("cutout_wrong_{}", jobs.size());
+  }
+  std::vector<RenderOutcome> out = make_renderer(renderer)->render(jobs);
+  ASSERT_EQ(out.size(), jobs.size());
+  for (size_t k = 0; k < out.size(); ++k) {
+    ComparisonRow row = judged(f, out[k]);
+    std::cout << renderer << ", " << (k ? wrongs[k - 1].what : "right") << ": " << row.metrics.over
+              << " pixels over, worst " << row.metrics.max_excess << ", coverage differs on "
+              << 100 * row.coverage_mismatch << " %\n";
+    if (k == 0) EXPECT_TRUE(row.pass) << renderer << ": " << row.metrics.max_excess;
+    else EXPECT_FALSE(row.pass) << renderer << ", " << wrongs[k - 1].what;
+  }
+}
+
+TEST(Detection, OslCutoutFailsWhenWrong) {
+  Fixture f = cutout_fixture("osl-cutout");
+  const std::string good = osl_source(f.material, f.scene);
+  expect_cutout_faults_fail(
+      f, "osl", good,
+      {{"the cutoff compared the wrong way", inject(good, "if (!(facet_alpha0(s0, t0, s1, t1) >= 0.5))",
+                                                    "if (!(facet_alpha0(s0, t0, s1, t1) < 0.5))")},
+       {"shadows that ignore the cut-out", inject(good, "if (facet_kept_hit(L, start + t, d)) return 1;", "return 1;")},
+       {"a sphere's far side past its holes ignored",
+        inject(good, "if (!facet_far_side(Pt, Nn, s0, t0, s1, t1, uv_tangent, uv_handedness, shadow_from))", "if (1)")},
+       {"a sphere's far side ignored by shadow rays", inject(good, "if (along + through >= d) return 0;", "return 0;")}});
+}
+
+TEST(Detection, PovCutoutFailsWhenWrong) {
+  Fixture f = cutout_fixture("pov-cutout");
+  const std::string good = generate_pov_files(f.scene, &f.material, "cutout", PovRoute::Auto, job_name(f.job)).code;
+  expect_cutout_faults_fail(
+      f, "pov", good,
+      {{"the cutoff compared the wrong way", inject(good, "select(Facet_Sample_alpha(S0, T0) - 0.5, 0, 1)",
+                                                    "select(Facet_Sample_alpha(S0, T0) - 0.5, 1, 0)")},
+       {"cut-outs that cast no shadow", inject_all(good, "  texture {\n", "  no_shadow\n  texture {\n")},
+       {"holes that block shadow rays (transmit 0.5)", inject_all(good, "[0 rgbt <0, 0, 0, 1>]", "[0 rgbt <0, 0, 0, 0.5>]")}});
 }
 
 // ---------------------------------------------------------------- POV-Ray in one run
@@ -734,7 +807,7 @@ TEST(Detection, MeshTangentsHandednessReachesEveryRenderer) {
     const std::string good = generate(f.material, o);
     std::vector<RenderJob> jobs(2, f.job);
     jobs[0].code_override = good;
-    jobs[1].code_override = inject(good, "vector Bu = facet_uv_handedness * cross(Nn, Tu);", "vector Bu = cross(Nn, Tu);");
+    jobs[1].code_override = inject(good, "vector Bu = uv_handedness * cross(Nn, Tu);", "vector Bu = cross(Nn, Tu);");
     jobs[1].material->name += "_w_ignored";
     std::vector<RenderOutcome> r = make_renderer("osl")->render(jobs);
     ASSERT_EQ(r.size(), 2u);
