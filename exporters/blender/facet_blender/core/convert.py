@@ -285,10 +285,14 @@ def _principled_textures(node, result, weight, base, metallic, transmission, f0_
     image is used with the unlinked Metallic, and that is reported."""
     base_tex, metal_tex, rough_tex = maps[:3]
     keep = (1.0 - transmission) * weight
-    if base_tex and metal_tex:
-        result.note(APPROXIMATE, f"{node.label}: Base Color and Metallic are both images; k_d = Base·(1−Metallic) "
-                                 f"and f0 = mix(F0, Base, Metallic) need their product per texel, which the add-on "
-                                 f"does not bake: Base Color's image with the unlinked Metallic {metallic:.3g} is used")
+    if base_tex and metal_tex and _same_coordinates(base_tex, metal_tex):
+        _bake_base_and_metal(result, node, base_tex, metal_tex, keep, f0_dielectric, spec_model)
+        base_tex = metal_tex = None
+    elif base_tex and metal_tex:
+        result.note(APPROXIMATE, f"{node.label}: Base Color and Metallic are images read through different UV maps "
+                                 f"or Mapping nodes; k_d = Base·(1−Metallic) and f0 = mix(F0, Base, Metallic) need "
+                                 f"their product per texel, which the add-on bakes only on one grid: Base Color's "
+                                 f"image with the unlinked Metallic {metallic:.3g} is used")
         metal_tex = None
     if base_tex:
         _bind(result, ("diffuse", "color"), "lambert", base_tex, (1.0 - metallic) * keep)
@@ -315,6 +319,30 @@ def _principled_textures(node, result, weight, base, metallic, transmission, f0_
             result.note(EXACT, f"{node.label}: f0 = mix(F0, Base, Metallic) baked from image '{metal_tex['image']}'")
         if rough_tex:
             _alpha_texture(result, node, "specular", spec_model, rough_tex)
+
+
+def _same_coordinates(a, b):
+    """Whether two texture specs read the same texture coordinates (UV map and Mapping)."""
+    return a.get("uv_map", "") == b.get("uv_map", "") and a.get("transform", {}) == b.get("transform", {})
+
+
+def _bake_base_and_metal(result, node, base_tex, metal_tex, keep, f0_dielectric, spec_model):
+    """k_d = Base·(1 − M)·keep and f0 = F0·(1 − M) + Base·M baked texel by texel from a Base Color
+    image and a Metallic image (textures.bake's "metal_mix"), on the Base Color image's grid:
+    what `facet import-gltf` bakes from glTF's baseColorTexture and metallicRoughnessTexture."""
+    scale = base_tex.get("scale", 1.0)
+    base_scale = scale if isinstance(scale, list) else [scale] * 3
+    metal = {k: metal_tex.get(k) for k in ("image", "channel", "colorspace", "filter", "wrap")}
+    common = {"op": "metal_mix", "metal": metal, "metal_scale": float(metal_tex.get("scale", 1.0)), "rgb": True}
+    spec = {k: v for k, v in base_tex.items() if k != "scale"}
+    _bind(result, ("diffuse", "color"), "lambert", spec,
+          derive=dict(common, part="kd", base_scale=[c * keep for c in base_scale]))
+    if spec_model:
+        _bind(result, ("specular", "fresnel", "f0"), spec_model, spec,
+              derive=dict(common, part="f0", base_scale=base_scale, dielectric=[float(x) for x in f0_dielectric]))
+    result.note(EXACT, f"{node.label}: k_d = Base·(1−Metallic) and f0 = mix(F0, Base, Metallic) baked texel by texel "
+                       f"from images '{base_tex['image']}' and '{metal['image']}' (glTF's base colour and "
+                       f"metallic–roughness maps, as facet import-gltf bakes them)")
 
 
 def principled_bsdf(node, weight, result):
