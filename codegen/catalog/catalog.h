@@ -218,7 +218,7 @@ struct ParamForm {
 // model's name.
 enum class ObjectType { Sphere, Plane, Mesh };
 enum class LightType { Point, Directional, Spot };
-enum class AttenuationLaw { None, InverseSquare, Polynomial };
+enum class AttenuationLaw { None, InverseSquare, Polynomial, InverseSquareRange };
 
 struct ModelDef {
   std::string section;   // diffuse, specular, fresnel, geometry, distribution, modifier, light, attenuation, term
@@ -385,6 +385,8 @@ ir::FunctionPtr toon(ir::Type rho);       // smoothstep over [cutoff ± width/2]
 ir::FunctionPtr toon_hard(ir::Type rho);  // width 0: a step at cutoff
 ir::FunctionPtr attenuation_inverse_square();
 ir::FunctionPtr attenuation_polynomial();
+// KHR_lights_punctual's recommended window: att(d) = clamp(1 − (d/r)⁴, 0, 1) / d².
+ir::FunctionPtr attenuation_inverse_square_range();
 ir::FunctionPtr spot_cone();
 }  // namespace terms
 

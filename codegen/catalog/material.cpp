@@ -45,10 +45,46 @@ ParamDef tangent_axis_param() {
   return p;
 }
 
-const std::vector<std::string> kMaterialKeys = {"$schema", "name", "ambient", "emission",
-                                                "diffuse", "specular", "tangent_axis", "normal_map"};
+const std::vector<std::string> kMaterialKeys = {"$schema",  "name",         "ambient",    "emission", "diffuse",
+                                                "specular", "tangent_axis", "normal_map", "alpha",    "alpha_cutoff"};
+
+ParamDef alpha_cutoff_param() {
+  ParamDef p;
+  p.name = "alpha_cutoff";
+  p.kind = ParamKind::Number;
+  p.doc = "glTF's alphaMode MASK: the surface is there only where alpha ≥ alpha_cutoff (glTF's alphaCutoff); "
+          "absent: opaque";
+  p.range = Range::closed(0, 1);
+  p.fallback.number = 0.5;
+  return p;
+}
+
+// "alpha" and "alpha_cutoff" of `m` (the cut-out), from key `key`.
+void parse_alpha(const std::string& key, const json& val, Material& m, Checker& check, DiagnosticSink& sink) {
+  if (key == "alpha_cutoff") {
+    if (auto c = check.ranged(val, key, alpha_cutoff_param())) m.alpha_cutoff = *c;
+  } else if (val.is_object()) {  // {"texture": …, "channel": "a"}: factor × the image's channel
+    if (auto v = parse_texture_value(val, key, alpha_param(), sink)) m.alpha = *v;
+  } else if (auto c = check.ranged(val, key, alpha_param())) {
+    m.alpha.number = *c;
+  }
+}
 
 }  // namespace
+
+const ParamDef& alpha_param() {
+  static const ParamDef p = [] {
+    ParamDef a;
+    a.name = "alpha";
+    a.kind = ParamKind::Number;
+    a.doc = "the coverage alpha_cutoff compares (glTF's base colour alpha): a number, or an image's channel × a factor";
+    a.range = Range::closed(0, 1);
+    a.texturable = true;
+    a.fallback = Material::opaque_alpha();
+    return a;
+  }();
+  return p;
+}
 
 Material parse_material(const json& doc, const std::string& file) {
   DiagnosticSink sink(file);
@@ -83,6 +119,8 @@ Material parse_material(const json& doc, const std::string& file) {
       if (v) m.tangent_axis = *v;
     } else if (key == "normal_map") {
       m.normal_map = parse_normal_map(val, key, sink);
+    } else if (key == "alpha" || key == "alpha_cutoff") {
+      parse_alpha(key, val, m, check, sink);
     } else if (key == "diffuse" || key == "specular") {
       auto spec = check.model(val, key, key, nullptr);
       if (spec) (key == "diffuse" ? m.diffuse : m.specular) = *spec;
@@ -193,6 +231,8 @@ json to_json(const Material& m) {
   if (m.specular) j["specular"] = spec_json(*m.specular, true);
   j["tangent_axis"] = m.tangent_axis;
   if (m.normal_map) j["normal_map"] = normal_map_json(*m.normal_map);
+  if (m.alpha.texture || m.alpha.number != 1) j["alpha"] = value_json(m.alpha);
+  if (m.alpha_cutoff) j["alpha_cutoff"] = *m.alpha_cutoff;
   return j;
 }
 
@@ -331,7 +371,9 @@ json material_schema() {
                 {"diffuse", lobes["diffuse"]},
                 {"specular", lobes["specular"]},
                 {"tangent_axis", param_schema(tangent_axis_param())},
-                {"normal_map", normal_map_schema()}};
+                {"normal_map", normal_map_schema()},
+                {"alpha", param_schema(alpha_param())},
+                {"alpha_cutoff", param_schema(alpha_cutoff_param())}};
   return {{"$schema", "https://json-schema.org/draft/2020-12/schema"},
           {"$id", "https://facet.invalid/schemas/material.schema.json"},
           {"title", "facet material"},

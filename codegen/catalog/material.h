@@ -31,7 +31,23 @@ struct Material {
   // A tangent-space normal map (catalog/texture.h, docs/textures.md): both lobes shade
   // with the mapped normal.
   std::optional<NormalMap> normal_map;
+  // glTF's alphaMode MASK (glTF 2.0 §3.9.4): where `alpha_cutoff` is set the surface is there
+  // only where alpha ≥ alpha_cutoff, and camera and shadow rays pass where it is not. `alpha`
+  // is a number in [0, 1] or an image's channel times a factor (catalog/texture.h), read only
+  // with a cutoff. Without one the surface is opaque.
+  Value alpha = opaque_alpha();
+  std::optional<double> alpha_cutoff;
+  bool masked() const { return alpha_cutoff.has_value(); }
+  static Value opaque_alpha() {
+    Value v;
+    v.kind = ParamKind::Number;
+    v.number = 1;
+    return v;
+  }
 };
+
+// The parameter "alpha" is: a number in [0, 1], texturable.
+const ParamDef& alpha_param();
 
 // Checks `doc` against the catalog; every problem becomes a Diagnostic naming
 // `file` and the key path. Throws InputError with all of them.

@@ -64,6 +64,7 @@ bool MaterialProgram::uses(const std::string& input) const {
 
 std::vector<ir::FunctionPtr> MaterialProgram::functions() const {
   return ir::dependencies({terms::attenuation_inverse_square(), terms::attenuation_polynomial(),
+                           terms::attenuation_inverse_square_range(),
                            terms::spot_cone(), reflectance});
 }
 

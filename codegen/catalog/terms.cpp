@@ -390,6 +390,19 @@ FunctionPtr attenuation_polynomial() {
   return f;
 }
 
+FunctionPtr attenuation_inverse_square_range() {
+  static const FunctionPtr f = [] {
+    FunctionBuilder fb("attenuation_inverse_square_range",
+                       "KHR_lights_punctual (Khronos 2018), \"Range Property\": att(d) = clamp(1 − (d/r)⁴, 0, 1) / d²",
+                       "The inverse-square law, windowed to 0 at the light's range r.");
+    Expr d = fb.param("d"), r = fb.param("range");
+    Expr x = fb.let("x", d / r);
+    Expr x2 = fb.let("x2", x * x);
+    return fb.returns(clamp(1.0 - x2 * x2, 0.0, 1.0) / (d * d));
+  }();
+  return f;
+}
+
 FunctionPtr spot_cone() {
   static const FunctionPtr f = [] {
     FunctionBuilder fb("spot_cone",

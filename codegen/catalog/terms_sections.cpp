@@ -155,6 +155,16 @@ void add_lights(std::vector<ModelDef>& all) {
     m.attenuation_law = AttenuationLaw::Polynomial;
     all.push_back(m);
   }
+  {
+    auto m = entry("attenuation", "inverse_square_range", "Inverse square within a range",
+                   "KHR_lights_punctual (Khronos 2018), \"Range Property\"", "att(d) = clamp(1 − (d/r)⁴, 0, 1) / d²",
+                   "Written {\"model\": \"inverse_square_range\", \"range\": r}: the physical falloff, windowed "
+                   "smoothly to 0 at the light's range r, as glTF's KHR_lights_punctual recommends for its `range`.");
+    m.params = {number("range", "the distance r at which the light reaches 0", Range::positive_coordinate(), 10)};
+    m.pov = approximate("in the pigment (no POV-Ray fade has the window)");
+    m.attenuation_law = AttenuationLaw::InverseSquareRange;
+    all.push_back(m);
+  }
 }
 
 namespace {

@@ -228,6 +228,7 @@ Reference::Reference(const Material& m) : program_(compile(m)) {
   if (program_.specular) specular_ = prepare(program_.specular);
   inverse_square_ = interp_.prepare(terms::attenuation_inverse_square());
   polynomial_ = interp_.prepare(terms::attenuation_polynomial());
+  windowed_ = interp_.prepare(terms::attenuation_inverse_square_range());
   spot_ = interp_.prepare(terms::spot_cone());
 }
 
@@ -242,6 +243,9 @@ double Reference::light_factor(const Light& light, const Vec3& l, double d) cons
   } else if (a.law == Attenuation::Law::Polynomial) {
     RGB args[] = {f(d), f(a.constant), f(a.linear), f(a.quadratic)};
     factor = interp_.run(polynomial_, args)[0];
+  } else if (a.law == Attenuation::Law::InverseSquareRange) {
+    RGB args[] = {f(d), f(a.range)};
+    factor = interp_.run(windowed_, args)[0];
   }
   if (light.type == Light::Type::Spot) {
     RGB args[] = {f(-dot(l, light.direction)), f(std::cos(light.cutoff * M_PI / 180.0)), f(light.exponent)};

@@ -95,7 +95,7 @@ class Reference {
   MaterialProgram program_;
   Interpreter interp_;
   Prepared reflectance_, diffuse_, specular_;
-  int inverse_square_ = -1, polynomial_ = -1, spot_ = -1;
+  int inverse_square_ = -1, polynomial_ = -1, windowed_ = -1, spot_ = -1;
 };
 
 }  // namespace facet

@@ -17,16 +17,46 @@ namespace {
 struct SceneHit {
   Hit hit;
   int object = -1;
+  bool fragile = false;  // a cut-out's alpha at the hit, or on the way to it, lies at its cutoff
 };
+
+// Per object: its material where that cuts the surface out (Material::masked()), else null.
+using Cutouts = std::vector<const Material*>;
+
+// A cut-out's alpha this close to its cutoff keeps or drops the surface as each renderer's
+// rounding goes (float32 sampling): such pixels are fragile, as grazing shadow rays are.
+constexpr double kAlphaMargin = 1e-4;
+
+// Whether the surface of `o` is there at hit `h` (point p) under the cut-out of material `m`:
+// alpha ≥ cutoff (glTF 2.0 §3.9.4, alphaMode MASK).
+bool present(const Object& o, const Material& m, const Vec3& p, const Hit& h, bool& fragile) {
+  const auto uv = o.uv_at(p, h);
+  const int set = m.alpha.texture ? m.alpha.texture->uv : 0;
+  bool edge = false;
+  const double alpha = texture_value(m.alpha, alpha_param().range, uv[size_t(set)][0], uv[size_t(set)][1], &edge)[0];
+  fragile = fragile || edge || std::fabs(alpha - *m.alpha_cutoff) < kAlphaMargin;
+  return alpha >= *m.alpha_cutoff;
+}
+
+// The nearest hit of `o` beyond t_min (skipping triangle `skip`) that its cut-out keeps: each
+// hit cut out, the search goes on past it.
+Hit kept_hit(const Object& o, const Material* cut, const Vec3& origin, const Vec3& dir, double t_min, int skip,
+             bool& fragile) {
+  Hit h = o.hit(origin, dir, t_min, skip);
+  while (cut && h.ok() && !present(o, *cut, origin + dir * h.t, h, fragile)) h = o.hit(origin, dir, h.t, h.triangle);
+  return h;
+}
 
 // The object the ray meets first (the lowest index among equally near ones, as a loop over
 // the objects in order finds it), walking the objects' hierarchy.
-SceneHit nearest(const Scene& s, const ObjectBvh& bvh, const Vec3& o, const Vec3& d) {
+SceneHit nearest(const Scene& s, const ObjectBvh& bvh, const Cutouts& cut, const Vec3& o, const Vec3& d) {
   SceneHit best;
   bvh.walk(o, d, [&] { return best.object < 0 ? INFINITY : best.hit.t; }, [&](uint32_t i) {
-    Hit h = s.objects[i].hit(o, d, 0);
+    bool fragile = false;
+    Hit h = kept_hit(s.objects[i], cut[i], o, d, 0, -1, fragile);
+    best.fragile = best.fragile || fragile;
     if (h.ok() && (best.object < 0 || h.t < best.hit.t || (h.t == best.hit.t && int(i) < best.object)))
-      best = {h, int(i)};
+      best = {h, int(i), best.fragile};
     return true;
   });
   return best;
@@ -61,14 +91,17 @@ void mesh_occlusion(const Mesh& m, const Vec3& o, const Vec3& d, double t_min, d
 // it clearly: which side such a ray falls on is a matter of rounding. Only the objects
 // whose boxes the segment enters can block it or come that close (scene/bvh.h,
 // object_box); once one blocks it clearly, the others change nothing.
-bool blocked(const Scene& s, const ObjectBvh& bvh, int self, int self_triangle, const Vec3& p, const Vec3& l,
-             double dist, double offset, double close, bool& grazing) {
+bool blocked(const Scene& s, const ObjectBvh& bvh, const Cutouts& cut, int self, int self_triangle, const Vec3& p,
+             const Vec3& l, double dist, double offset, double close, bool& grazing) {
   bool hit = false, clear = false, near = false;
   bvh.walk(p, l, [&] { return dist; }, [&](uint32_t i) {
     const Object& o = s.objects[i];
     bool own = int(i) == self;
     if (own && o.convex()) return true;
-    if (o.type == Object::Type::Sphere) {
+    if (cut[i]) {  // a cut-out blocks where a hit before the light is kept
+      const Hit h = kept_hit(o, cut[i], p, l, offset, own ? self_triangle : -1, near);
+      if (h.ok() && h.t < dist) hit = clear = true;
+    } else if (o.type == Object::Type::Sphere) {
       // Closest approach of the ray's line to the centre, ahead of p.
       double along = dot(o.center - p, l);
       double miss = length(o.center - (p + l * along));
@@ -150,14 +183,15 @@ ShadingFrame shading_frame(const Object& obj, const Reference& ref, const Corner
 }
 
 // One pixel: the nearest object at its centre, shaded by every light that reaches it.
-void shade_pixel(const Scene& s, const ObjectBvh& bvh, const std::vector<const Reference*>& shading,
+void shade_pixel(const Scene& s, const ObjectBvh& bvh, const Cutouts& cut, const std::vector<const Reference*>& shading,
                  const std::vector<CornerTangents>& tangents, double offset, double close, int x, int y, Render& r) {
   const int width = r.image.width, height = r.image.height;
   Vec3 eye;
   Vec3 dir = s.camera.ray(x, y, width, height, &eye);
-  SceneHit h = nearest(s, bvh, eye, dir);
-  if (h.object < 0) return;
+  SceneHit h = nearest(s, bvh, cut, eye, dir);
   size_t idx = size_t(y) * size_t(width) + size_t(x);
+  r.grazing[idx] = h.fragile;
+  if (h.object < 0) return;
   r.object[idx] = h.object;
   const Object& obj = s.objects[size_t(h.object)];
   const Reference& ref = *shading[size_t(h.object)];
@@ -166,7 +200,7 @@ void shade_pixel(const Scene& s, const ObjectBvh& bvh, const std::vector<const R
   Vec3 v = -dir;
   ShadingFrame f = shading_frame(obj, ref, tangents[size_t(h.object)], p, h.hit, v);
   RGB L = ref.emitted(f.textured, s.ambient);
-  bool grazing = f.grazing;
+  bool grazing = f.grazing || h.fragile;
   uint8_t seen = dot(f.n, v) > 0 ? Render::kFacesCamera : 0;
   for (const auto& light : s.lights) {
     Vec3 l;
@@ -180,7 +214,7 @@ void shade_pixel(const Scene& s, const ObjectBvh& bvh, const std::vector<const R
       continue;
     }
     if (m.normal_map && dot(f.n, l) < kNormalMapHorizon && dot(f.shading_n, l) > 0) grazing = true;
-    if (blocked(s, bvh, h.object, h.hit.triangle, p, l, d, offset, close, grazing)) continue;
+    if (blocked(s, bvh, cut, h.object, h.hit.triangle, p, l, d, offset, close, grazing)) continue;
     seen |= Render::kReceivesLight;
     ShadingInputs in = shading_inputs(f.shading_n, l, v, f.t);
     in.textured = f.textured.textured;
@@ -207,6 +241,9 @@ Render render(const Material* fallback, const Scene& s, int width, int height, i
     }
     shading[i] = made[m];
   }
+  Cutouts cut(s.objects.size(), nullptr);
+  for (size_t i = 0; i < s.objects.size(); ++i)
+    if (shading[i]->material().masked()) cut[i] = &shading[i]->material();
   // The normal-mapped meshes' tangents, once per render.
   std::vector<CornerTangents> tangents(s.objects.size());
   for (size_t i = 0; i < s.objects.size(); ++i)
@@ -223,7 +260,7 @@ Render render(const Material* fallback, const Scene& s, int width, int height, i
   const ObjectBvh bvh = object_bvh(s, true);
   // Rows on every core (or `threads`): each pixel is its own, so any split gives the same image.
   parallel_for(size_t(std::max(height, 0)), unsigned(std::max(threads, 0)), [&](size_t y) {
-    for (int x = 0; x < width; ++x) shade_pixel(s, bvh, shading, tangents, offset, close, x, int(y), r);
+    for (int x = 0; x < width; ++x) shade_pixel(s, bvh, cut, shading, tangents, offset, close, x, int(y), r);
   });
   return r;
 }

@@ -317,7 +317,9 @@ class Importer {
       if (gl.spot.innerConeAngle != gl.spot.outerConeAngle)
         notes_.push_back(fmt::format("lights[{}]: approximate: facet's spot cone is hard (cutoff = outerConeAngle)", li));
     }
-    if (gl.range > 0) notes_.push_back(fmt::format("lights[{}]: its range is not modelled (inverse square to infinity)", li));
+    // KHR_lights_punctual, "Range Property": the recommended window clamp(1 − (d/r)⁴, 0, 1) / d².
+    if (gl.range > 0 && gl.type != "directional")
+      lj["attenuation"] = {{"model", "inverse_square_range"}, {"range", gl.range}};
     return lj;
   }
 
@@ -919,7 +921,9 @@ class Exporter {
     gl.intensity = k * kPi * kLumensPerWatt;
     gl.type = l.type == Light::Type::Point ? "point" : l.type == Light::Type::Spot ? "spot" : "directional";
     if (l.type == Light::Type::Spot) gl.spot.innerConeAngle = gl.spot.outerConeAngle = l.cutoff * kPi / 180;
-    if (l.type != Light::Type::Directional && l.attenuation.law != Attenuation::Law::InverseSquare)
+    if (l.type != Light::Type::Directional && l.attenuation.law == Attenuation::Law::InverseSquareRange)
+      gl.range = l.attenuation.range;
+    else if (l.type != Light::Type::Directional && l.attenuation.law != Attenuation::Law::InverseSquare)
       notes_.push_back(
           fmt::format("lights[{}]: glTF lights fall off with 1/d²; facet's own attenuation travels in {}", i, kLightExt));
     return gl;

@@ -12,9 +12,9 @@
 // where the mapping is not a plain factor (scene/gltf_images.h, docs/textures.md); the
 // other maps are named in a note. A file without lights gets a headlight.
 // Lights: C = colour · intensity / (683 lm/W · π) with inverse-square attenuation
-// (kLumensPerWatt below) — exact for point and directional lights; spot cones are hard
-// in facet (exact when inner = outer), and a light's `range` window is not modelled
-// (a note says so).
+// (kLumensPerWatt below) — exact for point and directional lights; `range` as the
+// extension's recommended window (the catalog's inverse_square_range); spot cones are hard
+// in facet (exact when inner = outer).
 //
 // Export: a valid glTF 2.0 file whose materials carry the full facet description
 // (FACET_material) beside the nearest metallic–roughness fallback (as the catalog

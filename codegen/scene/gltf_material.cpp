@@ -213,6 +213,26 @@ json ambient_term(const Pbr& p, const RGB& kd, GltfImages& images, const std::st
   return a;
 }
 
+// glTF 2.0 §3.9.4, alphaMode: MASK is facet's cut-out, the base colour's alpha (baseColorFactor's
+// times baseColorTexture's A, linear) against alphaCutoff; BLEND, which facet does not blend,
+// is drawn opaque, with a note.
+void cut_out(const tinygltf::Material& g, const Pbr& p, const std::string& mpath, json& m,
+             std::vector<std::string>& notes) {
+  const double alpha = g.pbrMetallicRoughness.baseColorFactor.size() > 3 ? g.pbrMetallicRoughness.baseColorFactor[3] : 1;
+  if (g.alphaMode == "BLEND")
+    notes.push_back(mpath + ": alphaMode BLEND is drawn opaque (facet does not blend surfaces; MASK it cuts out)");
+  if (g.alphaMode != "MASK") return;
+  m["alpha_cutoff"] = g.alphaCutoff;
+  if (p.base_map) {
+    m["alpha"] = p.base_map->spec;
+    m["alpha"]["channel"] = "a";
+    m["alpha"]["colorspace"] = "linear";  // glTF's alpha is linear; only the base colour's rgb is sRGB
+    m["alpha"]["factor"] = alpha;
+  } else {
+    m["alpha"] = alpha;
+  }
+}
+
 // The material's extensions facet does not implement, named in one note (the file's
 // required ones were refused before any material was read).
 void note_unimplemented_extensions(const tinygltf::Material& g, const std::string& mpath, std::vector<std::string>& notes) {
@@ -298,8 +318,7 @@ json pbr_material(const tinygltf::Material& g, const std::string& mpath, GltfIma
       notes.push_back(mpath + ".occlusionTexture: the material has no diffuse albedo (metallic 1), so nothing to occlude");
   }
   note_unimplemented_extensions(g, mpath, notes);
-  if (g.alphaMode != "OPAQUE" && !g.alphaMode.empty())
-    notes.push_back(mpath + ": alphaMode " + g.alphaMode + " is ignored (facet's surfaces are opaque)");
+  cut_out(g, p, mpath, m, notes);
   if (diffuse && (p.metal < 1 || p.mr_map))
     notes.push_back(mpath + ": approximate: glTF weights a dielectric's diffuse by (1 − F); the catalog's Lambert does not");
   return m;

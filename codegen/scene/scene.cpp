@@ -190,6 +190,7 @@ Attenuation attenuation_of(const ModelSpec& light) {
   Attenuation a;
   const ModelSpec& m = *light.at("attenuation").model;
   a.law = m.def->attenuation_law.value();
+  if (a.law == Attenuation::Law::InverseSquareRange) a.range = m.at("range").number;
   if (a.law == Attenuation::Law::Polynomial) {
     a.constant = m.at("constant").number;
     a.linear = m.at("linear").number;
@@ -553,6 +554,8 @@ json to_json(const Scene& s, const std::string& scene_file) {
       if (a.law == Attenuation::Law::InverseSquare) lj["attenuation"] = "inverse_square";
       if (a.law == Attenuation::Law::Polynomial)
         lj["attenuation"] = {{"constant", a.constant}, {"linear", a.linear}, {"quadratic", a.quadratic}};
+      if (a.law == Attenuation::Law::InverseSquareRange)
+        lj["attenuation"] = {{"model", "inverse_square_range"}, {"range", a.range}};
     }
     j["lights"].push_back(lj);
   }

@@ -49,6 +49,7 @@ struct Attenuation {
   using Law = AttenuationLaw;  // the catalog's: each attenuation model states its law
   Law law = Law::None;
   double constant = 1, linear = 0, quadratic = 0;
+  double range = 0;  // InverseSquareRange: the distance at which the light reaches 0
 };
 
 struct Light {

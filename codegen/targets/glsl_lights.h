@@ -19,7 +19,7 @@ namespace facet::glsl_light {
 // FacetLight.position.w: the light's type.
 inline constexpr int kPoint = 0, kDirectional = 1, kSpot = 2;
 // FacetLight.attenuation.w: its attenuation law.
-inline constexpr int kNoAttenuation = 0, kInverseSquare = 1, kPolynomial = 2;
+inline constexpr int kNoAttenuation = 0, kInverseSquare = 1, kPolynomial = 2, kInverseSquareRange = 3;
 
 inline int type_code(Light::Type t) {
   switch (t) {
@@ -34,6 +34,7 @@ inline int law_code(Attenuation::Law law) {
   switch (law) {
     case Attenuation::Law::InverseSquare: return kInverseSquare;
     case Attenuation::Law::Polynomial: return kPolynomial;
+    case Attenuation::Law::InverseSquareRange: return kInverseSquareRange;
     case Attenuation::Law::None: break;
   }
   return kNoAttenuation;
@@ -52,14 +53,16 @@ inline constexpr int kVisibilityBits = 24, kVisibilityLayerLights = 4 * kVisibil
 
 // A light as FacetLight's four vec4, in order: position (xyz: the position, or the
 // direction a directional light travels; w: type_code), color (rgb; a: the spot
-// exponent), spot (xyz: the cone's axis; w: cos(cutoff)), attenuation (c1, c2, c3; w: law_code).
+// exponent), spot (xyz: the cone's axis; w: cos(cutoff)), attenuation (c1, c2, c3, or x the
+// range of the windowed inverse square; w: law_code).
 inline std::array<float, 16> encode(const Light& l) {
   const Vec3& where = l.type == Light::Type::Directional ? l.direction : l.position;
   const Attenuation& a = l.attenuation;
   const double v[16] = {where.x, where.y, where.z, double(type_code(l.type)),
                         l.color[0], l.color[1], l.color[2], l.exponent,
                         l.direction.x, l.direction.y, l.direction.z, std::cos(l.cutoff * M_PI / 180.0),
-                        a.constant, a.linear, a.quadratic, double(law_code(a.law))};
+                        a.law == Attenuation::Law::InverseSquareRange ? a.range : a.constant, a.linear, a.quadratic,
+                        double(law_code(a.law))};
   std::array<float, 16> out;
   for (size_t i = 0; i < 16; ++i) out[i] = float(v[i]);
   return out;
@@ -73,7 +76,8 @@ inline std::map<std::string, std::string> template_values() {
           {"spot", std::to_string(kSpot)},
           {"no_attenuation", std::to_string(kNoAttenuation)},
           {"inverse_square", std::to_string(kInverseSquare)},
-          {"polynomial", std::to_string(kPolynomial)}};
+          {"polynomial", std::to_string(kPolynomial)},
+          {"inverse_square_range", std::to_string(kInverseSquareRange)}};
 }
 
 // The visibility image's numbers as the shading passes' and the ray caster's placeholders:

@@ -61,6 +61,10 @@ std::string light_block(const targets::CPrinter& pr, const Light& l, size_t i, S
     const Attenuation& a = l.attenuation;
     if (a.law == Attenuation::Law::None) body += "        float factor = 1.0;\n";
     if (a.law == Attenuation::Law::InverseSquare) body += "        float factor = attenuation_inverse_square(d);\n";
+    if (a.law == Attenuation::Law::InverseSquareRange) {
+      params.add("float", id + "range", pr.literal(a.range), "where the light reaches 0");
+      body += fmt::format("        float factor = attenuation_inverse_square_range(d, {}range);\n", id);
+    }
     if (a.law == Attenuation::Law::Polynomial) {
       params.add("float", id + "constant", pr.literal(a.constant), "attenuation c1");
       params.add("float", id + "linear", pr.literal(a.linear), "attenuation c2");

@@ -59,6 +59,7 @@ bool native_attenuation(const Light& l) {
     case Attenuation::Law::Polynomial:
       // min(1, ·) never bites when c1 ≥ 1; fade has one power term.
       return a.constant >= 1 && (a.linear == 0 || a.quadratic == 0);
+    case Attenuation::Law::InverseSquareRange: return false;  // no fade has the window
   }
   return false;
 }

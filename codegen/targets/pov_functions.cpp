@@ -222,6 +222,8 @@ ir::FunctionPtr PovScene::light_function(PovShading& sh, size_t i, const ir::Fun
   if (a.law == Attenuation::Law::InverseSquare) times(ir::call(terms::attenuation_inverse_square(), {d}));
   if (a.law == Attenuation::Law::Polynomial)
     times(ir::call(terms::attenuation_polynomial(), {d, a.constant, a.linear, a.quadratic}));
+  if (a.law == Attenuation::Law::InverseSquareRange)
+    times(ir::call(terms::attenuation_inverse_square_range(), {d, a.range}));
   if (l.type == Light::Type::Spot)
     times(ir::call(terms::spot_cone(),
                    {-dot3(L / d, constant(l.direction)), std::cos(l.cutoff * kPi / 180), l.exponent}));
@@ -398,6 +400,11 @@ std::string PovScene::functions(bool objects) {
   for (const auto& sh : shadings_) {
     std::vector<ir::FunctionPtr> roots = {terms::attenuation_inverse_square(), terms::attenuation_polynomial(),
                                           terms::spot_cone()};
+    for (const auto& l : s_.lights)  // the window only where a light has it: no scene pays for it otherwise
+      if (l.attenuation.law == Attenuation::Law::InverseSquareRange) {
+        roots.push_back(terms::attenuation_inverse_square_range());
+        break;
+      }
     for (const auto& r : reflect_roots(*sh, objects)) roots.push_back(r);
     for (const auto& f : ir::dependencies(roots))
       if (!is_scaffold(*f) && printed.insert(f.get()).second) terms += sh->printer.function(f) + "\n";

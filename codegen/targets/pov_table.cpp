@@ -86,6 +86,8 @@ ir::FunctionPtr PovScene::table_function(PovShading& sh, size_t i) {
     if (a.law == Attenuation::Law::InverseSquare) reflected = ir::call(terms::attenuation_inverse_square(), {d}) * reflected;
     if (a.law == Attenuation::Law::Polynomial)
       reflected = ir::call(terms::attenuation_polynomial(), {d, a.constant, a.linear, a.quadratic}) * reflected;
+    if (a.law == Attenuation::Law::InverseSquareRange)
+      reflected = ir::call(terms::attenuation_inverse_square_range(), {d, a.range}) * reflected;
   }
   if (l.type == Light::Type::Spot)
     reflected = ir::call(terms::spot_cone(), {-(lx * l.direction.x + ly * l.direction.y + lz * l.direction.z) / d,

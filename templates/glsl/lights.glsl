@@ -4,7 +4,7 @@ struct FacetLight {
                        // w: type, {{point}} point, {{directional}} directional, {{spot}} spot
     vec4 color;        // rgb: colour C; a: spot exponent
     vec4 spot;         // xyz: unit cone axis s; w: cos(cutoff)
-    vec4 attenuation;  // xyz: c1, c2, c3; w: law, {{no_attenuation}} none, {{inverse_square}} inverse square, {{polynomial}} polynomial
+    vec4 attenuation;  // xyz: c1, c2, c3; w: law, {{no_attenuation}} none, {{inverse_square}} inverse square, {{polynomial}} polynomial, {{inverse_square_range}} inverse square within range x
 };
 {{declarations}}
 
@@ -35,6 +35,8 @@ vec3 facet_shade(vec3 p, vec3 n, vec3 v, vec3 t)
                 factor = attenuation_inverse_square(d);
             } else if (light.attenuation.w == {{polynomial}}.0) {
                 factor = attenuation_polynomial(d, light.attenuation.x, light.attenuation.y, light.attenuation.z);
+            } else if (light.attenuation.w == {{inverse_square_range}}.0) {
+                factor = attenuation_inverse_square_range(d, light.attenuation.x);
             }
             if (light.position.w == {{spot}}.0) factor *= spot_cone(-dot(l, light.spot.xyz), light.spot.w, light.color.a);
         }

@@ -4,7 +4,7 @@ struct FacetLight {
                              // w: type, {{point}} point, {{directional}} directional, {{spot}} spot
     color: vec4<f32>,        // rgb: colour C; a: spot exponent
     spot: vec4<f32>,         // xyz: unit cone axis s; w: cos(cutoff)
-    attenuation: vec4<f32>,  // xyz: c1, c2, c3; w: law, {{no_attenuation}} none, {{inverse_square}} inverse square, {{polynomial}} polynomial
+    attenuation: vec4<f32>,  // xyz: c1, c2, c3; w: law, {{no_attenuation}} none, {{inverse_square}} inverse square, {{polynomial}} polynomial, {{inverse_square_range}} inverse square within range x
 };
 {{declarations}}
 
@@ -29,6 +29,8 @@ fn facet_shade(p: vec3<f32>, n: vec3<f32>, v: vec3<f32>, surface_tangent: vec3<f
                 factor = attenuation_inverse_square(d);
             } else if (light.attenuation.w == {{polynomial}}.0) {
                 factor = attenuation_polynomial(d, light.attenuation.x, light.attenuation.y, light.attenuation.z);
+            } else if (light.attenuation.w == {{inverse_square_range}}.0) {
+                factor = attenuation_inverse_square_range(d, light.attenuation.x);
             }
             if (light.position.w == {{spot}}.0) {
                 factor *= spot_cone(-dot(l, light.spot.xyz), light.spot.w, light.color.a);

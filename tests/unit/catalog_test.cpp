@@ -86,7 +86,7 @@ TEST(Catalog, SceneModelsStateTheirKind) {
   }
   EXPECT_EQ(objects.size(), 3u);
   EXPECT_EQ(lights.size(), 3u);
-  EXPECT_EQ(laws.size(), 3u);
+  EXPECT_EQ(laws.size(), 4u);  // none, inverse square, polynomial, inverse square within a range
 }
 
 TEST(Catalog, EverySpecularLobeHasAGltfRoughness) {

@@ -12,6 +12,7 @@
 
 #include "catalog/material.h"
 #include "reference/interpreter.h"
+#include "scene/scene.h"
 
 namespace facet {
 namespace {
@@ -395,6 +396,25 @@ TEST(Reflectance, HorizonRuleZeroesBelowTheSurface) {
     ++zero;
   }
   EXPECT_GT(zero, kSamples / 2);
+}
+
+// KHR_lights_punctual's recommended range window, as the extension's README writes it:
+// attenuation = max(min(1 − (d/r)⁴, 1), 0) / d², through a scene file's light.
+TEST(ClosedForm, InverseSquareRangeIsGltfsWindow) {
+  json doc = {{"diffuse", {{"model", "lambert"}}}};
+  Reference ref(parse_material(doc, "test"));
+  Scene s = parse_scene({{"camera", {{"position", {0, 0, 4}}}},
+                         {"objects", {{{"type", "sphere"}, {"center", {0, 0, 0}}, {"radius", 1}}}},
+                         {"lights", {{{"type", "point"},
+                                      {"position", {0, 0, 0}},
+                                      {"attenuation", {{"model", "inverse_square_range"}, {"range", 2.5}}}}}}},
+                        "test");
+  const Light& light = s.lights.at(0);
+  ASSERT_EQ(light.attenuation.law, Attenuation::Law::InverseSquareRange);
+  for (double d : {0.1, 0.5, 1.0, 2.0, 2.49, 2.5, 3.0, 100.0}) {
+    const double want = std::max(std::min(1 - std::pow(d / 2.5, 4), 1.0), 0.0) / (d * d);
+    EXPECT_NEAR(ref.light_factor(light, Vec3(0, 0, 1), d), want, 1e-15 * std::max(want, 1.0)) << "d = " << d;
+  }
 }
 
 }  // namespace

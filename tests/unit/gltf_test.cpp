@@ -443,6 +443,39 @@ TEST(GltfTextures, AnyTexcoordSetIsMappedOntoTheMeshsTwo) {
   EXPECT_EQ(back.objects[0].mesh->texcoords, mesh.texcoords);
 }
 
+// glTF 2.0 §3.9.4: alphaMode MASK cuts the surface out where the base colour's alpha
+// (baseColorFactor's times the texture's A, linear) is below alphaCutoff; BLEND is drawn
+// opaque, with a note; OPAQUE is opaque.
+TEST(GltfTextures, AlphaModeMaskIsACutOut) {
+  json g = textured_triangle(json::array({data_uri_image(small_png())}));
+  g["materials"][0]["pbrMetallicRoughness"]["baseColorFactor"] = {1, 1, 1, 0.8};
+  g["materials"][0]["alphaMode"] = "MASK";
+  g["materials"][0]["alphaCutoff"] = 0.3;
+  std::vector<std::string> notes;
+  Scene s = import_gltf(write_gltf("mask.gltf", g).string(), {}, notes);
+  const Material& m = s.materials.begin()->second;
+  ASSERT_TRUE(m.masked());
+  EXPECT_EQ(*m.alpha_cutoff, 0.3);
+  ASSERT_TRUE(m.alpha.texture);
+  EXPECT_EQ(m.alpha.texture->channel, "a");
+  EXPECT_EQ(m.alpha.texture->colorspace, "linear");
+  EXPECT_EQ(m.alpha.number, 0.8);
+  // Without a base colour texture, the factor's alpha alone.
+  g["materials"][0]["pbrMetallicRoughness"].erase("baseColorTexture");
+  Scene t = import_gltf(write_gltf("mask_factor.gltf", g).string(), {}, notes);
+  EXPECT_FALSE(t.materials.begin()->second.alpha.texture);
+  EXPECT_EQ(t.materials.begin()->second.alpha.number, 0.8);
+  // The material round-trips through facet's own JSON.
+  EXPECT_EQ(to_json(parse_material(to_json(m), "round trip")), to_json(m));
+  g["materials"][0]["alphaMode"] = "BLEND";
+  notes.clear();
+  Scene b = import_gltf(write_gltf("blend.gltf", g).string(), {}, notes);
+  EXPECT_FALSE(b.materials.begin()->second.masked());
+  bool noted = false;
+  for (const auto& n : notes) noted |= n.find("alphaMode BLEND is drawn opaque") != std::string::npos;
+  EXPECT_TRUE(noted);
+}
+
 TEST(GltfTextures, ExternalImageIsReferencedWhereItIs) {
   // "my image.png" beside the glTF, its URI percent-encoded; the scene is written one folder down.
   const fs::path folder = scratch("external");

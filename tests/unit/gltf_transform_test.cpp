@@ -304,7 +304,7 @@ TEST(GltfLights, PhotometricUnitsImportAsBlendersRadiometricOnes) {
   g["extensions"] = {{"KHR_lights_punctual",
                       {{"lights", {{{"type", "point"}, {"intensity", 1000 / (4 * M_PI) * 683}},
                                    {{"type", "directional"}, {"intensity", 2 * 683}, {"color", {1, 0.5, 0.25}}},
-                                   {{"type", "spot"}, {"intensity", 100 / (4 * M_PI) * 683},
+                                   {{"type", "spot"}, {"intensity", 100 / (4 * M_PI) * 683}, {"range", 7.5},
                                     {"spot", {{"innerConeAngle", 0.5}, {"outerConeAngle", 0.5}}}}}}}}};
   g["nodes"] = {{{"name", "cube"}, {"mesh", 0}},
                 {{"name", "point"}, {"translation", {0, 3, 0}}, {"scale", {5, 5, 5}},
@@ -323,6 +323,9 @@ TEST(GltfLights, PhotometricUnitsImportAsBlendersRadiometricOnes) {
   EXPECT_NEAR(s.lights[0].position.y, 3, 1e-12);
   EXPECT_NEAR(s.lights[1].direction.y, -1, 1e-12);  // −Z turned −90° about x: straight down
   EXPECT_NEAR(s.lights[2].cutoff, 0.5 * 180 / M_PI, 1e-12);
+  EXPECT_EQ(s.lights[0].attenuation.law, Attenuation::Law::InverseSquare);  // no range: to infinity
+  EXPECT_EQ(s.lights[2].attenuation.law, Attenuation::Law::InverseSquareRange);  // the extension's window
+  EXPECT_EQ(s.lights[2].attenuation.range, 7.5);
 }
 
 }  // namespace
