@@ -244,10 +244,8 @@ def grid(n):
 
 def rgba(r, g, b, a=None):
     """Channels in [0, 1] (arrays or numbers of one shape) -> 0–255 RGBA texels."""
-    r, g, b = np.broadcast_arrays(*(np.asarray(x, float) for x in (r, g, b)))
-    out = np.zeros(r.shape + (4,))
-    out[..., 0], out[..., 1], out[..., 2] = r, g, b
-    out[..., 3] = 1.0 if a is None else a
+    r, g, b, a = np.broadcast_arrays(*(np.asarray(x, float) for x in (r, g, b, 1.0 if a is None else a)))
+    out = np.stack([r, g, b, a], axis=-1)
     return np.clip(np.round(out * 255), 0, 255).astype(np.uint8)
 
 
