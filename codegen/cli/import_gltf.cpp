@@ -54,7 +54,8 @@ Command import_gltf_command(CLI::App& app) {
   auto* gi = app.add_subcommand("import-gltf", "Turn a glTF 2.0 scene (.gltf, .glb) into a facet scene file");
   gi->add_option("scene", gi_in, "The glTF file")->required();
   gi->add_option("-o,--output", gi_out, "The facet scene (JSON)")->required();
-  gi->add_option("--default-material", gi_default, "A facet material for primitives without one");
+  gi->add_option("--default-material", gi_default,
+                 "A facet material for primitives without one (default: glTF's default material, white metal)");
   gi->add_option("--lumens-per-watt", gi_lumens_per_watt,
                  "The luminous efficacy that turns the file's candela and lux into facet's radiometric light colour "
                  "(Blender's and glTF-Blender-IO's 683; 1 keeps photometric units)")
@@ -63,10 +64,16 @@ Command import_gltf_command(CLI::App& app) {
                "Write each mesh's positions, normals and triangles into the scene file instead of referencing the "
                "glTF file");
   gi->footer(
-      "Meshes (node transforms applied), the first perspective camera, KHR_lights_punctual lights and the\n"
-      "materials: FACET_material exactly, else metallic–roughness as GGX (α = roughness², separable Smith,\n"
-      "Schlick f0 = mix(0.04, base, metallic)) over Lambert (base · (1 − metallic)). What is approximate or\n"
-      "ignored is printed. baseColorTexture and metallicRoughnessTexture become textured parameters; the images\n"
+      "Meshes (node transforms as glTF composes them: normals by the inverse transpose, mirrors reverse the\n"
+      "winding; skins at the file's pose, morph targets at its weights), the first camera (perspective or\n"
+      "orthographic), KHR_lights_punctual lights (C = colour · intensity / (683 lm/W · π): Blender's units;\n"
+      "range as the extension's window) and the materials: FACET_material exactly, else metallic–roughness as\n"
+      "GGX (α = roughness², separable Smith, Schlick f0 = mix(0.04, base, metallic)) over Lambert (base · (1 −\n"
+      "metallic)), near glTF's BRDF but not equal to it; alphaMode MASK as a cut-out, BLEND opaque; glTF's\n"
+      "default material where a primitive has none. What is approximate or ignored (extensions facet does not\n"
+      "implement, per material) is printed; a file that requires one is refused. Textures may read any\n"
+      "TEXCOORD_n, each with its KHR_texture_transform. baseColorTexture and metallicRoughnessTexture become\n"
+      "textured parameters; the images\n"
       "a GLB or data URI holds, and those the import bakes (α, k_d, f0 where the mapping is not a plain factor), are\n"
       "written to OUTPUT_STEM.textures/ beside the scene; external images are referenced where they are. A glTF\n"
       "without lights gets a headlight (a point light at the camera), as the notes say.\n"

@@ -346,7 +346,68 @@ GLuint texture_buffer(const std::vector<float>& data, GLuint& buffer) {
 struct SceneBuffers {
   std::vector<float> objects, hierarchy, lights;
   MeshBuffers meshes;
+  // The cut-outs (raycast.glsl's facet_cutouts), 4 texels an object, and their alpha images
+  // one above another in an atlas of atlas_width × atlas_height RGBA texels (the value in r).
+  std::vector<float> cutouts, atlas;
+  int atlas_width = 1, atlas_height = 1;
 };
+
+// The cut-outs' alpha images, one above another (raycast.glsl's facet_alpha_atlas): each
+// material's once, the channel its alpha takes, sRGB decoded per texel where it says so (as
+// every target samples it), the value in r.
+struct AlphaAtlas {
+  std::map<const Material*, std::array<int, 4>> rects;  // x0, y0, width, height
+  std::vector<std::vector<float>> images;              // in the order of their y0, each its own width
+  int width = 1, height = 0;
+
+  const std::array<int, 4>& add(const Material& m, const TextureRef& image) {
+    auto known = rects.find(&m);
+    if (known != rects.end()) return known->second;
+    const Texels& x = *image.texels;
+    const int channel = image.channel == "rgb" ? 0 : int(std::string("rgba").find(image.channel[0]));
+    std::vector<float> values(size_t(x.width) * size_t(x.height));
+    for (int j = 0; j < x.height; ++j)
+      for (int i = 0; i < x.width; ++i) {
+        const double v = x.at(i, j)[channel];
+        values[size_t(j) * size_t(x.width) + size_t(i)] = float(image.sampler.srgb && channel < 3 ? srgb_to_linear(v) : v);
+      }
+    images.push_back(std::move(values));
+    width = std::max(width, x.width);
+    height += x.height;
+    return rects[&m] = {0, height - x.height, x.width, x.height};
+  }
+  // RGBA texels, width × max(height, 1), rows from y = 0.
+  std::vector<float> texels() const {
+    std::vector<float> out(size_t(width) * size_t(std::max(height, 1)) * 4, 0.0f);
+    std::vector<std::array<int, 4>> order;
+    for (const auto& [m, r] : rects) order.push_back(r);
+    std::sort(order.begin(), order.end(), [](const auto& a, const auto& c) { return a[1] < c[1]; });
+    for (size_t k = 0; k < order.size(); ++k)
+      for (int j = 0; j < order[k][3]; ++j)
+        for (int i = 0; i < order[k][2]; ++i)
+          out[(size_t(order[k][1] + j) * size_t(width) + size_t(i)) * 4] = images[k][size_t(j) * size_t(order[k][2]) + size_t(i)];
+    return out;
+  }
+};
+
+// Object i's cut-out (Material::masked()) as raycast.glsl's facet_cutouts reads it: 4 texels.
+void push_cutout(const Material& m, AlphaAtlas& atlas, std::vector<float>& out) {
+  std::array<double, 16> t{};
+  t[0] = m.masked() ? *m.alpha_cutoff : -1;
+  t[1] = m.alpha.number;
+  if (const TextureRef* image = m.alpha.texture.get(); m.masked() && image) {
+    const auto& r = atlas.add(m, *image);
+    const double cs = std::cos(image->rotation), sn = std::sin(image->rotation);
+    t[2] = image->uv;
+    t[3] = 1;
+    t[4] = r[0], t[5] = r[1], t[6] = r[2], t[7] = r[3];
+    t[8] = cs * image->scale[0], t[9] = sn * image->scale[1], t[10] = -sn * image->scale[0], t[11] = cs * image->scale[1];
+    t[12] = image->offset[0], t[13] = image->offset[1];
+    t[14] = int(image->sampler.wrap[0]) + 4 * int(image->sampler.wrap[1]);
+    t[15] = image->sampler.filter == TextureFilter::Bilinear ? 1 : 0;
+  }
+  for (double v : t) out.push_back(float(v));
+}
 
 // Object i's 4 texels (raycast.glsl's facet_objects): its shape, its normal and kind, its
 // axis and material pass, its index.
@@ -371,7 +432,14 @@ SceneBuffers scene_buffers(const Scene& s, const Material* fallback, const std::
   SceneBuffers b;
   b.meshes = mesh_buffers(s, fallback);
   const ObjectBvh bvh = object_bvh(s, false);  // its rays only meet objects: the tight boxes
-  for (uint32_t i : bvh.order) push_object(s, i, b.meshes, pass_of[i], b.objects);
+  AlphaAtlas atlas;
+  for (uint32_t i : bvh.order) {
+    push_object(s, i, b.meshes, pass_of[i], b.objects);
+    push_cutout(s.material_of(i, fallback), atlas, b.cutouts);
+  }
+  b.atlas = atlas.texels();
+  b.atlas_width = atlas.width;
+  b.atlas_height = std::max(atlas.height, 1);
   for (const Mesh::Node& n : bvh.nodes) {
     const double link = n.count > 0 ? double(n.start) : double(n.right);
     b.hierarchy.insert(b.hierarchy.end(), {float(n.lo.x), float(n.lo.y), float(n.lo.z), float(link), float(n.hi.x),
@@ -385,27 +453,38 @@ SceneBuffers scene_buffers(const Scene& s, const Material* fallback, const std::
   if (b.objects.empty()) b.objects.assign(16, 0);
   if (b.hierarchy.empty()) b.hierarchy.assign(8, 0);
   if (b.lights.empty()) b.lights.assign(16, 0);
+  if (b.cutouts.empty()) b.cutouts.assign(16, 0);
   return b;
 }
 
-// The scene's texture buffers, bound while they live: on units 0, 1, … in kSamplers' order.
+GLuint float_texture(int width, int height, const float* rgba);
+
+// The scene's texture buffers, bound while they live: on units 0, 1, … in kSamplers' order,
+// and the cut-outs' atlas after them.
 class SceneTextures {
  public:
-  static constexpr int kCount = 7;
+  static constexpr int kCount = 8;
   explicit SceneTextures(const SceneBuffers& b) {
     const std::vector<float>* data[kCount] = {&b.meshes.nodes, &b.meshes.triangles, &b.meshes.texcoords,
-                                              &b.meshes.tangents, &b.objects, &b.hierarchy, &b.lights};
+                                              &b.meshes.tangents, &b.objects, &b.hierarchy, &b.lights, &b.cutouts};
     for (int i = 0; i < kCount; ++i) textures_[i] = texture_buffer(*data[i], buffers_[i]);
+    atlas_ = float_texture(b.atlas_width, b.atlas_height, b.atlas.data());
   }
   ~SceneTextures() {
     glDeleteTextures(kCount, textures_);
     glDeleteBuffers(kCount, buffers_);
+    glDeleteTextures(1, &atlas_);
   }
   SceneTextures(const SceneTextures&) = delete;
   SceneTextures& operator=(const SceneTextures&) = delete;
   void bind(GLuint prog) const {
-    static const char* kSamplers[kCount] = {"facet_bvh",     "facet_triangles", "facet_texcoords",   "facet_tangents",
-                                            "facet_objects", "facet_scene_bvh", "facet_light_buffer"};
+    static const char* kSamplers[kCount] = {"facet_bvh",     "facet_triangles", "facet_texcoords",    "facet_tangents",
+                                            "facet_objects", "facet_scene_bvh", "facet_light_buffer", "facet_cutouts"};
+    // The atlas first: a texture made later (a material's image, float_texture()) binds to the
+    // unit active then, which must be a buffer texture's, whose 2D binding no sampler reads.
+    glActiveTexture(GLenum(GL_TEXTURE0 + kCount));
+    glBindTexture(GL_TEXTURE_2D, atlas_);
+    glUniform1i(glGetUniformLocation(prog, "facet_alpha_atlas"), kCount);
     for (int i = 0; i < kCount; ++i) {
       glActiveTexture(GLenum(GL_TEXTURE0 + i));
       glBindTexture(GL_TEXTURE_BUFFER, textures_[i]);
@@ -416,10 +495,11 @@ class SceneTextures {
  private:
   GLuint buffers_[kCount] = {};
   GLuint textures_[kCount] = {};
+  GLuint atlas_ = 0;
 };
 
-// The material's images follow the scene's texture buffers.
-constexpr int kMaterialUnit = SceneTextures::kCount;
+// The material's images follow the scene's texture buffers and the cut-outs' atlas.
+constexpr int kMaterialUnit = SceneTextures::kCount + 1;
 
 // An RGBA32F texture holding `rgba` (width × height texels, row 0 first: texelFetch's
 // j is row j, no flip), one level, nearest: the harnesses read it by texelFetch only.

@@ -345,6 +345,10 @@ class Importer {
     for (size_t pi = 0; pi < mesh.primitives.size(); ++pi) {
       const auto& prim = mesh.primitives[pi];
       std::string ppath = fmt::format("meshes[{}].primitives[{}]", node.mesh, pi);
+      if (!analytic.is_object() && !gltf_detail::is_triangles(prim)) {  // points and lines: no surface
+        notes_.push_back(fmt::format("{}: mode {} (points or lines) has no surface to shade; left out", ppath, prim.mode));
+        continue;
+      }
       Object o;
       o.name = (node.name.empty() ? (mesh.name.empty() ? fmt::format("mesh{}", node.mesh) : mesh.name) : node.name) +
                (mesh.primitives.size() > 1 ? fmt::format("_{}", pi) : "");

@@ -378,7 +378,12 @@ Mat4 Reader::world_matrix(int ni) const {
 
 // ---------------------------------------------------------------- primitives
 
-bool is_triangles(const tinygltf::Primitive& prim) { return prim.mode == TINYGLTF_MODE_TRIANGLES || prim.mode == -1; }
+// glTF 2.0 §3.7.2.1: TRIANGLES (4, the default), TRIANGLE_STRIP (5) and TRIANGLE_FAN (6) are
+// triangles; POINTS and the LINES modes have no surface to shade.
+bool is_triangles(const tinygltf::Primitive& prim) {
+  return prim.mode == TINYGLTF_MODE_TRIANGLES || prim.mode == -1 || prim.mode == TINYGLTF_MODE_TRIANGLE_STRIP ||
+         prim.mode == TINYGLTF_MODE_TRIANGLE_FAN;
+}
 
 PrimitivePlan plan_primitive(const Reader& r, const tinygltf::Primitive& prim, const std::string& path,
                              const std::string& where, std::array<int64_t, 2> texcoords) {
@@ -386,7 +391,9 @@ PrimitivePlan plan_primitive(const Reader& r, const tinygltf::Primitive& prim, c
   p.prim = &prim;
   p.path = path;
   p.where = where;
-  if (!is_triangles(prim)) r.fail(path + ".mode", fmt::format("{}; facet takes triangles (mode 4)", prim.mode));
+  if (!is_triangles(prim))
+    r.fail(path + ".mode", fmt::format("{}; facet takes triangles (modes 4, 5 and 6: triangles, strips, fans)", prim.mode));
+  p.mode = prim.mode == -1 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
   auto pos = prim.attributes.find("POSITION");
   if (pos == prim.attributes.end()) r.fail(path + ".attributes", "has no POSITION");
   p.positions = r.vec3(pos->second, path + ".attributes.POSITION");
@@ -415,11 +422,11 @@ PrimitivePlan plan_primitive(const Reader& r, const tinygltf::Primitive& prim, c
   p.has_indices = prim.indices >= 0;
   if (p.has_indices) p.indices = r.indices(prim.indices, path + ".indices");
   size_t corners = p.has_indices ? p.indices.count : p.positions.count;
-  if (corners % 3) r.fail(path + ".indices", "the count is not a multiple of 3");
+  if (p.mode == TINYGLTF_MODE_TRIANGLES && corners % 3) r.fail(path + ".indices", "the count is not a multiple of 3");
   if (p.positions.count > std::numeric_limits<uint32_t>::max())
     r.fail(path + ".attributes.POSITION", "has more than 2³² vertices, which facet's indices cannot address");
-  p.size.triangles = corners / 3;
-  p.size.vertices = p.has_normals ? p.positions.count : corners;
+  p.size.triangles = p.mode == TINYGLTF_MODE_TRIANGLES ? corners / 3 : corners >= 3 ? corners - 2 : 0;
+  p.size.vertices = p.has_normals ? p.positions.count : 3 * p.size.triangles;  // flat: three a triangle
   return p;
 }
 
@@ -475,8 +482,13 @@ class Vertices {
   const Mat4& world_;
 };
 
-// Corner k of the primitive: its vertex index (in range), or k itself without indices.
+// Corner k of the primitive's triangle list (triangle k / 3): its vertex index (in range).
+// A strip's triangle t is (t, t + 1, t + 2), its odd ones (t + 1, t, t + 2) so that all keep
+// the winding of the first; a fan's is (0, t + 1, t + 2) (glTF 2.0 §3.7.2.1).
 uint32_t corner(const Reader& r, const PrimitivePlan& p, size_t k) {
+  const size_t t = k / 3, c = k % 3;
+  if (p.mode == TINYGLTF_MODE_TRIANGLE_STRIP) k = t + (c == 2 ? 2 : t % 2 ? 1 - c : c);
+  if (p.mode == TINYGLTF_MODE_TRIANGLE_FAN) k = c == 0 ? 0 : t + c;
   if (!p.has_indices) return uint32_t(k);
   uint32_t i = Reader::index_at(p.indices, k);
   if (i >= p.positions.count) r.fail(p.path + ".indices", fmt::format("index {} is out of range", i));

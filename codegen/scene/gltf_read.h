@@ -123,6 +123,7 @@ struct PrimitivePlan {
   std::array<bool, 2> has_texcoords{false, false};
   AccessorView tangents;  // TANGENT
   bool has_tangents = false;
+  int mode = TINYGLTF_MODE_TRIANGLES;  // or a strip (5) or a fan (6): corner() lists their triangles
   MeshSize size;  // at most: zero-area (flat) and degenerate triangles are dropped
   // Morph targets of non-zero weight, at the weights the file gives (the node's, else the
   // mesh's; glTF 2.0 §3.7.2.2): each attribute is its base plus Σ weight · the target's.

@@ -293,6 +293,51 @@ TEST(GltfTransforms, SparseMorphTargetIsReadDense) {
   expect_cube(*s.objects[0].mesh, Mat4(), "sparse", 1.0);
 }
 
+// glTF 2.0 §3.7.2.1: strips and fans are triangles (a strip's odd triangles turned so all keep
+// the first's winding); points and lines have no surface and are left out with a note.
+TEST(GltfTransforms, StripsAndFansAreTrianglesPointsAndLinesLeftOut) {
+  // Six vertices on the unit circle in z = 0, counter-clockwise seen from +z, normals +z.
+  std::vector<float> pos, nor;
+  for (int k = 0; k < 6; ++k) {
+    const double a = 2 * M_PI * k / 6;
+    pos.insert(pos.end(), {float(std::cos(a)), float(std::sin(a)), 0});
+    nor.insert(nor.end(), {0, 0, 1});
+  }
+  const uint16_t strip[6] = {0, 1, 5, 2, 4, 3};  // a zig-zag across the hexagon, counter-clockwise first
+  std::string bin = bytes_of(pos.data(), pos.size() * 4) + bytes_of(nor.data(), nor.size() * 4) + bytes_of(strip, 12);
+  json g = {{"asset", {{"version", "2.0"}}},
+            {"bufferViews", {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", 72}},
+                             {{"buffer", 0}, {"byteOffset", 72}, {"byteLength", 72}},
+                             {{"buffer", 0}, {"byteOffset", 144}, {"byteLength", 12}}}},
+            {"accessors", {{{"bufferView", 0}, {"componentType", 5126}, {"count", 6}, {"type", "VEC3"},
+                            {"min", {-1, -1, 0}}, {"max", {1, 1, 0}}},
+                           {{"bufferView", 1}, {"componentType", 5126}, {"count", 6}, {"type", "VEC3"}},
+                           {{"bufferView", 2}, {"componentType", 5123}, {"count", 6}, {"type", "SCALAR"}}}},
+            {"meshes", {{{"name", "shapes"},
+                         {"primitives", {{{"attributes", {{"POSITION", 0}, {"NORMAL", 1}}}, {"indices", 2}, {"mode", 5}},
+                                         {{"attributes", {{"POSITION", 0}, {"NORMAL", 1}}}, {"mode", 6}},
+                                         {{"attributes", {{"POSITION", 0}}}, {"mode", 6}},
+                                         {{"attributes", {{"POSITION", 0}}}, {"mode", 1}}}}}}},
+            {"nodes", {{{"name", "shapes"}, {"mesh", 0}}}},
+            {"scenes", {{{"nodes", {0}}}}}};
+  set_buffer(g, bin);
+  std::vector<std::string> notes;
+  Scene s = import(g, "strips.gltf", &notes);
+  ASSERT_EQ(s.objects.size(), 3u);  // the lines are left out
+  for (const auto& o : s.objects) {
+    EXPECT_EQ(o.mesh->triangles.size(), 4u) << o.name;
+    for (const auto& tri : o.mesh->triangles) {
+      const Vec3 face = cross(o.mesh->positions[tri[1]] - o.mesh->positions[tri[0]],
+                              o.mesh->positions[tri[2]] - o.mesh->positions[tri[0]]);
+      EXPECT_GT(face.z, 0) << o.name << ": a triangle wound the other way";
+      for (uint32_t k : tri) EXPECT_EQ(o.mesh->normals[k].z, 1) << o.name;
+    }
+  }
+  bool noted = false;
+  for (const auto& n : notes) noted |= n.find("meshes[0].primitives[3]: mode 1 (points or lines)") != std::string::npos;
+  EXPECT_TRUE(noted);
+}
+
 // KHR_lights_punctual is photometric (candela, lux); facet's light colour is radiometric as
 // Blender's lights are, at glTF-Blender-IO's 683 lm/W: Blender's exporter writes a 1000 W
 // point light as 1000 / (4π) · 683 cd, which must import as Blender's own conversion of the

@@ -31,6 +31,11 @@ uniform samplerBuffer facet_bvh;        // the meshes': 2 texels a node: (lo, ri
 uniform samplerBuffer facet_triangles;  // 6 texels a triangle: p0, p1, p2, n0, n1, n2
 uniform samplerBuffer facet_texcoords;  // 3 texels a triangle: vertex k's (uv set 0, uv set 1)
 uniform samplerBuffer facet_tangents;   // 3 texels a triangle: corner k's tangent (xyz, w), normal-mapped meshes
+uniform samplerBuffer facet_cutouts;    // 4 texels an object, in the hierarchy's order, its cut-out (glTF's alphaMode
+                                        // MASK): 0 (cutoff, or -1: opaque; factor; uv set; 1 an image, 0 the factor
+                                        // alone); 1 its image's rectangle in the atlas (x0, y0, width, height); 2 and
+                                        // 3 KHR_texture_transform (a, b, c, d), (ou, ov), wrap s + 4·t, 1 bilinear
+uniform sampler2D facet_alpha_atlas;    // the cut-outs' alpha images one above another, the value in r
 uniform int facet_pass;                 // the material pass drawn: its objects are shaded, the others drawn black
 uniform int facet_probe_turns;          // 2: facet_loops_cut()'s loop (a uniform, so that no compiler unrolls it)
 uniform float facet_shadow_offset;      // shadow rays start this far out
@@ -163,6 +168,69 @@ FacetHit facet_intersect(int i, vec3 origin, vec3 dir, float t_min, int skip)
     return FacetHit(t, -1, vec2(0.0));
 }
 
+// ---- Cut-outs (glTF 2.0 §3.9.4, alphaMode MASK): the surface is there where alpha ≥ cutoff.
+// alpha = clamp(factor · the image's value at KHR_texture_transform(uv), 0, 1), the image
+// sampled by docs/textures.md's rule (templates/glsl/textures.glsl's): camera and shadow
+// rays alike pass the surface where it is cut out.
+vec2 facet_uv(int i, vec3 p, FacetHit h, int set);
+
+vec4 facet_cutout(int i, int k)
+{
+    return texelFetch(facet_cutouts, 4 * i + k);
+}
+
+// A texel index wrapped into [0, size): 0 repeat, 1 clamp, 2 mirror (as facet_wrap).
+int facet_cutout_wrap(int i, int size, int mode)
+{
+    if (mode == 1) return clamp(i, 0, size - 1);
+    int period = mode == 2 ? 2 * size : size;
+    int m = i - period * int(floor(float(i) / float(period)));
+    return m < size ? m : period - 1 - m;
+}
+
+float facet_cutout_texel(ivec4 rect, int i, int j, ivec2 wrap)
+{
+    ivec2 at = rect.xy + ivec2(facet_cutout_wrap(i, rect.z, wrap.x), facet_cutout_wrap(j, rect.w, wrap.y));
+    return texelFetch(facet_alpha_atlas, at, 0).r;
+}
+
+float facet_alpha(int i, vec3 p, FacetHit h)
+{
+    vec4 c = facet_cutout(i, 0);
+    if (c.w == 0.0) return clamp(c.y, 0.0, 1.0);
+    vec4 m = facet_cutout(i, 2), e = facet_cutout(i, 3);
+    vec2 uv = facet_uv(i, p, h, int(c.z));
+    uv = vec2(m.x * uv.x + m.y * uv.y + e.x, m.z * uv.x + m.w * uv.y + e.y);
+    ivec4 rect = ivec4(facet_cutout(i, 1));
+    ivec2 wrap = ivec2(int(e.z) % 4, int(e.z) / 4);
+    vec2 x = uv * vec2(rect.zw);
+    float a;
+    if (e.w == 0.0) {
+        a = facet_cutout_texel(rect, int(floor(x.x)), int(floor(x.y)), wrap);
+    } else {
+        x -= 0.5;
+        vec2 f = floor(x), w = x - f;
+        int s = int(f.x), t = int(f.y);
+        a = mix(mix(facet_cutout_texel(rect, s, t, wrap), facet_cutout_texel(rect, s + 1, t, wrap), w.x),
+                mix(facet_cutout_texel(rect, s, t + 1, wrap), facet_cutout_texel(rect, s + 1, t + 1, wrap), w.x), w.y);
+    }
+    return clamp(c.y * a, 0.0, 1.0);
+}
+
+// The nearest hit of object i beyond t_min (skipping triangle `skip`) that its cut-out keeps:
+// past each hit cut out, the search goes on.
+FacetHit facet_intersect_kept(int i, vec3 origin, vec3 dir, float t_min, int skip)
+{
+    FacetHit h = facet_intersect(i, origin, dir, t_min, skip);
+    float cutoff = facet_cutout(i, 0).x;
+    if (cutoff < 0.0) return h;
+    for (int k = 0; k < 64 && h.t > 0.0; ++k) {
+        if (facet_alpha(i, origin + dir * h.t, h) >= cutoff) return h;
+        h = facet_intersect(i, origin, dir, h.t, h.triangle);
+    }
+    return FacetHit(-1.0, -1, vec2(0.0));
+}
+
 // Does the ray origin + t·dir enter node `node` of the objects' hierarchy at some t in
 // [0, t_max]? Its texels in a and b.
 bool facet_enters(int node, vec3 origin, vec3 inv_d, float t_max, out vec4 a, out vec4 b)
@@ -197,7 +265,7 @@ float facet_visibility(vec3 p, vec3 l, float d, int light)
             int i = int(a.w) + k;
             bool own = i == facet_shaded_object;
             if (own && facet_object(i, 1).w != {{mesh}}.0) continue;
-            FacetHit h = facet_intersect(i, p, l, facet_shadow_offset, own ? facet_shaded_triangle : -1);
+            FacetHit h = facet_intersect_kept(i, p, l, facet_shadow_offset, own ? facet_shaded_triangle : -1);
             if (h.t > 0.0 && h.t < d) return 0.0;
         }
     }
@@ -229,7 +297,7 @@ int facet_nearest(vec3 origin, vec3 dir, out FacetHit best)
         }
         for (int k = 0; k < count; ++k) {
             int i = int(a.w) + k;
-            FacetHit h = facet_intersect(i, origin, dir, 0.0, -1);
+            FacetHit h = facet_intersect_kept(i, origin, dir, 0.0, -1);
             if (h.t > 0.0 && (best.t < 0.0 || h.t < best.t
                               || (h.t == best.t && facet_object(i, 3).x < facet_object(hit, 3).x))) {
                 best = h;

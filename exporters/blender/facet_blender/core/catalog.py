@@ -131,11 +131,16 @@ def _model(section, data):
 
 def _allows_number(prop):
     """Whether a schema (or one of its oneOf/anyOf alternatives) accepts a plain number."""
+    return _allows_type(prop, "number")
+
+
+def _allows_type(prop, kind):
+    """Whether a schema (or one of its oneOf/anyOf alternatives) accepts a value of JSON type `kind`."""
     if not isinstance(prop, dict):
         return False
-    if prop.get("type") == "number":
+    if prop.get("type") == kind:
         return True
-    return any(_allows_number(p) for key in ("oneOf", "anyOf") for p in prop.get(key, ()))
+    return any(_allows_type(p, kind) for key in ("oneOf", "anyOf") for p in prop.get(key, ()))
 
 
 def _number_maximum(prop):
@@ -170,6 +175,8 @@ def _material_keys(schema):
     for name, prop in schema.get("properties", {}).items():
         if name in ("$schema", "name") or name in LOBE_SECTIONS or not _allows_triple(prop):
             continue
+        if not _allows_type(prop, "array"):
+            continue  # a number (alpha, alpha_cutoff): not a colour or vector the panel edits
         default = prop.get("default")
         if isinstance(default, (int, float)):
             default = [float(default)] * 3
