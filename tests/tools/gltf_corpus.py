@@ -2,15 +2,17 @@
 
     python gltf_corpus.py OUT_FOLDER            (a Python with pip bpy 4.5 and numpy)
 
-Writes OUT/corpus/*.gltf|glb (the corpus), OUT/variants/*.gltf (deliberately wrong twins of
-corpus files, for the second opinion's own teeth), OUT/blender/lights.blend (the .blend
+Writes OUT/corpus/*.gltf|glb (the corpus), OUT/pending/*.gltf (files of features main's
+renderers do not all draw yet: alphaMode MASK), OUT/variants/*.gltf (deliberately wrong twins
+of those files, for the second opinion's own teeth), OUT/blender/lights.blend (the .blend
 that OUT/corpus/blender_lights.glb was exported from, for the Cycles comparison) and
 OUT/corpus.json (each file, what it covers, and which variants twin which file).
 
 Hand-written files come from tests/tools/gltf_build.py (numpy; data URIs or a GLB's binary
 chunk, no file beside them); the blender_* files are written by Blender 4.5's own glTF
 exporter (pip bpy) from scenes built here. Nothing is read from disk and the output is the
-same on every run (the generator is deterministic; Blender's exporter writes no time).
+same on every run, but for the triangle order in the index buffers of the two files Blender's
+exporter writes, which changes from run to run (the same triangles; docs/gltf.md).
 
 Every file is lit by KHR_lights_punctual lights, in the units Blender's exporter writes
 (P W → P/(4π)·683 cd, S W/m² → S·683 lx), because a glTF without lights is lit by facet's
@@ -484,6 +486,41 @@ def sparse(doc):
     doc.node(name="stretched_sphere", mesh=doc.mesh(prim2, "stretched", weights=[1.0]), translation=[0.9, 0.6, 0.0])
 
 
+# ----------------------------------------------------------------------------- pending: what main draws on some renderers
+
+PENDING = []      # (file name, what it covers, writer): files for features main's renderers do not all draw yet
+
+
+def leaf_alpha(n=16):
+    """A leaf's coverage: an ellipse with a notch, alpha 1 inside, fading to 0 across its edge
+    (so the cutoff decides), rgb a green that varies."""
+    i, j = gb.grid(n)
+    x, y = (i + 0.5) / n * 2 - 1, (j + 0.5) / n * 2 - 1
+    r = np.sqrt((x / 0.9) ** 2 + (y / 0.6) ** 2)
+    alpha = np.clip((1.1 - r) * 2.5, 0.0, 1.0) * np.where((np.abs(y) < 0.12) & (x > 0.3), 0.2, 1.0)
+    return gb.rgba(0.2 + 0.3 * (i / n), 0.5 + 0.4 * (j / n), 0.15, alpha)
+
+
+def mask_leaf(doc):
+    stage(doc)
+    leaf = doc.texture(leaf_alpha(16), gb.NEAREST, gb.NEAREST, name="leaf")
+    cut = doc.material("leaf", base=(1, 1, 1, 0.9), roughness=0.6, baseColorTexture={"index": leaf},
+                       alphaMode="MASK", alphaCutoff=0.45, doubleSided=True)
+    plane = gb.plane(1.8)
+    doc.node(name="leaf_a", mesh=doc.mesh(doc.primitive(plane, cut), "leaf"), translation=[-0.6, 1.0, 0.3],
+             rotation=gb.quat_axis_angle((1, 0, 0.2), 70))
+    doc.node(name="sphere_behind", mesh=doc.mesh(doc.primitive(gb.uv_sphere(0.5, 16, 8),
+                                                               lit_material(doc, "red", (0.8, 0.2, 0.15))), "sphere"),
+             translation=[-0.4, 0.5, -0.8])
+    doc.node(name="box", mesh=doc.mesh(doc.primitive(gb.box(0.4, 0.4, 0.4), lit_material(doc, "blue", (0.2, 0.3, 0.8))),
+                                       "box"), translation=[1.4, 0.4, 0.0])
+
+
+PENDING.append(("mask_leaf.gltf", "alphaMode MASK (alphaCutoff 0.45) on a base colour texture's alpha × "
+                                  "baseColorFactor's 0.9, double-sided, in front of a sphere, its shadow cut out too",
+                mask_leaf))
+
+
 # ----------------------------------------------------------------------------- Blender's own exporter
 
 def mikktspace_tangents(shape):
@@ -753,10 +790,22 @@ def rewrite_accessor(doc, index, fn):
     doc["buffers"][0]["uri"] = head + "," + base64.b64encode(bytes(data)).decode()
 
 
+def opaque_twin(src, dst):
+    """mask_leaf.gltf with its cut-out dropped: every material's alphaMode OPAQUE."""
+    doc = json.load(open(src))
+    for m in doc["materials"]:
+        m.pop("alphaMode", None)
+        m.pop("alphaCutoff", None)
+    with open(dst, "w") as f:
+        json.dump(doc, f, indent=1)
+
+
 VARIANTS += [
     ("box_khronos_adjugate.gltf", "box_khronos.gltf", "normals as the adjugate bug turned them (n' = AᵀA⁻¹n)",
      "normals", adjugate_twin),
     ("uv_sets_swapped.gltf", "uv_sets.gltf", "TEXCOORD_0 and TEXCOORD_1 exchanged", "image", swapped_uv_twin),
+    ("mask_leaf_opaque.gltf", "../pending/mask_leaf.gltf", "alphaMode MASK dropped (drawn opaque)", "coverage",
+     opaque_twin),
 ]
 
 
@@ -765,7 +814,8 @@ VARIANTS += [
 def main():
     out = os.path.abspath(sys.argv[1])
     corpus_dir, variant_dir = os.path.join(out, "corpus"), os.path.join(out, "variants")
-    for d in (corpus_dir, variant_dir):
+    pending_dir = os.path.join(out, "pending")
+    for d in (corpus_dir, variant_dir, pending_dir):
         os.makedirs(d, exist_ok=True)
         for f in os.listdir(d):
             os.remove(os.path.join(d, f))
@@ -775,11 +825,16 @@ def main():
         doc = gb.Document()
         fn(doc)
         doc.save(os.path.join(corpus_dir, name))
+    for name, _, fn in PENDING:
+        doc = gb.Document()
+        fn(doc)
+        doc.save(os.path.join(pending_dir, name))
     write_blender_files(out)
     for variant, original, _, _, make in VARIANTS:
         make(os.path.join(corpus_dir, original), os.path.join(variant_dir, variant))
     index = {"corpus": [{"file": n, "covers": c} for n, c, _ in CORPUS],
-             "variants": [{"file": v, "original": o, "wrong": w, "must_fail": f} for v, o, w, f, _ in VARIANTS]}
+             "variants": [{"file": v, "original": o, "wrong": w, "must_fail": f} for v, o, w, f, _ in VARIANTS],
+             "pending": [{"file": n, "covers": c} for n, c, _ in PENDING]}
     with open(os.path.join(out, "corpus.json"), "w") as f:
         json.dump(index, f, indent=1)
     missing = [n for n, _, _ in CORPUS if not os.path.isfile(os.path.join(corpus_dir, n))]

@@ -157,23 +157,11 @@ def _number_maximum(prop):
     return None
 
 
-def _allows_triple(prop):
-    """Whether a schema (or one of its oneOf/anyOf alternatives) accepts an array of 3 numbers."""
-    if not isinstance(prop, dict):
-        return False
-    if prop.get("type") == "array" and prop.get("minItems") == prop.get("maxItems") == 3:
-        return True
-    return any(_allows_triple(p) for key in ("oneOf", "anyOf") for p in prop.get(key, ()))
-
-
 def _material_keys(schema):
-    """ambient/emission/tangent_axis (and whatever facet adds later) from `facet schema`: the
-    material's colour and vector keys. A key that takes one number only (alpha, alpha_cutoff:
-    a cut-out's coverage and threshold, whose mere presence makes a material a cut-out) is no
-    colour the panel edits, and is not written from it."""
+    """ambient/emission/tangent_axis (and whatever facet adds later) from `facet schema`."""
     keys = []
     for name, prop in schema.get("properties", {}).items():
-        if name in ("$schema", "name") or name in LOBE_SECTIONS or not _allows_triple(prop):
+        if name in ("$schema", "name") or name in LOBE_SECTIONS:
             continue
         if not _allows_type(prop, "array"):
             continue  # a number (alpha, alpha_cutoff): not a colour or vector the panel edits

@@ -32,6 +32,7 @@ named in a warning (material, node name and type) and its unlinked value is used
 """
 
 from . import UserError, textures
+from .coords import clean_float
 
 EXACT, APPROXIMATE, IGNORED = "exact", "approximate", "ignored"
 NOTHING_TO_MAP = "no Diffuse, Glossy or Principled BSDF feeds the Material Output"
@@ -48,6 +49,8 @@ class Result:
         self.notes = []
         self.textures = []          # textures.binding(...) of the textured parameters
         self.material_name = ""     # the Blender material's name, for messages
+        self.alpha = None           # a cut-out: alpha (a number; an image is a binding at ["alpha"])
+        self.alpha_cutoff = None    # ... and its threshold, facet's "alpha_cutoff" (None: opaque)
 
     def note(self, level, message):
         self.notes.append((level, message))
@@ -65,6 +68,12 @@ class Result:
             data["specular"] = self.specular
         if self.emission is not None and any(self.emission):
             data["emission"] = self.emission
+        return data
+
+    def cut_out(self, data):
+        """`data` (a material JSON) with the cut-out found, if any: "alpha" and "alpha_cutoff"."""
+        if self.alpha_cutoff is not None:
+            data["alpha"], data["alpha_cutoff"] = self.alpha, self.alpha_cutoff
         return data
 
     def headline(self):
@@ -345,8 +354,47 @@ def _bake_base_and_metal(result, node, base_tex, metal_tex, keep, f0_dielectric,
                        f"metallic–roughness maps, as facet import-gltf bakes them)")
 
 
+def _cut_out(node, result):
+    """A cut-out (glTF's alphaMode MASK) from the Principled BSDF's Alpha, where Blender's glTF
+    importer wired its clip: Alpha = 1 − (a < c) (Math Subtract of 1 and a Math Less Than; a the
+    base colour image's Alpha output, through a Math Multiply for the alpha factor) -> facet's
+    "alpha" (the image's A channel, linear, × the factor) and "alpha_cutoff" c. Cycles takes
+    alpha as coverage, so the clipped 0 or 1 is exactly a cut-out. Anything else linked into
+    Alpha (a blend) is named by the caller's unmapped-input warning."""
+    src = node.sources.get("Alpha")
+    if src is None or src.get("type") != "MATH" or src.get("operation") != "SUBTRACT":
+        return
+    links, values = src.get("links") or [None, None], src.get("values") or [None, None]
+    less = links[1]
+    if links[0] is not None or values[0] != 1.0 or not less or less.get("type") != "MATH" \
+            or less.get("operation") != "LESS_THAN":
+        return
+    inner, cutoff = (less.get("links") or [None, None]), (less.get("values") or [None, None])[1]
+    if inner[1] is not None or not isinstance(cutoff, (int, float)):
+        return
+    ctx = textures.Context(result.material_name, f"{node.label}: Alpha", result.note)
+    if inner[0] is None:
+        alpha = float((less.get("values") or [1.0])[0])
+        result.alpha, spec = alpha, None
+    else:
+        spec = textures.texture_of(inner[0], "number", ctx)
+        if spec is None:
+            return
+        spec["colorspace"] = "linear"           # alpha is coverage, never colour-managed
+        result.alpha = 1.0
+    result.alpha_cutoff = clean_float(float(cutoff))        # Blender's float32, as typed
+    node.textured.add("Alpha")
+    node.reported.add("Alpha")
+    if spec is not None:
+        _bind(result, ("alpha",), None, spec)
+    result.note(EXACT, f"{node.label}: Alpha = 1 − (alpha < {float(cutoff):.4g}) -> a cut-out: alpha "
+                       + (f"from image '{spec['image']}' ({spec['channel']})" if spec else f"{result.alpha:.4g}")
+                       + f", alpha_cutoff {float(cutoff):.4g} (glTF's alphaMode MASK as Blender's importer wires it)")
+
+
 def principled_bsdf(node, weight, result):
     """(diffuse lobe, specular lobe, emission) of a Principled BSDF."""
+    _cut_out(node, result)
     maps = (node.texture("Base Color", "color"), node.texture("Metallic", "number"),
             node.texture("Roughness", "number"),
             node.texture("Specular IOR Level" if node.has("Specular IOR Level") else "Specular", "number"))

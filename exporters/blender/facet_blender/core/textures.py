@@ -439,7 +439,7 @@ def uv_maps(bindings, material=""):
     return names
 
 
-MATERIAL_KEYS = ("normal_map", "emission", "ambient")   # material-level keys a texture may fill
+MATERIAL_KEYS = ("normal_map", "emission", "ambient", "alpha")   # material-level keys a texture may fill
 
 
 def exported(bindings, material_keys=None):

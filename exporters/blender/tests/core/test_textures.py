@@ -142,6 +142,40 @@ def test_a_metallic_factor_scales_the_baked_affine_functions():
     assert f0["scale"] == pytest.approx([0.28, 0.18, 0.08]) and f0["offset"] == pytest.approx([0.04] * 3)
 
 
+def alpha_clip(alpha_src, cutoff, constant=1.0):
+    """Blender's glTF importer's MASK: Alpha = 1 − (alpha < cutoff), Math nodes."""
+    less = {"type": "MATH", "name": "Less", "output": "Value", "operation": "LESS_THAN", "clamp": False,
+            "values": [constant, cutoff], "links": [alpha_src, None]}
+    return {"type": "MATH", "name": "Subtract", "output": "Value", "operation": "SUBTRACT", "clamp": False,
+            "values": [1.0, 0.5], "links": [None, less]}
+
+
+def test_alpha_mask_clip_is_a_cut_out():
+    """glTF's alphaMode MASK as Blender's importer wires it: the base colour image's Alpha (times
+    the alpha factor) through 1 − (a < c) -> facet's alpha (channel a, linear) and alpha_cutoff c."""
+    base = tex_image(image("leaf"))
+    alpha = math_multiply(tex_image(image("leaf"), "Alpha"), 0.8)
+    r = map_surface(principled({"Base Color": base, "Alpha": alpha_clip(alpha, 0.4)}), "Leaf")
+    assert r.alpha_cutoff == pytest.approx(0.4) and r.alpha == 1.0
+    cut = next(b for b in r.textures if b["path"] == ["alpha"])
+    assert cut["spec"]["channel"] == "a" and cut["spec"]["colorspace"] == "linear"
+    assert cut["factor"] == pytest.approx(0.8)
+    assert r.cut_out({"name": "Leaf"}) == {"name": "Leaf", "alpha": 1.0, "alpha_cutoff": pytest.approx(0.4)}
+    assert not any("Alpha" in m and "not mapped" in m for m in messages(r))
+    data, _ = textures.apply(r.cut_out(r.material("Leaf")), r.textures,
+                             {textures.file_key(b): ("leaf.png", None) for b in r.textures})
+    assert data["alpha"] == {"texture": "leaf.png", "channel": "a", "colorspace": "linear", "filter": "nearest",
+                             "wrap": "repeat", "uv": 0, "factor": pytest.approx(0.8)}
+    assert data["alpha_cutoff"] == pytest.approx(0.4)
+
+
+def test_alpha_linked_otherwise_is_no_cut_out():
+    """A blend (Alpha from the image directly) is no cut-out: named, and the material opaque."""
+    r = map_surface(principled({"Alpha": tex_image(image("leaf"), "Alpha")}), "Glass")
+    assert r.alpha_cutoff is None and r.cut_out({}) == {}
+    assert any("Alpha" in m for m in messages(r, IGNORED)), r.notes
+
+
 @pytest.mark.parametrize("src", [
     mix({"type": "TEX_IMAGE"}, [0.5, 0.5, 0.5, 1.0], blend="ADD"),
     mix({"type": "TEX_IMAGE"}, [0.5, 0.5, 0.5, 1.0], factor=0.5),
