@@ -29,7 +29,8 @@ class glTF2ImportUserExtension:
     """Blender's glTF importer makes one of these per import when the add-on is enabled
     (it looks for this name in every enabled add-on's module): the hooks give the
     imported materials, lights and World what facet's glTF extensions (FACET_material,
-    FACET_light, FACET_scene) describe. See blender/gltf_import.py."""
+    FACET_light, FACET_scene) describe, and primitives without a material glTF's default
+    material. See blender/gltf_import.py."""
 
     def __init__(self):
         from .blender import gltf_import
@@ -43,6 +44,9 @@ class glTF2ImportUserExtension:
 
     def gather_import_camera_after_hook(self, *args):
         self._hooks.gather_import_camera_after_hook(*args)
+
+    def gather_import_mesh_after_hook(self, *args):
+        self._hooks.gather_import_mesh_after_hook(*args)
 
     def gather_import_scene_after_nodes_hook(self, *args):
         self._hooks.gather_import_scene_after_nodes_hook(*args)

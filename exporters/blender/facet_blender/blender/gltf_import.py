@@ -17,7 +17,12 @@ glTF written by `facet export-gltf` with *File > Import > glTF 2.0* gives:
   scene camera when the scene has none;
 * a camera whose far clip is not beyond its near clip (a glTF zfar ≤ znear, which the
   glTF specification does not allow) an infinite far clip, as glTF's "no zfar" means;
-  otherwise Blender would clip the whole scene away.
+  otherwise Blender would clip the whole scene away;
+* a primitive without a material glTF's default material (glTF 2.0 §3.9.6: base colour 1,
+  metallic 1, roughness 1) as a Principled BSDF, where the importer leaves the slot empty
+  (Blender would render its own grey diffuse surface, and the add-on's scene export refuses a
+  mesh without a material). The importer makes that material itself only for a primitive with
+  COLOR_0 (io_scene_gltf2/blender/imp/mesh.py).
 
 The importer catches and only logs exceptions from hooks, so every hook here turns
 its problems into report lines and never stops the import. The lines go to the
@@ -70,6 +75,7 @@ class ImportHooks:
         LAST_IMPORT.clear()
         self._facet_missing_reported = False
         self._cameras = []
+        self._default_material = None
 
     def _facet(self, gltf):
         """The facet executable, or None (reported once) when the add-on has no catalog."""
@@ -123,6 +129,23 @@ class ImportHooks:
                            f"({facet_light.get('type')}, radius 0)")
 
     @_guarded
+    def gather_import_mesh_after_hook(self, pymesh, mesh, gltf):
+        """Empty material slots (primitives without a material) -> glTF's default material. A
+        mesh none of whose primitives has a material gets no slot from the importer: it gets one."""
+        empty = [i for i, m in enumerate(mesh.materials) if m is None]
+        if not empty and (len(mesh.materials) or not mesh.polygons):
+            return
+        if self._default_material is None or self._default_material.name not in bpy.data.materials:
+            self._default_material = default_material()
+        for i in empty:
+            mesh.materials[i] = self._default_material
+        if not mesh.materials:
+            mesh.materials.append(self._default_material)       # every face's material index is 0
+            empty = [0]
+        _log(gltf, "INFO", f"mesh '{mesh.name}': {len(empty)} primitive slot(s) without a material get glTF's default "
+                           f"material '{self._default_material.name}' (base colour 1, metallic 1, roughness 1)")
+
+    @_guarded
     def gather_import_camera_after_hook(self, vnode, blender_object, blender_camera, gltf):
         """A far clip at or before the near clip (zfar ≤ znear) -> infinite, as 'no zfar'."""
         self._cameras.append(blender_object)
@@ -155,3 +178,27 @@ class ImportHooks:
             _log(gltf, "INFO", f"scene '{blender_scene.name}': camera '{self._cameras[0].name}' is the scene camera")
         _log(gltf, "INFO", f"scene '{blender_scene.name}': World '{world.name}' with facet's ambient "
                            f"({', '.join(f'{c:g}' for c in ambient)}) from {core_gltf.SCENE_EXTENSION}")
+
+
+DEFAULT_MATERIAL = "glTF default material"
+
+
+def default_material():
+    """glTF's default material (glTF 2.0 §3.9.6) as Blender's glTF importer would build a
+    metallic–roughness material of those values: a Principled BSDF with Base Color 1, Metallic 1,
+    Roughness 1 (and the importer's IOR 1.5) into the Material Output."""
+    mat = bpy.data.materials.new(DEFAULT_MATERIAL)
+    mat.use_nodes = True
+    tree = mat.node_tree
+    bsdf = next((n for n in tree.nodes if n.type == "BSDF_PRINCIPLED"), None)
+    if bsdf is None:
+        bsdf = tree.nodes.new("ShaderNodeBsdfPrincipled")
+        output = next((n for n in tree.nodes if n.type == "OUTPUT_MATERIAL"), None) \
+            or tree.nodes.new("ShaderNodeOutputMaterial")
+        tree.links.new(bsdf.outputs[0], output.inputs["Surface"])
+    bsdf.inputs["Base Color"].default_value = (1.0, 1.0, 1.0, 1.0)
+    bsdf.inputs["Metallic"].default_value = 1.0
+    bsdf.inputs["Roughness"].default_value = 1.0
+    if "IOR" in bsdf.inputs:
+        bsdf.inputs["IOR"].default_value = 1.5
+    return mat

@@ -88,7 +88,7 @@ def exported(material, strict=False):
                         f"({e}): enable facet in its Material Properties > facet panel, or give it a Diffuse, "
                         f"Glossy or Principled BSDF")
     values = _overlay(properties.read(material.facet, plan), plan_mod.conversion_values(catalog, plan, result))
-    data = plan_mod.material_to_json(catalog, plan, values, material.name)
+    data = result.cut_out(plan_mod.material_to_json(catalog, plan, values, material.name))
     notes = [f"material '{material.name}' has no facet settings: exported as converted from its Blender nodes, "
              f"{result.headline()} (the material is unchanged; 'Convert Blender Material to facet' makes this its "
              f"settings, and 'Strict' refuses such a material)"]

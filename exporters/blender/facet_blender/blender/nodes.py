@@ -88,7 +88,33 @@ def source(socket, depth=0):
         desc["inputs"], linked = _socket_values(node)
         desc["linked"] = [n for n in linked if n != "Color"]
         desc["links"] = {"Color": source(node.inputs["Color"], depth + 1)}
+    elif node.type in ("MIX", "MIX_RGB"):
+        desc.update(_mix(node, depth))
+    elif node.type == "MATH":
+        desc.update(operation=node.operation, clamp=bool(node.use_clamp),
+                    values=[_value(s) for s in node.inputs[:2]],
+                    links=[source(s, depth + 1) for s in node.inputs[:2]])
+    elif node.type == "VERTEX_COLOR":
+        desc["layer"] = node.layer_name
     return desc
+
+
+# The Mix node's sockets by data type: its inputs repeat the names Factor, A and B once per type.
+_MIX_SOCKETS = {"FLOAT": (0, 2, 3), "VECTOR": (1, 4, 5), "RGBA": (0, 6, 7)}
+
+
+def _mix(node, depth):
+    """A Mix node (4.x ShaderNodeMix, or 3.x MixRGB) as core/textures.py reads it: its blend,
+    clamping, factor, and each of A and B as a linked source or an unlinked value."""
+    if node.type == "MIX_RGB":
+        data_type, clamp = "RGBA", bool(node.use_clamp)
+        fac, a, b = node.inputs["Fac"], node.inputs["Color1"], node.inputs["Color2"]
+    else:
+        data_type, clamp = node.data_type, bool(node.clamp_result)
+        fac, a, b = (node.inputs[k] for k in _MIX_SOCKETS.get(node.data_type, (0, 6, 7)))
+    return {"data_type": data_type, "blend_type": getattr(node, "blend_type", "MIX"), "clamp": clamp,
+            "factor": _value(fac), "factor_linked": fac.is_linked,
+            "a": source(a, depth + 1), "a_value": _value(a), "b": source(b, depth + 1), "b_value": _value(b)}
 
 
 def describe(node, depth=0):

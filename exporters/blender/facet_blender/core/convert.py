@@ -32,6 +32,7 @@ named in a warning (material, node name and type) and its unlinked value is used
 """
 
 from . import UserError, textures
+from .coords import clean_float
 
 EXACT, APPROXIMATE, IGNORED = "exact", "approximate", "ignored"
 NOTHING_TO_MAP = "no Diffuse, Glossy or Principled BSDF feeds the Material Output"
@@ -48,6 +49,8 @@ class Result:
         self.notes = []
         self.textures = []          # textures.binding(...) of the textured parameters
         self.material_name = ""     # the Blender material's name, for messages
+        self.alpha = None           # a cut-out: alpha (a number; an image is a binding at ["alpha"])
+        self.alpha_cutoff = None    # ... and its threshold, facet's "alpha_cutoff" (None: opaque)
 
     def note(self, level, message):
         self.notes.append((level, message))
@@ -65,6 +68,12 @@ class Result:
             data["specular"] = self.specular
         if self.emission is not None and any(self.emission):
             data["emission"] = self.emission
+        return data
+
+    def cut_out(self, data):
+        """`data` (a material JSON) with the cut-out found, if any: "alpha" and "alpha_cutoff"."""
+        if self.alpha_cutoff is not None:
+            data["alpha"], data["alpha_cutoff"] = self.alpha, self.alpha_cutoff
         return data
 
     def headline(self):
@@ -285,10 +294,14 @@ def _principled_textures(node, result, weight, base, metallic, transmission, f0_
     image is used with the unlinked Metallic, and that is reported."""
     base_tex, metal_tex, rough_tex = maps[:3]
     keep = (1.0 - transmission) * weight
-    if base_tex and metal_tex:
-        result.note(APPROXIMATE, f"{node.label}: Base Color and Metallic are both images; k_d = Base·(1−Metallic) "
-                                 f"and f0 = mix(F0, Base, Metallic) need their product per texel, which the add-on "
-                                 f"does not bake: Base Color's image with the unlinked Metallic {metallic:.3g} is used")
+    if base_tex and metal_tex and _same_coordinates(base_tex, metal_tex):
+        _bake_base_and_metal(result, node, base_tex, metal_tex, keep, f0_dielectric, spec_model)
+        base_tex = metal_tex = None
+    elif base_tex and metal_tex:
+        result.note(APPROXIMATE, f"{node.label}: Base Color and Metallic are images read through different UV maps "
+                                 f"or Mapping nodes; k_d = Base·(1−Metallic) and f0 = mix(F0, Base, Metallic) need "
+                                 f"their product per texel, which the add-on bakes only on one grid: Base Color's "
+                                 f"image with the unlinked Metallic {metallic:.3g} is used")
         metal_tex = None
     if base_tex:
         _bind(result, ("diffuse", "color"), "lambert", base_tex, (1.0 - metallic) * keep)
@@ -317,8 +330,71 @@ def _principled_textures(node, result, weight, base, metallic, transmission, f0_
             _alpha_texture(result, node, "specular", spec_model, rough_tex)
 
 
+def _same_coordinates(a, b):
+    """Whether two texture specs read the same texture coordinates (UV map and Mapping)."""
+    return a.get("uv_map", "") == b.get("uv_map", "") and a.get("transform", {}) == b.get("transform", {})
+
+
+def _bake_base_and_metal(result, node, base_tex, metal_tex, keep, f0_dielectric, spec_model):
+    """k_d = Base·(1 − M)·keep and f0 = F0·(1 − M) + Base·M baked texel by texel from a Base Color
+    image and a Metallic image (textures.bake's "metal_mix"), on the Base Color image's grid:
+    what `facet import-gltf` bakes from glTF's baseColorTexture and metallicRoughnessTexture."""
+    scale = base_tex.get("scale", 1.0)
+    base_scale = scale if isinstance(scale, list) else [scale] * 3
+    metal = {k: metal_tex.get(k) for k in ("image", "channel", "colorspace", "filter", "wrap")}
+    common = {"op": "metal_mix", "metal": metal, "metal_scale": float(metal_tex.get("scale", 1.0)), "rgb": True}
+    spec = {k: v for k, v in base_tex.items() if k != "scale"}
+    _bind(result, ("diffuse", "color"), "lambert", spec,
+          derive=dict(common, part="kd", base_scale=[c * keep for c in base_scale]))
+    if spec_model:
+        _bind(result, ("specular", "fresnel", "f0"), spec_model, spec,
+              derive=dict(common, part="f0", base_scale=base_scale, dielectric=[float(x) for x in f0_dielectric]))
+    result.note(EXACT, f"{node.label}: k_d = Base·(1−Metallic) and f0 = mix(F0, Base, Metallic) baked texel by texel "
+                       f"from images '{base_tex['image']}' and '{metal['image']}' (glTF's base colour and "
+                       f"metallic–roughness maps, as facet import-gltf bakes them)")
+
+
+def _cut_out(node, result):
+    """A cut-out (glTF's alphaMode MASK) from the Principled BSDF's Alpha, where Blender's glTF
+    importer wired its clip: Alpha = 1 − (a < c) (Math Subtract of 1 and a Math Less Than; a the
+    base colour image's Alpha output, through a Math Multiply for the alpha factor) -> facet's
+    "alpha" (the image's A channel, linear, × the factor) and "alpha_cutoff" c. Cycles takes
+    alpha as coverage, so the clipped 0 or 1 is exactly a cut-out. Anything else linked into
+    Alpha (a blend) is named by the caller's unmapped-input warning."""
+    src = node.sources.get("Alpha")
+    if src is None or src.get("type") != "MATH" or src.get("operation") != "SUBTRACT":
+        return
+    links, values = src.get("links") or [None, None], src.get("values") or [None, None]
+    less = links[1]
+    if links[0] is not None or values[0] != 1.0 or not less or less.get("type") != "MATH" \
+            or less.get("operation") != "LESS_THAN":
+        return
+    inner, cutoff = (less.get("links") or [None, None]), (less.get("values") or [None, None])[1]
+    if inner[1] is not None or not isinstance(cutoff, (int, float)):
+        return
+    ctx = textures.Context(result.material_name, f"{node.label}: Alpha", result.note)
+    if inner[0] is None:
+        alpha = float((less.get("values") or [1.0])[0])
+        result.alpha, spec = alpha, None
+    else:
+        spec = textures.texture_of(inner[0], "number", ctx)
+        if spec is None:
+            return
+        spec["colorspace"] = "linear"           # alpha is coverage, never colour-managed
+        result.alpha = 1.0
+    result.alpha_cutoff = clean_float(float(cutoff))        # Blender's float32, as typed
+    node.textured.add("Alpha")
+    node.reported.add("Alpha")
+    if spec is not None:
+        _bind(result, ("alpha",), None, spec)
+    result.note(EXACT, f"{node.label}: Alpha = 1 − (alpha < {float(cutoff):.4g}) -> a cut-out: alpha "
+                       + (f"from image '{spec['image']}' ({spec['channel']})" if spec else f"{result.alpha:.4g}")
+                       + f", alpha_cutoff {float(cutoff):.4g} (glTF's alphaMode MASK as Blender's importer wires it)")
+
+
 def principled_bsdf(node, weight, result):
     """(diffuse lobe, specular lobe, emission) of a Principled BSDF."""
+    _cut_out(node, result)
     maps = (node.texture("Base Color", "color"), node.texture("Metallic", "number"),
             node.texture("Roughness", "number"),
             node.texture("Specular IOR Level" if node.has("Specular IOR Level") else "Specular", "number"))

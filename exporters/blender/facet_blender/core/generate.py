@@ -33,14 +33,14 @@ def supports_normal_map(exe):
 
 
 def texturable_material_keys(exe, meshes=True):
-    """The material-level keys (normal_map, emission, ambient) this facet takes a texture
-    on: normal_map where `supports_normal_map` (or, for a material file alone, `meshes`
+    """The material-level keys (normal_map, emission, ambient, alpha) this facet takes a
+    texture on: normal_map where `supports_normal_map` (or, for a material file alone, `meshes`
     False, where the material schema has the key), the others where the material schema
     lets them be a texture object."""
     import json as json_mod
     schema = cli.material_schema(exe)
     props = schema.get("properties", {}) if isinstance(schema, dict) else {}
-    keys = {k for k in ("emission", "ambient") if "texture" in json_mod.dumps(props.get(k, {}))}
+    keys = {k for k in ("emission", "ambient", "alpha") if "texture" in json_mod.dumps(props.get(k, {}))}
     if supports_normal_map(exe) if meshes else "normal_map" in props:
         keys.add("normal_map")
     return keys

@@ -15,6 +15,10 @@ The Blender layer describes what feeds a linked socket as plain data ("sources",
     {"type": "UVMAP", "uv_map": name}   {"type": "TEX_COORD", "output": "UV" | ...}
     {"type": "NORMAL_MAP", "space": "TANGENT" | ..., "uv_map": name, "inputs": {"Strength"},
      "linked": [...], "links": {"Color": source}}
+    {"type": "MIX" | "MIX_RGB", "data_type": "RGBA" | ..., "blend_type": "MULTIPLY" | ..., "clamp": bool,
+     "factor": number, "factor_linked": bool, "a": source | None, "a_value": RGBA, "b": ..., "b_value": ...}
+    {"type": "MATH", "operation": "MULTIPLY" | ..., "clamp": bool, "values": [v0, v1], "links": [src0, src1]}
+    {"type": "VERTEX_COLOR", "layer": name}
     any other node: {"type", "name", "output"}
 
 How each setting maps (Cycles' Image Texture node, measured in /work/texconv/FINDINGS.md B4):
@@ -29,6 +33,7 @@ How each setting maps (Cycles' Image Texture node, measured in /work/texconv/FIN
 | Separate Color / Separate RGB (RGB mode) Red/Green/Blue | channel "r" / "g" / "b" |
 | Image Texture Alpha output | channel "a" |
 | Normal Map node (tangent space, Strength 1) | "normal_map" {texture, uv, filter, wrap, transform, green "up", strength} |
+| Mix (Multiply, factor 1) of an image and a colour; Math Multiply of a channel and a number | the image's factor × that colour or number ("scale" of the spec; Blender's glTF importer makes these for baseColorFactor, emissiveFactor, metallicFactor and roughnessFactor beside a texture) |
 
 Blender's UV has v up, facet's (glTF's) v down: the exporter writes a mesh's texture
 coordinates as (u, 1 − v_blender) (`core.scene.mesh_objects`), which puts the image where
@@ -39,8 +44,13 @@ Non-Color image, reported as approximate otherwise.
 A parameter that is a function of the image rather than the image itself (GGX's
 α = Roughness², Principled's Base·(1 − Metallic) with a constant base, its f0 = mix(F0,
 Base, Metallic)) is baked: the image's texels go through the function (in linear values)
-into a 16-bit PNG written beside the export (`bake`). A product of two images is not
-baked: the mapping uses one image and says it is approximate.
+into a 16-bit PNG written beside the export (`bake`). A Base Color image and a Metallic
+image read through the same UV map and Mapping (glTF's baseColorTexture beside its
+metallicRoughnessTexture, as Blender's glTF importer wires them) bake k_d = Base·(1 − M) and
+f0 = F0·(1 − M) + Base·M texel by texel on the Base Color image's grid (op "metal_mix"), the
+metallic image read at each texel (sampled at the texel's centre where the sizes differ),
+which is what `facet import-gltf` bakes from the same file; other products of two images are
+not baked: the mapping uses one image and says it is approximate.
 """
 
 import array
@@ -207,10 +217,52 @@ def _image(src, ctx):
     return spec
 
 
+def _constant_factor(src, ctx, want):
+    """(the linked side's source, its factor) of a Mix (Multiply, factor 1) of one linked input
+    and an unlinked colour, or of a Math Multiply of one linked input and a number: what
+    Blender's glTF importer puts between an image and a Principled BSDF for a glTF factor.
+    None (warned) for any other Mix or Math node."""
+    kind = src.get("type")
+    if kind in ("MIX", "MIX_RGB"):
+        ok = (src.get("data_type") == "RGBA" and src.get("blend_type") == "MULTIPLY" and not src.get("factor_linked")
+              and src.get("factor") == 1.0 and (src.get("a") is None) != (src.get("b") is None))
+        linked, value = (src.get("a"), src.get("b_value")) if src.get("a") is not None else (src.get("b"),
+                                                                                            src.get("a_value"))
+        if ok and isinstance(value, (list, tuple)) and (not src.get("clamp") or max(value[:3]) <= 1.0):
+            return linked, [float(c) for c in value[:3]]
+    elif kind == "MATH":
+        links, values = src.get("links") or [None, None], src.get("values") or [None, None]
+        ok = src.get("operation") == "MULTIPLY" and (links[0] is None) != (links[1] is None)
+        k = 1 if links[0] is not None else 0
+        if ok and isinstance(values[k], (int, float)) and (not src.get("clamp") or 0.0 <= values[k] <= 1.0):
+            return links[1 - k], float(values[k])
+    ctx.note("ignored", f"{ctx.where(src)}: {UNMAPPABLE_HINT}, and Mix (Multiply) or Math (Multiply) nodes "
+                        f"that scale one by a constant; its unlinked value is used")
+    return None
+
+
+def _times(a, b):
+    """A factor times a factor (numbers or RGB lists)."""
+    if isinstance(a, list) or isinstance(b, list):
+        a3 = a if isinstance(a, list) else [a] * 3
+        b3 = b if isinstance(b, list) else [b] * 3
+        return [x * y for x, y in zip(a3, b3)]
+    return a * b
+
+
 def texture_of(src, want, ctx):
     """The texture spec of the source feeding a socket, or None (warned) when facet has
-    no equivalent. `want` is "color" or "number"."""
+    no equivalent. `want` is "color" or "number". A constant factor between the image and the
+    socket (a Mix or Math node multiplying it) is the spec's "scale" (a number or an RGB list)."""
     kind = src.get("type")
+    if kind in ("MIX", "MIX_RGB", "MATH"):
+        found = _constant_factor(src, ctx, want)
+        if found is None:
+            return None
+        spec = texture_of(found[0], want, ctx)
+        if spec is not None:
+            spec["scale"] = _times(spec.get("scale", 1.0), found[1])
+        return spec
     channel = None
     if kind in ("SEPARATE_COLOR", "SEPRGB"):
         if src.get("mode", "RGB") != "RGB":
@@ -303,8 +355,21 @@ def binding(path, model, spec, factor=None, derive=None):
     """A parameter's texture: `path` of keys in the material JSON (["diffuse", "color"],
     ["specular", "fresnel", "f0"], ["normal_map"]), the lobe's model it was made for, the
     texture spec (image, uv_map and facet's keys), factor and the function baked into
-    a derived image (None, {"op": "square"}, {"op": "affine", "scale": [3], "offset": [3]})."""
-    b = {"path": list(path), "model": model, "spec": dict(spec)}
+    a derived image (None, {"op": "square"}, {"op": "affine", "scale": [3], "offset": [3]},
+    {"op": "metal_mix", ...}).
+
+    The spec's "scale" (a constant factor between the image and the socket) goes into the
+    factor, or into the derived image's function where there is one: (s·v)² for "square",
+    offset + scale·s·v for "affine"; "metal_mix" carries its own."""
+    spec = dict(spec)
+    scale = spec.pop("scale", None)
+    if scale is not None and derive is None:
+        factor = _times(1.0 if factor is None else factor, scale)
+    elif scale is not None and derive.get("op") == "square":
+        derive = dict(derive, scale=scale)
+    elif scale is not None and derive.get("op") == "affine":
+        derive = dict(derive, scale=_times(list(derive["scale"]), scale))
+    b = {"path": list(path), "model": model, "spec": spec}
     if factor is not None:
         b["factor"] = factor
     if derive is not None:
@@ -374,7 +439,7 @@ def uv_maps(bindings, material=""):
     return names
 
 
-MATERIAL_KEYS = ("normal_map", "emission", "ambient")   # material-level keys a texture may fill
+MATERIAL_KEYS = ("normal_map", "emission", "ambient", "alpha")   # material-level keys a texture may fill
 
 
 def exported(bindings, material_keys=None):
@@ -500,18 +565,24 @@ def pixels_png(width, height, pixels):
 CHANNEL_INDEX = {"r": 0, "g": 1, "b": 2, "a": 3}
 
 
-def bake(width, height, pixels, spec, derive, linear_pixels):
+def bake(width, height, pixels, spec, derive, linear_pixels, second=None):
     """A 16-bit RGB PNG of `derive` applied to the channel(s) `spec` reads, in linear values:
     sRGB texels (of `spec`'s colour space) are decoded first unless `linear_pixels`
     (Blender's float images hold linear values already).
 
-    derive {"op": "square"}: v²;  {"op": "affine", "scale": [3], "offset": [3]}: offset + scale·v
-    per output channel (v the channel, or the pixel's r, g, b for channel "rgb")."""
+    derive {"op": "square", "scale": s (default 1)}: (s·v)²;  {"op": "affine", "scale": [3],
+    "offset": [3]}: offset + scale·v per output channel (v the channel, or the pixel's r, g, b
+    for channel "rgb"); {"op": "metal_mix", "part": "kd" | "f0", "base_scale": [3], "metal":
+    {channel, colorspace, filter, wrap}, "metal_scale": m, "dielectric": [3]}: with b the base
+    texel × base_scale and M the metallic image's channel × metal_scale at the texel (`second`:
+    (width, height, pixels, linear) of that image), k_d = b·(1 − M) or f0 = d·(1 − M) + b·M."""
     decode = spec.get("colorspace") == "srgb" and not linear_pixels
     channel = spec.get("channel", "r")
     op = derive.get("op")
-    if op not in ("square", "affine"):
+    if op not in ("square", "affine", "metal_mix"):
         raise UserError(f"unknown derived image {derive}")
+    if op == "metal_mix":
+        return _bake_metal_mix(width, height, pixels, decode, derive, second)
     rows = []
     for row in _rows_top_first(width, height, pixels, 4):
         out = []
@@ -525,9 +596,72 @@ def bake(width, height, pixels, spec, derive, linear_pixels):
                 v = srgb_decode(v) if decode and k < 3 else v
                 values = [v, v, v]
             if op == "square":
-                out.extend(v * v for v in values)
+                s = derive.get("scale", 1.0)
+                out.extend((sk * v) ** 2 for v, sk in zip(values, s if isinstance(s, list) else [s] * 3))
             else:
                 out.extend(o + s * v for v, s, o in zip(values, derive["scale"], derive["offset"]))
+        rows.append(out)
+    return png16(width, height, rows, 3)
+
+
+def _wrap(k, n, mode):
+    """glTF's wrap of texel index k in [0, n): repeat, clamp (to the edge) or mirror."""
+    if mode == "clamp":
+        return min(max(k, 0), n - 1)
+    if mode == "mirror":
+        period = k % (2 * n)
+        return period if period < n else 2 * n - 1 - period
+    return k % n
+
+
+def _texel(width, height, pixels, i, j, k, decode):
+    """Channel k of texel (i, j), j counted from the top (Blender's pixels are bottom row first)."""
+    v = pixels[4 * ((height - 1 - j) * width + i) + k]
+    return srgb_decode(v) if decode and k < 3 else v
+
+
+def sample(width, height, pixels, u, v, k, filter_, wrap, decode):
+    """Channel k of an image at glTF coordinate (u, v) (v down the picture) by glTF's rule,
+    facet's (docs/textures.md): texel centres at (i + ½)/W, nearest or bilinear on decoded
+    texels, wrap on texel indices."""
+    x, y = u * width - 0.5, v * height - 0.5
+    if filter_ == "nearest":
+        i, j = _wrap(math.floor(x + 0.5), width, wrap), _wrap(math.floor(y + 0.5), height, wrap)
+        return _texel(width, height, pixels, i, j, k, decode)
+    i0, j0 = math.floor(x), math.floor(y)
+    fx, fy = x - i0, y - j0
+    out = 0.0
+    for dj, wy in ((0, 1 - fy), (1, fy)):
+        for di, wx in ((0, 1 - fx), (1, fx)):
+            if wx * wy:
+                out += wx * wy * _texel(width, height, pixels, _wrap(i0 + di, width, wrap),
+                                        _wrap(j0 + dj, height, wrap), k, decode)
+    return out
+
+
+def _bake_metal_mix(width, height, pixels, decode, derive, second):
+    """k_d or f0 from a base colour image and a metallic image, on the base image's texels."""
+    if second is None:
+        raise UserError("a metal_mix derived image needs the metallic image's pixels")
+    mw, mh, mpixels, mlinear = second
+    metal = derive["metal"]
+    k = CHANNEL_INDEX[metal.get("channel", "b")]
+    mdecode = metal.get("colorspace") == "srgb" and not mlinear
+    wrap = metal.get("wrap", "repeat")
+    base_scale, d = derive["base_scale"], derive.get("dielectric", [0.04] * 3)
+    rows = []
+    for j in range(height):
+        out = []
+        for i in range(width):
+            if (mw, mh) == (width, height):
+                m = _texel(mw, mh, mpixels, i, j, k, mdecode)
+            else:
+                m = sample(mw, mh, mpixels, (i + 0.5) / width, (j + 0.5) / height, k, metal.get("filter", "bilinear"),
+                           wrap, mdecode)
+            m *= derive.get("metal_scale", 1.0)
+            for c in range(3):
+                b = _texel(width, height, pixels, i, j, c, decode) * base_scale[c]
+                out.append(b * (1.0 - m) if derive["part"] == "kd" else d[c] * (1.0 - m) + b * m)
         rows.append(out)
     return png16(width, height, rows, 3)
 

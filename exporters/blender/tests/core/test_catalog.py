@@ -47,6 +47,17 @@ def test_material_keys_come_from_the_schema(catalog):
     assert keys["emission"].default == (0.0, 0.0, 0.0)
 
 
+def test_one_number_material_keys_are_not_colours(facet):
+    """alpha and alpha_cutoff (a cut-out's coverage and threshold) take one number each: read
+    as grey colours they were written as arrays facet refuses, and alpha_cutoff on every
+    material would make each a cut-out."""
+    schema = cli.material_schema(facet)
+    scalars = {name for name, prop in schema["properties"].items() if prop.get("type") == "number"}
+    assert {"alpha_cutoff"} <= scalars
+    keys = {k.name for k in catalog_mod.parse(cli.models(facet), schema).material_keys}
+    assert not keys & (scalars | {"alpha"})
+
+
 def test_range_contains_with_exclusive_bounds():
     r = catalog_mod.Range(min=0.0, max=1.0, min_exclusive=True)
     assert not r.contains(0.0) and r.contains(1e-9) and r.contains(1.0) and not r.contains(1.0001)

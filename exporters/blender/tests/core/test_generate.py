@@ -106,3 +106,14 @@ def test_osl_shader_is_lit_by_the_scenes_lights(facet):
     scene["lights"][0]["color"] = [1, 1]
     with pytest.raises(cli.FacetError, match="scene 'Scene'"):
         generate.osl_shader(facet, lambert(), "Paint", scene, "Scene")
+
+
+def test_texturable_material_keys_follow_the_schema(facet):
+    """The material-level keys this facet takes an image on: emission, ambient and a cut-out's
+    alpha where the schema lets them be a texture object (normal_map where meshes take tangents);
+    alpha_cutoff, one plain number, is none of them."""
+    keys = generate.texturable_material_keys(facet)
+    props = cli.material_schema(facet)["properties"]
+    for key in ("emission", "ambient", "alpha"):
+        assert (key in keys) == ("texture" in json.dumps(props.get(key, {}))), key
+    assert "alpha" in keys and "alpha_cutoff" not in keys

@@ -79,11 +79,113 @@ def test_metallic_factor_and_f0_of_a_textured_base():
     assert f0["derive"] == {"op": "affine", "scale": [0.25] * 3, "offset": [pytest.approx(0.03)] * 3, "rgb": True}
 
 
-def test_two_images_in_a_product_are_reported_approximate():
+def test_base_and_metallic_images_bake_kd_and_f0_together():
+    """glTF's baseColorTexture beside its metallicRoughnessTexture, as Blender's importer wires
+    them: k_d and f0 baked from both images on the base image's grid ("metal_mix")."""
+    metal = separate(tex_image(image("mr", "Non-Color")), "Blue")
+    r = map_surface(principled({"Base Color": tex_image(image()), "Metallic": metal}, Metallic=0.5), "Both")
+    by_path = {tuple(b["path"]): b for b in r.textures}
+    kd, f0 = by_path[("diffuse", "color")], by_path[("specular", "fresnel", "f0")]
+    assert kd["spec"]["image"] == f0["spec"]["image"] == "checker"
+    assert kd["derive"]["op"] == f0["derive"]["op"] == "metal_mix"
+    assert (kd["derive"]["part"], f0["derive"]["part"]) == ("kd", "f0")
+    assert kd["derive"]["metal"]["image"] == "mr" and kd["derive"]["metal"]["channel"] == "b"
+    assert f0["derive"]["dielectric"] == [pytest.approx(0.04)] * 3
+    assert any("baked texel by texel from images 'checker' and 'mr'" in m for m in messages(r, EXACT))
+
+
+def test_two_images_on_different_uv_maps_are_reported_approximate():
+    other = {"type": "UVMAP", "name": "UV Map", "output": "UV", "uv_map": "UVMap.001"}
     r = map_surface(principled({"Base Color": tex_image(image()),
-                                "Metallic": tex_image(image("metal", "Non-Color"))}, Metallic=0.5), "Both")
-    assert any("both images" in m for m in messages(r, APPROXIMATE))
+                                "Metallic": tex_image(image("metal", "Non-Color"), vector=other)}, Metallic=0.5),
+                    "Both")
+    assert any("different UV maps" in m for m in messages(r, APPROXIMATE))
     assert [b["path"] for b in r.textures] == [["diffuse", "color"], ["specular", "fresnel", "f0"]]
+    assert not any(b.get("derive", {}).get("op") == "metal_mix" for b in r.textures)
+
+
+def mix(linked, value, blend="MULTIPLY", factor=1.0, linked_side="a"):
+    other = "b" if linked_side == "a" else "a"
+    return {"type": "MIX", "name": "Mix", "output": "Result", "data_type": "RGBA", "blend_type": blend,
+            "clamp": False, "factor": factor, "factor_linked": False, linked_side: linked,
+            f"{linked_side}_value": [1.0, 1.0, 1.0, 1.0], other: None, f"{other}_value": value}
+
+
+def math_multiply(linked, value, operation="MULTIPLY"):
+    return {"type": "MATH", "name": "Math", "output": "Value", "operation": operation, "clamp": False,
+            "values": [0.0, value], "links": [linked, None]}
+
+
+def test_glTF_factors_between_an_image_and_the_bsdf_become_factors():
+    """Blender's glTF importer puts baseColorFactor, emissiveFactor (a colour), metallicFactor and
+    roughnessFactor beside a texture into Mix (Multiply) and Math (Multiply) nodes."""
+    src = principled({"Base Color": mix(tex_image(image()), [0.5, 0.25, 1.0, 1.0], linked_side="b"),
+                      "Roughness": math_multiply(separate(tex_image(image("mr", "Non-Color")), "Green"), 0.5),
+                      "Emission Color": mix(tex_image(image("glow")), [0.2, 0.4, 0.6, 1.0])},
+                     **{"Emission Strength": 2.0, "Emission Color": [1.0, 1.0, 1.0, 1.0]})
+    r = map_surface(src, "Factors")
+    by_path = {tuple(b["path"]): b for b in r.textures}
+    assert by_path[("diffuse", "color")]["factor"] == pytest.approx([0.5, 0.25, 1.0])
+    assert by_path[("specular", "alpha")]["derive"] == {"op": "square", "scale": 0.5}
+    assert by_path[("emission",)]["factor"] == pytest.approx([0.4, 0.8, 1.2])
+    assert not any("unlinked value" in m for m in messages(r))
+    assert all("scale" not in b["spec"] for b in r.textures)
+
+
+def test_a_metallic_factor_scales_the_baked_affine_functions():
+    r = map_surface(principled({"Metallic": math_multiply(separate(tex_image(image("mr", "Non-Color")), "Blue"),
+                                                           0.5)}, **{"Base Color": [0.6, 0.4, 0.2, 1.0]}), "M")
+    by_path = {tuple(b["path"]): b for b in r.textures}
+    kd = by_path[("diffuse", "color")]["derive"]
+    assert kd["scale"] == pytest.approx([-0.3, -0.2, -0.1]) and kd["offset"] == pytest.approx([0.6, 0.4, 0.2])
+    f0 = by_path[("specular", "fresnel", "f0")]["derive"]
+    assert f0["scale"] == pytest.approx([0.28, 0.18, 0.08]) and f0["offset"] == pytest.approx([0.04] * 3)
+
+
+def alpha_clip(alpha_src, cutoff, constant=1.0):
+    """Blender's glTF importer's MASK: Alpha = 1 − (alpha < cutoff), Math nodes."""
+    less = {"type": "MATH", "name": "Less", "output": "Value", "operation": "LESS_THAN", "clamp": False,
+            "values": [constant, cutoff], "links": [alpha_src, None]}
+    return {"type": "MATH", "name": "Subtract", "output": "Value", "operation": "SUBTRACT", "clamp": False,
+            "values": [1.0, 0.5], "links": [None, less]}
+
+
+def test_alpha_mask_clip_is_a_cut_out():
+    """glTF's alphaMode MASK as Blender's importer wires it: the base colour image's Alpha (times
+    the alpha factor) through 1 − (a < c) -> facet's alpha (channel a, linear) and alpha_cutoff c."""
+    base = tex_image(image("leaf"))
+    alpha = math_multiply(tex_image(image("leaf"), "Alpha"), 0.8)
+    r = map_surface(principled({"Base Color": base, "Alpha": alpha_clip(alpha, 0.4)}), "Leaf")
+    assert r.alpha_cutoff == pytest.approx(0.4) and r.alpha == 1.0
+    cut = next(b for b in r.textures if b["path"] == ["alpha"])
+    assert cut["spec"]["channel"] == "a" and cut["spec"]["colorspace"] == "linear"
+    assert cut["factor"] == pytest.approx(0.8)
+    assert r.cut_out({"name": "Leaf"}) == {"name": "Leaf", "alpha": 1.0, "alpha_cutoff": pytest.approx(0.4)}
+    assert not any("Alpha" in m and "not mapped" in m for m in messages(r))
+    data, _ = textures.apply(r.cut_out(r.material("Leaf")), r.textures,
+                             {textures.file_key(b): ("leaf.png", None) for b in r.textures})
+    assert data["alpha"] == {"texture": "leaf.png", "channel": "a", "colorspace": "linear", "filter": "nearest",
+                             "wrap": "repeat", "uv": 0, "factor": pytest.approx(0.8)}
+    assert data["alpha_cutoff"] == pytest.approx(0.4)
+
+
+def test_alpha_linked_otherwise_is_no_cut_out():
+    """A blend (Alpha from the image directly) is no cut-out: named, and the material opaque."""
+    r = map_surface(principled({"Alpha": tex_image(image("leaf"), "Alpha")}), "Glass")
+    assert r.alpha_cutoff is None and r.cut_out({}) == {}
+    assert any("Alpha" in m for m in messages(r, IGNORED)), r.notes
+
+
+@pytest.mark.parametrize("src", [
+    mix({"type": "TEX_IMAGE"}, [0.5, 0.5, 0.5, 1.0], blend="ADD"),
+    mix({"type": "TEX_IMAGE"}, [0.5, 0.5, 0.5, 1.0], factor=0.5),
+    math_multiply({"type": "TEX_IMAGE"}, 0.5, operation="POWER")])
+def test_other_mix_and_math_nodes_are_named(src):
+    src["a" if src["type"] == "MIX" else "links"] = (tex_image(image()) if src["type"] == "MIX"
+                                                     else [tex_image(image("r", "Non-Color")), None])
+    r = map_surface(principled({"Base Color" if src["type"] == "MIX" else "Roughness": src}), "Other")
+    assert not r.textures
+    assert any("Mix (Multiply) or Math (Multiply)" in m for m in messages(r, IGNORED)), r.notes
 
 
 @pytest.mark.parametrize("setting, value, key, expected, level, words", [
@@ -346,6 +448,48 @@ def test_bake_square_and_srgb(tmp_path):
     png = textures.bake(1, 1, px, {"channel": "r", "colorspace": "srgb"}, {"op": "square"}, True)   # float: linear
     path.write_bytes(png)
     assert read_png(str(path))[3] == [round(0.25 * 65535)] * 3
+
+
+def test_bake_metal_mix_equals_facets_bake(tmp_path):
+    """k_d = b·(1 − M) and f0 = d·(1 − M) + b·M per texel: the base texel decoded from sRGB and
+    scaled, M the metallic image's blue channel × its factor; a metallic image of another size is
+    sampled at the base texels' centres (bilinear, glTF's rule)."""
+    base = [0.5, 0.25, 1.0, 1.0, 0.2, 0.4, 0.6, 1.0]              # 2×1, Blender's rows bottom first
+    metal = [0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 0.5, 1.0]
+    derive = {"op": "metal_mix", "part": "kd", "base_scale": [1.0, 0.5, 1.0], "metal_scale": 0.8,
+              "metal": {"channel": "b", "colorspace": "linear", "filter": "nearest", "wrap": "repeat"}}
+    png = textures.bake(2, 1, base, {"colorspace": "srgb"}, derive, False, (2, 1, metal, False))
+    path = tmp_path / "kd.png"
+    path.write_bytes(png)
+    b = [[textures.srgb_decode(c) * k for c, k in zip(base[4 * i:4 * i + 3], (1.0, 0.5, 1.0))] for i in range(2)]
+    m = [0.8, 0.4]
+    want = [round(b[i][c] * (1 - m[i]) * 65535) for i in range(2) for c in range(3)]
+    assert read_png(str(path))[3] == want
+    f0 = dict(derive, part="f0", dielectric=[0.04, 0.04, 0.04])
+    path.write_bytes(textures.bake(2, 1, base, {"colorspace": "srgb"}, f0, False, (2, 1, metal, False)))
+    want = [round((0.04 * (1 - m[i]) + b[i][c] * m[i]) * 65535) for i in range(2) for c in range(3)]
+    assert read_png(str(path))[3] == want
+    # A 1×1 metallic image: every base texel reads its only texel.
+    path.write_bytes(textures.bake(2, 1, base, {"colorspace": "srgb"}, derive, False, (1, 1, metal[:4], False)))
+    want = [round(b[i][c] * (1 - 0.8) * 65535) for i in range(2) for c in range(3)]
+    assert read_png(str(path))[3] == want
+
+
+@pytest.mark.parametrize("wrap, u, want", [("repeat", 0.0, 0.5), ("clamp", 0.0, 0.0), ("mirror", 0.0, 0.0),
+                                           ("repeat", 0.5, 0.5), ("clamp", 0.75, 1.0)])
+def test_sample_follows_glTFs_texel_centres_and_wraps(wrap, u, want):
+    """A 2×1 image of 0 and 1: texel centres at u = 0.25 and 0.75, bilinear between them."""
+    px = [0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0, 1.0]
+    assert textures.sample(2, 1, px, u, 0.5, 0, "bilinear", wrap, False) == pytest.approx(want)
+    assert textures.sample(2, 1, px, 0.3, 0.5, 0, "nearest", wrap, False) == 0.0
+
+
+def test_bake_square_with_a_factor(tmp_path):
+    png = textures.bake(1, 1, [0.5, 0.6, 0.0, 1.0], {"channel": "g", "colorspace": "linear"},
+                        {"op": "square", "scale": 0.5}, False)
+    path = tmp_path / "s.png"
+    path.write_bytes(png)
+    assert read_png(str(path))[3] == [round(0.09 * 65535)] * 3
 
 
 def test_file_names_are_unique():
