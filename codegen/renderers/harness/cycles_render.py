@@ -86,7 +86,8 @@ Conventions
   viewer (globals->I = sd->wi), the reverse of the OSL specification, so a shader's
   view vector there is V = normalize(I).
 * Render: Cycles on the CPU with the OSL shading system, 1 sample, no adaptive
-  sampling, no denoising, no bounces, light-sampling threshold 0, seed 0, transparent
+  sampling, no denoising, no bounces but 64 transparent ones (a cut-out's Transparent BSDF,
+  which Cycles' camera path goes on through), light-sampling threshold 0, seed 0, transparent
   film (for the alpha), Standard view transform, black world, 32-bit float RGBA
   OpenEXR read back with bpy.data.images.load (Blender's rows run bottom-to-top).
   Blender renders at least 4x4 pixels: a smaller image is rendered with a margin of
