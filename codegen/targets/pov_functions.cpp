@@ -588,19 +588,18 @@ std::string PovScene::lit(size_t o, size_t i, double weight, double t, double sh
 // finish's emission scales back.
 std::string PovScene::emitting(size_t o, double weight, double t, double shrink, const std::string& mods) {
   const PovShading& sh = shading(o);
-  if (!emissions_[o]) return object(o, shrink, emission_texture(sh.emission(s_), weight, t), mods);
-  if (kept_[o]) {  // a colour as a pigment that cut() can wrap: a plain colour map
+  if (!emissions_[o] && kept_[o]) {  // the colour as a pigment that cut() wraps
     const RGB e = sh.emission(s_);
     const char* mapping = s_.objects[o].type == Object::Type::Mesh ? "  uv_mapping\n" : "";
     const std::string color = t > 0 ? fmt::format("rgbt <{}, {}, {}, {}>", pov_number(weight * e[0]),
                                                   pov_number(weight * e[1]), pov_number(weight * e[2]), pov_number(t))
                                     : "rgb " + pov_rgb({weight * e[0], weight * e[1], weight * e[2]});
-    if (!emissions_[o])
-      return object(o, shrink,
-                    "texture {\n" + std::string(mapping) + indented(cut(o, "pigment { " + color + " }\n"), 2) +
-                        "  finish { ambient 0 emission Facet_Exposure diffuse 0 specular 0 phong 0 }\n}\n",
-                    mods);
+    return object(o, shrink,
+                  "texture {\n" + std::string(mapping) + indented(cut(o, "pigment { " + color + " }\n"), 2) +
+                      "  finish { ambient 0 emission Facet_Exposure diffuse 0 specular 0 phong 0 }\n}\n",
+                  mods);
   }
+  if (!emissions_[o]) return object(o, shrink, emission_texture(sh.emission(s_), weight, t), mods);
   const RGB e = sh.emission(s_);  // the factors: a channel they hold at 0 stays black
   PovPigment p;
   p.weight = weight;
