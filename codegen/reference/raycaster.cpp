@@ -88,6 +88,53 @@ void mesh_occlusion(const Mesh& m, const Vec3& o, const Vec3& d, double t_min, d
   });
 }
 
+// Object o as an occluder of the segment p + s·l, s ∈ (offset, dist) (blocked(), below):
+// `hit` where the segment meets it, `clear` where it does so away from its edges, `near` where
+// it passes within kGrazing of one. `skip`: the shading triangle of a mesh.
+void occlusion(const Object& o, const Vec3& p, const Vec3& l, double dist, double offset, double close, int skip,
+               bool& hit, bool& clear, bool& near) {
+  if (o.type == Object::Type::Sphere) {
+    // Closest approach of the ray's line to the centre, ahead of p.
+    double along = dot(o.center - p, l);
+    double miss = length(o.center - (p + l * along));
+    double t = o.intersect(p, l, offset);
+    if (t > 0 && t < dist) {
+      hit = true;
+      if (miss < o.radius * (1 - kGrazing)) clear = true;
+    }
+    if (along > offset && along - o.radius < dist && std::fabs(miss - o.radius) < kGrazing * o.radius) near = true;
+  } else if (o.type == Object::Type::Plane) {
+    double den = dot(l, o.normal);
+    if (den == 0) return;
+    double t = dot(o.point - p, o.normal) / den;
+    if (!(t > offset && t < dist)) return;
+    Vec3 q = p + l * t - o.point, u, v;
+    o.plane_axes(u, v);
+    double edge = std::max(std::fabs(dot(q, u)), std::fabs(dot(q, v)));
+    if (edge <= o.size) hit = true;
+    if (edge <= o.size * (1 - kGrazing)) clear = true;
+    else if (std::fabs(edge - o.size) < kGrazing * o.size) near = true;
+  } else {
+    mesh_occlusion(*o.mesh, p, l, offset, dist, close, skip, hit, clear, near);
+  }
+}
+
+// A cut-out object as an occluder: it blocks where a hit before the light is kept, clearly
+// where that hit is away from the object's edges (a sphere's silhouette, a square's border, a
+// mesh triangle's edges, and a smooth normal's shadow ray dipping under the neighbouring
+// triangle, as for opaque objects); the segment passing near an edge is fragile as ever.
+void cutout_occlusion(const Object& o, const Material& cut, const Vec3& p, const Vec3& l, double dist, double offset,
+                      double close, int skip, bool& hit, bool& clear, bool& near) {
+  bool met = false, away = false;
+  occlusion(o, p, l, dist, offset, close, skip, met, away, near);
+  const Hit h = kept_hit(o, &cut, p, l, offset, skip, near);
+  if (!(h.ok() && h.t < dist)) return;
+  hit = true;
+  if (o.type == Object::Type::Mesh) away = std::min({h.u, h.v, 1 - h.u - h.v}) >= kGrazing && h.t > close;
+  if (away) clear = true;
+  else near = true;
+}
+
 // Is the segment p + s·l, s ∈ (offset, dist), blocked? `self` cannot shadow
 // itself when convex; a mesh skips the shading triangle. `grazing` is set when
 // the segment passes within kGrazing of an occluder's edge and nothing blocks
@@ -101,33 +148,9 @@ bool blocked(const Scene& s, const ObjectBvh& bvh, const Cutouts& cut, int self,
     const Object& o = s.objects[i];
     bool own = int(i) == self;
     if (own && o.convex()) return true;
-    if (cut[i]) {  // a cut-out blocks where a hit before the light is kept
-      const Hit h = kept_hit(o, cut[i], p, l, offset, own ? self_triangle : -1, near);
-      if (h.ok() && h.t < dist) hit = clear = true;
-    } else if (o.type == Object::Type::Sphere) {
-      // Closest approach of the ray's line to the centre, ahead of p.
-      double along = dot(o.center - p, l);
-      double miss = length(o.center - (p + l * along));
-      double t = o.intersect(p, l, offset);
-      if (t > 0 && t < dist) {
-        hit = true;
-        if (miss < o.radius * (1 - kGrazing)) clear = true;
-      }
-      if (along > offset && along - o.radius < dist && std::fabs(miss - o.radius) < kGrazing * o.radius) near = true;
-    } else if (o.type == Object::Type::Plane) {
-      double den = dot(l, o.normal);
-      if (den == 0) return true;
-      double t = dot(o.point - p, o.normal) / den;
-      if (!(t > offset && t < dist)) return true;
-      Vec3 q = p + l * t - o.point, u, v;
-      o.plane_axes(u, v);
-      double edge = std::max(std::fabs(dot(q, u)), std::fabs(dot(q, v)));
-      if (edge <= o.size) hit = true;
-      if (edge <= o.size * (1 - kGrazing)) clear = true;
-      else if (std::fabs(edge - o.size) < kGrazing * o.size) near = true;
-    } else {
-      mesh_occlusion(*o.mesh, p, l, offset, dist, close, own ? self_triangle : -1, hit, clear, near);
-    }
+    const int skip = own ? self_triangle : -1;
+    if (cut[i]) cutout_occlusion(o, *cut[i], p, l, dist, offset, close, skip, hit, clear, near);
+    else occlusion(o, p, l, dist, offset, close, skip, hit, clear, near);
     return !clear;
   });
   if (near && !clear) grazing = true;
