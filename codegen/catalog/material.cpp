@@ -64,6 +64,12 @@ void parse_alpha(const std::string& key, const json& val, Material& m, Checker& 
   if (key == "alpha_cutoff") {
     if (auto c = check.ranged(val, key, alpha_cutoff_param())) m.alpha_cutoff = *c;
   } else if (val.is_object()) {  // {"texture": …, "channel": "a"}: factor × the image's channel
+    if (val.contains("vertex_color")) {  // Cycles' shadow rays cannot read another mesh's vertex colour
+      sink.error(key + ".vertex_color",
+                 "a cut-out cannot take the vertex colour (no renderer cuts by a vertex alpha yet); "
+                 "allowed: a number, or an image's channel × a factor");
+      return;
+    }
     if (auto v = parse_texture_value(val, key, alpha_param(), sink)) m.alpha = *v;
   } else if (auto c = check.ranged(val, key, alpha_param())) {
     m.alpha.number = *c;

@@ -14,8 +14,11 @@ std::string describe(const ModelSpec& s) {
   for (const auto& p : s.def->params) {
     if (p.kind != ParamKind::Number) continue;
     const Value& v = s.at(p.name);
-    if (v.texture)
-      params += fmt::format("{}{} from \"{}\"", params.empty() ? "" : ", ", p.name, v.texture->file);
+    if (v.texture && v.texture->has_image())
+      params += fmt::format("{}{} from \"{}\"{}", params.empty() ? "" : ", ", p.name, v.texture->file,
+                            v.texture->vertex_color ? " and the vertex colour" : "");
+    else if (v.texture)
+      params += fmt::format("{}{} from the vertex colour", params.empty() ? "" : ", ", p.name);
     else
       params += fmt::format("{}{} = {}", params.empty() ? "" : ", ", p.name, v.number);
   }
@@ -56,6 +59,10 @@ std::vector<ir::Expr> args_for(const ir::FunctionPtr& f, const ir::FunctionBuild
 
 bool MaterialProgram::is_textured(const std::string& input) const {
   return std::any_of(textured.begin(), textured.end(), [&](const TexturedInput& t) { return t.name == input; });
+}
+
+bool MaterialProgram::uses_vertex_color() const {
+  return std::any_of(textured.begin(), textured.end(), [](const TexturedInput& t) { return t.value.texture->vertex_color; });
 }
 
 bool MaterialProgram::uses(const std::string& input) const {

@@ -30,6 +30,9 @@ struct MaterialProgram {
   // Whether the material samples images: textured parameters or a normal map.
   bool has_textures() const { return !textured.empty() || normal_mapped(); }
   bool normal_mapped() const { return material.normal_map.has_value(); }
+  // Whether a textured input reads the surface's vertex colour (catalog/texture.h): every
+  // target then takes the vertex colour as an input of its sampling (facet_color0).
+  bool uses_vertex_color() const;
   // Whether `input` (a name of `inputs`) is a textured parameter rather than a dot product.
   bool is_textured(const std::string& input) const;
   bool uses_tangent() const {

@@ -237,6 +237,11 @@ void add_scene_vocabulary(std::vector<ModelDef>& all) {
                                  "its bitangent B = w·(n × t), w = +1 or −1; absent: facet computes MikkTSpace "
                                  "tangents (docs/textures.md)",
                      ParamKind::Points, true),
+                list("colors", "a vertex colour per vertex, [r, g, b, a] linear (glTF's COLOR_0; a = 1 for an "
+                               "RGB colour): the values of its material that take \"vertex_color\" multiply by it, "
+                               "blended across each triangle as the texture coordinates are; absent: white "
+                               "(docs/textures.md)",
+                     ParamKind::Points),
                 text("gltf", "a glTF 2.0 file (.gltf or .glb), relative to the scene file"),
                 index("mesh", "the glTF file's mesh: its index in \"meshes\" or its name", true),
                 index("node", "the glTF file's node: its index in \"nodes\" or its name; its mesh in its world "
@@ -251,8 +256,9 @@ void add_scene_vocabulary(std::vector<ModelDef>& all) {
       p.required = false;  // the forms say which keys a mesh needs
       if (p.name == "texcoords" || p.name == "texcoords1") p.arity = 2;
       if (p.name == "tangents") p.arity = 4;
+      if (p.name == "colors") p.arity = 4, p.range = Range::color();
     }
-    m.forms = {{"inline arrays", {"positions", "normals", "triangles"}, {"texcoords", "texcoords1", "tangents"}},
+    m.forms = {{"inline arrays", {"positions", "normals", "triangles"}, {"texcoords", "texcoords1", "tangents", "colors"}},
                {"a glTF file's mesh", {"gltf", "mesh"}, {"primitive", "texcoord0", "texcoord1"}},
                {"a glTF file's node", {"gltf", "node"}, {"primitive", "texcoord0", "texcoord1"}}};
     m.object_type = ObjectType::Mesh;

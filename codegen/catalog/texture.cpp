@@ -14,7 +14,9 @@ using nlohmann::json;
 namespace {
 
 const std::vector<std::string> kKeys = {"texture", "channel", "uv", "transform", "colorspace",
-                                        "filter", "wrap", "factor"};
+                                        "filter", "wrap", "factor", "vertex_color", "offset"};
+// The keys that say how an image is sampled: meaningless without one.
+const std::vector<std::string> kImageKeys = {"uv", "transform", "colorspace", "filter", "wrap"};
 // A normal map's keys: a texture's sampling keys, its convention and strength.
 const std::vector<std::string> kNormalMapKeys = {"texture", "uv", "filter", "wrap", "transform", "green", "strength"};
 const std::vector<std::string> kTransformKeys = {"offset", "scale", "rotation"};
@@ -50,11 +52,14 @@ class TextureReader {
     wrap();
     uv_set();
     transform();
+    vertex_color();
     Value out;
     out.kind = p_.kind;
     out.rgb = {1, 1, 1};
     out.number = 1;
-    factor(out);
+    factor("factor", out.rgb);
+    if (j_.contains("factor") && !j_["factor"].is_array()) out.number = out.rgb[0];
+    factor("offset", ref_.bias);
     image();
     if (!ok_) return std::nullopt;
     out.texture = std::make_shared<TextureRef>(ref_);
@@ -140,34 +145,66 @@ class TextureReader {
     }
   }
 
-  // A number (any parameter) or a colour (colour parameters), each in [0, texture_factor_max(range)].
-  void factor(Value& out) {
-    auto it = j_.find("factor");
+  void vertex_color() {
+    auto it = j_.find("vertex_color");
+    if (it == j_.end()) return;
+    if (!it->is_boolean()) {
+      error("vertex_color", fmt::format("expected true (the value times the surface's vertex colour, glTF's COLOR_0) or "
+                                        "false, found {}",
+                                        it->dump()));
+      return;
+    }
+    ref_.vertex_color = it->get<bool>();
+  }
+
+  // "factor" or "offset": a number (any parameter) or a colour (colour parameters), each in
+  // [0, texture_factor_max(range)]; a number fills the three lanes.
+  void factor(const std::string& key, std::array<double, 3>& out) {
+    auto it = j_.find(key);
     if (it == j_.end()) return;
     const double top = texture_factor_max(p_.range);
-    auto one = [&](const json& v, const std::string& key, double& into) {
+    auto one = [&](const json& v, const std::string& at, double& into) {
       if (!finite(v) || v.get<double>() < 0 || v.get<double>() > top) {
-        error(key, fmt::format("expected a number in [0, {}], found {}", top, v.dump()));
+        error(at, fmt::format("expected a number in [0, {}], found {}", top, v.dump()));
         return;
       }
       into = v.get<double>();
     };
     if (it->is_array() && it->size() == 3 && p_.kind == ParamKind::Color) {
-      for (size_t i = 0; i < 3; ++i) one((*it)[i], index_path("factor", i), out.rgb[i]);
+      for (size_t i = 0; i < 3; ++i) one((*it)[i], index_path(key, i), out[i]);
     } else if (it->is_array()) {
-      error("factor", fmt::format("expected {}, found {}", p_.kind == ParamKind::Color ? "a number or three numbers"
-                                                                                       : "a number",
-                                  it->dump()));
+      error(key, fmt::format("expected {}, found {}", p_.kind == ParamKind::Color ? "a number or three numbers"
+                                                                                  : "a number",
+                             it->dump()));
     } else {
-      one(*it, "factor", out.number);
-      out.rgb = {out.number, out.number, out.number};
+      double x = 0;
+      one(*it, key, x);
+      out = {x, x, x};
     }
+  }
+
+  // Without "texture" the value is the vertex colour alone: "vertex_color" must say so, and
+  // the keys that describe an image's sampling have nothing to describe.
+  bool vertex_color_alone() {
+    if (!ref_.vertex_color) {
+      error("texture", "missing; a texture names its image file (relative to this file's folder), or "
+                       "\"vertex_color\": true takes the surface's vertex colour alone");
+      return false;
+    }
+    for (const auto& key : kImageKeys)
+      if (j_.contains(key)) error(key, "describes how an image is sampled, and this value has no \"texture\"; allowed "
+                                       "without one: \"vertex_color\", \"channel\", \"factor\", \"offset\"");
+    if (p_.kind == ParamKind::Color && ref_.channel != "rgb")
+      error("channel", fmt::format("\"{}\": a colour takes the vertex colour's rgb; allowed without a \"texture\": "
+                                   "\"rgb\"",
+                                   ref_.channel));
+    return ok_;
   }
 
   void image() {
     auto it = j_.find("texture");
     if (it == j_.end()) {
-      error("texture", "missing; a texture names its image file (relative to this file's folder)");
+      vertex_color_alone();
       return;
     }
     if (!it->is_string() || it->get<std::string>().empty()) {
@@ -217,19 +254,27 @@ std::optional<Value> parse_texture_value(const json& j, const std::string& path,
 json texture_json(const Value& v) {
   const TextureRef& t = *v.texture;
   static const char* wraps[] = {"repeat", "clamp", "mirror"};
-  // The image's absolute path: the JSON may be written anywhere (a scene, a glTF file's
-  // FACET_material) and must read back the same image.
-  json j = {{"texture", std::filesystem::absolute(t.path).lexically_normal().string()},
-            {"channel", t.channel},
-            {"uv", t.uv},
-            {"colorspace", t.colorspace},
-            {"filter", t.sampler.filter == TextureFilter::Nearest ? "nearest" : "bilinear"}};
-  j["wrap"] = t.sampler.wrap[0] == t.sampler.wrap[1]
-                  ? json(wraps[int(t.sampler.wrap[0])])
-                  : json::array({wraps[int(t.sampler.wrap[0])], wraps[int(t.sampler.wrap[1])]});
-  if (t.has_transform()) j["transform"] = {{"offset", t.offset}, {"scale", t.scale}, {"rotation", t.rotation}};
-  const bool grey = v.rgb[0] == v.rgb[1] && v.rgb[1] == v.rgb[2];
-  j["factor"] = v.kind == ParamKind::Color && !grey ? json(v.rgb) : json(v.rgb[0]);
+  auto lanes = [&](const std::array<double, 3>& x) {
+    const bool grey = x[0] == x[1] && x[1] == x[2];
+    return v.kind == ParamKind::Color && !grey ? json(x) : json(x[0]);
+  };
+  json j = {{"channel", t.channel}};
+  if (t.has_image()) {
+    // The image's absolute path: the JSON may be written anywhere (a scene, a glTF file's
+    // FACET_material) and must read back the same image.
+    j["texture"] = std::filesystem::absolute(t.path).lexically_normal().string();
+    j["uv"] = t.uv;
+    j["colorspace"] = t.colorspace;
+    j["filter"] = t.sampler.filter == TextureFilter::Nearest ? "nearest" : "bilinear";
+    j["wrap"] = t.sampler.wrap[0] == t.sampler.wrap[1]
+                    ? json(wraps[int(t.sampler.wrap[0])])
+                    : json::array({wraps[int(t.sampler.wrap[0])], wraps[int(t.sampler.wrap[1])]});
+    if (t.has_transform()) j["transform"] = {{"offset", t.offset}, {"scale", t.scale}, {"rotation", t.rotation}};
+  }
+  j["factor"] = lanes(v.rgb);
+  // Written only where set, so that a material without them reads as it always has.
+  if (t.vertex_color) j["vertex_color"] = true;
+  if (t.bias != std::array<double, 3>{0, 0, 0}) j["offset"] = lanes(t.bias);
   return j;
 }
 
@@ -258,9 +303,18 @@ static json texture_schema_body(bool color) {
     factor = {{"oneOf", json::array({factor, {{"type", "array"}, {"items", factor}, {"minItems", 3}, {"maxItems", 3}}})}};
   json bounded = {{"type", "number"}, {"minimum", -kScalarMax}, {"maximum", kScalarMax}};
   json pair = {{"type", "array"}, {"items", bounded}, {"minItems", 2}, {"maxItems", 2}};
+  // An image, or the vertex colour alone: "texture" may be left out only with "vertex_color": true,
+  // and then none of the image's sampling keys.
+  json image_keys = json::array();
+  for (const auto& k : kImageKeys) image_keys.push_back({{"required", json::array({k})}});
+  json alone = {{"properties", {{"vertex_color", {{"const", true}}}}},
+                {"required", json::array({"vertex_color"})},
+                {"not", {{"anyOf", image_keys}}}};
+  if (color) alone["properties"]["channel"] = {{"const", "rgb"}};
   return {{"type", "object"},
-          {"description", "the value from an image: clamp(factor ⊗ channel(sample(image, uv)), the parameter's range)"},
-          {"required", json::array({"texture"})},
+          {"description", "the value from an image, the vertex colour or both: clamp(offset + factor ⊗ "
+                          "channel(sample(image, uv)) ⊗ vertex colour, the parameter's range)"},
+          {"anyOf", json::array({{{"required", json::array({"texture"})}}, alone})},
           {"additionalProperties", false},
           {"properties",
            {{"texture", {{"type", "string"}, {"minLength", 1}, {"description", "image file, relative to this file"}}},
@@ -270,6 +324,12 @@ static json texture_schema_body(bool color) {
             {"filter", {{"enum", json::array({"nearest", "bilinear"})}, {"default", "bilinear"}}},
             {"wrap", {{"oneOf", json::array({wrap, {{"type", "array"}, {"items", wrap}, {"minItems", 2}, {"maxItems", 2}}})}}},
             {"factor", factor},
+            {"offset", factor},
+            {"vertex_color",
+             {{"type", "boolean"},
+              {"default", false},
+              {"description", "times the surface's vertex colour (glTF's COLOR_0; white without one): its rgb for a "
+                              "colour, the component \"channel\" names for a number"}}},
             {"transform",
              {{"type", "object"},
               {"additionalProperties", false},
@@ -282,30 +342,36 @@ json texture_schema(bool color, const Range& range) {
   if (color)
     factor = {{"oneOf", json::array({factor, {{"type", "array"}, {"items", factor}, {"minItems", 3}, {"maxItems", 3}}})}};
   return {{"allOf", json::array({{{"$ref", color ? "#/$defs/texture_color" : "#/$defs/texture_number"}},
-                                 {{"properties", {{"factor", factor}}}}})}};
+                                 {{"properties", {{"factor", factor}, {"offset", factor}}}}})}};
 }
 
 json texture_schema_defs() {
   return {{"texture_color", texture_schema_body(true)}, {"texture_number", texture_schema_body(false)}};
 }
 
-std::array<double, 3> texture_value(const Value& val, const Range& range, double u, double v, bool* fragile) {
+std::array<double, 3> texture_value(const Value& val, const Range& range, double u, double v, bool* fragile,
+                                    const VertexColor& color0) {
   const TextureRef& t = *val.texture;
-  auto uv = t.transform(u, v);
-  if (fragile && t.sampler.filter == TextureFilter::Nearest) {
-    const int size[2] = {t.texels->width, t.texels->height};
-    for (int k = 0; k < 2; ++k) {
-      double x = uv[size_t(k)] * size[k];
-      double to_edge = std::fabs(x - std::round(x)) / size[k];
-      if (to_edge < kTexelEdgeMargin) *fragile = true;
+  const int channel = t.channel_index();
+  std::array<double, 4> s{1, 1, 1, 1};  // no image: the factor and the vertex colour alone
+  if (t.has_image()) {
+    auto uv = t.transform(u, v);
+    if (fragile && t.sampler.filter == TextureFilter::Nearest) {
+      const int size[2] = {t.texels->width, t.texels->height};
+      for (int k = 0; k < 2; ++k) {
+        double x = uv[size_t(k)] * size[k];
+        double to_edge = std::fabs(x - std::round(x)) / size[k];
+        if (to_edge < kTexelEdgeMargin) *fragile = true;
+      }
     }
+    s = sample(*t.texels, t.sampler, uv[0], uv[1]);
   }
-  auto s = sample(*t.texels, t.sampler, uv[0], uv[1]);
-  static const std::string channels = "rgba";
   std::array<double, 3> out{};
-  for (int k = 0; k < 3; ++k) {
-    double x = t.channel == "rgb" ? s[size_t(k)] : s[channels.find(t.channel[0])];
-    out[size_t(k)] = val.rgb[size_t(k)] * x;
+  for (size_t k = 0; k < 3; ++k) {
+    const double x = channel < 0 ? s[k] : s[size_t(channel)];
+    // A colour takes the vertex colour's rgb, a number the component its channel names.
+    const double vc = !t.vertex_color ? 1.0 : val.kind == ParamKind::Color ? color0[k] : color0[size_t(std::max(channel, 0))];
+    out[k] = t.bias[k] + val.rgb[k] * x * vc;
   }
   auto b = texture_bounds(range);
   for (double& x : out) x = std::min(std::max(x, b[0]), b[1]);
@@ -375,7 +441,9 @@ json normal_map_json(const NormalMap& m) {
 
 json normal_map_schema() {
   json s = texture_schema_body(true);
-  for (const char* key : {"channel", "colorspace", "factor"}) s["properties"].erase(key);
+  for (const char* key : {"channel", "colorspace", "factor", "offset", "vertex_color"}) s["properties"].erase(key);
+  s.erase("anyOf");
+  s["required"] = json::array({"texture"});
   s["description"] = "a tangent-space normal map (glTF 2.0 §3.9.3): n_t = normalize((2·rgb − 1) ⊗ (s, s, 1)), "
                      "rgb linear; the shading normal normalize(n_t.x·T + n_t.y·B + n_t.z·N), B = w·(N × T)";
   s["properties"]["green"] = {{"enum", json::array({"up", "down"})},

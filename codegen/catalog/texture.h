@@ -2,11 +2,15 @@
 //
 //   "color": {"texture": "bricks.png", "colorspace": "srgb", "filter": "bilinear",
 //             "wrap": "repeat", "uv": 0, "channel": "rgb", "factor": [1, 1, 1],
-//             "transform": {"offset": [0, 0], "scale": [1, 1], "rotation": 0}}
+//             "transform": {"offset": [0, 0], "scale": [1, 1], "rotation": 0},
+//             "vertex_color": false, "offset": 0}
 //
-// value(u, v) = clamp(factor ⊗ channel(sample(image, uv′)), the parameter's range),
+// value(u, v) = clamp(offset + factor ⊗ channel(sample(image, uv′)) ⊗ vc, the parameter's range),
 // uv′ = KHR_texture_transform's offset + R(rotation) · (scale ⊗ uv); core/texture.h
-// holds the sampling rule.
+// holds the sampling rule. vc is the surface's vertex colour (glTF's COLOR_0, Mesh::colors;
+// white off meshes that carry none) where "vertex_color" is true, else 1: its rgb for a colour
+// parameter, the component "channel" names for a number. With "vertex_color" the image may be
+// left out: the value is then clamp(offset + factor ⊗ vc, range), a vertex colour alone.
 #pragma once
 
 #include <array>
@@ -21,8 +25,13 @@
 
 namespace facet {
 
+// A surface's vertex colour, RGBA (glTF's COLOR_0: linear, alpha 1 where it is RGB); white
+// where there is none, which leaves a value that reads it as without.
+using VertexColor = std::array<double, 4>;
+inline constexpr VertexColor kWhiteVertexColor{1, 1, 1, 1};
+
 struct TextureRef {
-  std::string file;     // as the material wrote it
+  std::string file;     // as the material wrote it; empty: no image, the vertex colour alone
   std::string path;     // resolved against the material file's folder
   std::string channel;  // "rgb" (colours only), "r", "g", "b" or "a"
   int uv = 0;           // the texture coordinate set: 0 or 1
@@ -30,8 +39,13 @@ struct TextureRef {
   double rotation = 0;  // radians
   std::string colorspace;  // "srgb" or "linear"
   Sampler sampler;
-  std::shared_ptr<const Texels> texels;
+  std::shared_ptr<const Texels> texels;  // null without an image
+  bool vertex_color = false;             // times the vertex colour (its rgb, or the channel's component)
+  std::array<double, 3> bias{0, 0, 0};   // "offset": added before the clamp (lanes equal for a number)
 
+  bool has_image() const { return !file.empty(); }
+  // Which component of the vertex colour (and of the image) a number reads: 0–3 for r, g, b, a.
+  int channel_index() const { return channel == "rgb" ? -1 : int(std::string("rgba").find(channel[0])); }
   bool has_transform() const { return offset != std::array<double, 2>{0, 0} || scale != std::array<double, 2>{1, 1} || rotation != 0; }
   // KHR_texture_transform's uv′ (its example "the lower left quadrant, rotated clockwise
   // 90°" fixes the rotation's sense: u′ = cos·s_u·u + sin·s_v·v + o_u, v′ = −sin·s_u·u + cos·s_v·v + o_v).
@@ -48,10 +62,10 @@ std::array<double, 2> texture_bounds(const Range& r);
 // reachable from a channel in (0, 1] and the factor stays a float32 number.
 double texture_factor_max(const Range& r);
 
-// {"texture": …} for parameter `p` (texturable), given at `path` of a document read
-// from `file` (relative image paths are resolved against its folder). Problems go
-// to `sink`; the image is decoded here, so a missing or bad image is reported at
-// `path`.texture.
+// {"texture": …} (or {"vertex_color": true, …}) for parameter `p` (texturable), given at
+// `path` of a document read from `file` (relative image paths are resolved against its
+// folder). Problems go to `sink`; the image is decoded here, so a missing or bad image is
+// reported at `path`.texture.
 std::optional<Value> parse_texture_value(const nlohmann::json& j, const std::string& path, const ParamDef& p,
                                          DiagnosticSink& sink);
 // The JSON of a textured value (every key written out); the image's absolute path.
@@ -69,10 +83,12 @@ nlohmann::json texture_schema_defs();
 // left out of comparisons, as grazing shadow rays are.
 inline constexpr double kTexelEdgeMargin = 1e-4;
 
-// The parameter's value at texture coordinates (u, v) (the set the texture names):
-// for a Number parameter the three lanes are equal. `fragile`, if given, is set where
-// the lookup lies within kTexelEdgeMargin of a nearest-filtered texel's edge.
-std::array<double, 3> texture_value(const Value& v, const Range& range, double u, double v_, bool* fragile = nullptr);
+// The parameter's value at texture coordinates (u, v) (the set the texture names) on a
+// surface of vertex colour `color0`: for a Number parameter the three lanes are equal.
+// `fragile`, if given, is set where the lookup lies within kTexelEdgeMargin of a
+// nearest-filtered texel's edge.
+std::array<double, 3> texture_value(const Value& v, const Range& range, double u, double v_, bool* fragile = nullptr,
+                                    const VertexColor& color0 = kWhiteVertexColor);
 
 // A tangent-space normal map (docs/textures.md, "Normal maps"): a material's top-level
 //   "normal_map": {"texture": …, "uv": 0, "filter": …, "wrap": …, "transform": {…},

@@ -283,13 +283,14 @@ RGB Reference::call(const Prepared& f, const ShadingInputs& in) const {
   return interp_.run(f.id, args);
 }
 
-bool Reference::sample_textures(const std::array<std::array<double, 2>, 2>& uv, ShadingInputs& in) const {
+bool Reference::sample_textures(const std::array<std::array<double, 2>, 2>& uv, ShadingInputs& in,
+                                const VertexColor& color0) const {
   const auto& textured = program_.textured;
   bool fragile = false;
   for (size_t i = 0; i < textured.size(); ++i) {
     const TexturedInput& t = textured[i];
     const auto& st = uv[size_t(t.value.texture->uv)];
-    in.textured[i] = texture_value(t.value, t.range, st[0], st[1], &fragile);
+    in.textured[i] = texture_value(t.value, t.range, st[0], st[1], &fragile, color0);
   }
   return fragile;
 }

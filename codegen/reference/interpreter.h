@@ -10,6 +10,7 @@
 
 #include "catalog/material.h"
 #include "catalog/program.h"
+#include "catalog/texture.h"
 #include "core/ir.h"
 #include "core/vec.h"
 #include "scene/scene.h"
@@ -66,9 +67,11 @@ class Reference {
   const MaterialProgram& program() const { return program_; }
   const Material& material() const { return program_.material; }
 
-  // The values of the textured parameters at texture coordinates uv[0] (set 0) and uv[1] (set 1).
-  // True where a nearest-filtered lookup lies on a texel's edge (catalog/texture.h).
-  bool sample_textures(const std::array<std::array<double, 2>, 2>& uv, ShadingInputs& in) const;
+  // The values of the textured parameters at texture coordinates uv[0] (set 0) and uv[1] (set 1),
+  // on a surface of vertex colour `color0` (Object::color_at). True where a nearest-filtered
+  // lookup lies on a texel's edge (catalog/texture.h).
+  bool sample_textures(const std::array<std::array<double, 2>, 2>& uv, ShadingInputs& in,
+                       const VertexColor& color0 = kWhiteVertexColor) const;
   // m_a ⊗ A + m_e, with m_a and m_e at the point where `in`'s textures were sampled.
   RGB emitted(const ShadingInputs& in, const RGB& scene_ambient) const;
   // The material's normal map (it must have one) at texture coordinates `uv`, on the frame n, t, w:

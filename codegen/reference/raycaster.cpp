@@ -28,14 +28,15 @@ using Cutouts = std::vector<const Material*>;
 constexpr double kAlphaMargin = 1e-4;
 
 // Whether the surface of `o` is there at hit `h` (point p) under the cut-out of material `m`:
-// alpha ≥ cutoff (glTF 2.0 §3.9.4, alphaMode MASK).
+// alpha ≥ cutoff (glTF 2.0 §3.9.4, alphaMode MASK). An alpha from an image or the vertex
+// colour (its alpha, glTF's base colour alpha times COLOR_0's) is sampled there; a number is itself.
 bool present(const Object& o, const Material& m, const Vec3& p, const Hit& h, bool& fragile) {
   bool edge = false;
   double alpha = m.alpha.number;  // a number: the same everywhere
-  if (m.alpha.texture) {
+  if (m.alpha.texture) {  // an image's channel, the vertex colour's alpha, or both
     const auto uv = o.uv_at(p, h);
     const size_t set = size_t(m.alpha.texture->uv);
-    alpha = texture_value(m.alpha, alpha_param().range, uv[set][0], uv[set][1], &edge)[0];
+    alpha = texture_value(m.alpha, alpha_param().range, uv[set][0], uv[set][1], &edge, o.color_at(h))[0];
   }
   fragile = fragile || edge || std::fabs(alpha - *m.alpha_cutoff) < kAlphaMargin;
   return alpha >= *m.alpha_cutoff;
@@ -190,7 +191,7 @@ ShadingFrame shading_frame(const Object& obj, const Reference& ref, const Corner
   // A texel's edge under nearest filtering, or where a sphere's mapping is not continuous
   // (the seam u = 0 | 1, the poles), is as fragile as a grazing shadow ray.
   const auto uv = obj.uv_at(p, hit);
-  f.grazing = ref.sample_textures(uv, f.textured);
+  f.grazing = ref.sample_textures(uv, f.textured, obj.color_at(hit));
   if (obj.type == Object::Type::Sphere) {
     Vec3 d = (p - obj.center) / obj.radius;
     f.grazing = f.grazing || std::hypot(d.x, d.z) < 1e-3 || (d.z < 0 && std::fabs(d.x) < kTexelEdgeMargin * 2 * M_PI);

@@ -1,6 +1,6 @@
 // facet — the G-buffer (docs/architecture.md, "The G-buffer"): the GL renderer's
 // ray caster (renderers/harness/raycast.glsl under FACET_GBUFFER) casts a job's
-// scene once, every material pass at a time, into six RGBA32F images, and the renderers
+// scene once, every material pass at a time, into seven RGBA32F images, and the renderers
 // of other targets shade them pass by pass with a small pass in their own language
 // (targets.h, glsl_gbuffer_shading_source(); the same main in each target) instead of
 // each re-implementing the ray caster.
@@ -20,7 +20,7 @@ namespace facet {
 class GlRenderer;
 
 struct GBuffer {
-  // The six images, in this order (the shading pass's samplers facet_gbuffer_position …
+  // The seven images, in this order (the shading pass's samplers facet_gbuffer_position …
   // facet_gbuffer_visibility):
   //  0 position: p (world space); w the material pass of the object hit (0, 1, …: an index
   //    into material_passes(job)), -1 background. A shading pass reads it as pass_position()
@@ -29,13 +29,15 @@ struct GBuffer {
   //  1 normal: the unit surface normal n; 2 view: v = -(the ray's unit direction)
   //  3 uv tangent: facet_uv_tangent_at() (xyz, w = ±1), for normal maps
   //  4 uv: texture coordinate sets 0 (xy) and 1 (zw)
-  //  5 visibility: `layers` layers (a 2D array), light i's bit (lit()) is bit i mod 24 of
+  //  5 color0: the vertex colour (glTF's COLOR_0, RGBA), a mesh's blended barycentrically; white
+  //    on spheres, squares and meshes without colours
+  //  6 visibility: `layers` layers (a 2D array), light i's bit (lit()) is bit i mod 24 of
   //    channel (i / 24) mod 4 of layer i / 96 (targets/glsl_lights.h): 1 lit, 0 in shadow, 0
   //    where the surface faces away from the light by more than kHorizon (n·l < −kHorizon,
   //    where the light loop never asks) and beyond the scene's lights. Each channel is an
   //    integer below 2^24, which float32 holds exactly, so every language decodes the same bits.
-  static constexpr int kImages = 6;
-  enum Image { Position, Normal, View, UvTangent, Uv, Visibility };
+  static constexpr int kImages = 7;
+  enum Image { Position, Normal, View, UvTangent, Uv, Color0, Visibility };
   static constexpr double kHorizon = 1e-3;
   int width = 0, height = 0;
   int layers = 1;  // the visibility image's: max(1, ⌈lights / 96⌉)
@@ -53,7 +55,7 @@ struct GBuffer {
 
   // Image i's sampler in the shading pass: "facet_gbuffer_position" … "facet_gbuffer_visibility".
   static std::string sampler(int image) {
-    const char* names[kImages] = {"position", "normal", "view", "uv_tangent", "uv", "visibility"};
+    const char* names[kImages] = {"position", "normal", "view", "uv_tangent", "uv", "color0", "visibility"};
     return std::string("facet_gbuffer_") + names[image];
   }
   // The visibility image's layers for `lights` lights.

@@ -263,7 +263,11 @@ std::vector<SweepCount> GlRenderer::sweep(const std::vector<SweepJob>& jobs, con
 std::string GlRenderer::fragment_source(const Material& m, bool gbuffer) {
   MaterialProgram p = compile(m);
   GlslParts parts = glsl_parts(p, Target::Glsl, m.source, LightSource::Buffer);
-  std::string sample = p.has_textures() ? "    facet_sample_textures(facet_uv(hit, p, best, 0), facet_uv(hit, p, best, 1));\n" : "";
+  std::string sample;
+  if (p.has_textures())
+    sample = p.uses_vertex_color()
+                 ? "    facet_sample_textures(facet_uv(hit, p, best, 0), facet_uv(hit, p, best, 1), facet_color0_at(hit, best));\n"
+                 : "    facet_sample_textures(facet_uv(hit, p, best, 0), facet_uv(hit, p, best, 1));\n";
   if (p.normal_mapped())
     sample += "    vec4 frame = facet_uv_tangent_at(hit, p, best);\n"
               "    facet_uv_tangent = frame.xyz;\n    facet_uv_handedness = frame.w;\n";
@@ -281,10 +285,14 @@ std::string GlRenderer::fragment_source(const Material& m, bool gbuffer) {
 namespace {
 
 // Every mesh's BVH and triangles, concatenated: 2 RGBA32F texels a node, 6 a
-// triangle (in BVH order), as codegen/renderers/harness/raycast.glsl reads them.
+// triangle (in BVH order), as codegen/renderers/harness/raycast.glsl reads them; the
+// vertex colours of the meshes that have them, 3 texels a triangle.
 struct MeshBuffers {
-  std::vector<float> nodes, triangles, texcoords, tangents;
+  std::vector<float> nodes, triangles, texcoords, tangents, colors;
   std::vector<int> first_node;  // per object (meshes only)
+  // Per object: its triangle t's colours start at texel colors_base + 3t (t counted over every
+  // mesh, as facet_triangles counts them); −1 without colours.
+  std::vector<double> colors_base;
 };
 
 MeshBuffers mesh_buffers(const Scene& s, const Material* fallback) {
@@ -295,6 +303,7 @@ MeshBuffers mesh_buffers(const Scene& s, const Material* fallback) {
   for (size_t i = 0; i < s.objects.size(); ++i) {
     const Object& o = s.objects[i];
     b.first_node.push_back(int(b.nodes.size() / 8));
+    b.colors_base.push_back(-1);
     if (o.type != Object::Type::Mesh) continue;
     const Mesh& m = *o.mesh;
     // A normal-mapped mesh's corner tangents (scene/tangents.h), 3 texels a triangle; 0 elsewhere.
@@ -302,6 +311,7 @@ MeshBuffers mesh_buffers(const Scene& s, const Material* fallback) {
     const std::vector<std::array<double, 4>> corners = nm ? mesh_tangents(m, nm->texture().uv)
                                                           : std::vector<std::array<double, 4>>{};
     int node0 = int(b.nodes.size() / 8), tri0 = int(b.triangles.size() / 24);
+    if (!m.colors.empty()) b.colors_base.back() = double(b.colors.size() / 4) - 3.0 * tri0;
     for (const auto& n : m.nodes) {
       push(b.nodes, n.lo, n.count > 0 ? double(tri0 + int(n.start)) : double(node0 + n.right));
       push(b.nodes, n.hi, double(n.count));
@@ -318,6 +328,9 @@ MeshBuffers mesh_buffers(const Scene& s, const Material* fallback) {
         b.texcoords.insert(b.texcoords.end(), {float(st[0][0]), float(st[0][1]), float(st[1][0]), float(st[1][1])});
         const std::array<double, 4> t = corners.empty() ? std::array<double, 4>{} : corners[3 * size_t(t_index) + size_t(c)];
         b.tangents.insert(b.tangents.end(), {float(t[0]), float(t[1]), float(t[2]), float(t[3])});
+        if (m.colors.empty()) continue;
+        const auto& rgba = m.colors[k[size_t(c)]];
+        b.colors.insert(b.colors.end(), {float(rgba[0]), float(rgba[1]), float(rgba[2]), float(rgba[3])});
       }
     }
   }
@@ -326,6 +339,7 @@ MeshBuffers mesh_buffers(const Scene& s, const Material* fallback) {
   if (b.triangles.empty()) b.triangles.assign(24, 0);
   if (b.texcoords.empty()) b.texcoords.assign(12, 0);
   if (b.tangents.empty()) b.tangents.assign(12, 0);
+  if (b.colors.empty()) b.colors.assign(4, 1);
   return b;
 }
 
@@ -390,16 +404,18 @@ struct AlphaAtlas {
   }
 };
 
-// Object i's cut-out (Material::masked()) as raycast.glsl's facet_cutouts reads it: 4 texels.
+// Object i's cut-out (Material::masked()) as raycast.glsl's facet_cutouts reads it: 5 texels.
 void push_cutout(const Material& m, AlphaAtlas& atlas, std::vector<float>& out) {
-  std::array<double, 16> t{};
+  std::array<double, 20> t{};
   t[0] = m.masked() ? *m.alpha_cutoff : -1;
   t[1] = m.alpha.number;
-  if (const TextureRef* image = m.alpha.texture.get(); m.masked() && image) {
+  const TextureRef* value = m.alpha.texture.get();
+  if (m.masked() && value) t[16] = value->bias[0];  // the offset (a cut-out takes no vertex colour: material.cpp)
+  if (const TextureRef* image = value; m.masked() && image && image->has_image()) {
     const auto& r = atlas.add(m, *image);
     const double cs = std::cos(image->rotation), sn = std::sin(image->rotation);
     t[2] = image->uv;
-    t[3] = 1;
+    t[3] += 1;
     t[4] = r[0], t[5] = r[1], t[6] = r[2], t[7] = r[3];
     t[8] = cs * image->scale[0], t[9] = sn * image->scale[1], t[10] = -sn * image->scale[0], t[11] = cs * image->scale[1];
     t[12] = image->offset[0], t[13] = image->offset[1];
@@ -425,6 +441,7 @@ void push_object(const Scene& s, size_t i, const MeshBuffers& meshes, size_t pas
   }
   t[11] = double(pass);
   t[12] = double(i);
+  if (meshes.colors_base[i] != -1) t[13] = meshes.colors_base[i], t[14] = 1;
   for (double v : t) out.push_back(float(v));
 }
 
@@ -453,7 +470,7 @@ SceneBuffers scene_buffers(const Scene& s, const Material* fallback, const std::
   if (b.objects.empty()) b.objects.assign(16, 0);
   if (b.hierarchy.empty()) b.hierarchy.assign(8, 0);
   if (b.lights.empty()) b.lights.assign(16, 0);
-  if (b.cutouts.empty()) b.cutouts.assign(16, 0);
+  if (b.cutouts.empty()) b.cutouts.assign(20, 0);
   return b;
 }
 
@@ -463,10 +480,11 @@ GLuint float_texture(int width, int height, const float* rgba);
 // and the cut-outs' atlas after them.
 class SceneTextures {
  public:
-  static constexpr int kCount = 8;
+  static constexpr int kCount = 9;
   explicit SceneTextures(const SceneBuffers& b) {
-    const std::vector<float>* data[kCount] = {&b.meshes.nodes, &b.meshes.triangles, &b.meshes.texcoords,
-                                              &b.meshes.tangents, &b.objects, &b.hierarchy, &b.lights, &b.cutouts};
+    const std::vector<float>* data[kCount] = {&b.meshes.nodes,   &b.meshes.triangles, &b.meshes.texcoords,
+                                              &b.meshes.tangents, &b.meshes.colors,   &b.objects,
+                                              &b.hierarchy,       &b.lights,          &b.cutouts};
     for (int i = 0; i < kCount; ++i) textures_[i] = texture_buffer(*data[i], buffers_[i]);
     atlas_ = float_texture(b.atlas_width, b.atlas_height, b.atlas.data());
   }
@@ -478,8 +496,9 @@ class SceneTextures {
   SceneTextures(const SceneTextures&) = delete;
   SceneTextures& operator=(const SceneTextures&) = delete;
   void bind(GLuint prog) const {
-    static const char* kSamplers[kCount] = {"facet_bvh",     "facet_triangles", "facet_texcoords",    "facet_tangents",
-                                            "facet_objects", "facet_scene_bvh", "facet_light_buffer", "facet_cutouts"};
+    static const char* kSamplers[kCount] = {"facet_bvh",      "facet_triangles",    "facet_texcoords",
+                                            "facet_tangents", "facet_colors",       "facet_objects",
+                                            "facet_scene_bvh", "facet_light_buffer", "facet_cutouts"};
     // The atlas first: a texture made later (a material's image, float_texture()) binds to the
     // unit active then, which must be a buffer texture's, whose 2D binding no sampler reads.
     glActiveTexture(GLenum(GL_TEXTURE0 + kCount));
@@ -717,14 +736,15 @@ RenderOutcome draw_passes(GLuint vertex, GLuint vao, const PassScene& ps) {
   return out;
 }
 
-// The G-buffer's draws: each writes three layers of the visibility image for its lights (GL 3.3
-// promises 8 draw buffers: 5 + 3), the first the geometry images too; every draw casts the
-// camera rays again, a small cost beside its shadow rays. A draw's lights are those of three
+// The G-buffer's draws: each writes two layers of the visibility image for its lights (GL 3.3
+// promises 8 draw buffers: 6 + 2), the first the geometry images too; every draw casts the
+// camera rays again, a small cost beside its shadow rays. A draw's lights are those of two
 // layers, fewer where llvmpipe cut its loops short (the bits of a layer's draws add up).
 std::string cast_layers(GLuint prog, GLuint vao, const FloatFramebuffer& fb, int lights, GBuffer& g) {
+  constexpr int kLayers = 8 - GBuffer::Visibility;  // a draw's
   const size_t texels = size_t(g.width) * size_t(g.height) * 4;
   g.images[GBuffer::Visibility].assign(texels * size_t(g.layers), 0.0f);
-  const int span = 3 * glsl_light::kVisibilityLayerLights;
+  const int span = kLayers * glsl_light::kVisibilityLayerLights;
   std::vector<LightRange> ranges;
   for (int first = 0; first < std::max(lights, 1); first += span) ranges.insert(ranges.begin(), {first, std::min(first + span, lights)});
   bool geometry = true;  // not yet drawn
@@ -732,13 +752,13 @@ std::string cast_layers(GLuint prog, GLuint vao, const FloatFramebuffer& fb, int
   return in_turns(ranges, most, [&](LightRange r, bool& cut) {
     const int layer = r.first / glsl_light::kVisibilityLayerLights;
     std::vector<bool> on(8, geometry);
-    for (int k = 0; k < 3; ++k) on[size_t(5 + k)] = layer + k < g.layers;
+    for (int k = 0; k < kLayers; ++k) on[size_t(GBuffer::Visibility + k)] = layer + k < g.layers;
     fb.draw_to(on);
     glUniform1i(glGetUniformLocation(prog, "facet_first_layer"), layer);
     set_lights(prog, r);
     if (std::string e = draw_once(vao); !e.empty()) return e;
     std::vector<std::vector<float>> drawn;
-    for (int k = 0; k < 3 && layer + k < g.layers; ++k) drawn.push_back(fb.read(5 + k));
+    for (int k = 0; k < kLayers && layer + k < g.layers; ++k) drawn.push_back(fb.read(GBuffer::Visibility + k));
     for (const auto& d : drawn)
       for (size_t i = 0; i < d.size() && !cut; ++i) cut = d[i] < 0;
     if (cut) return std::string();

@@ -24,7 +24,7 @@ struct VulkanImage {
 // image sampler (nearest, read with texelFetch):
 //  set 0, binding 0      a uniform block of `uniforms` bytes (std140: the generated glsl450's FacetScene)
 //  set 0, bindings 1…    `textures` (the generated glsl450's facet_texture_<parameter>, in image_calls() order)
-//  set 1, bindings 0…    `images` (the G-buffer's six, renderers/gbuffer.h; the visibility a 2D array)
+//  set 1, bindings 0…    `images` (the G-buffer's seven, renderers/gbuffer.h; the visibility a 2D array)
 //  set 2, binding 0      a storage buffer of `storage` bytes (the lights, 64 bytes each: targets.h,
 //                        LightSource::Buffer; at least 64 bytes are bound, zeros past `storage`)
 //  push constants        ivec2 (width, height) at offset 0

@@ -84,7 +84,8 @@ json pass_entry(const RenderJob& job, const Material& m, const GBuffer& g, size_
   fs::remove(stem + "_wgpu.pfm");
   fs::remove(stem + "_wgpu.alpha.pfm");
   return {{"name", m.name},         {"width", g.width},           {"height", g.height},
-          {"layers", g.layers},      {"wgsl", stem + ".wgsl"},     {"uniforms", stem + ".uniforms"},
+          {"layers", g.layers},      {"images", GBuffer::kImages}, {"wgsl", stem + ".wgsl"},
+          {"uniforms", stem + ".uniforms"},
           {"lights", stem + ".lights"}, {"gbuffer", stem + ".gbuffer"}, {"textures", textures},
           {"output", stem + "_wgpu"}};
 }

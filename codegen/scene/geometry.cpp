@@ -171,6 +171,16 @@ std::array<std::array<double, 2>, 2> Object::uv_at(const Vec3& p, const Hit& h) 
   return {st, st};
 }
 
+std::array<double, 4> Object::color_at(const Hit& h) const {
+  if (type != Type::Mesh || mesh->colors.empty()) return {1, 1, 1, 1};
+  const auto& c = mesh->colors;
+  const auto& tri = mesh->triangles[size_t(h.triangle)];
+  const double w0 = 1 - h.u - h.v;
+  std::array<double, 4> out{};
+  for (size_t k = 0; k < 4; ++k) out[k] = w0 * c[tri[0]][k] + h.u * c[tri[1]][k] + h.v * c[tri[2]][k];
+  return out;
+}
+
 bool Object::tangent_at(const Vec3& p, const Hit&, Vec3& t, double& w) const {
   w = 1;
   switch (type) {

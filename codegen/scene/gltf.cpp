@@ -21,6 +21,7 @@
 #define TINYGLTF_IMPLEMENTATION  // the one translation unit with tinygltf's code
 #include "scene/gltf_read.h"
 #include "scene/gltf_images.h"
+#include "catalog/program.h"
 #include "catalog/texture.h"
 
 namespace facet {
@@ -352,7 +353,7 @@ class Importer {
       Object o;
       o.name = (node.name.empty() ? (mesh.name.empty() ? fmt::format("mesh{}", node.mesh) : mesh.name) : node.name) +
                (mesh.primitives.size() > 1 ? fmt::format("_{}", pi) : "");
-      o.material = material_key(prim.material, ppath);
+      o.material = material_key(prim.material, ppath, !analytic.is_object() && prim.attributes.count("COLOR_0"));
       std::array<int64_t, 2> texcoords{0, 1};
       if (auto mp = material_paths_.find(o.material); mp != material_paths_.end())
         if (auto it = texcoord_sources_.find(mp->second); it != texcoord_sources_.end()) texcoords = it->second;
@@ -397,49 +398,64 @@ class Importer {
   }
 
   // The key in s_.materials of glTF material `index` (read once, on first use),
-  // or of the default material for a primitive without one.
+  // or of the default material for a primitive without one. `colors`: for a primitive with
+  // COLOR_0, which multiplies the base colour: a material of its own (key suffixed
+  // "_vertex_colors"), as glTF-Blender-IO's importer makes one Blender material per
+  // (material, has COLOR_0), since primitives without COLOR_0 share the glTF material.
   // A primitive without a material takes glTF's default material (glTF 2.0 §3.9.1: every
   // property at its default, base colour 1, metallic 1, roughness 1: white metal), or the one
   // the user gave (--default-material).
-  std::string material_key(int index, const std::string& where) {
-    if (index < 0) {
-      if (!default_key_.empty()) return default_key_;
-      default_key_ = "default";
-      while (used_keys_.count(default_key_)) default_key_ += "_";
-      used_keys_.insert(default_key_);
-      if (options_.default_material) {
-        s_.materials[default_key_] = *options_.default_material;
-      } else {
-        tinygltf::Material none;
-        none.name = "default";
-        std::vector<std::pair<int, std::string>> sets;
-        s_.materials[default_key_] =
-            parse_material(gltf_detail::pbr_material(none, "default", images_, sets, notes_), path_);
-        notes_.push_back(where + ": no material; glTF's default material taken (base colour 1, metallic 1, roughness "
-                                 "1: white metal; --default-material MATERIAL.json gives another)");
-      }
-      return default_key_;
-    }
+  std::string material_key(int index, const std::string& where, bool colors) {
+    if (index < 0) return default_material_key(where, colors && !options_.default_material);
     if (size_t(index) >= model_.materials.size()) reader_.fail(where + ".material", "names no material");
-    std::string& key = keys_[size_t(index)];
-    if (!key.empty()) return key;
     const auto& g = model_.materials[size_t(index)];
+    // facet's own material says itself whether it reads the vertex colour: one key either way.
+    const json ext = extension_of(g.extensions_json_string, kMaterialExt);
+    if (ext.is_object() && ext.contains("material")) colors = false;
+    std::string& key = keys_[size_t(index)][colors ? 1 : 0];
+    if (!key.empty()) return key;
     std::string mpath = fmt::format("materials[{}]", index);
-    key = identifier(g.name.empty() ? fmt::format("material{}", index) : g.name);
-    while (used_keys_.count(key)) key += "_";
-    used_keys_.insert(key);
+    key = unique_key(identifier(g.name.empty() ? fmt::format("material{}", index) : g.name) +
+                     (colors ? "_vertex_colors" : ""));
     material_paths_[key] = mpath;
-    s_.materials[key] = read_material(g, mpath);
+    s_.materials[key] = read_material(g, mpath, colors);
     return key;
   }
 
-  // facet's own material (FACET_material) exactly, else the metallic–roughness one.
-  Material read_material(const tinygltf::Material& g, const std::string& mpath) {
+  std::string default_material_key(const std::string& where, bool colors) {
+    std::string& key = default_keys_[colors ? 1 : 0];
+    if (!key.empty()) return key;
+    key = unique_key(colors ? "default_vertex_colors" : "default");
+    if (options_.default_material) {
+      s_.materials[key] = *options_.default_material;
+    } else {
+      tinygltf::Material none;
+      none.name = "default";
+      std::vector<std::pair<int, std::string>> sets;
+      s_.materials[key] = parse_material(gltf_detail::pbr_material(none, "default", images_, sets, notes_, colors), path_);
+      notes_.push_back(where + ": no material; glTF's default material taken (base colour 1, metallic 1, roughness "
+                               "1: white metal; --default-material MATERIAL.json gives another)");
+    }
+    return key;
+  }
+
+  // `key`, or with underscores after it until no material has it.
+  std::string unique_key(std::string key) {
+    while (used_keys_.count(key)) key += "_";
+    used_keys_.insert(key);
+    return key;
+  }
+
+  // facet's own material (FACET_material) exactly, else the metallic–roughness one (for
+  // primitives with COLOR_0 where `colors`).
+  Material read_material(const tinygltf::Material& g, const std::string& mpath, bool colors) {
     json ext = extension_of(g.extensions_json_string, kMaterialExt);
-    std::vector<std::pair<int, std::string>>& sets = texture_sets_[mpath];
+    // Each variant (with and without COLOR_0) reads the same sets: the last one read is kept.
+    std::vector<std::pair<int, std::string>> sets;
     const bool own = ext.is_object() && ext.contains("material");
-    json m = own ? own_material(ext, mpath, sets) : gltf_detail::pbr_material(g, mpath, images_, sets, notes_);
+    json m = own ? own_material(ext, mpath, sets) : gltf_detail::pbr_material(g, mpath, images_, sets, notes_, colors);
     if (!own) map_texture_sets(m, sets, mpath);
+    texture_sets_[mpath] = sets;
     try {
       return parse_material(m, path_);
     } catch (const InputError& e) {
@@ -607,9 +623,10 @@ class Importer {
   std::string camera_path_, scene_ext_path_;
   bool have_camera_ = false;
   gltf_detail::GltfImages images_;
-  std::vector<std::string> keys_;  // materials by index; only those the primitives use are read
+  // Materials by index, without and with COLOR_0; only those the primitives use are read.
+  std::vector<std::array<std::string, 2>> keys_;
   std::set<std::string> used_keys_;
-  std::string default_key_;  // the key of the material primitives without one take, once read
+  std::array<std::string, 2> default_keys_;  // the material primitives without one take, once read
   std::map<std::string, std::string> material_paths_;  // facet material key → glTF path
   std::map<std::string, std::array<int64_t, 2>> texcoord_sources_;  // by glTF path: the sets read as 0 and 1
   std::map<std::string, std::vector<std::pair<int, std::string>>> texture_sets_;  // by glTF path: (set, key)
@@ -727,9 +744,10 @@ class Exporter {
     g.extensions[kMaterialExt] = value_of(own);
     if (m.diffuse) {
       const Value& color = m.diffuse->at("color");
-      if (color.texture && color.texture->channel == "rgb" && color.texture->colorspace == "srgb")
+      if (color.texture && color.texture->has_image() && color.texture->channel == "rgb" &&
+          color.texture->colorspace == "srgb")
         images_.texture_info(*color.texture, g.pbrMetallicRoughness.baseColorTexture, used_);
-      else if (color.texture)
+      else if (color.texture && color.texture->has_image())
         notes_.push_back(fmt::format("materials.{}: its diffuse colour map is not an sRGB colour map; glTF's "
                                      "baseColorTexture is left out (FACET_material carries it)",
                                      key));
@@ -748,7 +766,8 @@ class Exporter {
         g.normalTexture.scale = m.normal_map->strength;
       }
     }
-    if (m.emission_texture && m.emission_texture->channel == "rgb" && m.emission_texture->colorspace == "srgb") {
+    if (m.emission_texture && m.emission_texture->has_image() && m.emission_texture->channel == "rgb" &&
+        m.emission_texture->colorspace == "srgb") {
       images_.texture_info(*m.emission_texture, g.emissiveTexture, used_);
       const double peak = std::max({m.emission[0], m.emission[1], m.emission[2]});
       const double k = std::max(peak, 1.0);  // glTF's factor is at most 1: the rest is KHR_materials_emissive_strength
@@ -805,10 +824,16 @@ class Exporter {
     }
     node.mesh = add_mesh(o.name, material, pos, nor, idx, o.type == Object::Type::Mesh ? o.mesh.get() : nullptr);
     add_node(node);
+    // glTF viewers multiply the base colour by COLOR_0 whatever the material; facet's reads it where it says so.
+    if (o.type == Object::Type::Mesh && !o.mesh->colors.empty() && !compile(s_.material_of(i, fallback_)).uses_vertex_color())
+      notes_.push_back(fmt::format("objects[{}] (\"{}\"): its vertex colours go out as COLOR_0, which glTF viewers "
+                                   "multiply the base colour by; its material (FACET_material) does not read them",
+                                   i, o.name));
   }
 
   // A one-primitive triangle mesh of float32 positions and normals (and `source`'s texture
-  // coordinates as TEXCOORD_0/1 and tangents as TANGENT, where it has them).
+  // coordinates as TEXCOORD_0/1, vertex colours as COLOR_0 and tangents as TANGENT, where it
+  // has them).
   int add_mesh(const std::string& name, int material, const std::vector<Vec3>& pos, const std::vector<Vec3>& nor,
                const std::vector<uint32_t>& idx, const Mesh* source = nullptr) {
     std::vector<float> fp, fn;
@@ -838,6 +863,12 @@ class Exporter {
       prim.attributes["TEXCOORD_" + std::to_string(set)] =
           add_accessor(st.data(), st.size() * 4, st.size() / 2, TINYGLTF_TYPE_VEC2, TINYGLTF_COMPONENT_TYPE_FLOAT,
                        TINYGLTF_TARGET_ARRAY_BUFFER);
+    }
+    if (source && !source->colors.empty()) {  // RGBA float: what facet holds, exactly as float32 holds it
+      std::vector<float> c;
+      for (const auto& v : source->colors) c.insert(c.end(), {float(v[0]), float(v[1]), float(v[2]), float(v[3])});
+      prim.attributes["COLOR_0"] = add_accessor(c.data(), c.size() * 4, c.size() / 4, TINYGLTF_TYPE_VEC4,
+                                                TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TARGET_ARRAY_BUFFER);
     }
     if (source && !source->tangents.empty()) {
       std::vector<float> tw;

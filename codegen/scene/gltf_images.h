@@ -82,9 +82,12 @@ class GltfImages {
 
 // glTF's metallic–roughness material `g` (at `mpath`, "materials[3]") as facet material
 // JSON, its textures through `images`. `sets` receives each texture coordinate set a
-// texture reads, with its key path.
+// texture reads, with its key path. `vertex_colors`: for primitives with COLOR_0, which
+// multiplies the base colour (glTF 2.0 §3.9.2): the values made of the base colour take the
+// vertex colour ("vertex_color", catalog/texture.h).
 nlohmann::json pbr_material(const tinygltf::Material& g, const std::string& mpath, GltfImages& images,
-                            std::vector<std::pair<int, std::string>>& sets, std::vector<std::string>& notes);
+                            std::vector<std::pair<int, std::string>>& sets, std::vector<std::string>& notes,
+                            bool vertex_colors = false);
 
 }  // namespace facet::gltf_detail
 

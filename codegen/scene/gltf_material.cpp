@@ -27,7 +27,17 @@ struct Pbr {
   std::optional<TextureUse> occlusion_map;     // occlusionTexture (linear, R)
   double occlusion = 1;                        // occlusionTexture.strength
   std::string name;                            // the facet material's key, for baked images' names
+  bool vertex_colors = false;                  // COLOR_0 multiplies the base colour
 };
+
+// `j` (a value's JSON: a number, a colour or a texture object) times the vertex colour where
+// the material's primitives have COLOR_0: a colour becomes {"vertex_color": true, "factor": …}.
+json times_vertex_color(const Pbr& p, json j) {
+  if (!p.vertex_colors) return j;
+  if (!j.is_object()) j = {{"factor", j}};
+  j["vertex_color"] = true;
+  return j;
+}
 
 // The linear base colour at texel (i, j) of the grid the bake runs on.
 RGB base_at(const Pbr& p, int i, int j) {
@@ -106,24 +116,6 @@ void bake_kd_f0(const Pbr& p, GltfImages& images, json& kd, json& f0, const std:
                               mpath, w, h, kd_file, f0_file));
 }
 
-// f0 alone, where metallic is a number strictly between 0 and 1 over a base colour map.
-void bake_f0(const Pbr& p, GltfImages& images, json& f0, const std::string& mpath, std::vector<std::string>& notes) {
-  const TextureUse& g = *p.base_map;
-  const int w = g.texels->width, h = g.texels->height;
-  std::vector<uint16_t> v(size_t(w) * size_t(h) * 3);
-  for (int j = 0; j < h; ++j)
-    for (int i = 0; i < w; ++i) {
-      const RGB b = base_at(p, i, j);
-      for (size_t k = 0; k < 3; ++k)
-        v[(size_t(j) * size_t(w) + size_t(i)) * 3 + k] = unorm16(0.04 * (1 - p.metal) + b[k] * p.metal);
-    }
-  const std::string file = images.bake(p.name + "_f0", w, h, 3, v);
-  f0 = baked_spec(g, file, true);
-  notes.push_back(fmt::format("{}: baked f0 = 0.04·(1 − metallic) + base·metallic texel by texel ({}×{}, 16-bit "
-                              "linear) into {}",
-                              mpath, w, h, file));
-}
-
 // GGX α = max((roughness·G)², kRoughnessMin) texel by texel, from the metallic–roughness map.
 json bake_alpha(const Pbr& p, GltfImages& images, const std::string& mpath, std::vector<std::string>& notes) {
   const TextureUse& g = *p.mr_map;
@@ -140,28 +132,48 @@ json bake_alpha(const Pbr& p, GltfImages& images, const std::string& mpath, std:
   return baked_spec(g, file, false);
 }
 
-// The diffuse colour and Schlick's f0: numbers, a map times a factor, or baked maps.
+// The diffuse colour and Schlick's f0: numbers, a map times a factor (and the vertex
+// colour), or baked maps. With metallic m a number, f0 = 0.04·(1 − m) + base·m is the base
+// colour map (and COLOR_0) times base·m plus the offset 0.04·(1 − m): exact, no bake (until
+// texture values had offsets f0 was baked texel by texel wherever 0 < m < 1).
 void colours(const Pbr& p, GltfImages& images, json& kd, json& f0, const std::string& mpath,
              std::vector<std::string>& notes) {
-  RGB kd_c, f0_c;
+  RGB kd_c, f0_c, base_m;
   for (size_t c = 0; c < 3; ++c) {
     kd_c[c] = p.base[c] * (1 - p.metal);
     f0_c[c] = 0.04 * (1 - p.metal) + p.base[c] * p.metal;
+    base_m[c] = p.base[c] * p.metal;
   }
   kd = kd_c;
   f0 = f0_c;
-  if (p.mr_map && p.metal > 0) return bake_kd_f0(p, images, kd, f0, mpath, notes);
-  if (!p.base_map) return;
+  if (p.mr_map && p.metal > 0) {
+    bake_kd_f0(p, images, kd, f0, mpath, notes);
+    kd = times_vertex_color(p, kd);  // the baked k_d times COLOR_0: exact
+    if (p.vertex_colors)
+      notes.push_back(mpath + ": approximate: f0 = 0.04·(1 − metallic) + base·metallic·COLOR_0 with metallic from a "
+                              "map is no image times COLOR_0 plus a number; the baked f0 leaves COLOR_0 out");
+    return;
+  }
+  const bool diffuse = kd_c[0] + kd_c[1] + kd_c[2] > 0, metal = p.metal > 0;
+  json f0_offset = p.metal < 1 ? json(0.04 * (1 - p.metal)) : json();
+  if (!p.base_map) {
+    if (diffuse) kd = times_vertex_color(p, kd_c);
+    if (metal && p.vertex_colors) {
+      f0 = times_vertex_color(p, base_m);
+      if (!f0_offset.is_null()) f0["offset"] = f0_offset;
+    }
+    return;
+  }
   kd = p.base_map->spec;  // base · (1 − metallic): the map times a factor, exact
   kd["colorspace"] = "srgb";
   kd["factor"] = kd_c;
-  if (p.metal >= 1) {
-    f0 = p.base_map->spec;
-    f0["colorspace"] = "srgb";
-    f0["factor"] = p.base;
-  } else if (p.metal > 0) {
-    bake_f0(p, images, f0, mpath, notes);
-  }
+  kd = times_vertex_color(p, kd);
+  if (!metal) return;
+  f0 = p.base_map->spec;
+  f0["colorspace"] = "srgb";
+  f0["factor"] = base_m;
+  if (!f0_offset.is_null()) f0["offset"] = f0_offset;
+  f0 = times_vertex_color(p, f0);
 }
 
 // glTF's occluded colour, lerp(1, occlusion, strength) (glTF 2.0 §3.9.3), at texel (i, j)
@@ -182,12 +194,15 @@ double occlusion_at(const Pbr& p, int i, int j, int w, int h) {
 json ambient_term(const Pbr& p, const RGB& kd, GltfImages& images, const std::string& mpath,
                   std::vector<std::string>& notes) {
   const TextureUse& o = *p.occlusion_map;
-  if (!p.base_map && !(p.mr_map && p.metal > 0) && p.occlusion == 1) {
+  // k_d·lerp(1, R, s) = k_d·s·R + k_d·(1 − s): the map itself, its offset k_d·(1 − s) (which
+  // COLOR_0 would have to multiply too: there, s = 1 only).
+  if (!p.base_map && !(p.mr_map && p.metal > 0) && (p.occlusion == 1 || !p.vertex_colors)) {
     json a = o.spec;
     a["colorspace"] = "linear";
     a["channel"] = "r";
-    a["factor"] = kd;
-    return a;
+    a["factor"] = RGB{kd[0] * p.occlusion, kd[1] * p.occlusion, kd[2] * p.occlusion};
+    if (p.occlusion < 1) a["offset"] = RGB{kd[0] * (1 - p.occlusion), kd[1] * (1 - p.occlusion), kd[2] * (1 - p.occlusion)};
+    return times_vertex_color(p, a);
   }
   const TextureUse& g = p.base_map ? *p.base_map : p.mr_map && p.metal > 0 ? *p.mr_map : o;
   if (!g.same_mapping(o))
@@ -210,12 +225,14 @@ json ambient_term(const Pbr& p, const RGB& kd, GltfImages& images, const std::st
   json a = g.spec;
   a["texture"] = file;
   a["colorspace"] = "linear";
-  return a;
+  return times_vertex_color(p, a);  // the baked term times COLOR_0: exact
 }
 
 // glTF 2.0 §3.9.4, alphaMode: MASK is facet's cut-out, the base colour's alpha (baseColorFactor's
-// times baseColorTexture's A, linear) against alphaCutoff; BLEND, which facet does not blend,
-// is drawn opaque, with a note.
+// times baseColorTexture's A, linear) against alphaCutoff; BLEND, which facet does not blend, is
+// drawn opaque, with a note. COLOR_0's alpha, which glTF multiplies in too, is left out of the
+// cut-out, with a note: Cycles' shadow rays cannot read another mesh's vertex colour where they
+// meet it (docs/textures.md, Cut-outs), so no renderer cuts by it.
 void cut_out(const tinygltf::Material& g, const Pbr& p, const std::string& mpath, json& m,
              std::vector<std::string>& notes) {
   const double alpha = g.pbrMetallicRoughness.baseColorFactor.size() > 3 ? g.pbrMetallicRoughness.baseColorFactor[3] : 1;
@@ -231,6 +248,9 @@ void cut_out(const tinygltf::Material& g, const Pbr& p, const std::string& mpath
   } else {
     m["alpha"] = alpha;
   }
+  if (p.vertex_colors)
+    notes.push_back(mpath + " (COLOR_0): alphaMode MASK cuts by the base colour's alpha alone; COLOR_0's alpha is "
+                            "left out of the cut-out (approximated: facet's renderers do not cut by a vertex alpha)");
 }
 
 // The material's extensions facet does not implement, named in one note (the file's
@@ -252,13 +272,14 @@ void note_unimplemented_extensions(const tinygltf::Material& g, const std::strin
 }  // namespace
 
 json pbr_material(const tinygltf::Material& g, const std::string& mpath, GltfImages& images,
-                  std::vector<std::pair<int, std::string>>& sets, std::vector<std::string>& notes) {
+                  std::vector<std::pair<int, std::string>>& sets, std::vector<std::string>& notes, bool vertex_colors) {
   const auto& pbr = g.pbrMetallicRoughness;
   Pbr p;
+  p.vertex_colors = vertex_colors;
   p.base = rgb3(pbr.baseColorFactor, 1);
   p.metal = pbr.metallicFactor;
   p.rough = pbr.roughnessFactor;
-  p.name = identifier(g.name.empty() ? mpath : g.name);
+  p.name = identifier(g.name.empty() ? mpath : g.name) + (vertex_colors ? "_vertex_colors" : "");
   const std::string pm = mpath + ".pbrMetallicRoughness";
   if (pbr.baseColorTexture.index >= 0)
     p.base_map = images.texture(pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord,
@@ -283,7 +304,7 @@ json pbr_material(const tinygltf::Material& g, const std::string& mpath, GltfIma
                                   g.emissiveTexture.extensions_json_string, mpath + ".emissiveTexture");
   for (const auto* map : {&p.base_map, &p.mr_map, &p.occlusion_map, &normal_map, &emission_map})
     if (*map) sets.emplace_back((*map)->uv, (*map)->key + ".texCoord");
-  json m = {{"name", g.name.empty() ? mpath : g.name}};
+  json m = {{"name", (g.name.empty() ? mpath : g.name) + (vertex_colors ? " (COLOR_0)" : "")}};
   json kd, f0;
   colours(p, images, kd, f0, mpath, notes);
   const bool diffuse = kd.is_object() || kd[0].get<double>() + kd[1].get<double>() + kd[2].get<double>() > 0;

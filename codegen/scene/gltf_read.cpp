@@ -413,6 +413,12 @@ PrimitivePlan plan_primitive(const Reader& r, const tinygltf::Primitive& prim, c
     if (p.texcoords[set].count != p.positions.count)
       r.fail(path + ".attributes." + key, "has a different count from POSITION");
   }
+  auto color = prim.attributes.find("COLOR_0");
+  p.has_colors = color != prim.attributes.end();
+  if (p.has_colors) {
+    p.colors = r.color(color->second, path + ".attributes.COLOR_0");
+    if (p.colors.count != p.positions.count) r.fail(path + ".attributes.COLOR_0", "has a different count from POSITION");
+  }
   auto tangent = prim.attributes.find("TANGENT");
   p.has_tangents = tangent != prim.attributes.end();
   if (p.has_tangents) {
@@ -507,6 +513,7 @@ void smooth(const Reader& r, const PrimitivePlan& p, const Mat4& world, Mesh& me
     for (size_t set = 0; set < 2; ++set)
       if (p.has_texcoords[set]) mesh.texcoords[set].push_back(r.vec2_at(p.texcoords[set], i));
     if (p.has_tangents) mesh.tangents.push_back(vs.tangent(i, m));
+    if (p.has_colors) mesh.colors.push_back(r.color_at(p.colors, i));
   }
   const bool flip = world.det3() < 0;
   for (size_t t = 0; t < p.size.triangles; ++t) {
@@ -538,6 +545,8 @@ void flat(const Reader& r, const PrimitivePlan& p, const Mat4& world, Mesh& mesh
         for (size_t o : order) mesh.texcoords[set].push_back(r.vec2_at(p.texcoords[set], k[o]));
     if (p.has_tangents)
       for (size_t o : order) mesh.tangents.push_back(vs.tangent(k[o], m[o]));
+    if (p.has_colors)  // in the corners' order, turned with the winding as the positions are
+      for (size_t o : order) mesh.colors.push_back(r.color_at(p.colors, k[o]));
     mesh.triangles.push_back({base, base + 1, base + 2});
   }
 }
@@ -618,9 +627,43 @@ void plan_deformation(const Reader& r, PrimitivePlan& p, const tinygltf::Mesh& m
   if (node_index >= 0 && r.model().nodes[size_t(node_index)].skin >= 0) plan_skin(r, p, node_index, notes);
 }
 
+namespace {
+
+// Vertex colours where only some primitives of a mesh have COLOR_0: the others white, which
+// glTF's "no COLOR_0" means (the base colour multiplied by nothing), said in a note. `first`:
+// the primitive's first vertex in the mesh.
+void complete_colors(const PrimitivePlan& p, size_t first, Mesh& mesh, std::vector<std::string>& notes) {
+  auto& c = mesh.colors;
+  if (c.empty() || c.size() == mesh.positions.size()) return;
+  constexpr std::array<double, 4> white{1, 1, 1, 1};
+  if (p.has_colors) {  // earlier primitives lacked it: white before this one's
+    notes.push_back(p.path + ": COLOR_0, which earlier primitives of its mesh lack; white taken there");
+    c.insert(c.begin(), first, white);
+  } else {
+    notes.push_back(p.path + ": no COLOR_0, which other primitives of its mesh have; white taken");
+    c.resize(mesh.positions.size(), white);
+  }
+}
+
+// Every component of the primitive's vertex colours (from `first` in the mesh) is a number of
+// [0, kColorMax], as the scene's "colors" are: a float COLOR_0 may hold anything, and a value
+// out of range would not read back.
+void check_colors(const Reader& r, const PrimitivePlan& p, const Mesh& mesh, size_t first) {
+  if (!p.has_colors) return;
+  for (size_t i = first; i < mesh.colors.size(); ++i)
+    for (double x : mesh.colors[i])
+      if (!(x >= 0 && x <= kColorMax))
+        r.fail(fmt::format("accessors[{}]", p.colors.accessor),
+               fmt::format("a vertex colour component is {}; allowed: a number in [0, {}] (COLOR_0 is a linear "
+                           "colour)",
+                           x, kColorMax));
+}
+
+}  // namespace
+
 void append_primitive(const Reader& r, const PrimitivePlan& p, const Mat4& world, Mesh& mesh,
                       std::vector<std::string>& notes) {
-  const size_t first = mesh.positions.size();
+  const size_t first = mesh.positions.size(), first_color = mesh.colors.size();
   mesh.positions.reserve(first + p.size.vertices);
   mesh.normals.reserve(first + p.size.vertices);
   mesh.triangles.reserve(mesh.triangles.size() + p.size.triangles);
@@ -656,6 +699,8 @@ void append_primitive(const Reader& r, const PrimitivePlan& p, const Mat4& world
     } else
       tc.resize(mesh.positions.size(), {0.0, 0.0});
   }
+  check_colors(r, p, mesh, first_color);
+  complete_colors(p, first, mesh, notes);
   for (size_t i = first; i < mesh.positions.size(); ++i)
     if (!finite(mesh.positions[i]) || !finite(mesh.normals[i]))
       r.fail(p.where, "its world transform makes a vertex or a normal of " + p.path +

@@ -123,6 +123,8 @@ struct PrimitivePlan {
   std::array<bool, 2> has_texcoords{false, false};
   AccessorView tangents;  // TANGENT
   bool has_tangents = false;
+  AccessorView colors;  // COLOR_0: RGB or RGBA, float or normalized unsigned bytes or shorts
+  bool has_colors = false;
   int mode = TINYGLTF_MODE_TRIANGLES;  // or a strip (5) or a fan (6): corner() lists their triangles
   MeshSize size;  // at most: zero-area (flat) and degenerate triangles are dropped
   // Morph targets of non-zero weight, at the weights the file gives (the node's, else the
@@ -157,8 +159,10 @@ void plan_deformation(const Reader& r, PrimitivePlan& p, const tinygltf::Mesh& m
 // transform turns the triangles round so they still face their normals. TANGENT
 // goes along (xyz by the transform, w negated by a mirroring one) where every primitive
 // of the mesh has it; else the mesh keeps none and takes facet's MikkTSpace tangents.
-// Does not build the hierarchy. `notes` says which primitives had no normals, and
-// which tangents were left.
+// COLOR_0 goes along as the mesh's vertex colours (RGBA, alpha 1 for RGB); a primitive of a
+// mesh whose others have them and it not is white (glTF: no COLOR_0 multiplies by nothing).
+// Does not build the hierarchy. `notes` says which primitives had no normals, which
+// tangents were left and which primitives were made white.
 void append_primitive(const Reader& r, const PrimitivePlan& p, const Mat4& world, Mesh& mesh,
                       std::vector<std::string>& notes);
 

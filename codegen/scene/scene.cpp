@@ -164,6 +164,12 @@ std::shared_ptr<Mesh> mesh_of(const ModelSpec& o, const std::string& path, Diagn
       sink.error(join_path(path, "tangents"), fmt::format("has {} tangents for {} positions; allowed: one per position",
                                                           m->tangents.size(), m->positions.size()));
   }
+  if (o.given.count("colors")) {
+    for (const auto& c : o.at("colors").points) m->colors.push_back(c);
+    if (m->colors.size() != m->positions.size())
+      sink.error(join_path(path, "colors"), fmt::format("has {} colours for {} positions; allowed: one per position",
+                                                        m->colors.size(), m->positions.size()));
+  }
   const auto& tris = o.at("triangles").points;
   for (size_t i = 0; i < tris.size(); ++i) {
     std::array<uint32_t, 3> t{};
@@ -450,6 +456,7 @@ void check_texture_sets(const Scene& s, const Material* fallback) {
                                       m.name)});
     }
     for (const auto& t : compile(m).textured) {
+      if (!t.value.texture->has_image()) continue;  // the vertex colour alone reads no coordinates
       const size_t set = size_t(t.value.texture->uv);
       if (!o.mesh->texcoords[set].empty()) continue;
       problems.push_back({s.source, index_path("objects", i),
@@ -499,6 +506,7 @@ json mesh_json(const Object& o, const std::string& scene_file) {
   for (size_t set = 0; set < 2; ++set)
     if (!o.mesh->texcoords[set].empty()) oj[sets[set]] = o.mesh->texcoords[set];
   if (!o.mesh->tangents.empty()) oj["tangents"] = o.mesh->tangents;
+  if (!o.mesh->colors.empty()) oj["colors"] = o.mesh->colors;
   return oj;
 }
 

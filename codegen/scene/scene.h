@@ -80,6 +80,10 @@ struct Mesh {
   // Blender add-on's calc_tangents()): a normal map's ∂p/∂u and B = w·(n × t). Empty: a
   // normal map takes facet's MikkTSpace tangents (scene/tangents.h).
   std::vector<std::array<double, 4>> tangents;
+  // Vertex colours, RGBA per vertex (glTF's COLOR_0: linear, alpha 1 where it is RGB): what a
+  // material's values with "vertex_color" multiply by (catalog/texture.h), blended across a
+  // triangle as the texture coordinates are. Empty: white.
+  std::vector<std::array<double, 4>> colors;
   // A bounding volume hierarchy, nodes in depth-first order: an inner node's
   // left child follows it, `right` indexes the other; a leaf holds `count`
   // triangles from `start` in `order`.
@@ -147,6 +151,9 @@ struct Object {
   // are their documented mappings (the same in both sets), a mesh's its vertices'
   // blended barycentrically ((0, 0) for a set it lacks).
   std::array<std::array<double, 2>, 2> uv_at(const Vec3& p, const Hit& h) const;
+  // The vertex colour at a hit (RGBA): a mesh's colours blended barycentrically, as uv_at
+  // blends its coordinates; white on the shapes and on meshes without colours.
+  std::array<double, 4> color_at(const Hit& h) const;
   // The tangent frame of texture coordinates at p, for normal maps (docs/textures.md,
   // "Tangent frames"): t the unit ∂p/∂u, and w = ±1 such that B = w·(n × t) points up
   // the picture (towards decreasing v, glTF's bitangent rule). A sphere's t is

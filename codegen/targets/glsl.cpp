@@ -139,8 +139,18 @@ std::string glsl_uv(const targets::CPrinter& pr, const TextureCall& c) {
                      fmt::arg("uv", uv));
 }
 
+// One textured parameter's statement in facet_sample_textures() (texture_value_code()).
+std::string glsl_sample(const targets::CPrinter& pr, const TextureCall& c) {
+  const SampleWords words{{[&](double x) { return pr.literal(x); },
+                           [&](const std::array<double, 3>& x) { return pr.color_literal(x); },
+                           [&](double x) { return "vec3(" + pr.literal(x) + ")"; }},
+                          "ivec2",
+                          "vec3"};
+  return gpu_sample_statement(c, c.image ? glsl_uv(pr, c) : "", words);
+}
+
 // The textures' uniforms, their parameters' globals and facet_sample_textures(): empty
-// for a material without textures.
+// for a material without textures. A value of the vertex colour alone has no uniform.
 std::string glsl_textures(const MaterialProgram& p, Target dialect) {
   if (!p.has_textures()) return "";
   targets::CPrinter pr({});
@@ -150,19 +160,12 @@ std::string glsl_textures(const MaterialProgram& p, Target dialect) {
     std::string layout = dialect == Target::Glsl450 ? fmt::format("layout(set = 0, binding = {}) ", binding++) : "";
     uniforms += fmt::format("{}uniform sampler2D facet_texture_{};  // \"{}\", {}×{}\n", layout, c.name, c.file,
                             c.texels->width, c.texels->height);
-    std::string type = c.color ? "vec3" : "float";
-    globals += fmt::format("{} {};\n", type, c.name);
-    std::string lookup = fmt::format("facet_texture(facet_texture_{}, {}, ivec2({}, {}), {}, {})", c.name,
-                                     glsl_uv(pr, c), c.wrap[0], c.wrap[1], c.bilinear ? "true" : "false",
-                                     c.srgb ? "true" : "false");
-    std::string value = c.channel < 0 ? lookup + ".rgb" : lookup + "." + std::string(1, "rgba"[c.channel]);
-    if (c.color && c.channel >= 0) value = "vec3(" + value + ")";
-    std::string factor = c.color ? pr.color_literal(c.factor) : pr.literal(c.factor[0]);
-    value = factor + " * " + value;
-    std::string lo = c.color ? "vec3(" + pr.literal(c.lo) + ")" : pr.literal(c.lo);
-    std::string hi = c.color ? "vec3(" + pr.literal(c.hi) + ")" : pr.literal(c.hi);
-    value = std::isfinite(c.hi) ? fmt::format("clamp({}, {}, {})", value, lo, hi) : fmt::format("max({}, {})", value, lo);
-    samples += fmt::format("    {} = {};\n", c.name, value);
+  }
+  std::vector<TextureCall> calls = texture_calls(p);
+  if (auto n = normal_map_call(p)) calls.push_back(*n);
+  for (const auto& c : calls) {
+    globals += fmt::format("{} {};\n", c.color ? "vec3" : "float", c.name);
+    samples += glsl_sample(pr, c);
   }
   std::string mapping;
   if (const auto& nm = p.material.normal_map) {
@@ -172,8 +175,10 @@ std::string glsl_textures(const MaterialProgram& p, Target dialect) {
     mapping = render_template("glsl/normal_map.glsl", {{"strength", pr.literal(nm->strength)},
                                                        {"green", nm->green_down ? "-" : ""}});
   }
-  return render_template("glsl/textures.glsl", {{"uniforms", uniforms}, {"globals", globals}, {"samples", samples}}) +
-         mapping;
+  std::map<std::string, std::string> values = sampling_doc(p);
+  values.insert({{"uniforms", uniforms}, {"globals", globals}, {"samples", samples},
+                 {"params", p.uses_vertex_color() ? "vec2 uv0, vec2 uv1, vec4 color0" : "vec2 uv0, vec2 uv1"}});
+  return render_template("glsl/textures.glsl", values) + mapping;
 }
 
 }  // namespace
@@ -230,6 +235,11 @@ GlslParts glsl_parts(const MaterialProgram& p, Target dialect, const std::string
                                             "in vec2 facet_texcoord1;\n";
     sample = "    facet_sample_textures(facet_texcoord0, facet_texcoord1);\n";
   }
+  if (p.uses_vertex_color()) {
+    main_in += dialect == Target::Glsl450 ? "layout(location = 6) in vec4 facet_color0;\n"
+                                          : "in vec4 facet_color0;  // glTF's COLOR_0: linear RGBA; give white (1) where a mesh has none\n";
+    sample = "    facet_sample_textures(facet_texcoord0, facet_texcoord1, facet_color0);\n";
+  }
   if (p.normal_mapped()) {
     main_in += dialect == Target::Glsl450 ? "layout(location = 5) in vec4 facet_texture_tangent;\n"
                                           : "in vec4 facet_texture_tangent;  // xyz: ∂p/∂u, w: ±1 (glTF's TANGENT)\n";
@@ -246,11 +256,11 @@ namespace {
 // scene's block and the material's images, set 2 the lights), highp in ES (a sampler's
 // default is lowp).
 std::string gbuffer_declarations(Target dialect) {
-  const char* names[] = {"position", "normal", "view", "uv_tangent", "uv", "visibility"};
+  const char* names[] = {"position", "normal", "view", "uv_tangent", "uv", "color0", "visibility"};
   std::string out;
-  for (int i = 0; i < 6; ++i) {
+  for (int i = 0; i < 7; ++i) {
     std::string layout = dialect == Target::Glsl450 ? fmt::format("layout(set = 1, binding = {}) ", i) : "";
-    out += fmt::format("{}uniform highp {} facet_gbuffer_{};  // image {}\n", layout, i < 5 ? "sampler2D" : "sampler2DArray",
+    out += fmt::format("{}uniform highp {} facet_gbuffer_{};  // image {}\n", layout, i < 6 ? "sampler2D" : "sampler2DArray",
                        names[i], i);
   }
   return out + (dialect == Target::Glsl450 ? "layout(location = 0) out vec4 facet_color;\n" : "out vec4 facet_color;\n");
@@ -262,7 +272,9 @@ std::string glsl_gbuffer_shading_source(const Material& m, Target dialect) {
   MaterialProgram p = compile(m);
   GlslParts parts = glsl_parts(p, dialect, m.source, LightSource::Buffer);
   std::string sample;
-  if (p.has_textures()) sample = "    facet_sample_textures(uvs.xy, uvs.zw);\n";
+  if (p.has_textures())
+    sample = p.uses_vertex_color() ? "    facet_sample_textures(uvs.xy, uvs.zw, texelFetch(facet_gbuffer_color0, facet_gbuffer_texel, 0));\n"
+                                   : "    facet_sample_textures(uvs.xy, uvs.zw);\n";
   if (p.normal_mapped()) sample += "    facet_uv_tangent = frame.xyz;\n    facet_uv_handedness = frame.w;\n";
   // Vulkan's gl_FragCoord has y down: the G-buffer's row is counted from the bottom.
   std::string texel = dialect == Target::Glsl450

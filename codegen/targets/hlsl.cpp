@@ -2,6 +2,7 @@
 // targets/cfamily.h: float3, atan2, lerp, rsqrt, `static const` globals, and no float3(x)
 // splat (fxc and dxc refuse it; glslang's HLSL front end would not say so).
 #include <cmath>
+#include <map>
 
 #include <fmt/format.h>
 
@@ -40,29 +41,28 @@ std::string hlsl_uv(const targets::CPrinter& pr, const TextureCall& c) {
 // One textured parameter's statement in facet_sample_textures(): the one sampling rule
 // (docs/textures.md), as the GLSL's.
 std::string hlsl_sample(const targets::CPrinter& pr, const TextureCall& c) {
-  std::string lookup = fmt::format("facet_texture(facet_texture_{}, {}, int2({}, {}), {}, {})", c.name, hlsl_uv(pr, c),
-                                   c.wrap[0], c.wrap[1], c.bilinear ? "true" : "false", c.srgb ? "true" : "false");
-  std::string value = c.channel < 0 ? lookup + ".rgb" : lookup + "." + std::string(1, "rgba"[c.channel]);
-  if (c.color && c.channel >= 0) value = "(float3)(" + value + ")";
-  std::string factor = c.color ? pr.color_literal(c.factor) : pr.literal(c.factor[0]);
-  value = factor + " * " + value;
-  std::string lo = c.color ? grey(pr, c.lo) : pr.literal(c.lo);
-  std::string hi = c.color && std::isfinite(c.hi) ? grey(pr, c.hi) : pr.literal(c.hi);
-  value = std::isfinite(c.hi) ? fmt::format("clamp({}, {}, {})", value, lo, hi) : fmt::format("max({}, {})", value, lo);
-  return fmt::format("    {} = {};\n", c.name, value);
+  const SampleWords words{{[&](double x) { return pr.literal(x); },
+                           [&](const std::array<double, 3>& x) { return pr.color_literal(x); },
+                           [&](double x) { return std::isfinite(x) ? grey(pr, x) : pr.literal(x); }},
+                          "int2",
+                          "(float3)"};
+  return gpu_sample_statement(c, c.image ? hlsl_uv(pr, c) : "", words);
 }
 
 // The textures (Texture2D at t1, t2, …: Vulkan bindings 1, 2, … of set 0, as the glsl450
 // shader's samplers), their parameters' globals and facet_sample_textures(): empty for a
-// material without textures.
+// material without textures. A value of the vertex colour alone has no texture.
 std::string hlsl_textures(const MaterialProgram& p) {
   if (!p.has_textures()) return "";
   targets::CPrinter pr(hlsl_dialect());
   std::string uniforms, globals, samples;
   int binding = 1;  // binding 0 is the scene's cbuffer
-  for (const auto& c : image_calls(p)) {
+  for (const auto& c : image_calls(p))
     uniforms += fmt::format("Texture2D<float4> facet_texture_{} : register(t{});  // \"{}\", {}×{}\n", c.name,
                             binding++, c.file, c.texels->width, c.texels->height);
+  std::vector<TextureCall> calls = texture_calls(p);
+  if (auto n = normal_map_call(p)) calls.push_back(*n);
+  for (const auto& c : calls) {
     globals += fmt::format("static {} {};\n", c.color ? "float3" : "float", c.name);
     samples += hlsl_sample(pr, c);
   }
@@ -74,8 +74,10 @@ std::string hlsl_textures(const MaterialProgram& p) {
     mapping = render_template("hlsl/normal_map.hlsl", {{"strength", pr.literal(nm->strength)},
                                                        {"green", nm->green_down ? "-" : ""}});
   }
-  return render_template("hlsl/textures.hlsl", {{"uniforms", uniforms}, {"globals", globals}, {"samples", samples}}) +
-         mapping;
+  std::map<std::string, std::string> values = sampling_doc(p);
+  values.insert({{"uniforms", uniforms}, {"globals", globals}, {"samples", samples},
+                 {"params", p.uses_vertex_color() ? "float2 uv0, float2 uv1, float4 color0" : "float2 uv0, float2 uv1"}});
+  return render_template("hlsl/textures.hlsl", values) + mapping;
 }
 
 // facet_reflect's body before its return: the inputs the lobes read, and their names.
@@ -112,6 +114,10 @@ std::pair<std::string, std::string> hlsl_main_inputs(const MaterialProgram& p) {
     in += "            , FACET_LOCATION(3) float2 facet_texcoord0 : TEXCOORD3  // glTF's TEXCOORD_0: v down the picture\n"
           "            , FACET_LOCATION(4) float2 facet_texcoord1 : TEXCOORD4\n";
     sample = "    facet_sample_textures(facet_texcoord0, facet_texcoord1);\n";
+  }
+  if (p.uses_vertex_color()) {
+    in += "            , FACET_LOCATION(6) float4 facet_color0 : COLOR0  // glTF's COLOR_0: linear RGBA; white (1) where a mesh has none\n";
+    sample = "    facet_sample_textures(facet_texcoord0, facet_texcoord1, facet_color0);\n";
   }
   if (p.normal_mapped()) {
     in += "            , FACET_LOCATION(5) float4 facet_texture_tangent : TEXCOORD5  // xyz: ∂p/∂u, w: ±1 (glTF's TANGENT)\n";

@@ -138,20 +138,27 @@ OslTextures osl_textures(const targets::CPrinter& pr, const MaterialProgram& p, 
                  "    vector facet_uv1 = 0,\n";
   if (!p.has_textures()) return out;
   out.samples = "    // Textured parameters.\n";
-  for (const auto& c : image_calls(p)) {
+  std::vector<TextureCall> calls = texture_calls(p);
+  if (auto n = normal_map_call(p)) calls.push_back(*n);
+  for (const auto& c : calls) {
     std::string file = "facet_texture_" + c.name;
-    std::string note = c.file;
-    if (targets::osl_premultiplied(c, o))
-      note += " (its alpha is below 1 somewhere: Cycles premultiplies its colour by it; read a copy without alpha)";
-    params.add("string", file, targets::osl_image_file(c, o), note.c_str());
+    if (c.image) {
+      std::string note = c.file;
+      if (targets::osl_premultiplied(c, o))
+        note += " (its alpha is below 1 somewhere: Cycles premultiplies its colour by it; read a copy without alpha)";
+      params.add("string", file, targets::osl_image_file(c, o), note.c_str());
+    }
     const targets::OslSample sample = targets::osl_sample(pr, c, file);
-    std::string type = c.color ? "color" : "float";
+    const std::string type = c.color ? "color" : "float";
     out.samples += sample.statements + fmt::format("    {} {} = {};\n", type, c.name, sample.value);
     if (c.name == "normal_map") continue;  // read by the mapping below, not by the lobes
     if (!p.uses(c.name)) continue;  // m_a or m_e: read by the shader, not by facet_reflect
     out.reflect_params += ", " + type + " " + c.name;
     out.reflect_args += ", " + c.name;
   }
+  if (p.uses_vertex_color())
+    out.params += "    color facet_color0 = 1,  // the vertex colour (glTF's COLOR_0, linear): link an Attribute node's Color\n"
+                  "    float facet_alpha0 = 1,  // … and its Alpha; unlinked, white\n";
   if (p.material.normal_map) {
     out.params += "    vector facet_uv_tangent = 0,  // the normal map's ∂p/∂u, world space (docs/textures.md, Tangent frames)\n"
                   "    float facet_uv_handedness = 1,  // w: B = w·(N × T)\n" +

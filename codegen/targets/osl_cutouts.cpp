@@ -13,25 +13,31 @@ namespace facet::targets {
 Vec3 osl_blender(const Vec3& p) { return {p.x, -p.z, p.y}; }
 
 OslSample osl_sample(const CPrinter& pr, const TextureCall& c, const std::string& file) {
-  std::string s = fmt::format("s{}", c.uv), t = fmt::format("t{}", c.uv);
-  if (c.transformed) {
-    std::string su = fmt::format("{} * {} + {} * {} + {}", pr.literal(c.a), s, pr.literal(c.b), t, pr.literal(c.ou));
-    std::string tv = fmt::format("{} * {} + {} * {} + {}", pr.literal(c.c), s, pr.literal(c.d), t, pr.literal(c.ov));
-    s = su;
-    t = tv;
-  }
   OslSample out;
-  out.statements = fmt::format(
-      "    float {0}_alpha;\n    color {0}_texel = facet_texture({1}, {2}, {3}, {4}, {5}, {6}, {7}, {8}, {9}, {0}_alpha);\n",
-      c.name, file, c.texels->width, c.texels->height, s, t, c.wrap[0], c.wrap[1], c.bilinear ? 1 : 0, c.srgb ? 1 : 0);
-  std::string texel = c.channel < 0   ? c.name + "_texel"
-                      : c.channel == 3 ? c.name + "_alpha"
-                                       : fmt::format("{}_texel[{}]", c.name, c.channel);
-  std::string factor = c.color ? pr.color_literal(c.factor) : pr.literal(c.factor[0]);
-  std::string value = factor + " * " + texel;
-  std::string lo = c.color ? "color(" + pr.literal(c.lo) + ")" : pr.literal(c.lo);
-  std::string hi = c.color ? "color(" + pr.literal(c.hi) + ")" : pr.literal(c.hi);
-  out.value = std::isfinite(c.hi) ? fmt::format("clamp({}, {}, {})", value, lo, hi) : fmt::format("max({}, {})", value, lo);
+  std::string texel;
+  if (c.image) {
+    std::string s = fmt::format("s{}", c.uv), t = fmt::format("t{}", c.uv);
+    if (c.transformed) {
+      std::string su = fmt::format("{} * {} + {} * {} + {}", pr.literal(c.a), s, pr.literal(c.b), t, pr.literal(c.ou));
+      std::string tv = fmt::format("{} * {} + {} * {} + {}", pr.literal(c.c), s, pr.literal(c.d), t, pr.literal(c.ov));
+      s = su;
+      t = tv;
+    }
+    out.statements = fmt::format(
+        "    float {0}_alpha;\n    color {0}_texel = facet_texture({1}, {2}, {3}, {4}, {5}, {6}, {7}, {8}, {9}, {0}_alpha);\n",
+        c.name, file, c.texels->width, c.texels->height, s, t, c.wrap[0], c.wrap[1], c.bilinear ? 1 : 0, c.srgb ? 1 : 0);
+    texel = c.channel < 0   ? c.name + "_texel"
+            : c.channel == 3 ? c.name + "_alpha"
+                             : fmt::format("{}_texel[{}]", c.name, c.channel);
+  }
+  // The vertex colour: the shader's facet_color0 (rgb) and facet_alpha0 inputs.
+  const std::string vc = c.color || c.channel < 0 ? "facet_color0"
+                         : c.channel == 3          ? "facet_alpha0"
+                                                   : fmt::format("facet_color0[{}]", c.channel);
+  const ValueWords words{[&](double x) { return pr.literal(x); },
+                         [&](const std::array<double, 3>& x) { return pr.color_literal(x); },
+                         [&](double x) { return "color(" + pr.literal(x) + ")"; }};
+  out.value = texture_value_code(c, texel, vc, words);
   return out;
 }
 

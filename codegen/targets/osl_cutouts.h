@@ -19,8 +19,9 @@
 namespace facet::targets {
 
 // Image `c` sampled at the enclosing code's s0, t0, s1, t1 (glTF's coordinates): the
-// statements, whose locals start with `c.name`, and the value's expression (factor, channel,
-// clamp). `file` is the OSL string the image is read from.
+// statements, whose locals start with `c.name`, and the value's expression (texture_value_code():
+// factor, channel, the vertex colour's facet_color0/facet_alpha0 where `c` reads it, offset,
+// clamp). `file` is the OSL string the image is read from (unused where `c` has no image).
 struct OslSample {
   std::string statements, value;
 };

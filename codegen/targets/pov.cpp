@@ -85,7 +85,10 @@ std::string lobe_native(const std::optional<ModelSpec>& lobe) {
 }
 
 std::string material_native(const Material& m) {
-  if (compile(m).has_textures()) return "its parameters come from images, which function pigments sample";
+  const MaterialProgram p = compile(m);
+  // A finish's pigment is one colour an object; a vertex colour varies across each triangle.
+  if (p.uses_vertex_color()) return "its parameters take the vertex colour, which function pigments blend per triangle";
+  if (p.has_textures()) return "its parameters come from images, which function pigments sample";
   // POV-Ray's finish turns a normal towards the ray (trace.cpp), so it would light the inside of a
   // sphere seen through a hole, which facet shades by its own normal, facing away: dark.
   if (alpha_call(m))
@@ -157,6 +160,8 @@ namespace targets {
 bool pov_table_object(const Scene& s, size_t i, const Material* fallback, PovRoute route, bool native) {
   if (native || route != PovRoute::Fast || s.objects[i].type != Object::Type::Mesh) return false;
   const MaterialProgram p = compile(s.material_of(i, fallback));
+  // A table's nodes are functions of n·l, n·v and the hit point alone: no texture coordinates,
+  // no vertex colour (both come from the data image of the function route), no cut-out image.
   return !p.uses_tangent() && !p.has_textures() && !alpha_call(p.material);
 }
 
@@ -276,32 +281,40 @@ void PovScene::register_mesh_files() {
     std::shared_ptr<const std::vector<std::array<double, 4>>> tangents;
     if (const auto& nm = shading(o).material->normal_map)
       tangents = std::make_shared<const std::vector<std::array<double, 4>>>(mesh_tangents(*mesh, nm->texture().uv));
-    data_[o] = pov_mesh_data(*mesh, fmt::format("{}_mesh{}.ppm", stem_, o), textured, tangents);
+    // The vertex colours where the material reads them (object_function() reads the same planes).
+    const bool colors = shading(o).program.uses_vertex_color() && !mesh->colors.empty();
+    data_[o] = pov_mesh_data(*mesh, fmt::format("{}_mesh{}.ppm", stem_, o), textured, tangents, colors);
     routes_[o] += fmt::format("; POV-Ray reads its positions from {} to within {:.2g} and normals to within {:.2g}",
                               data_[o].file, data_[o].position_error, data_[o].normal_error);
     if (textured) routes_[o] += fmt::format(", texture coordinates to within {:.2g}", data_[o].texcoord_error);
     if (tangents) routes_[o] += ", and the normal map's tangents as its normals";
+    if (colors) routes_[o] += fmt::format(", vertex colours to within {:.2g}", data_[o].color_error);
     files_.push_back({data_[o].file, [mesh, d = data_[o]](std::ostream& out) { write_pov_mesh_image(out, *mesh, d); }});
   }
 }
 
 // Each textured parameter's image, written beside the scene (pov_texture.h), and its
-// sampling function; a colour from an image makes the material's pigments per channel.
+// sampling function; a colour from an image or the vertex colour makes the material's
+// pigments per channel. A value of the vertex colour alone has no image.
 void PovScene::register_textures() {
   for (auto& sh : shadings_) {
-    std::vector<TextureCall> calls = image_calls(sh->program);
+    std::vector<TextureCall> calls = texture_calls(sh->program);
+    if (auto n = normal_map_call(sh->program)) calls.push_back(*n);
     if (auto a = alpha_call(*sh->material)) calls.push_back(*a);
     for (const auto& c : calls) {
       PovTexture t;
       t.call = c;
-      t.image = int(textures_.size());
-      t.file = fmt::format("{}_texture{}.ppm", stem_, t.image);
-      if (c.channel == 3) t.alpha = fmt::format("{}_texture{}_alpha.pgm", stem_, t.image);
-      const Texels* texels = c.texels;
-      files_.push_back({t.file, [texels](std::ostream& out) { write_pov_texture_image(out, *texels, false); }});
-      if (!t.alpha.empty())
-        files_.push_back({t.alpha, [texels](std::ostream& out) { write_pov_texture_image(out, *texels, true); }});
-      textures_.push_back(t);
+      t.image = -1;
+      if (c.image) {
+        t.image = int(textures_.size());
+        t.file = fmt::format("{}_texture{}.ppm", stem_, t.image);
+        if (c.channel == 3) t.alpha = fmt::format("{}_texture{}_alpha.pgm", stem_, t.image);
+        const Texels* texels = c.texels;
+        files_.push_back({t.file, [texels](std::ostream& out) { write_pov_texture_image(out, *texels, false); }});
+        if (!t.alpha.empty())
+          files_.push_back({t.alpha, [texels](std::ostream& out) { write_pov_texture_image(out, *texels, true); }});
+        textures_.push_back(t);
+      }
       if (c.name == "normal_map") {  // its three channels as numbers, which the object functions combine
         for (int k = 0; k < 3; ++k) {
           PovTexture lane = t;
@@ -321,16 +334,19 @@ void PovScene::register_textures() {
         sh->alpha_uv = c.uv;
         continue;
       }
-      sh->samples[c.name] = {f, c.uv};
-      if (c.color && (c.channel < 0 || !pov_grey(c.factor))) sh->dependent = true;
+      sh->samples[c.name] = {f, c.uv, c.image, c.vertex_color};
+      if (sh->printer.channel_dependent(f)) sh->dependent = true;
     }
   }
 }
 
 std::string PovScene::texture_declarations() const {
-  if (textures_.empty()) return "";
-  std::string out = render_template("pov/textures.pov", {});
+  const bool vertex_colors =
+      std::any_of(shadings_.begin(), shadings_.end(), [](const auto& sh) { return sh->program.uses_vertex_color(); });
+  if (textures_.empty() && !vertex_colors) return "";
+  std::string out = textures_.empty() ? "" : render_template("pov/textures.pov", {});
   for (const auto& t : textures_) out += pov_texture_declarations(t);
+  if (vertex_colors) out += pov_rgb_declarations();
   return out + "\n";
 }
 
@@ -397,23 +413,30 @@ std::string PovScene::library() {
                                                       {"emission", emission}});
   }
   PovPigment p;
+  const bool colored = sh.program.uses_vertex_color();
   p.radiance = [&](int ch) {
     std::vector<ir::Expr> args = {var("x"), var("y"), var("z")};
     for (const char* n : {"NX", "NY", "NZ"}) args.push_back(ir::call(declared(n, 3), {var("x"), var("y"), var("z")}));
     for (const char* n : {"Facet_Lx", "Facet_Ly", "Facet_Lz", "Facet_Ex", "Facet_Ey", "Facet_Ez"}) args.push_back(var(n));
     if (sh.textured())
       for (const char* n : {"S0", "T0", "S1", "T1"}) args.push_back(ir::call(declared(n, 3), {var("x"), var("y"), var("z")}));
+    if (sh.textured() && colored)
+      for (const char* n : {"R0", "G0", "B0", "A0"}) args.push_back(ir::call(declared(n, 3), {var("x"), var("y"), var("z")}));
     return ir::call(declared("Facet_Point_Shade" + sh.suffix(ch), args.size()), args);
   };
   p.factors = [](int) { return std::vector<ir::Expr>{var("Scale")}; };
   return render_template("pov/library_functions.pov",
                          {{"header", header()},
                           {"functions", functions()},
-                          {"uv_doc", sh.textured() ? "//   * its texture coordinates sets 0 and 1 as functions of (x, y, z): S0, T0, S1, T1 "
-                                                     "(glTF's: v down the picture; docs/textures.md);\n"
-                                                   : ""},
-                          {"signature", sh.textured() ? "NX, NY, NZ, S0, T0, S1, T1, LightPosition, Eye, Scale"
-                                                      : "NX, NY, NZ, LightPosition, Eye, Scale"},
+                          {"uv_doc", std::string(sh.textured() ? "//   * its texture coordinates sets 0 and 1 as functions of (x, y, z): S0, T0, S1, T1 "
+                                                                 "(glTF's: v down the picture; docs/textures.md);\n"
+                                                               : "") +
+                                         (colored ? "//   * its vertex colour (glTF's COLOR_0, linear) as functions of (x, y, z): R0, G0, B0, A0 "
+                                                    "(1 where the surface has none);\n"
+                                                  : "")},
+                          {"signature", !sh.textured() ? "NX, NY, NZ, LightPosition, Eye, Scale"
+                                        : colored      ? "NX, NY, NZ, S0, T0, S1, T1, R0, G0, B0, A0, LightPosition, Eye, Scale"
+                                                       : "NX, NY, NZ, S0, T0, S1, T1, LightPosition, Eye, Scale"},
                           {"shade", point_shade()},
                           {"pigment", indented(pov_pigment(sh.printer, sh.dependent, p, kPovWidth - 2), 2)}});
 }

@@ -57,10 +57,22 @@ bool reads_tangent(const ir::Function& f) { return reads(f, {"LoT", "VoT", "LoB"
 // `name`(n, l, v[, t]) → `reflectance` (a light of unit colour), its inputs the dot
 // products of unit vectors, h = (l + v) / Hl, Hl = max(|l + v|, ε) (catalog.h,
 // Input), b = n × t.
-// The texture coordinates S0, T0, S1, T1 as parameters of `fb`, where `sh` samples images.
+// The texture coordinates S0, T0, S1, T1 as parameters of `fb`, where `sh` samples images,
+// then the vertex colour R0, G0, B0, A0 where it reads that.
 std::vector<Expr> uv_params(ir::FunctionBuilder& fb, const PovShading& sh) {
   if (!sh.textured()) return {};
-  return {fb.param("S0"), fb.param("T0"), fb.param("S1"), fb.param("T1")};
+  std::vector<Expr> out = {fb.param("S0"), fb.param("T0"), fb.param("S1"), fb.param("T1")};
+  if (sh.program.uses_vertex_color())
+    for (const char* c : {"R0", "G0", "B0", "A0"}) out.push_back(fb.param(c));
+  return out;
+}
+
+// Textured input `s` at the coordinates and vertex colour `uv` (uv_params()'s order).
+Expr sample_call(const PovShading::Sample& s, const std::vector<Expr>& uv) {
+  std::vector<Expr> args;
+  if (s.image) args = {uv[2 * size_t(s.uv)], uv[2 * size_t(s.uv) + 1]};
+  if (s.vertex_color) args.insert(args.end(), uv.begin() + 4, uv.begin() + 8);
+  return ir::call(s.f, args);
 }
 std::vector<Expr> with(std::vector<Expr> a, const std::vector<Expr>& b) {
   a.insert(a.end(), b.begin(), b.end());
@@ -76,10 +88,7 @@ ir::FunctionPtr frame_function(const ir::FunctionPtr& reflectance, const std::st
   Triple H = L + V, B = cross3(N, T);
   Expr Hl = reads(*reflectance, {"NoH", "VoH", "HoT", "HoB"}) ? fb.let("Hl", ir::max(length3(H), kEpsilon)) : Expr(1.0);
   auto input = [&](const std::string& in) -> Expr {
-    if (auto t = sh.samples.find(in); t != sh.samples.end()) {
-      const size_t set = size_t(t->second.second);
-      return ir::call(t->second.first, {uv[2 * set], uv[2 * set + 1]});
-    }
+    if (auto t = sh.samples.find(in); t != sh.samples.end()) return sample_call(t->second, uv);
     if (in == "NoL") return dot3(N, L);
     if (in == "NoV") return dot3(N, V);
     if (in == "LoV") return dot3(L, V);
@@ -233,8 +242,9 @@ ir::FunctionPtr PovScene::light_function(PovShading& sh, size_t i, const ir::Fun
   return f;
 }
 
-// {P}Facet_Emission(x, y, z, n, S0, T0, S1, T1): m_a ⊗ A + m_e, either from its image (the
-// sampling function of its textured input) or its colour; called like a light function.
+// {P}Facet_Emission(x, y, z, n, S0, T0, S1, T1[, R0, G0, B0, A0]): m_a ⊗ A + m_e, either from
+// its image or vertex colour (the sampling function of its textured input) or its colour;
+// called like a light function.
 ir::FunctionPtr PovScene::emission_function(PovShading& sh) {
   ir::FunctionBuilder fb("Facet_Emission", "");
   params(fb, "x", "y", "z");
@@ -243,8 +253,7 @@ ir::FunctionPtr PovScene::emission_function(PovShading& sh) {
   auto term = [&](const char* input, const RGB& c) -> Expr {
     auto t = sh.samples.find(input);
     if (t == sh.samples.end()) return ir::color(c[0], c[1], c[2]);
-    const size_t set = size_t(t->second.second);
-    return ir::call(t->second.first, {uv[2 * set], uv[2 * set + 1]});
+    return sample_call(t->second, uv);
   };
   const RGB& A = s_.ambient;
   Expr ambient = term(kAmbientInput, sh.material->ambient) * ir::color(A[0], A[1], A[2]);
@@ -276,12 +285,15 @@ ir::FunctionPtr PovScene::object_function(size_t o, const std::string& name, con
   const Object& obj = s_.objects[o];
   ir::FunctionBuilder fb(name, "");
   Triple P = params(fb, "x", "y", "z");
-  // docs/textures.md: the shapes' texture coordinates (the same in both sets).
+  // docs/textures.md: the shapes' texture coordinates (the same in both sets); their vertex
+  // colour is white.
   std::vector<Expr> uv;
+  const bool colored = shading(o).program.uses_vertex_color();
   auto coordinates = [&](const Expr& s, const Expr& t) {
     if (!shading(o).textured()) return;
     Expr s0 = fb.let("S0", s), t0 = fb.let("T0", t);
     uv = {s0, t0, s0, t0};
+    if (colored) uv.insert(uv.end(), 4, Expr(1.0));
   };
   if (obj.type == Object::Type::Plane) {
     Vec3 a, b;
@@ -306,6 +318,10 @@ ir::FunctionPtr PovScene::object_function(size_t o, const std::string& name, con
     if (shading(o).textured())
       uv = {fb.let("S0", ir::call(data("S0"), at)), fb.let("T0", ir::call(data("T0"), at)),
             fb.let("S1", ir::call(data("S1"), at)), fb.let("T1", ir::call(data("T1"), at))};
+    // The vertex colour: the data image's blend of the corners' (pov_mesh.h), white without colours.
+    if (colored)
+      for (const char* c : {"CR", "CG", "CB", "CA"})
+        uv.push_back(!obj.mesh->colors.empty() ? fb.let(std::string(1, c[1]) + "0", ir::call(data(c), at)) : Expr(1.0));
     if (!shading(o).normal_map[0]) return fb.returns(ir::call(light, with(args({hit, M / len}), uv)));
     // The blended corner tangents (docs/textures.md, "Tangent frames"), w the sign of the blended w.
     const Triple tangent = {ir::call(data("UX"), at), ir::call(data("UY"), at), ir::call(data("UZ"), at)};

@@ -62,14 +62,22 @@ size_t blocks_of(size_t triangles) { return std::clamp<size_t>(triangles, 1, kMa
 
 // Component c of corner k of triangle t: the position's x, y, z for c < 3, then the normal's,
 // then u₀, v₀, u₁, v₁ (0 for a set the mesh lacks), then the tangent's x, y, z, w (with
-// d.tangents), then zeros.
+// d.tangents, else 0), then the vertex colour's r, g, b, a (with d.colors), then zeros.
 double corner_value(const Mesh& m, const PovMeshData& d, size_t t, int k, int c) {
   const uint32_t v = m.triangles[t][size_t(k)];
   if (c < 3) return m.positions[v][c];
   if (c < 6) return m.normals[v][c - 3];
-  if (c >= 10) return d.tangents && c < 14 ? (*d.tangents)[3 * t + size_t(k)][size_t(c - 10)] : 0;
+  if (c >= 14) return d.colors && c < 18 ? m.colors[v][size_t(c - 14)] : 0;
+  if (c >= 10) return d.tangents ? (*d.tangents)[3 * t + size_t(k)][size_t(c - 10)] : 0;
   const auto& set = m.texcoords[size_t(c - 6) / 2];
   return set.empty() ? 0 : set[v][size_t(c - 6) % 2];
+}
+
+// The precision POV-Ray reads component c with, in PovMeshData.
+double& error_of(PovMeshData& d, size_t c) {
+  if (c < 3) return d.position_error;
+  if (c < 6 || (c >= 10 && c < 14)) return d.normal_error;
+  return c < 10 ? d.texcoord_error : d.color_error;
 }
 
 uint64_t encode(const PovMeshData& d, int c, double v) {
@@ -100,7 +108,7 @@ std::array<std::array<uint16_t, 2>, 4> split(const std::array<uint64_t, 3>& code
 }  // namespace
 
 PovMeshData pov_mesh_data(const Mesh& m, const std::string& file, bool texcoords,
-                          std::shared_ptr<const std::vector<std::array<double, 4>>> tangents) {
+                          std::shared_ptr<const std::vector<std::array<double, 4>>> tangents, bool colors) {
   const size_t n = m.triangles.size();
   if (n > kMaxTriangles)
     throw std::invalid_argument(
@@ -109,12 +117,13 @@ PovMeshData pov_mesh_data(const Mesh& m, const std::string& file, bool texcoords
   d.file = file;
   d.blocks = int(blocks_of(n));
   d.plane_rows = int(2 * std::max<size_t>(1, (n + size_t(d.blocks) - 1) / size_t(d.blocks)));
-  d.components = tangents ? 15 : texcoords ? 12 : 6;
+  d.colors = colors && !m.colors.empty();
+  d.components = d.colors ? 18 : tangents ? 15 : texcoords ? 12 : 6;
   d.tangents = std::move(tangents);
   const size_t components = size_t(d.components);
   // Each component's range over all four texels of every block (the fourth, T₁₀ + T₀₁ − T₀₀,
   // can lie outside the corners' range), mapped onto the codes inside the margins.
-  std::array<double, 15> lo, hi;
+  std::array<double, 18> lo, hi;
   lo.fill(INFINITY);
   hi.fill(-INFINITY);
   for (size_t t = 0; t < n; ++t)
@@ -130,7 +139,7 @@ PovMeshData pov_mesh_data(const Mesh& m, const std::string& file, bool texcoords
     const double range = std::max(hi[c] - lo[c], 1e-12 * std::max({1.0, std::abs(lo[c]), std::abs(hi[c])}));
     d.step[c] = range / double(kCodeHi - kCodeLo - 2 * kMargin);
     d.offset[c] = lo[c] - d.step[c] * double(kCodeLo + kMargin);
-    double& error = c < 3 ? d.position_error : c < 6 || c >= 10 ? d.normal_error : d.texcoord_error;
+    double& error = error_of(d, c);
     error = std::max(error, d.step[c] * kReadCodes);
   }
   return d;
@@ -146,7 +155,7 @@ void write_pov_mesh_image(std::ostream& out, const Mesh& m, const PovMeshData& d
   for (size_t file_row = 1; file_row < height; ++file_row) {  // from the top
     const size_t r = height - 1 - file_row;                     // from the bottom
     const size_t plane = r / plane_rows, j = (r % plane_rows) / 2, b = r % 2;
-    const int first = 3 * int(plane / 2);  // positions, normals, texture coordinates, then tangents
+    const int first = 3 * int(plane / 2);  // positions, normals, texture coordinates, tangents, then colours
     const size_t part = plane % 2;        // hi, then lo
     std::fill(row.begin(), row.end(), 0);
     for (size_t i = 0; i < blocks && j * blocks + i < n; ++i) {
@@ -170,9 +179,10 @@ void write_pov_mesh_image(std::ostream& out, const Mesh& m, const PovMeshData& d
 std::string pov_mesh_decoder(const PovMeshData& d, size_t o) {
   // value = offset + step·code, code = 65535·(32768·hi + lo) with hi, lo the channels as read.
   std::string components;
-  const char* names[] = {"PX", "PY", "PZ", "MX", "MY", "MZ", "S0", "T0", "S1", "T1", "UX", "UY", "UZ", "UW"};
-  for (size_t c = 0; c < std::min<size_t>(size_t(d.components), 14); ++c) {
-    if (c == 10 && !d.tangents) break;
+  const char* names[] = {"PX", "PY", "PZ", "MX", "MY", "MZ", "S0", "T0", "S1", "T1", "UX", "UY",
+                         "UZ", "UW", "CR", "CG", "CB", "CA"};
+  for (size_t c = 0; c < std::min<size_t>(size_t(d.components), 18); ++c) {
+    if ((c >= 10 && c < 14 && !d.tangents) || (c >= 14 && !d.colors)) continue;
     const size_t plane = 2 * (c / 3);
     const char channel = "RGB"[c % 3];
     components += fmt::format(

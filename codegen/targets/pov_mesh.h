@@ -22,6 +22,8 @@
 //   linearly; four planes of the image hold the positions' hi and lo and the
 //   normals' hi and lo, x, y, z in R, G, B. The pigment reads the hit point and
 //   the unnormalized normal in 12 lookups, and nothing is decoded by floor().
+//   Texture coordinates, a normal map's tangents and vertex colours take more planes
+//   of the same kind (PovMeshData::components).
 #pragma once
 
 #include <array>
@@ -41,14 +43,16 @@ struct PovMeshData {
   int plane_rows = 0; // rows of each of the four planes; the image is 4·plane_rows high
   // Component c (0–2 the position's x, y, z, 3–5 the normal's, and with texture coordinates
   // 6–9 u₀, v₀, u₁, v₁, 10–11 unused; with a normal map's tangents 10–12 the tangent's x, y,
-  // z, 13 its w, 14 unused) = offset[c] + step[c] · code.
-  int components = 6;  // 12 with texture coordinates: two more pairs of planes; 15 with tangents
-  std::array<double, 15> offset{}, step{};
+  // z, 13 its w, 14 unused; with vertex colours 10–13 the tangent's or 0, 14–17 the colour's
+  // r, g, b, a) = offset[c] + step[c] · code.
+  int components = 6;  // 12 with texture coordinates: two more pairs of planes; 15 with tangents, 18 with colours
+  std::array<double, 18> offset{}, step{};
   // A normal map's corner tangents (scene/tangents.h), 3 a triangle, or null.
   std::shared_ptr<const std::vector<std::array<double, 4>>> tangents;
+  bool colors = false;  // the mesh's vertex colours (Mesh::colors), blended as the positions are
   // How far a value POV-Ray reads may be from the mesh's own, at most: positions in
   // scene units, normal components (the codes' step and float32's rounding of the blend).
-  double position_error = 0, normal_error = 0, texcoord_error = 0;
+  double position_error = 0, normal_error = 0, texcoord_error = 0, color_error = 0;
   int width() const { return 2 * blocks; }
   int planes() const { return 2 * components / 3; }
   // The four planes and, at the top, a row of zeros: POV-Ray's PPM reader takes a byte 13
@@ -60,9 +64,11 @@ struct PovMeshData {
 // The data image's layout and precision for mesh `m`, named `file`; with `texcoords`, its
 // texture coordinates too (two more planes, read by Facet_Mesh{o}_S0, _T0, _S1, _T1).
 // With `tangents` (a normal map's corner tangents), those too (three more planes: Facet_Mesh{o}_UX,
-// _UY, _UZ, _UW).
+// _UY, _UZ, _UW). With `colors` (the mesh has some), its vertex colours too (Facet_Mesh{o}_CR, _CG,
+// _CB, _CA: six planes in all past the texture coordinates).
 PovMeshData pov_mesh_data(const Mesh& m, const std::string& file, bool texcoords = false,
-                          std::shared_ptr<const std::vector<std::array<double, 4>>> tangents = nullptr);
+                          std::shared_ptr<const std::vector<std::array<double, 4>>> tangents = nullptr,
+                          bool colors = false);
 // The image itself (binary PPM, 16 bits a channel), a row at a time.
 void write_pov_mesh_image(std::ostream& out, const Mesh& m, const PovMeshData& d);
 // The functions that read it for object o: Facet_Mesh{o}_PX … _PZ (the hit point)

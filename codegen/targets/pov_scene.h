@@ -41,10 +41,17 @@ struct PovShading {
     std::vector<ir::FunctionPtr> lights;  // {P}Facet_Light{i}{suffix}
   };
   std::vector<Lobe> lobes;
-  // Textured parameters (pov_texture.h): input name → Facet_Sample_<name>(S, T) and the
-  // coordinate set it reads. Non-empty: the scaffolding's functions take S0, T0, S1, T1.
-  std::map<std::string, std::pair<ir::FunctionPtr, int>> samples;
-  // {P}Facet_Emission(x, y, z, n, S0, T0, S1, T1) = m_a ⊗ A + m_e where m_a or m_e comes from an
+  // Textured parameters (pov_texture.h): input name → Facet_Sample_<name>(S, T[, R, G, B, A]),
+  // the coordinate set it reads, whether it reads an image (S, T) and the vertex colour (R, G,
+  // B, A). Non-empty: the scaffolding's functions take S0, T0, S1, T1, and where the material
+  // reads the vertex colour R0, G0, B0, A0 too.
+  struct Sample {
+    ir::FunctionPtr f;
+    int uv = 0;
+    bool image = true, vertex_color = false;
+  };
+  std::map<std::string, Sample> samples;
+  // {P}Facet_Emission(x, y, z, n, S0, T0, S1, T1[, R0, G0, B0, A0]) = m_a ⊗ A + m_e where m_a or m_e comes from an
   // image (null otherwise: the emission is a colour, emission_texture()).
   ir::FunctionPtr emission_function;
   // A normal map's raw r, g, b at (S, T) of its set (Facet_Sample_normal_map_r, _g, _b), or null.

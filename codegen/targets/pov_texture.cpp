@@ -1,6 +1,8 @@
 #include "targets/pov_texture.h"
 
+#include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include <fmt/format.h>
 
@@ -27,6 +29,16 @@ ir::FunctionPtr texel_stub(int image, int channel) {
   auto f = std::const_pointer_cast<ir::Function>(declared(
       channel < 0 ? fmt::format("Facet_Texel{}", image) : fmt::format("Facet_Texel{}_{}", image, kChannels[channel]), 2));
   if (channel < 0) f->result = ir::color(1, 2, 3);  // never printed: makes the calls per channel
+  return f;
+}
+
+// Facet_Rgb(R, G, B): printed as Facet_Rgb_R, _G, _B (its result a colour that is not grey).
+ir::FunctionPtr rgb_stub() {
+  static const ir::FunctionPtr f = [] {
+    auto g = std::const_pointer_cast<ir::Function>(declared("Facet_Rgb", 3));
+    g->result = ir::color(1, 2, 3);  // never printed: makes the calls per channel
+    return ir::FunctionPtr(g);
+  }();
   return f;
 }
 
@@ -71,10 +83,11 @@ void write_pov_texture_image(std::ostream& out, const Texels& t, bool alpha) {
   }
 }
 
-ir::FunctionPtr pov_sample_function(const PovTexture& t) {
+namespace {
+
+// channel(texture(S′, T′)) of call t: nearest or bilinear, S and T transformed.
+Expr sampled(ir::FunctionBuilder& fb, const PovTexture& t, Expr s, Expr tt) {
   const TextureCall& c = t.call;
-  ir::FunctionBuilder fb("Facet_Sample_" + c.name, "");
-  Expr s = fb.param("S"), tt = fb.param("T");
   if (c.transformed) {
     Expr s2 = fb.let("Su", c.a * s + c.b * tt + c.ou);
     tt = fb.let("Tv", c.c * s + c.d * tt + c.ov);
@@ -83,22 +96,44 @@ ir::FunctionPtr pov_sample_function(const PovTexture& t) {
   const ir::FunctionPtr texel = texel_stub(t.image, c.channel);
   const double w = c.texels->width, h = c.texels->height;
   auto read = [&](const Expr& i, const Expr& j) { return ir::call(texel, {i, j}); };
-  Expr value = 0.0;
-  if (!c.bilinear) {
-    value = read(ir::floor(s * w), ir::floor(tt * h));
-  } else {
-    Expr x = fb.let("X", s * w - 0.5), y = fb.let("Y", tt * h - 0.5);
-    Expr i = fb.let("I", ir::floor(x)), j = fb.let("J", ir::floor(y));
-    Expr a = fb.let("A", x - i), b = fb.let("B", y - j);
-    value = (1.0 - b) * ((1.0 - a) * read(i, j) + a * read(i + 1.0, j)) +
-            b * ((1.0 - a) * read(i, j + 1.0) + a * read(i + 1.0, j + 1.0));
+  if (!c.bilinear) return read(ir::floor(s * w), ir::floor(tt * h));
+  Expr x = fb.let("X", s * w - 0.5), y = fb.let("Y", tt * h - 0.5);
+  Expr i = fb.let("I", ir::floor(x)), j = fb.let("J", ir::floor(y));
+  Expr a = fb.let("A", x - i), b = fb.let("B", y - j);
+  return (1.0 - b) * ((1.0 - a) * read(i, j) + a * read(i + 1.0, j)) +
+         b * ((1.0 - a) * read(i, j + 1.0) + a * read(i + 1.0, j + 1.0));
+}
+
+// A colour (three lanes unless grey) or a number.
+Expr lanes(const TextureCall& c, const std::array<double, 3>& x) {
+  return c.color && !(x[0] == x[1] && x[1] == x[2]) ? ir::color(x[0], x[1], x[2]) : Expr(x[0]);
+}
+
+}  // namespace
+
+ir::FunctionPtr pov_sample_function(const PovTexture& t) {
+  const TextureCall& c = t.call;
+  ir::FunctionBuilder fb("Facet_Sample_" + c.name, "");
+  std::optional<Expr> s, tt;
+  if (c.image) s = fb.param("S"), tt = fb.param("T");
+  // offset + factor ⊗ texel ⊗ vc, as every target computes it (texture_value_code()).
+  Expr value = lanes(c, c.factor);
+  if (c.image) value = value * sampled(fb, t, *s, *tt);
+  if (c.vertex_color) {
+    const Expr r = fb.param("R"), g = fb.param("G"), b = fb.param("B"), a = fb.param("A");
+    const Expr component[] = {r, g, b, a};
+    value = value * (c.color ? ir::call(rgb_stub(), {r, g, b}) : component[std::max(c.channel, 0)]);
   }
-  Expr factor = c.color && !(c.factor[0] == c.factor[1] && c.factor[1] == c.factor[2])
-                    ? ir::color(c.factor[0], c.factor[1], c.factor[2])
-                    : Expr(c.factor[0]);
-  value = factor * value;
+  if (!c.offset_zero()) value = lanes(c, c.offset) + value;
   value = std::isfinite(c.hi) ? ir::clamp(value, c.lo, c.hi) : ir::max(value, c.lo);
   return fb.returns(value);
+}
+
+std::string pov_rgb_declarations() {
+  std::string out = "// A colour from three numbers, channel by channel: a vertex colour's rgb.\n";
+  for (int ch = 0; ch < 3; ++ch)
+    out += fmt::format("#declare Facet_Rgb_{} = function(R, G, B) {{ {} }}\n", kChannels[ch], "RGB"[ch]);
+  return out;
 }
 
 }  // namespace facet::targets

@@ -10,7 +10,8 @@
 // y = 1 − (j + 1 + ½)/(H + 1) (POV-Ray puts the first row at the top, y = 1). The
 // texel functions Facet_Texel{k}_R, _G, _B, _A(I, J) wrap the indices and decode sRGB;
 // Facet_Sample_<parameter>(S, T) (IR, printed like every function) applies the
-// transform, the filter, the factor and the clamp.
+// transform, the filter, the factor and the clamp; where the value reads the vertex colour
+// it takes its R, G, B, A after S and T (without an image, them alone).
 #pragma once
 
 #include <ostream>
@@ -24,7 +25,7 @@ namespace facet::targets {
 
 struct PovTexture {
   TextureCall call;
-  int image = 0;         // k of Facet_Texel{k}_…: the scene's images, counted from 0
+  int image = 0;         // k of Facet_Texel{k}_…: the scene's images, counted from 0 (−1: none, the vertex colour alone)
   std::string file;      // the PPM beside the scene
   std::string alpha;     // the PGM of its alpha, or "" where no parameter reads it
 };
@@ -33,7 +34,12 @@ struct PovTexture {
 std::string pov_texture_declarations(const PovTexture& t);
 // The PPM (alpha: the PGM of the alpha channel) of t's texels.
 void write_pov_texture_image(std::ostream& out, const Texels& t, bool alpha);
-// Facet_Sample_<name>(S, T): the textured parameter's value at texture coordinates (S, T).
+// Facet_Sample_<name>(S, T[, R, G, B, A]): the textured parameter's value at texture
+// coordinates (S, T) on a surface of vertex colour (R, G, B, A).
 ir::FunctionPtr pov_sample_function(const PovTexture& t);
+// Facet_Rgb_R, _G, _B(R, G, B): a colour from three numbers, channel by channel (POV-Ray's
+// functions are scalar): what a colour's vertex colour is made of. Declared once in a scene
+// whose materials read the vertex colour.
+std::string pov_rgb_declarations();
 
 }  // namespace facet::targets

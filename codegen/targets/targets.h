@@ -68,9 +68,9 @@ GlslParts glsl_parts(const MaterialProgram& p, Target dialect, const std::string
 
 // The G-buffer shading pass (renderers/gbuffer.h) in `dialect` (Glsl, Glsl450, Essl):
 // the material's library and light loop (LightSource::Buffer) under
-// templates/glsl/gbuffer_shade.glsl's main, which reads the six G-buffer images at its pixel
-// (samplers facet_gbuffer_position … facet_gbuffer_uv, and facet_gbuffer_visibility, a 2D
-// array; Vulkan: set 1, bindings 0-5) and writes facet_color.
+// templates/glsl/gbuffer_shade.glsl's main, which reads the seven G-buffer images at its pixel
+// (samplers facet_gbuffer_position … facet_gbuffer_color0, and facet_gbuffer_visibility, a 2D
+// array; Vulkan: set 1, bindings 0-6) and writes facet_color.
 std::string glsl_gbuffer_shading_source(const Material& m, Target dialect);
 
 // HLSL in the same pieces (templates/hlsl): the library, the light loop (the FacetScene
@@ -89,8 +89,8 @@ struct WgslParts {
 WgslParts wgsl_parts(const MaterialProgram& p, const std::string& source, LightSource lights = LightSource::Uniforms);
 // The G-buffer shading pass in WGSL (the wgpu renderer's): the material's library and
 // light loop (LightSource::Buffer) under templates/wgsl/gbuffer_shade.wgsl, whose
-// facet_vertex draws one full-screen triangle and whose facet_gbuffer_shade reads the six
-// G-buffer images (@group(1), bindings 0–5; 5 a 2D array) at its pixel; the material's
+// facet_vertex draws one full-screen triangle and whose facet_gbuffer_shade reads the seven
+// G-buffer images (@group(1), bindings 0–6; 6 a 2D array) at its pixel; the material's
 // images are @group(0) from binding 1.
 std::string wgsl_gbuffer_shading_source(const Material& m);
 

@@ -1,6 +1,9 @@
 #include "targets/texture_code.h"
 
+#include <algorithm>
 #include <cmath>
+
+#include <fmt/format.h>
 
 #include "catalog/texture.h"
 
@@ -32,6 +35,9 @@ TextureCall call_of(const TexturedInput& t) {
   c.hi = b[1];
   c.texels = r.texels.get();
   c.file = r.file;
+  c.image = r.has_image();
+  c.vertex_color = r.vertex_color;
+  c.offset = r.bias;
   return c;
 }
 
@@ -54,9 +60,46 @@ std::optional<TextureCall> alpha_call(const Material& m) {
 }
 
 std::vector<TextureCall> image_calls(const MaterialProgram& p) {
-  std::vector<TextureCall> out = texture_calls(p);
+  std::vector<TextureCall> out;
+  for (const auto& c : texture_calls(p))
+    if (c.image) out.push_back(c);
   if (auto n = normal_map_call(p)) out.push_back(*n);
   return out;
+}
+
+std::string texture_value_code(const TextureCall& c, const std::string& texel, const std::string& vc,
+                               const ValueWords& w) {
+  const std::string factor = c.color ? w.color(c.factor) : w.number(c.factor[0]);
+  std::string value = factor;
+  if (c.image) value += " * " + texel;
+  if (c.vertex_color) value += " * " + vc;
+  if (!c.offset_zero()) value = (c.color ? w.color(c.offset) : w.number(c.offset[0])) + " + " + value;
+  const std::string lo = c.color ? w.grey(c.lo) : w.number(c.lo);
+  if (!std::isfinite(c.hi)) return fmt::format("max({}, {})", value, lo);
+  return fmt::format("clamp({}, {}, {})", value, lo, c.color ? w.grey(c.hi) : w.number(c.hi));
+}
+
+std::string gpu_sample_statement(const TextureCall& c, const std::string& uv, const SampleWords& w) {
+  std::string texel;
+  if (c.image) {
+    const std::string lookup = fmt::format("facet_texture(facet_texture_{}, {}, {}({}, {}), {}, {})", c.name, uv,
+                                           w.int2, c.wrap[0], c.wrap[1], c.bilinear ? "true" : "false",
+                                           c.srgb ? "true" : "false");
+    texel = c.channel < 0 ? lookup + ".rgb" : lookup + "." + std::string(1, "rgba"[c.channel]);
+    if (c.color && c.channel >= 0) texel = w.to_color + "(" + texel + ")";
+  }
+  const std::string vc = c.color ? "color0.rgb" : std::string("color0.") + "rgba"[std::max(c.channel, 0)];
+  return fmt::format("    {} = {};\n", c.name, texture_value_code(c, texel, vc, w.value));
+}
+
+std::map<std::string, std::string> sampling_doc(const MaterialProgram& p) {
+  const auto calls = texture_calls(p);
+  const bool offset = std::any_of(calls.begin(), calls.end(), [](const TextureCall& c) { return !c.offset_zero(); });
+  const bool vc = p.uses_vertex_color();
+  return {{"color_doc", vc ? ",\n// and the surface's vertex colour color0 (glTF's COLOR_0, linear RGBA; white where a surface has none)"
+                           : ""},
+          {"offset", offset ? "offset + " : ""},
+          {"vc", vc ? " ⊗ color0" : ""}};
 }
 
 }  // namespace facet

@@ -3,6 +3,8 @@
 #pragma once
 
 #include <array>
+#include <functional>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -25,19 +27,61 @@ struct TextureCall {
   int channel = -1;               // −1: rgb; else 0–3 (r, g, b, a)
   std::array<double, 3> factor{1, 1, 1};
   double lo = 0, hi = 0;          // the range the value is clamped to; hi may be +∞
-  const Texels* texels = nullptr;
+  const Texels* texels = nullptr;  // null without an image
   std::string file;               // the image, as the material names it
+  bool image = true;              // false: the vertex colour alone (no image to bind or sample)
+  bool vertex_color = false;      // times the vertex colour: its rgb (colours) or component `channel` (numbers)
+  std::array<double, 3> offset{0, 0, 0};  // added before the clamp
+  bool offset_zero() const { return offset == std::array<double, 3>{0, 0, 0}; }
 };
 
-// The textured parameters' calls (MaterialProgram::textured's order).
+// The textured parameters' calls (MaterialProgram::textured's order), those of the vertex
+// colour alone included: every target's facet_sample_textures() sets each.
 std::vector<TextureCall> texture_calls(const MaterialProgram& p);
 // The normal map's call, named "normal_map": its raw rgb (linear, factor 1, range [0, 1]),
 // which the target turns into n_t itself (catalog/texture.h, NormalMap). Empty without one.
 std::optional<TextureCall> normal_map_call(const MaterialProgram& p);
-// Every image the material samples: texture_calls(p), then the normal map's.
+// Every image the material samples: texture_calls(p) that have one, then the normal map's.
+// What the renderers upload and bind, and the targets declare: a value of the vertex colour
+// alone has no image.
 std::vector<TextureCall> image_calls(const MaterialProgram& p);
 // The cut-out's alpha (Material::alpha), named "alpha", where it comes from an image (range
 // [0, 1]); empty where it is a number or the material has no cut-out.
 std::optional<TextureCall> alpha_call(const Material& m);
+
+// How a C-family target (GLSL, HLSL, WGSL, OSL) words numbers and colours.
+struct ValueWords {
+  std::function<std::string(double)> number;                       // a number literal
+  std::function<std::string(const std::array<double, 3>&)> color;  // a colour literal
+  std::function<std::string(double)> grey;                         // a colour of three equal lanes (clamp's bounds)
+};
+// The value of call `c` as an expression: clamp(offset + factor * texel * vc, lo, hi), or
+// max(…, lo) where hi is +∞ (catalog/texture.h), in the order every target and the
+// reference compute it. `texel`: the image's channel as the parameter's type ("" without an
+// image); `vc`: the vertex colour's rgb (colours) or component (numbers), "" where c does not
+// read it. Without a vertex colour and an offset: factor * texel, clamped, as ever.
+std::string texture_value_code(const TextureCall& c, const std::string& texel, const std::string& vc,
+                               const ValueWords& w);
+
+// How a GPU shading language (GLSL, HLSL, WGSL) words a sampling statement besides its values.
+struct SampleWords {
+  ValueWords value;
+  std::string int2;       // a two-integer vector's constructor: "ivec2", "int2", "vec2<i32>"
+  std::string to_color;   // what turns a channel into a colour of three equal lanes: "vec3", "(float3)", "vec3<f32>"
+};
+// One textured parameter's statement in facet_sample_textures() of the GPU targets'
+// templates: `<name> = <texture_value_code>;`, the texel read by the template's
+// facet_texture(image, uv, wrap, bilinear, srgb) at coordinates `uv` (unused without an
+// image), the vertex colour from `color0`.
+std::string gpu_sample_statement(const TextureCall& c, const std::string& uv, const SampleWords& w);
+
+}  // namespace facet
+
+namespace facet {
+
+// The sampling templates' words on what facet_sample_textures() reads besides the
+// coordinates ({{color_doc}}, {{offset}}, {{vc}}): "" for a material without vertex colours
+// and offsets, so that its code reads as it always has.
+std::map<std::string, std::string> sampling_doc(const MaterialProgram& p);
 
 }  // namespace facet

@@ -157,31 +157,29 @@ std::string wgsl_uv(const WgslPrinter& pr, const TextureCall& c) {
                      fmt::arg("uv", uv));
 }
 
-// One textured parameter's statement in facet_sample_textures().
+// One textured parameter's statement in facet_sample_textures() (texture_value_code()).
 std::string sample_statement(const WgslPrinter& pr, const TextureCall& c) {
-  std::string lookup = fmt::format("facet_texture(facet_texture_{}, {}, vec2<i32>({}, {}), {}, {})", c.name,
-                                   wgsl_uv(pr, c), c.wrap[0], c.wrap[1], c.bilinear ? "true" : "false",
-                                   c.srgb ? "true" : "false");
-  std::string value = c.channel < 0 ? lookup + ".rgb" : lookup + "." + std::string(1, "rgba"[c.channel]);
-  if (c.color && c.channel >= 0) value = "vec3<f32>(" + value + ")";
-  std::string factor = c.color ? pr.color_literal(c.factor) : pr.literal(c.factor[0]);
-  value = factor + " * " + value;
-  std::string lo = c.color ? "vec3<f32>(" + pr.literal(c.lo) + ")" : pr.literal(c.lo);
-  std::string hi = c.color ? "vec3<f32>(" + pr.literal(c.hi) + ")" : pr.literal(c.hi);
-  value = std::isfinite(c.hi) ? fmt::format("clamp({}, {}, {})", value, lo, hi) : fmt::format("max({}, {})", value, lo);
-  return fmt::format("    {} = {};\n", c.name, value);
+  const SampleWords words{{[&](double x) { return pr.literal(x); },
+                           [&](const std::array<double, 3>& x) { return pr.color_literal(x); },
+                           [&](double x) { return "vec3<f32>(" + pr.literal(x) + ")"; }},
+                          "vec2<i32>",
+                          "vec3<f32>"};
+  return gpu_sample_statement(c, c.image ? wgsl_uv(pr, c) : "", words);
 }
 
 // The textures' bindings, their parameters' private globals and facet_sample_textures():
-// empty for a material without textures.
+// empty for a material without textures. A value of the vertex colour alone has no binding.
 std::string wgsl_textures(const MaterialProgram& p) {
   if (!p.has_textures()) return "";
   WgslPrinter pr;
   std::string uniforms, globals, samples;
   int binding = 1;  // binding 0 is the scene's uniform buffer
-  for (const auto& c : image_calls(p)) {
+  for (const auto& c : image_calls(p))
     uniforms += fmt::format("@group(0) @binding({}) var facet_texture_{}: texture_2d<f32>;  // \"{}\", {}×{}\n",
                             binding++, c.name, c.file, c.texels->width, c.texels->height);
+  std::vector<TextureCall> calls = texture_calls(p);
+  if (auto n = normal_map_call(p)) calls.push_back(*n);
+  for (const auto& c : calls) {
     globals += fmt::format("var<private> {}: {};\n", c.name, c.color ? "vec3<f32>" : "f32");
     samples += sample_statement(pr, c);
   }
@@ -193,8 +191,11 @@ std::string wgsl_textures(const MaterialProgram& p) {
     mapping = render_template("wgsl/normal_map.wgsl", {{"strength", pr.literal(nm->strength)},
                                                        {"green", nm->green_down ? "-" : ""}});
   }
-  return render_template("wgsl/textures.wgsl", {{"uniforms", uniforms}, {"globals", globals}, {"samples", samples}}) +
-         mapping;
+  std::map<std::string, std::string> values = sampling_doc(p);
+  values.insert({{"uniforms", uniforms}, {"globals", globals}, {"samples", samples},
+                 {"params", p.uses_vertex_color() ? "uv0: vec2<f32>, uv1: vec2<f32>, color0: vec4<f32>"
+                                                  : "uv0: vec2<f32>, uv1: vec2<f32>"}});
+  return render_template("wgsl/textures.wgsl", values) + mapping;
 }
 
 // The material's constants: m_a and m_e (unless images set them), the tangent axis, the parameters.
@@ -306,6 +307,10 @@ WgslParts wgsl_parts(const MaterialProgram& p, const std::string& source, LightS
           "    @location(4) texcoord1: vec2<f32>,\n";
     sample = "    facet_sample_textures(fragment.texcoord0, fragment.texcoord1);\n";
   }
+  if (p.uses_vertex_color()) {
+    in += "    @location(6) color0: vec4<f32>,  // glTF's COLOR_0: linear RGBA; white (1) where a mesh has none\n";
+    sample = "    facet_sample_textures(fragment.texcoord0, fragment.texcoord1, fragment.color0);\n";
+  }
   if (p.normal_mapped()) {
     in += "    @location(5) texture_tangent: vec4<f32>,  // xyz: ∂p/∂u, w: ±1 (glTF's TANGENT)\n";
     sample += "    facet_uv_tangent = fragment.texture_tangent.xyz;\n"
@@ -318,7 +323,10 @@ WgslParts wgsl_parts(const MaterialProgram& p, const std::string& source, LightS
 std::string wgsl_gbuffer_shading_source(const Material& m) {
   MaterialProgram p = compile(m);
   WgslParts parts = wgsl_parts(p, m.source, LightSource::Buffer);
-  std::string sample = p.has_textures() ? "    facet_sample_textures(uv.xy, uv.zw);\n" : "";
+  std::string sample;
+  if (p.has_textures())
+    sample = p.uses_vertex_color() ? "    facet_sample_textures(uv.xy, uv.zw, textureLoad(facet_gbuffer_color0, texel, 0));\n"
+                                   : "    facet_sample_textures(uv.xy, uv.zw);\n";
   if (p.normal_mapped()) sample += "    facet_uv_tangent = frame.xyz;\n    facet_uv_handedness = frame.w;\n";
   std::map<std::string, std::string> values = glsl_light::visibility_values();
   values["sample"] = sample;

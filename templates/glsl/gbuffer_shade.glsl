@@ -1,12 +1,13 @@
 
 // ---- G-buffer shading pass (docs/architecture.md, "The G-buffer"): facet's GL ray
-// caster has cast the scene once into six RGBA32F images; this main reads them at its
+// caster has cast the scene once into seven RGBA32F images; this main reads them at its
 // pixel and shades, as the ray caster's own main does after its hit. Texel (x, y) has
 // y = 0 the bottom row. Images: 0 position (w: 1 shaded in this pass, 0 drawn black,
 // -1 background), 1 normal, 2 view direction v, 3 the uv tangent frame (xyz, w = ±1),
-// 4 uv sets 0 (xy) and 1 (zw), 5 the lights' visibility, a 2D array: light i's bit is bit
-// i mod {{bits}} of channel (i / {{bits}}) mod 4 of layer i / {{layer_lights}} (1 lit, 0 in shadow),
-// each channel an integer below 2^{{bits}}, exact in float32.
+// 4 uv sets 0 (xy) and 1 (zw), 5 the vertex colour (RGBA, white off meshes without one),
+// 6 the lights' visibility, a 2D array: light i's bit is bit i mod {{bits}} of channel
+// (i / {{bits}}) mod 4 of layer i / {{layer_lights}} (1 lit, 0 in shadow), each channel an
+// integer below 2^{{bits}}, exact in float32.
 {{declarations}}
 // This pixel's texel of the G-buffer.
 ivec2 facet_gbuffer_texel;
@@ -32,7 +33,7 @@ void main()
 }
 
 // Light `light`'s visibility at this pixel, as the ray caster's shadow ray found it: its
-// bit of image 5.
+// bit of image 6.
 float facet_visibility(vec3 p, vec3 l, float d, int light)
 {
     vec4 word = texelFetch(facet_gbuffer_visibility, ivec3(facet_gbuffer_texel, light / {{layer_lights}}), 0);

@@ -49,9 +49,9 @@ vec4 facet_texture(sampler2D image, vec2 uv, ivec2 wrap, bool bilinear, bool srg
 {{uniforms}}
 // The parameters that come from images, at the shading point: facet_sample_textures sets them.
 {{globals}}
-// Texture coordinates sets 0 and 1 (glTF's TEXCOORD_0/1: v down the picture) → each
-// textured parameter: clamp(factor ⊗ channel(texture(KHR_texture_transform(uv))), its range).
-void facet_sample_textures(vec2 uv0, vec2 uv1)
+// Texture coordinates sets 0 and 1 (glTF's TEXCOORD_0/1: v down the picture){{color_doc}} → each
+// textured parameter: clamp({{offset}}factor ⊗ channel(texture(KHR_texture_transform(uv))){{vc}}, its range).
+void facet_sample_textures({{params}})
 {
 {{samples}}}
 

@@ -54,8 +54,8 @@ float4 facet_texture(Texture2D<float4> image, float2 uv, int2 wrap, bool bilinea
 {{uniforms}}
 // The parameters that come from images, at the shading point: facet_sample_textures sets them.
 {{globals}}
-// Texture coordinates sets 0 and 1 (glTF's TEXCOORD_0/1: v down the picture) → each
-// textured parameter: clamp(factor ⊗ channel(texture(KHR_texture_transform(uv))), its range).
-void facet_sample_textures(float2 uv0, float2 uv1)
+// Texture coordinates sets 0 and 1 (glTF's TEXCOORD_0/1: v down the picture){{color_doc}} → each
+// textured parameter: clamp({{offset}}factor ⊗ channel(texture(KHR_texture_transform(uv))){{vc}}, its range).
+void facet_sample_textures({{params}})
 {
 {{samples}}}

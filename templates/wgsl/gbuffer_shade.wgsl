@@ -1,20 +1,21 @@
 
 // ---- G-buffer shading pass (docs/architecture.md, "The G-buffer"), the wgpu renderer's:
-// facet's GL ray caster has cast the scene once into six rgba32float images (@group(1));
+// facet's GL ray caster has cast the scene once into seven rgba32float images (@group(1));
 // this pass reads them at its pixel and shades, as the ray caster's own main does after its
 // hit. Texel (x, y) has y = 0 the bottom row; this framebuffer has y down, so pixel (x, y)
 // reads texel (x, height − 1 − y) and the image comes back in facet's order (top row
 // first). Images: 0 position (w: 1 shaded in this pass, 0 drawn black, −1 background),
 // 1 normal, 2 view direction v, 3 the uv tangent frame (xyz, w = ±1), 4 uv sets 0 (xy)
-// and 1 (zw), 5 the lights' visibility, a 2D array: light i's bit is bit i mod {{bits}} of
-// channel (i / {{bits}}) mod 4 of layer i / {{layer_lights}} (1 lit, 0 in shadow), each channel
-// an integer below 2^{{bits}}, exact in f32.
+// and 1 (zw), 5 the vertex colour (RGBA), 6 the lights' visibility, a 2D array: light i's bit
+// is bit i mod {{bits}} of channel (i / {{bits}}) mod 4 of layer i / {{layer_lights}} (1 lit, 0 in
+// shadow), each channel an integer below 2^{{bits}}, exact in f32.
 @group(1) @binding(0) var facet_gbuffer_position: texture_2d<f32>;
 @group(1) @binding(1) var facet_gbuffer_normal: texture_2d<f32>;
 @group(1) @binding(2) var facet_gbuffer_view: texture_2d<f32>;
 @group(1) @binding(3) var facet_gbuffer_uv_tangent: texture_2d<f32>;
 @group(1) @binding(4) var facet_gbuffer_uv: texture_2d<f32>;
-@group(1) @binding(5) var facet_gbuffer_visibility: texture_2d_array<f32>;
+@group(1) @binding(5) var facet_gbuffer_color0: texture_2d<f32>;
+@group(1) @binding(6) var facet_gbuffer_visibility: texture_2d_array<f32>;
 
 // This pixel's texel of the G-buffer.
 var<private> facet_gbuffer_texel: vec2<i32>;
@@ -48,7 +49,7 @@ fn facet_gbuffer_shade(@builtin(position) pixel: vec4<f32>) -> @location(0) vec4
 }
 
 // Light `light`'s visibility at this pixel, as the ray caster's shadow ray found it: its
-// bit of image 5.
+// bit of image 6.
 fn facet_visibility(p: vec3<f32>, l: vec3<f32>, d: f32, light: i32) -> f32 {
     let word = textureLoad(facet_gbuffer_visibility, facet_gbuffer_texel, light / {{layer_lights}}, 0);
     let bits = i32(word[(light / {{bits}}) % 4]);

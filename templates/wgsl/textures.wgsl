@@ -53,7 +53,7 @@ fn facet_texture(image: texture_2d<f32>, uv: vec2<f32>, wrap: vec2<i32>, bilinea
 {{uniforms}}
 // The parameters that come from images, at the shading point: facet_sample_textures sets them.
 {{globals}}
-// Texture coordinates sets 0 and 1 (glTF's TEXCOORD_0/1: v down the picture) → each
-// textured parameter: clamp(factor ⊗ channel(texture(KHR_texture_transform(uv))), its range).
-fn facet_sample_textures(uv0: vec2<f32>, uv1: vec2<f32>) {
+// Texture coordinates sets 0 and 1 (glTF's TEXCOORD_0/1: v down the picture){{color_doc}} → each
+// textured parameter: clamp({{offset}}factor ⊗ channel(texture(KHR_texture_transform(uv))){{vc}}, its range).
+fn facet_sample_textures({{params}}) {
 {{samples}}}

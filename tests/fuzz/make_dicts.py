@@ -21,14 +21,15 @@ GLTF_KEYS = ['asset', 'version', '2.0', 'scenes', 'scene', 'nodes', 'children', 
              'samplers', 'source', 'sampler', 'mimeType', 'image/png', 'image/jpeg', 'data:image/png;base64,',
              'baseColorTexture', 'metallicRoughnessTexture', 'normalTexture', 'emissiveTexture', 'occlusionTexture',
              'index', 'texCoord', 'KHR_texture_transform', 'magFilter', 'minFilter', 'wrapS', 'wrapT', '9728',
-             '9729', '9987', '10497', '33071', '33648', 'TANGENT', 'VEC4', 'strength', 'KHR_materials_emissive_strength',
+             '9729', '9987', '10497', '33071', '33648', 'TANGENT', 'COLOR_0', 'VEC4', 'strength', 'KHR_materials_emissive_strength',
              'emissiveStrength']
 
 
 TEXTURE_KEYS = ['texture', 'channel', 'uv', 'transform', 'offset', 'scale', 'rotation', 'colorspace', 'srgb',
                 'linear', 'filter', 'nearest', 'bilinear', 'wrap', 'repeat', 'clamp', 'mirror', 'factor', 'rgb',
                 'r', 'g', 'b', 'a', '../textures/checker.png', '../textures/roughness16.png', 'texcoords',
-                'texcoords1', 'tangents', 'normal_map', 'green', 'up', 'down', 'strength', '../textures/normals.png']
+                'texcoords1', 'tangents', 'colors', 'vertex_color', 'normal_map', 'green', 'up', 'down', 'strength',
+                '../textures/normals.png']
 IMAGE_TOKENS = ['\x89PNG\r\n\x1a\n', 'IHDR', 'IDAT', 'IEND', 'PLTE', 'tRNS', 'gAMA', 'sRGB', '\xff\xd8\xff',
                 'P5', 'P6', 'BM', 'GIF89a', '8BPS', '\x00\x00\x00\x0d']
 

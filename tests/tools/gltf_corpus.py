@@ -2,8 +2,7 @@
 
     python gltf_corpus.py OUT_FOLDER            (a Python with pip bpy 4.5 and numpy)
 
-Writes OUT/corpus/*.gltf|glb (the corpus), OUT/pending/*.gltf (files of features main's
-renderers do not all draw yet: alphaMode MASK), OUT/variants/*.gltf (deliberately wrong twins
+Writes OUT/corpus/*.gltf|glb (the corpus), OUT/variants/*.gltf (deliberately wrong twins
 of those files, for the second opinion's own teeth), OUT/blender/lights.blend (the .blend
 that OUT/corpus/blender_lights.glb was exported from, for the Cycles comparison) and
 OUT/corpus.json (each file, what it covers, and which variants twin which file).
@@ -486,10 +485,7 @@ def sparse(doc):
     doc.node(name="stretched_sphere", mesh=doc.mesh(prim2, "stretched", weights=[1.0]), translation=[0.9, 0.6, 0.0])
 
 
-# ----------------------------------------------------------------------------- pending: what main draws on some renderers
-
-PENDING = []      # (file name, what it covers, writer): files for features main's renderers do not all draw yet
-
+# ----------------------------------------------------------------------------- cut-outs and vertex colours
 
 def leaf_alpha(n=16):
     """A leaf's coverage: an ellipse with a notch, alpha 1 inside, fading to 0 across its edge
@@ -501,6 +497,8 @@ def leaf_alpha(n=16):
     return gb.rgba(0.2 + 0.3 * (i / n), 0.5 + 0.4 * (j / n), 0.15, alpha)
 
 
+@entry("mask_leaf.gltf", "alphaMode MASK (alphaCutoff 0.45) on a base colour texture's alpha × baseColorFactor's "
+                        "0.9, double-sided, in front of a sphere, its shadow cut out too")
 def mask_leaf(doc):
     stage(doc)
     leaf = doc.texture(leaf_alpha(16), gb.NEAREST, gb.NEAREST, name="leaf")
@@ -516,9 +514,58 @@ def mask_leaf(doc):
                                        "box"), translation=[1.4, 0.4, 0.0])
 
 
-PENDING.append(("mask_leaf.gltf", "alphaMode MASK (alphaCutoff 0.45) on a base colour texture's alpha × "
-                                  "baseColorFactor's 0.9, double-sided, in front of a sphere, its shadow cut out too",
-                mask_leaf))
+# Blender's importer keeps COLOR_0 as an 8-bit sRGB-encoded colour attribute (BYTE_COLOR;
+# docs/gltf.md), so a linear value survives its reading only where it is an 8-bit sRGB code's
+# value. The colours here are such values: decode(k/255) for the float and 16-bit files, and for
+# the 8-bit normalized file the bytes b whose b/255 lies within 1e-4 (relative) of one (0, 39,
+# 136, 144, 192, 235, 246, 255). Any other colour would be a difference of up to 3.7e-3 that the
+# second opinion would have to allow, and that would hide a wrong reading as small as it.
+SRGB_BYTES = (0, 39, 136, 144, 192, 235, 246, 255)
+
+
+def srgb_code_value(k):
+    """The linear value of the 8-bit sRGB code k (IEC 61966-2-1)."""
+    s = k / 255.0
+    return s / 12.92 if s <= 0.04045 else ((s + 0.055) / 1.055) ** 2.4
+
+
+def corner_palette(count, seed, codes):
+    """`count` RGB colours drawn from `codes` (0–255 values), the same on every run."""
+    rng = np.random.default_rng(seed)
+    return np.asarray(codes)[rng.integers(0, len(codes), size=(count, 3))]
+
+
+@entry("vertex_colors.gltf", "COLOR_0 multiplying the base colour: VEC3 float on a rotated box (factor only), VEC4 "
+                             "normalized ubyte on a textured sphere whose material a COLOR_0-less box shares, VEC3 "
+                             "normalized ushort on a metallic 0.6 box")
+def vertex_colors(doc):
+    stage(doc)
+    codes = (0, 40, 90, 140, 180, 215, 240, 255)          # sRGB codes: their linear values are exact in Blender
+    box = gb.box(0.45, 0.45, 0.45)
+    rgb = np.vectorize(srgb_code_value)(corner_palette(len(box.positions), 1, codes))
+    plain = lit_material(doc, "tinted", (0.9, 0.85, 0.8), roughness=0.5)
+    colour = {"COLOR_0": doc.accessor(rgb, gb.FLOAT)}
+    doc.node(name="box_float_rgb", mesh=doc.mesh(doc.primitive(box, plain, extra=colour), "box_float"),
+             translation=[-1.5, 0.55, 0.3], rotation=gb.quat_axis_angle((0.3, 1, 0.2), 35))
+    sphere = gb.uv_sphere(0.6, 16, 8)
+    picked = corner_palette(len(sphere.positions), 2, SRGB_BYTES)
+    alpha = corner_palette(len(sphere.positions), 3, SRGB_BYTES)[:, :1]
+    bytes_rgba = np.concatenate([picked, alpha], axis=1).astype(np.uint8)
+    textured = lit_material(doc, "checker_tinted", (1.0, 1.0, 1.0), roughness=0.55,
+                            baseColorTexture={"index": doc.texture(gb.checker(16), gb.NEAREST, gb.NEAREST,
+                                                                   name="checker")})
+    colour = {"COLOR_0": doc.accessor(bytes_rgba, gb.UBYTE, normalized=True)}
+    doc.node(name="sphere_ubyte_rgba", mesh=doc.mesh(doc.primitive(sphere, textured, extra=colour), "sphere"),
+             translation=[0.0, 0.7, 0.0])
+    doc.node(name="box_without_color", mesh=doc.mesh(doc.primitive(gb.box(0.3, 0.3, 0.3), textured), "small_box"),
+             translation=[0.2, 0.3, 1.3], rotation=gb.quat_axis_angle((0, 1, 0), 20))
+    metal_box = gb.box(0.4, 0.4, 0.4)
+    linear = np.vectorize(srgb_code_value)(corner_palette(len(metal_box.positions), 4, codes))
+    shorts = np.round(linear * 65535).astype(np.uint16)
+    metal = lit_material(doc, "metal_tinted", (0.95, 0.9, 0.85), metallic=0.6, roughness=0.4)
+    colour = {"COLOR_0": doc.accessor(shorts, gb.USHORT, normalized=True)}
+    doc.node(name="box_ushort_rgb", mesh=doc.mesh(doc.primitive(metal_box, metal, extra=colour), "box_ushort"),
+             translation=[1.5, 0.5, 0.2], rotation=gb.quat_axis_angle((0, 1, 0), -30))
 
 
 # ----------------------------------------------------------------------------- Blender's own exporter
@@ -790,6 +837,16 @@ def rewrite_accessor(doc, index, fn):
     doc["buffers"][0]["uri"] = head + "," + base64.b64encode(bytes(data)).decode()
 
 
+def no_colour_twin(src, dst):
+    """vertex_colors.gltf with COLOR_0 dropped from every primitive (a reader that ignores it)."""
+    doc = json.load(open(src))
+    for mesh in doc["meshes"]:
+        for prim in mesh["primitives"]:
+            prim["attributes"].pop("COLOR_0", None)
+    with open(dst, "w") as f:
+        json.dump(doc, f, indent=1)
+
+
 def opaque_twin(src, dst):
     """mask_leaf.gltf with its cut-out dropped: every material's alphaMode OPAQUE."""
     doc = json.load(open(src))
@@ -804,8 +861,8 @@ VARIANTS += [
     ("box_khronos_adjugate.gltf", "box_khronos.gltf", "normals as the adjugate bug turned them (n' = AᵀA⁻¹n)",
      "normals", adjugate_twin),
     ("uv_sets_swapped.gltf", "uv_sets.gltf", "TEXCOORD_0 and TEXCOORD_1 exchanged", "image", swapped_uv_twin),
-    ("mask_leaf_opaque.gltf", "../pending/mask_leaf.gltf", "alphaMode MASK dropped (drawn opaque)", "coverage",
-     opaque_twin),
+    ("mask_leaf_opaque.gltf", "mask_leaf.gltf", "alphaMode MASK dropped (drawn opaque)", "coverage", opaque_twin),
+    ("vertex_colors_dropped.gltf", "vertex_colors.gltf", "COLOR_0 dropped", "image", no_colour_twin),
 ]
 
 
@@ -814,8 +871,7 @@ VARIANTS += [
 def main():
     out = os.path.abspath(sys.argv[1])
     corpus_dir, variant_dir = os.path.join(out, "corpus"), os.path.join(out, "variants")
-    pending_dir = os.path.join(out, "pending")
-    for d in (corpus_dir, variant_dir, pending_dir):
+    for d in (corpus_dir, variant_dir):
         os.makedirs(d, exist_ok=True)
         for f in os.listdir(d):
             os.remove(os.path.join(d, f))
@@ -825,16 +881,11 @@ def main():
         doc = gb.Document()
         fn(doc)
         doc.save(os.path.join(corpus_dir, name))
-    for name, _, fn in PENDING:
-        doc = gb.Document()
-        fn(doc)
-        doc.save(os.path.join(pending_dir, name))
     write_blender_files(out)
     for variant, original, _, _, make in VARIANTS:
         make(os.path.join(corpus_dir, original), os.path.join(variant_dir, variant))
     index = {"corpus": [{"file": n, "covers": c} for n, c, _ in CORPUS],
-             "variants": [{"file": v, "original": o, "wrong": w, "must_fail": f} for v, o, w, f, _ in VARIANTS],
-             "pending": [{"file": n, "covers": c} for n, c, _ in PENDING]}
+             "variants": [{"file": v, "original": o, "wrong": w, "must_fail": f} for v, o, w, f, _ in VARIANTS]}
     with open(os.path.join(out, "corpus.json"), "w") as f:
         json.dump(index, f, indent=1)
     missing = [n for n, _, _ in CORPUS if not os.path.isfile(os.path.join(corpus_dir, n))]

@@ -110,9 +110,7 @@ def parse_args():
     p.add_argument("--work", required=True)
     p.add_argument("--size", default="96x72")
     p.add_argument("--files", default="", help="comma-separated corpus files (default: all of corpus.json)")
-    p.add_argument("--no-corpus", action="store_true", help="compare only the --variant pairs (and --pending)")
-    p.add_argument("--pending", action="store_true",
-                   help="also compare corpus.json's pending files (FOLDER/pending: features not every renderer draws)")
+    p.add_argument("--no-corpus", action="store_true", help="compare only the --variant pairs")
     p.add_argument("--variant", action="append", default=[],
                    help="VARIANT=ORIGINAL:CHECK[+CHECK] (must fail every CHECK)")
     p.add_argument("--lit", default="", help="comma-separated files whose facet reading must be lit")
@@ -331,10 +329,6 @@ def main():
     index = json.load(open(os.path.join(opts.corpus, "corpus.json")))
     files = [] if opts.no_corpus else [f for f in opts.files.split(",") if f] or [e["file"] for e in index["corpus"]]
     folder_of = {f: "corpus" for f in files}
-    if opts.pending:
-        for e in index.get("pending", []):
-            files.append(e["file"])
-            folder_of[e["file"]] = "pending"
     lit = set(f for f in opts.lit.split(",") if f)
     unknown = lit - set(files)
     if unknown:

@@ -2,7 +2,8 @@
 # Generates a material for HLSL, the whole pixel shader and the --library, and runs
 # glslang's HLSL front end on each (glslangValidator -D -V -S frag -e main: HLSL to
 # SPIR-V, validated); the library under a small pixel-shader main that calls
-# facet_reflect (and facet_sample_textures, for a textured material); the pixel shader
+# facet_reflect (and facet_sample_textures, for a textured material, with the vertex colour
+# where it reads one); the pixel shader
 # also with -DFACET_SPIRV -DFACET_VERTEX_TANGENT. glslang accepts
 # GLSL's one-number float3(x), which fxc and dxc refuse: a grep refuses it here.
 #   hlsl_check.sh FACET MATERIAL OUTDIR [SED]
@@ -29,9 +30,12 @@ glslangValidator -D -V -S frag -e main -DFACET_SPIRV -DFACET_VERTEX_TANGENT "$ou
 {
   cat "$out/$name.lib.hlsl"
   echo
-  echo "float4 main(float3 n : TEXCOORD0, float3 l : TEXCOORD1, float3 v : TEXCOORD2, float4 uv : TEXCOORD3) : SV_Target"
+  echo "float4 main(float3 n : TEXCOORD0, float3 l : TEXCOORD1, float3 v : TEXCOORD2, float4 uv : TEXCOORD3,"
+  echo "            float4 color0 : COLOR0) : SV_Target"
   echo "{"
-  if grep -q "void facet_sample_textures" "$out/$name.lib.hlsl"; then
+  if grep -q "void facet_sample_textures(float2 uv0, float2 uv1, float4 color0)" "$out/$name.lib.hlsl"; then
+    echo "    facet_sample_textures(uv.xy, uv.zw, color0);  // a material that reads the vertex colour"
+  elif grep -q "void facet_sample_textures" "$out/$name.lib.hlsl"; then
     echo "    facet_sample_textures(uv.xy, uv.zw);"
   fi
   echo "    float3 nn = normalize(n);"

@@ -26,9 +26,10 @@ COLOR = (0.6, 0.3, 0.2)
 
 
 def gbuffer(wrong):
-    """Six images (the sixth the visibility, one layer), rows from the bottom up (the contract), and the
-    expected RGBA, rows from the top."""
-    g = np.zeros((6, H, W, 4), dtype=np.float32)
+    """Seven images (the sixth the vertex colour, white; the seventh the visibility, one layer), rows
+    from the bottom up (the contract), and the expected RGBA, rows from the top."""
+    g = np.zeros((7, H, W, 4), dtype=np.float32)
+    g[5] = 1.0
     expected = np.zeros((H, W, 4), dtype=np.float32)
     for row in range(H):  # row 0: the bottom
         for x in range(W):
@@ -50,7 +51,7 @@ def gbuffer(wrong):
             g[2, row, x] = (0.0, 0.0, 1.0, 0.0)
             g[3, row, x] = (1.0, 0.0, 0.0, 1.0)
             # Light 0's bit is bit 0 of channel 0; the other bits (lights the scene lacks) all set.
-            g[5, row, x] = (float((1 << 24) - 2) + lit, float((1 << 24) - 1), float((1 << 24) - 1), float((1 << 24) - 1))
+            g[6, row, x] = (float((1 << 24) - 2) + lit, float((1 << 24) - 1), float((1 << 24) - 1), float((1 << 24) - 1))
             expected[top_row, x] = (*(c * n[2] * lit for c in COLOR), 1.0)
     if wrong:
         g = g[:, ::-1].copy()
@@ -94,7 +95,7 @@ def main():
         f.write(uniforms())
     with open(os.path.join(out, "lights.raw"), "wb") as f:
         f.write(uniforms()[48:112])
-    job = {"jobs": [{"name": "lambert", "width": W, "height": H, "layers": 1, "wgsl": os.path.join(out, "pass.wgsl"),
+    job = {"jobs": [{"name": "lambert", "width": W, "height": H, "layers": 1, "images": 7, "wgsl": os.path.join(out, "pass.wgsl"),
                      "uniforms": os.path.join(out, "uniforms.raw"), "lights": os.path.join(out, "lights.raw"),
                      "gbuffer": os.path.join(out, "gbuffer.raw"), "textures": [], "output": os.path.join(out, "image")}]}
     job_file = os.path.join(out, "job.json")

@@ -8,11 +8,14 @@
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "analysis/sweep.h"
 #include "analysis/validate.h"
 #include "catalog/material.h"
 #include "catalog/program.h"
+#include "core/io.h"
+#include "scene/gltf.h"
 #include "reference/raycaster.h"
 #include "scene/shapes.h"
 #include "renderers/compare.h"
@@ -909,6 +912,103 @@ TEST(Detection, PovNormalMapFailsWhenWrong) {
     EXPECT_FALSE(bad.pass) << what << ": " << bad.metrics.max_excess;
   }
 }
+
+
+// Vertex colours (glTF's COLOR_0, docs/textures.md): examples/textured/textured_vertex_color.json
+// on tests/scenes/vertex_colors.json, whose meshes' colours change strongly from vertex to
+// vertex. Dropped (white taken) each renderer fails; where a renderer blends a triangle's
+// corners itself — the GL ray caster (and so the G-buffer the others shade), POV-Ray's data
+// image — a blend with corners 1 and 2 swapped fails too; the generated code passes. Cycles
+// blends its float colour attribute itself, as it blends the normals.
+const char* const kVertexColorExample = "textured_vertex_color";
+const fs::path kVertexColorScene = kSource / "tests/scenes/vertex_colors.json";
+
+void expect_vertex_colour_faults_fail(const std::string& renderer, const std::string& good,
+                                      const std::vector<std::pair<const char*, std::string>>& wrongs) {
+  Fixture f = fixture(kVertexColorExample, renderer + "-vertex-colors", "textured", kVertexColorScene.string());
+  std::vector<RenderJob> jobs = {f.job};
+  jobs[0].code_override = good;
+  for (const auto& w : wrongs) {
+    jobs.push_back(f.job);
+    jobs.back().code_override = w.second;
+    jobs.back().material->name = fmt::format("{}_wrong_{}", kVertexColorExample, jobs.size());
+  }
+  // POV-Ray's code reads files named after its job: each job alone, under the same name.
+  std::vector<RenderOutcome> out;
+  if (renderer == "pov") {
+    for (auto& j : jobs) j.material->name = kVertexColorExample;
+    for (const auto& j : jobs) out.push_back(render_one(renderer, j));
+  } else {
+    out = make_renderer(renderer)->render(jobs);
+  }
+  ASSERT_EQ(out.size(), jobs.size()) << renderer;
+  for (size_t k = 0; k < out.size(); ++k) {
+    const ComparisonRow row = judged(f, out[k]);
+    const char* what = k == 0 ? "right" : wrongs[k - 1].first;
+    std::cout << renderer << ", " << what << ": " << row.metrics.over << " pixels over, worst " << row.metrics.max_excess
+              << "\n";
+    if (k == 0) EXPECT_TRUE(row.pass) << renderer << ": " << row.metrics.max_excess;
+    else EXPECT_FALSE(row.pass) << renderer << ", " << what << ": " << row.metrics.max_excess;
+  }
+}
+
+TEST(Detection, GlslVertexColoursFailWhenDroppedOrMisordered) {
+  const Material m = load_material((kSource / "examples/textured" / (std::string(kVertexColorExample) + ".json")).string());
+  const std::string good = GlRenderer::fragment_source(m);
+  const std::string corner1 = "texelFetch(facet_colors, t + 1) * h.uv.x", corner2 = "texelFetch(facet_colors, t + 2) * h.uv.y";
+  expect_vertex_colour_faults_fail(
+      "glsl", good,
+      {{"dropped", inject(good, "facet_color0_at(hit, best));", "vec4(1.0));")},
+       {"corners 1 and 2 swapped",
+        inject(inject(good, corner1, "texelFetch(facet_colors, t + 2) * h.uv.x"), corner2,
+               "texelFetch(facet_colors, t + 1) * h.uv.y")}});
+}
+
+// The G-buffer's renderers read image 5; each pass with it left out fails.
+TEST(Detection, GBufferVertexColoursFailWhenDropped) {
+  const Material m = load_material((kSource / "examples/textured" / (std::string(kVertexColorExample) + ".json")).string());
+  const std::string vk = glsl_gbuffer_shading_source(m, Target::Glsl450), es = glsl_gbuffer_shading_source(m, Target::Essl);
+  const std::string read = "texelFetch(facet_gbuffer_color0, facet_gbuffer_texel, 0)";
+  expect_vertex_colour_faults_fail("vulkan", vk, {{"dropped", inject(vk, read, "vec4(1.0)")}});
+  expect_vertex_colour_faults_fail("webgl", es, {{"dropped", inject(es, read, "vec4(1.0)")}});
+  const std::string hlsl = hlsl_shading_source(m);
+  expect_vertex_colour_faults_fail(
+      "vulkan-hlsl", hlsl, {{"dropped", inject(hlsl, "facet_gbuffer_color0.Load(texel)", "float4(1.0, 1.0, 1.0, 1.0)")}});
+  const std::string wgsl = wgsl_gbuffer_shading_source(m);
+  expect_vertex_colour_faults_fail(
+      "wgpu", wgsl, {{"dropped", inject(wgsl, "textureLoad(facet_gbuffer_color0, texel, 0)", "vec4<f32>(1.0)")}});
+}
+
+// Cycles: the shader's facet_color0 and facet_alpha0 left unlinked (the harness links what
+// the shader declares), white inside the shader.
+TEST(Detection, OslVertexColoursFailWhenDropped) {
+  const Material m = load_material((kSource / "examples/textured" / (std::string(kVertexColorExample) + ".json")).string());
+  const std::string good = osl_source(m, load_scene(kVertexColorScene.string()));
+  const std::string dropped =
+      inject(inject(inject(good, "color facet_color0 = 1,", "color facet_color0_dropped = 1,"), "float facet_alpha0 = 1,",
+                    "float facet_alpha0_dropped = 1,"),
+             "    // Textured parameters.", "    color facet_color0 = 1;\n    float facet_alpha0 = 1;\n    // Textured parameters.");
+  expect_vertex_colour_faults_fail("osl", good, {{"dropped", dropped}});
+}
+
+// POV-Ray: the data image's colours not read (1 taken), or read with the block's corners 1 and
+// 2 swapped (pov_mesh.h: corner k of a triangle's block at (2i + [k = 1], 2j + [k = 2]), so
+// swapping them swaps the point's offsets within its block).
+TEST(Detection, PovVertexColoursFailWhenDroppedOrMisordered) {
+  Fixture f = fixture(kVertexColorExample, "pov-vertex-colors", "textured", kVertexColorScene.string());
+  const std::string good =
+      generate_pov_files(f.scene, &f.material, kVertexColorExample, PovRoute::Auto, job_name(f.job)).code;
+  std::string dropped = good, swapped = good;
+  for (int o : {0, 2})
+    for (const char* c : {"R", "G", "B", "A"}) {
+      const std::string read = fmt::format("Facet_Mesh{}_C{}(x, y)", o, c);
+      dropped = inject_all(dropped, read, "1");
+      swapped = inject_all(swapped, read,
+                           fmt::format("Facet_Mesh{}_C{}(2*floor(x/2) + y - 2*floor(y/2), 2*floor(y/2) + x - 2*floor(x/2))", o, c));
+    }
+  expect_vertex_colour_faults_fail("pov", good, {{"dropped", dropped}, {"corners 1 and 2 swapped", swapped}});
+}
+
 
 }  // namespace
 }  // namespace facet

@@ -1,5 +1,5 @@
 // The G-buffer (renderers/gbuffer.h): the GL ray caster's hit positions, normals,
-// view directions and texture coordinates agree with the scene's own double-precision
+// view directions, texture coordinates and vertex colours agree with the scene's own double-precision
 // geometry (what the reference ray caster shades with) to float precision, its
 // visibility image holds every light's bit where the scene's geometry says (the `shadows`
 // scene's shadows; 100 lights over 300 objects, past the image's first layer of 96), and
@@ -47,7 +47,8 @@ double distance(const float* a, const Vec3& b) { return length(Vec3(a[0], a[1], 
 struct Agreement {
   size_t shaded = 0, coverage_differs = 0, nearest_differs = 0, shadowed = 0, lit_past_first_layer = 0;
   size_t visibility_differs = 0, grazing = 0;
-  double position = 0, normal = 0, mesh_normal = 0, view = 0, uv = 0;
+  double position = 0, normal = 0, mesh_normal = 0, view = 0, uv = 0, color = 0;
+  size_t colored = 0;  // pixels whose vertex colour is not white
 };
 
 // The object a ray meets first, every object tried in turn (the lowest index among equally
@@ -135,6 +136,11 @@ Agreement agreement(const GBuffer& g, const RenderJob& job) {
       // A mesh's normal is its vertices' blended by the hit's barycentrics, which float rounds more.
       double& normal = o.type == Object::Type::Mesh ? a.mesh_normal : a.normal;
       normal = std::max(normal, distance(g.texel(GBuffer::Normal, x, y), n) * facing);
+      // The vertex colour, blended by the hit's barycentrics as the normal is: weighed alike.
+      const auto c = o.color_at(hit);
+      const float* gc = g.texel(GBuffer::Color0, x, y);
+      for (size_t k = 0; k < 4; ++k) a.color = std::max(a.color, std::fabs(gc[k] - c[k]) * facing);
+      a.colored += c != std::array<double, 4>{1, 1, 1, 1};
       const auto uv = o.uv_at(p, hit);
       const float* st = g.texel(GBuffer::Uv, x, y);
       // Away from a sphere's seam (u = 0 | 1); near its poles, atan and acos magnify p's rounding by
@@ -163,10 +169,11 @@ Agreement expect_agreement(const RenderJob& job, size_t min_shadowed, size_t min
     EXPECT_EQ(g.images[size_t(i)].size(), texels * size_t(i == GBuffer::Visibility ? g.layers : 1));
   const Agreement a = agreement(g, job);
   std::cout << fmt::format("{}: {} shaded pixels, coverage differs on {}, the reference's object differs from every "
-                           "object's nearest on {}, worst |Δp|/max(1,|p|) {:.3g}, |Δn| {:.3g} (meshes {:.3g}), |Δv| {:.3g}, |Δuv| {:.3g}; "
+                           "object's nearest on {}, worst |Δp|/max(1,|p|) {:.3g}, |Δn| {:.3g} (meshes {:.3g}), |Δv| {:.3g}, |Δuv| {:.3g}, "
+                           "|Δcolour| {:.3g} ({} coloured pixels); "
                            "{} shadowed (pixel, light) pairs, {} lit past the first layer, {} differ ({} grazing pixels)\n",
                            job.scene.name, a.shaded, a.coverage_differs, a.nearest_differs, a.position, a.normal, a.mesh_normal, a.view,
-                           a.uv, a.shadowed, a.lit_past_first_layer, a.visibility_differs, a.grazing);
+                           a.uv, a.color, a.colored, a.shadowed, a.lit_past_first_layer, a.visibility_differs, a.grazing);
   EXPECT_GE(a.shaded, min_shaded);
   EXPECT_LE(a.coverage_differs, size_t(2));  // a pixel centre on a silhouette, at most
   EXPECT_EQ(a.nearest_differs, size_t(0));
@@ -179,6 +186,7 @@ Agreement expect_agreement(const RenderJob& job, size_t min_shadowed, size_t min
   // llvmpipe's acos (harness/raycast.glsl's facet_uv, the GL renderer's own) is an
   // approximation: v = acos(d_y)/π measured 2.2e-5 off the double value on the spheres.
   EXPECT_LT(a.uv, 1e-4);
+  EXPECT_LT(a.color, 1e-4);  // as the meshes' normals
   EXPECT_GE(a.shadowed, min_shadowed);
   EXPECT_EQ(a.visibility_differs, size_t(0));
   EXPECT_EQ(g.light_count, int(job.scene.lights.size()));
@@ -190,6 +198,14 @@ TEST(GBuffer, SingleAgreesWithTheSceneGeometry) { expect_agreement(job_for("lamb
 
 // The shadows scene's spheres shadow the floor and each other: those pixels are marked 0.
 TEST(GBuffer, ShadowsVisibilityMarksTheShadows) { expect_agreement(job_for("lambert", "shadows", 96, 80), 500, 1000); }
+
+// Meshes with vertex colours (tests/scenes/vertex_colors.json): image 5 holds each hit's
+// colour, blended as the reference blends it; white on the sphere.
+TEST(GBuffer, VertexColoursAreTheMeshesBlendedColours) {
+  RenderJob job = job_for("lambert", (kSource / "tests/scenes/vertex_colors.json").string(), 96, 72);
+  const Agreement a = expect_agreement(job, 0, 1000);
+  EXPECT_GT(a.colored, 1000u);
+}
 
 // The many-objects scene (scene/shapes.h): 300 objects of four materials, every object kind,
 // under 100 lights of every type, past the first layer of 96.

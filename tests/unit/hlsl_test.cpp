@@ -1,6 +1,6 @@
 // The HLSL shading pass over the G-buffer (renderers/hlsl_shading.h) and the HLSL sweep: for every example,
 // textured ones included, it compiles with glslang's HLSL front end to SPIR-V, its six
-// G-buffer images at set 1, bindings 0–5, the scene's cbuffer at set 0, binding 0, the
+// G-buffer images at set 1, bindings 0–6, the scene's cbuffer at set 0, binding 0, the
 // material's textures at set 0, bindings 1, 2, … and the lights' StructuredBuffer at set 2,
 // binding 0; and the compile fails on a broken pass.
 #include <filesystem>
@@ -15,6 +15,7 @@
 #include "renderers/hlsl_shading.h"
 #include "renderers/process.h"
 #include "targets/targets.h"
+#include "targets/texture_code.h"
 
 namespace facet {
 namespace {
@@ -71,8 +72,9 @@ TEST(HlslShading, EveryExampleCompilesWithTheContractsBindings) {
     std::map<std::string, int> gbuffer = {{"facet_gbuffer_position", 0},
                                           {"facet_gbuffer_normal", 1},
                                           {"facet_gbuffer_view", 2},
-                                          {"facet_gbuffer_visibility", 5}};
+                                          {"facet_gbuffer_visibility", 6}};
     if (p.has_textures()) gbuffer["facet_gbuffer_uv"] = 4;
+    if (p.uses_vertex_color()) gbuffer["facet_gbuffer_color0"] = 5;
     if (p.normal_mapped()) gbuffer["facet_gbuffer_uv_tangent"] = 3;
     for (const auto& [image, binding] : gbuffer) {
       ASSERT_TRUE(b.count(image)) << name << ": " << image << " not in the SPIR-V";
@@ -89,7 +91,7 @@ TEST(HlslShading, EveryExampleCompilesWithTheContractsBindings) {
         EXPECT_GE(at.second, 1) << name << ": " << resource;
         ++textures;
       }
-    EXPECT_EQ(textures, int(p.textured.size()) + (m.normal_map ? 1 : 0)) << name;
+    EXPECT_EQ(textures, int(image_calls(p).size())) << name;  // a value of the vertex colour alone has none
     ++compiled;
   }
   EXPECT_GE(compiled, 29);

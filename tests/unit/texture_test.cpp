@@ -3,6 +3,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
@@ -14,6 +15,7 @@
 #include "core/io.h"
 #include "core/texture.h"
 #include "reference/interpreter.h"
+#include "targets/texture_code.h"
 #include "test_support.h"
 
 namespace facet {
@@ -339,6 +341,76 @@ TEST(NormalMap, ShapesTangentsAreTheirMappingsDerivatives) {
     }
   }
   EXPECT_EQ(checked, 9);  // two spheres and the square
+}
+
+
+// "vertex_color": true multiplies a value by the surface's vertex colour (glTF's COLOR_0):
+// a colour by its rgb, a number by the component its channel names; "offset" is added before
+// the clamp; without "texture", the vertex colour alone. The example's values, on a surface of
+// vertex colour vc, are what docs/textures.md says; the JSON writes them back; the values of
+// the vertex colour alone are inputs to sample but no image to bind.
+TEST(VertexColor, ValuesTakeTheVertexColourAndAnOffset) {
+  const Material m = load_material((kSource / "examples/textured/textured_vertex_color.json").string());
+  const MaterialProgram p = compile(m);
+  EXPECT_TRUE(p.uses_vertex_color());
+  const VertexColor vc{0.25, 0.5, 0.75, 0.4};
+  std::map<std::string, const TexturedInput*> by_key;
+  for (const auto& t : p.textured) by_key[t.key] = &t;
+  ASSERT_TRUE(by_key.count("diffuse.color") && by_key.count("specular.alpha") && by_key.count("specular.fresnel.f0") &&
+              by_key.count("ambient"));
+  const double u = 0.3, v = 0.6;
+  // A colour from an image: factor ⊗ texel ⊗ rgb.
+  const TexturedInput& kd = *by_key["diffuse.color"];
+  const TextureRef& t = *kd.value.texture;
+  const auto texel = sample(*t.texels, t.sampler, u, v);
+  const auto kd_value = texture_value(kd.value, kd.range, u, v, nullptr, vc);
+  for (size_t c = 0; c < 3; ++c) EXPECT_DOUBLE_EQ(kd_value[c], kd.value.rgb[c] * texel[c] * vc[c]);
+  // A number of the vertex colour alone, channel "a": offset + factor · alpha.
+  const TexturedInput& alpha = *by_key["specular.alpha"];
+  EXPECT_FALSE(alpha.value.texture->has_image());
+  for (double x : texture_value(alpha.value, alpha.range, u, v, nullptr, vc)) EXPECT_DOUBLE_EQ(x, 0.1 + 0.4 * 0.4);
+  // f0: offset + factor ⊗ texel ⊗ rgb.
+  const TexturedInput& f0 = *by_key["specular.fresnel.f0"];
+  const auto f0_value = texture_value(f0.value, f0.range, u, v, nullptr, vc);
+  for (size_t c = 0; c < 3; ++c) EXPECT_DOUBLE_EQ(f0_value[c], 0.024 + f0.value.rgb[c] * texel[c] * vc[c]);
+  // m_a, the vertex colour alone: factor ⊗ rgb; white without a vertex colour: the factor.
+  const TexturedInput& ambient = *by_key["ambient"];
+  const auto a = texture_value(ambient.value, ambient.range, u, v, nullptr, vc);
+  const auto white = texture_value(ambient.value, ambient.range, u, v);
+  for (size_t c = 0; c < 3; ++c) {
+    EXPECT_DOUBLE_EQ(a[c], ambient.value.rgb[c] * vc[c]);
+    EXPECT_DOUBLE_EQ(white[c], ambient.value.rgb[c]);
+  }
+  // The reference samples them so.
+  Reference ref(m);
+  ShadingInputs in;
+  ref.sample_textures({{{u, v}, {u, v}}}, in, vc);
+  for (size_t i = 0; i < p.textured.size(); ++i)
+    EXPECT_EQ(in.textured[i], texture_value(p.textured[i].value, p.textured[i].range, u, v, nullptr, vc)) << i;
+  // Two images (k_d's and f0's); four values to sample.
+  EXPECT_EQ(image_calls(p).size(), 2u);
+  EXPECT_EQ(texture_calls(p).size(), 4u);
+  // The canonical JSON reads back the same values.
+  const Material back = parse_material(to_json(m), m.source);
+  const MaterialProgram q = compile(back);
+  ASSERT_EQ(q.textured.size(), p.textured.size());
+  for (size_t i = 0; i < p.textured.size(); ++i)
+    EXPECT_EQ(texture_value(q.textured[i].value, q.textured[i].range, u, v, nullptr, vc),
+              texture_value(p.textured[i].value, p.textured[i].range, u, v, nullptr, vc))
+        << p.textured[i].key;
+}
+
+TEST(VertexColor, BadValuesNameTheFileAndKey) {
+  auto with = [&](const std::string& value) { return fmt::format(R"({{"diffuse": {{"model": "lambert", "color": {}}}}})", value); };
+  expect_error(with(R"({"vertex_color": 1})"), "diffuse.color.vertex_color", "true");
+  expect_error(with(R"({"vertex_color": false})"), "diffuse.color.texture", "\"vertex_color\": true");
+  expect_error(with(R"({"vertex_color": true, "filter": "nearest"})"), "diffuse.color.filter", "no \"texture\"");
+  expect_error(with(R"({"vertex_color": true, "uv": 1})"), "diffuse.color.uv", "no \"texture\"");
+  expect_error(with(R"({"vertex_color": true, "channel": "a"})"), "diffuse.color.channel", "\"rgb\"");
+  expect_error(with(R"({"vertex_color": true, "offset": -0.5})"), "diffuse.color.offset", "in [0, 10000]");
+  expect_error(with(R"({"vertex_color": true, "offset": [1, 2]})"), "diffuse.color.offset", "three numbers");
+  expect_error(R"({"specular": {"model": "ggx", "alpha": {"vertex_color": true, "offset": [0.1, 0.1, 0.1]}}})",
+               "specular.alpha.offset", "a number");
 }
 
 }  // namespace

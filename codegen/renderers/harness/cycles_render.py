@@ -96,6 +96,7 @@ Conventions
 
 import ctypes
 import glob
+import hashlib
 import json
 import math
 import os
@@ -432,6 +433,14 @@ def add_mesh(bpy, scene, obj_desc, material, index):
     # that into visible error on a dense mesh (Ward, 131,480 triangles: 5.8e-3 with Cycles' N, 1.8e-5 with these).
     attribute = mesh.attributes.new("facet_normal", "FLOAT_VECTOR", "POINT")
     attribute.data.foreach_set("vector", np.asarray(normals, dtype=np.float32).ravel())
+    # The vertex colours (facet's "colors", glTF's COLOR_0; white where the mesh has none), per
+    # vertex, which Cycles blends barycentrically as facet does: a float colour attribute, which
+    # Cycles reads as it is (linear); a byte colour would hold 8 bits, sRGB-encoded.
+    rgba = np.asarray(obj_desc.get("colors", [[1.0, 1.0, 1.0, 1.0]] * len(obj_desc["positions"])), dtype=np.float32)
+    attribute = mesh.attributes.new("facet_color0", "FLOAT_COLOR", "POINT")
+    if attribute.data_type != "FLOAT_COLOR":
+        raise ValueError(f"mesh {obj_desc.get('name', index)!r}: Blender made its vertex colours {attribute.data_type}")
+    attribute.data.foreach_set("color", rgba.ravel())
     # Texture coordinates, per corner as Blender keeps them, v up: Blender's v = 1 − glTF's v.
     for set_index, key in enumerate(("texcoords", "texcoords1")):
         if key not in obj_desc:
@@ -523,7 +532,9 @@ def enable_oslquery(bpy):
 # Blender's (x, −z, y).
 FACET_UV_OSL = """\
 shader facet_uv(float kind = 0, vector mesh_uv = 0, vector mesh_uv1 = 0, vector mesh_tangent = 0, float mesh_w = 1,
-                output vector uv = 0, output vector uv1 = 0, output vector tangent = 0, output float handedness = 1)
+                color mesh_color = 1, float mesh_alpha = 1,
+                output vector uv = 0, output vector uv1 = 0, output vector tangent = 0, output float handedness = 1,
+                output color color0 = 1, output float alpha0 = 1)
 {
     point q = transform("object", P);
     if (kind == %d) {
@@ -543,6 +554,9 @@ shader facet_uv(float kind = 0, vector mesh_uv = 0, vector mesh_uv1 = 0, vector 
         // facet's corner tangents (add_mesh), blended by Cycles as facet blends them.
         tangent = mesh_tangent;
         handedness = mesh_w < 0 ? -1 : 1;
+        // The vertex colour (add_mesh's attribute); the shapes keep white.
+        color0 = mesh_color;
+        alpha0 = mesh_alpha;
     }
 }
 """ % (SPHERE_INDEX, SQUARE_INDEX)
@@ -550,11 +564,16 @@ shader facet_uv(float kind = 0, vector mesh_uv = 0, vector mesh_uv1 = 0, vector 
 
 def link_texture_coordinates(bpy, nt, script):
     """FACET_UV_OSL in a Script node of its own, fed the object's kind (Object Info's
-    pass index) and the mesh's UV map, linked to the shader's facet_uv0 and facet_uv1."""
+    pass index) and the mesh's UV map, linked to the shader's facet_uv0 and facet_uv1; and where the
+    shader reads the vertex colour, its facet_color0 and facet_alpha0 (white on the shapes)."""
     import cycles.osl
-    path = os.path.join(tempfile.gettempdir(), "facet_uv.osl")
-    with open(path, "w") as f:
+    # Named by its content and written whole before it is renamed into place: Blender processes
+    # of other facet versions on the machine write their own shader beside it, never over it.
+    digest = hashlib.sha1(FACET_UV_OSL.encode()).hexdigest()[:12]
+    path = os.path.join(tempfile.gettempdir(), f"facet_uv_{digest}.osl")
+    with open(f"{path}.{os.getpid()}.tmp", "w") as f:
         f.write(FACET_UV_OSL)
+    os.replace(f"{path}.{os.getpid()}.tmp", path)
     node = nt.nodes.new("ShaderNodeScript")
     node.mode = "INTERNAL"
     node.script = bpy.data.texts.load(path, internal=False)
@@ -576,6 +595,13 @@ def link_texture_coordinates(bpy, nt, script):
             attribute = nt.nodes.new("ShaderNodeAttribute")
             attribute.attribute_name = f"{name}{tangent_set}"  # add_mesh's corner attributes
             nt.links.new(attribute.outputs[output], node.inputs[into])
+    if "facet_color0" in script.inputs:  # a material that reads the vertex colour: add_mesh's float attribute
+        attribute = nt.nodes.new("ShaderNodeAttribute")
+        attribute.attribute_name = "facet_color0"
+        nt.links.new(attribute.outputs["Color"], node.inputs["mesh_color"])
+        nt.links.new(attribute.outputs["Alpha"], node.inputs["mesh_alpha"])
+        nt.links.new(node.outputs["color0"], script.inputs["facet_color0"])
+        nt.links.new(node.outputs["alpha0"], script.inputs["facet_alpha0"])
     return ""
 
 

@@ -5,9 +5,9 @@
 // (scene/bvh.h, object_bvh(): the one the reference walks), each mesh's triangles under its
 // own. Each pass shades the objects of one material; the others are drawn black and the
 // passes are summed. With FACET_GBUFFER defined, main writes the G-buffer (renderers/gbuffer.h)
-// instead of shading: the five geometry images and three layers of the visibility image a
-// draw (from facet_first_layer), one draw buffer each, which the other renderers' shading
-// passes (templates/glsl/gbuffer_shade.glsl) read.
+// instead of shading: the six geometry images and two layers of the visibility image a draw
+// (from facet_first_layer), one draw buffer each (GL 3.3 promises eight), which the other
+// renderers' shading passes (templates/glsl/gbuffer_shade.glsl) read.
 //
 // A draw takes lights facet_light_first … + facet_light_count − 1 (facet_light(i) reads light
 // facet_light_first + i): llvmpipe ends every loop of a shader invocation once they have turned
@@ -25,16 +25,19 @@ uniform samplerBuffer facet_objects;    // 4 texels an object, in the hierarchy'
                                         // radius; square: centre, half-side; mesh: first BVH node); 1 xyz the
                                         // square's normal, w the kind ({{sphere}} sphere, {{square}} square, {{mesh}} mesh);
                                         // 2 xyz the square's in-plane axis u (v = normal × u), w the object's
-                                        // material pass; 3 x its index in the scene
+                                        // material pass; 3 x its index in the scene, and for a mesh with
+                                        // vertex colours y its colours' first texel less 3 × its first
+                                        // triangle's index (its triangle t's corners are at y + 3t), z 1
 uniform samplerBuffer facet_scene_bvh;  // 2 texels a node: (lo, right child or first object), (hi, object count)
 uniform samplerBuffer facet_bvh;        // the meshes': 2 texels a node: (lo, right child or first triangle), (hi, count)
 uniform samplerBuffer facet_triangles;  // 6 texels a triangle: p0, p1, p2, n0, n1, n2
 uniform samplerBuffer facet_texcoords;  // 3 texels a triangle: vertex k's (uv set 0, uv set 1)
 uniform samplerBuffer facet_tangents;   // 3 texels a triangle: corner k's tangent (xyz, w), normal-mapped meshes
-uniform samplerBuffer facet_cutouts;    // 4 texels an object, in the hierarchy's order, its cut-out (glTF's alphaMode
-                                        // MASK): 0 (cutoff, or -1: opaque; factor; uv set; 1 an image, 0 the factor
-                                        // alone); 1 its image's rectangle in the atlas (x0, y0, width, height); 2 and
-                                        // 3 KHR_texture_transform (a, b, c, d), (ou, ov), wrap s + 4·t, 1 bilinear
+uniform samplerBuffer facet_colors;     // 3 texels a triangle of the meshes with vertex colours: corner k's RGBA
+uniform samplerBuffer facet_cutouts;    // 5 texels an object, in the hierarchy's order, its cut-out (glTF's alphaMode
+                                        // MASK): 0 (cutoff, or -1: opaque; factor; uv set; flags: 1 an image); 1 its image's
+                                        // rectangle in the atlas (x0, y0, width, height); 2 and 3 KHR_texture_transform
+                                        // (a, b, c, d), (ou, ov), wrap s + 4·t, 1 bilinear; 4 x the offset
 uniform sampler2D facet_alpha_atlas;    // the cut-outs' alpha images one above another, the value in r
 uniform int facet_pass;                 // the material pass drawn: its objects are shaded, the others drawn black
 uniform int facet_probe_turns;          // 2: facet_loops_cut()'s loop (a uniform, so that no compiler unrolls it)
@@ -45,9 +48,9 @@ layout(location = 1) out vec4 facet_gbuffer_normal;      // the unit normal n
 layout(location = 2) out vec4 facet_gbuffer_view;        // v = -(the ray's unit direction)
 layout(location = 3) out vec4 facet_gbuffer_uv_tangent;  // facet_uv_tangent_at(): t, w = ±1
 layout(location = 4) out vec4 facet_gbuffer_uv;          // uv sets 0 (xy) and 1 (zw)
-layout(location = 5) out vec4 facet_gbuffer_visibility_0;  // visibility layer facet_first_layer
-layout(location = 6) out vec4 facet_gbuffer_visibility_1;  // … + 1
-layout(location = 7) out vec4 facet_gbuffer_visibility_2;  // … + 2
+layout(location = 5) out vec4 facet_gbuffer_color0;      // facet_color0_at(): the vertex colour, RGBA
+layout(location = 6) out vec4 facet_gbuffer_visibility_0;  // visibility layer facet_first_layer
+layout(location = 7) out vec4 facet_gbuffer_visibility_1;  // … + 1
 uniform int facet_first_layer;
 #else
 out vec4 facet_color;
@@ -169,14 +172,16 @@ FacetHit facet_intersect(int i, vec3 origin, vec3 dir, float t_min, int skip)
 }
 
 // ---- Cut-outs (glTF 2.0 §3.9.4, alphaMode MASK): the surface is there where alpha ≥ cutoff.
-// alpha = clamp(factor · the image's value at KHR_texture_transform(uv), 0, 1), the image
-// sampled by docs/textures.md's rule (templates/glsl/textures.glsl's): camera and shadow
-// rays alike pass the surface where it is cut out.
+// alpha = clamp(offset + factor · the image's value at KHR_texture_transform(uv) · vc, 0, 1),
+// the image sampled by docs/textures.md's rule (templates/glsl/textures.glsl's), vc the vertex
+// colour's component where the alpha reads it (glTF's base colour alpha times COLOR_0's):
+// camera and shadow rays alike pass the surface where it is cut out.
 vec2 facet_uv(int i, vec3 p, FacetHit h, int set);
+vec4 facet_color0_at(int i, FacetHit h);
 
 vec4 facet_cutout(int i, int k)
 {
-    return texelFetch(facet_cutouts, 4 * i + k);
+    return texelFetch(facet_cutouts, 5 * i + k);
 }
 
 // A texel index wrapped into [0, size): 0 repeat, 1 clamp, 2 mirror (as facet_wrap).
@@ -194,10 +199,10 @@ float facet_cutout_texel(ivec4 rect, int i, int j, ivec2 wrap)
     return texelFetch(facet_alpha_atlas, at, 0).r;
 }
 
-float facet_alpha(int i, vec3 p, FacetHit h)
+// The cut-out's image at the hit, where it has one (facet_alpha()).
+float facet_alpha_image(int i, vec3 p, FacetHit h)
 {
     vec4 c = facet_cutout(i, 0);
-    if (c.w == 0.0) return clamp(c.y, 0.0, 1.0);
     vec4 m = facet_cutout(i, 2), e = facet_cutout(i, 3);
     vec2 uv = facet_uv(i, p, h, int(c.z));
     uv = vec2(m.x * uv.x + m.y * uv.y + e.x, m.z * uv.x + m.w * uv.y + e.y);
@@ -214,7 +219,16 @@ float facet_alpha(int i, vec3 p, FacetHit h)
         a = mix(mix(facet_cutout_texel(rect, s, t, wrap), facet_cutout_texel(rect, s + 1, t, wrap), w.x),
                 mix(facet_cutout_texel(rect, s, t + 1, wrap), facet_cutout_texel(rect, s + 1, t + 1, wrap), w.x), w.y);
     }
-    return clamp(c.y * a, 0.0, 1.0);
+    return a;
+}
+
+float facet_alpha(int i, vec3 p, FacetHit h)
+{
+    vec4 c = facet_cutout(i, 0);
+    int flags = int(c.w);
+    float a = c.y;
+    if ((flags & 1) != 0) a *= facet_alpha_image(i, p, h);
+    return clamp(facet_cutout(i, 4).x + a, 0.0, 1.0);
 }
 
 // The nearest hit of object i beyond t_min (skipping triangle `skip`) that its cut-out keeps:
@@ -349,6 +363,17 @@ vec4 facet_uv_tangent_at(int i, vec3 p, FacetHit h)
     return vec4(c.xyz, c.w >= 0.0 ? 1.0 : -1.0);
 }
 
+// The vertex colour at the hit (glTF's COLOR_0, RGBA): a mesh's corners' colours blended
+// barycentrically, as its uv are; white on spheres, squares and meshes without colours.
+vec4 facet_color0_at(int i, FacetHit h)
+{
+    vec4 c = facet_object(i, 3);
+    if (facet_object(i, 1).w != {{mesh}}.0 || c.z == 0.0) return vec4(1.0);
+    int t = int(c.y) + h.triangle * 3;
+    return texelFetch(facet_colors, t) * (1.0 - h.uv.x - h.uv.y) + texelFetch(facet_colors, t + 1) * h.uv.x
+           + texelFetch(facet_colors, t + 2) * h.uv.y;
+}
+
 // Where the camera ray through this pixel starts: the eye, or (orthographic) its point of the image plane.
 vec3 facet_ray_origin;
 
@@ -459,7 +484,7 @@ void facet_cast()
     int hit = facet_camera_hit(dir, best);
     facet_gbuffer_position = vec4(0.0, 0.0, 0.0, hit < 0 ? -1.0 : facet_object(hit, 2).w);
     facet_gbuffer_normal = facet_gbuffer_view = facet_gbuffer_uv_tangent = facet_gbuffer_uv = vec4(0.0);
-    facet_gbuffer_visibility_0 = facet_gbuffer_visibility_1 = facet_gbuffer_visibility_2 = vec4(0.0);
+    facet_gbuffer_color0 = facet_gbuffer_visibility_0 = facet_gbuffer_visibility_1 = vec4(0.0);
     if (hit < 0) return;
     vec3 p = facet_ray_origin + dir * best.t;
     facet_shaded_object = hit;
@@ -470,15 +495,15 @@ void facet_cast()
     facet_gbuffer_view = vec4(-dir, 0.0);
     facet_gbuffer_uv_tangent = facet_uv_tangent_at(hit, p, best);
     facet_gbuffer_uv = vec4(facet_uv(hit, p, best, 0), facet_uv(hit, p, best, 1));
+    facet_gbuffer_color0 = facet_color0_at(hit, best);
     facet_gbuffer_visibility_0 = facet_visibility_layer(facet_first_layer, p, n);
     facet_gbuffer_visibility_1 = facet_visibility_layer(facet_first_layer + 1, p, n);
-    facet_gbuffer_visibility_2 = facet_visibility_layer(facet_first_layer + 2, p, n);
 }
 
 // The visibility −1 everywhere: this pixel's loops were cut short (facet_loops_cut()).
 void main()
 {
     facet_cast();
-    if (facet_loops_cut()) facet_gbuffer_visibility_0 = facet_gbuffer_visibility_1 = facet_gbuffer_visibility_2 = vec4(-1.0);
+    if (facet_loops_cut()) facet_gbuffer_visibility_0 = facet_gbuffer_visibility_1 = vec4(-1.0);
 }
 #endif

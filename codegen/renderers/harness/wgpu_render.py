@@ -3,12 +3,13 @@
     python wgpu_render.py JOB.json
 
 JOB.json: {"jobs": [{"name", "width", "height", "layers": the visibility image's,
+                     "images": the G-buffer's images (renderers/gbuffer.h, GBuffer::kImages),
                      "wgsl": the shading pass (the generated WGSL and templates/wgsl/gbuffer_shade.wgsl),
                      "uniforms": the FacetScene uniform buffer's bytes (templates/wgsl/lights.wgsl),
                      "lights": the lights' storage buffer's bytes, 64 a light (@group(2) @binding(0)),
-                     "gbuffer": the six G-buffer images, float32 RGBA, one after another, each
+                     "gbuffer": the G-buffer's images, float32 RGBA, one after another, each
                                 width × height texels from the bottom row up (the G-buffer contract),
-                                the sixth (the visibility) `layers` such images,
+                                the last (the visibility) `layers` such images,
                      "textures": [{"binding", "width", "height", "file"}]: the material's images,
                                 float32 RGBA from the top row down, at @group(0) @binding(binding),
                      "output": where the image goes: OUTPUT.pfm (RGB) and OUTPUT.alpha.pfm}]}
@@ -28,8 +29,6 @@ import time
 
 import numpy as np
 import wgpu
-
-GBUFFER_IMAGES = 6  # the last, the visibility, a 2D array of the job's "layers"
 
 
 def write_atomic(path, data):
@@ -83,12 +82,12 @@ def bind_groups(device, job):
         tex = float_texture(device, t["width"], t["height"], texels.reshape(t["height"], t["width"], 4))
         entries0.append(texture_entry(t["binding"]))
         binds0.append({"binding": t["binding"], "resource": tex.create_view()})
-    layers = job["layers"]
-    images = GBUFFER_IMAGES - 1 + layers
+    layers, count = job["layers"], job["images"]  # the last image, the visibility, a 2D array of `layers`
+    images = count - 1 + layers
     gbuffer = read_floats(job["gbuffer"], images * w * h * 4, "the G-buffer").reshape(images, h, w, 4)
     entries1, binds1 = [], []
-    for k in range(GBUFFER_IMAGES):
-        array = k == GBUFFER_IMAGES - 1
+    for k in range(count):
+        array = k == count - 1
         tex = float_texture(device, w, h, gbuffer[k:] if array else gbuffer[k], layers if array else 1)
         entries1.append(texture_entry(k, array))
         view = tex.create_view(dimension=wgpu.TextureViewDimension.d2_array) if array else tex.create_view()

@@ -2853,7 +2853,8 @@ def texture_objects(data, path=()):
 def test_textured_example_materials_round_trip():
     """examples/textured/*.json: Import loads the images and keeps the textures; Export
     Material writes them back (the images beside the file, named relatively, facet's keys
-    as they were, uv written out), and a second round trip changes nothing."""
+    as they were, uv written out), and a second round trip changes nothing. A material that
+    takes the vertex colour is refused with its keys named (the add-on has no place for it yet)."""
     folder = os.path.join(REPO, "examples", "textured")
     names = sorted(f for f in os.listdir(folder) if f.endswith(".json"))
     check(len(names) >= 3, f"too few textured examples in {folder}")
@@ -2861,6 +2862,10 @@ def test_textured_example_materials_round_trip():
     for file in names:
         original = read_json(os.path.join(folder, file))
         mat = bpy.data.materials.new(original["name"])
+        if "vertex_color" in json.dumps(original):  # refused, named, until the add-on maps vertex colours
+            expect_error("import_material", mat, [original["name"], "vertex colour", "not imported"],
+                         filepath=os.path.join(folder, file))
+            continue
         expect_ok("import_material", mat, filepath=os.path.join(folder, file))
         out = work(os.path.join("textured_rt", file))
         expect_ok("export_material", mat, filepath=out)

@@ -104,6 +104,8 @@ def texture_files(bindings_by_material, taken=None):
     for material in sorted(bindings_by_material):
         names = per_material.setdefault(material, {})
         for b in bindings_by_material[material]:
+            if not textures.has_image(b):         # the vertex colour alone: no file
+                continue
             key = textures.file_key(b)
             if key not in by_key:
                 image = bpy.data.images.get(b["spec"]["image"])

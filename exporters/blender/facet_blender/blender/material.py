@@ -32,6 +32,11 @@ def from_json(material, data, folder=None):
 
     import bpy
     catalog, plan = state.require()
+    unmapped = textures.unmapped_values(data)
+    if unmapped:
+        raise UserError(f"material '{data.get('name', material.name)}': {', '.join(unmapped)} take the vertex colour "
+                        f"or an offset, which the add-on does not map yet (docs/textures.md, \"Vertex colours\"); "
+                        f"the material is not imported")
     numbers, found = textures.split(data)
     values = plan_mod.material_from_json(catalog, plan, numbers)   # everything computed first,
     bindings, notes = [], []

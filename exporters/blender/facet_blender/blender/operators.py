@@ -275,7 +275,7 @@ class FACET_OT_convert_material(_MaterialOperator, bpy.types.Operator):
         for level, message in result.notes:
             if level == IGNORED:
                 self.report_("WARNING", message)
-        images_used = sorted({b["spec"]["image"] for b in result.textures})
+        images_used = sorted({b["spec"]["image"] for b in result.textures if textures.has_image(b)})
         self.report_("INFO", f"Converted '{mat.name}' to {result.headline()}"
                              + (f", textured by {', '.join(repr(i) for i in images_used)}" if images_used else "")
                              + ":\n" + "\n".join(result.summary()))

@@ -109,6 +109,12 @@ def _link_uv_maps(tree, script, uv_maps):
         tree.links.new(node.outputs["UV"], socket)
     if "facet_uv_tangent" in script.inputs and uv_maps:
         _link_tangent_frame(tree, script, uv_maps)
+    if "facet_color0" in script.inputs:    # the vertex colour: the mesh's render colour attribute
+        node = tree.nodes.new("ShaderNodeVertexColor")
+        node.name = node.label = f"{UV_NODE_NAME} colour"
+        node.location = (script.location.x - 250, script.location.y + 150)
+        tree.links.new(node.outputs["Color"], script.inputs["facet_color0"])
+        tree.links.new(node.outputs["Alpha"], script.inputs["facet_alpha0"])
 
 
 def _link_tangent_frame(tree, script, uv_maps):

@@ -211,6 +211,50 @@ def _corner_tangents(mesh, obj_name, loops, slot_materials, material_keys, bindi
     return out
 
 
+def _color_layer(mesh, name, obj_name, material):
+    """Per-loop linear RGBA (flat list) of the named colour attribute ("" the render one, as a
+    Color Attribute node without a name reads), of any domain (a point's colour on each of
+    its corners)."""
+    attributes = mesh.color_attributes
+    if name:
+        layer = attributes.get(name)
+    else:
+        index = attributes.render_color_index
+        layer = attributes[index] if 0 <= index < len(attributes) else (attributes[0] if len(attributes) else None)
+    if layer is None:
+        raise UserError(f"object '{obj_name}' has no colour attribute " + (f"'{name}'" if name else "at all")
+                        + f", which material '{material}' reads (a Color Attribute node): add one, or remove the node")
+    values = [0.0] * (4 * len(layer.data))
+    layer.data.foreach_get("color", values)       # scene linear, whatever the storage (8-bit sRGB or float)
+    if layer.domain == "CORNER":
+        return values
+    if layer.domain != "POINT":
+        raise UserError(f"object '{obj_name}': colour attribute '{layer.name}' is on the {layer.domain.lower()} "
+                        f"domain; facet reads vertex or face-corner colours")
+    vertex = [0] * len(mesh.loops)
+    mesh.loops.foreach_get("vertex_index", vertex)
+    return [values[4 * v + k] for v in vertex for k in range(4)]
+
+
+def _corner_colors(mesh, obj_name, loops, slot_materials, bindings_of):
+    """Per triangle, None or its corners' linear RGBA of the colour attribute its material's
+    vertex colour reads (facet's "colors")."""
+    layers, out = {}, []
+    for t, material in enumerate(slot_materials):
+        names = textures.vertex_color_layers(bindings_of(material))
+        if not names:
+            out.append(None)
+            continue
+        if len(names) > 1:
+            raise UserError(f"material '{material.name}' reads {len(names)} colour attributes "
+                            f"({', '.join(repr(n or 'the render one') for n in names)}); facet meshes have one")
+        if names[0] not in layers:
+            layers[names[0]] = _color_layer(mesh, names[0], obj_name, material.name)
+        data = layers[names[0]]
+        out.append(tuple(tuple(data[4 * l:4 * l + 4]) for l in loops[3 * t:3 * t + 3]))
+    return out
+
+
 def objects_json(depsgraph, materials, material_keys=None, bindings_of=material_mod.texture_bindings):
     """(facet mesh objects, notes). `materials` collects name -> Blender material of
     every material used (their facet settings are checked by the caller); `bindings_of`
@@ -237,12 +281,13 @@ def objects_json(depsgraph, materials, material_keys=None, bindings_of=material_
                 materials[mat.name] = mat.original if hasattr(mat, "original") else mat
                 names.append(mat.name)
                 used_materials.append(materials[mat.name])
-            uvs = tangents = None
+            uvs = tangents = colors = None
             if any(bindings_of(m) for m in set(used_materials)):
                 uvs = _corner_uvs(mesh, name, loops, used_materials, bindings_of)
                 tangents = _corner_tangents(mesh, name, loops, used_materials, material_keys, bindings_of)
+                colors = _corner_colors(mesh, name, loops, used_materials, bindings_of)
             objects.extend(core_scene.mesh_objects(name, _rows(matrix), positions, triangles, normals, names, uvs,
-                                                   tangents))
+                                                   tangents, colors))
         finally:
             obj.to_mesh_clear()
     return objects, notes

@@ -161,8 +161,8 @@ class _Node:
 
 # ----------------------------------------------------------------------------- single nodes
 
-def _bind(result, path, model, spec, factor=None, derive=None):
-    result.textures.append(textures.binding(path, model, spec, factor, derive))
+def _bind(result, path, model, spec, factor=None, derive=None, offset=None):
+    result.textures.append(textures.binding(path, model, spec, factor, derive, offset))
 
 
 def _texture_exactness(result, node, what):
@@ -294,6 +294,13 @@ def _principled_textures(node, result, weight, base, metallic, transmission, f0_
     image is used with the unlinked Metallic, and that is reported."""
     base_tex, metal_tex, rough_tex = maps[:3]
     keep = (1.0 - transmission) * weight
+    vertex_color = bool(base_tex and base_tex.get("vertex_color"))
+    if vertex_color and metal_tex and "image" not in base_tex:
+        result.note(APPROXIMATE, f"{node.label}: Base Color is a Color Attribute and Metallic an image; k_d = "
+                                 f"Base·(1−Metallic) and f0 = mix(F0, Base, Metallic) need their product per "
+                                 f"vertex and texel: the vertex colour with the unlinked Metallic {metallic:.3g} "
+                                 f"is used")
+        metal_tex = None
     if base_tex and metal_tex and _same_coordinates(base_tex, metal_tex):
         _bake_base_and_metal(result, node, base_tex, metal_tex, keep, f0_dielectric, spec_model)
         base_tex = metal_tex = None
@@ -305,7 +312,12 @@ def _principled_textures(node, result, weight, base, metallic, transmission, f0_
         metal_tex = None
     if base_tex:
         _bind(result, ("diffuse", "color"), "lambert", base_tex, (1.0 - metallic) * keep)
-        _texture_exactness(result, node, "Base Color")
+        if "image" in base_tex:
+            _texture_exactness(result, node, "Base Color")
+        if vertex_color:
+            result.note(EXACT, f"{node.label}: Base Color times the Color Attribute -> \"vertex_color\" on k_d"
+                               + (" and f0" if spec_model and metallic > 0.0 else "")
+                               + " (glTF's COLOR_0, as Blender's importer wires it)")
     elif metal_tex:
         c = [b * keep for b in base]            # k_d = c·(1 − m)
         _bind(result, ("diffuse", "color"), "lambert", metal_tex,
@@ -313,7 +325,10 @@ def _principled_textures(node, result, weight, base, metallic, transmission, f0_
         result.note(EXACT, f"{node.label}: k_d = Base·(1−Metallic) baked from image '{metal_tex['image']}'")
     if spec_model:
         d = f0_dielectric
-        if base_tex and metallic > 0.0:
+        if vertex_color and metallic > 0.0:      # f0 = F0·(1 − M) + Base·M·vc: facet's offset, no bake
+            _bind(result, ("specular", "fresnel", "f0"), spec_model, base_tex, factor=metallic,
+                  offset=[x * (1.0 - metallic) for x in d] if metallic < 1.0 else None)
+        elif base_tex and metallic > 0.0:
             spec = dict(base_tex)
             if metallic == 1.0:
                 _bind(result, ("specular", "fresnel", "f0"), spec_model, spec)
@@ -347,8 +362,14 @@ def _bake_base_and_metal(result, node, base_tex, metal_tex, keep, f0_dielectric,
     _bind(result, ("diffuse", "color"), "lambert", spec,
           derive=dict(common, part="kd", base_scale=[c * keep for c in base_scale]))
     if spec_model:
-        _bind(result, ("specular", "fresnel", "f0"), spec_model, spec,
+        f0_spec = {k: v for k, v in spec.items() if k not in ("vertex_color", "layer")}
+        _bind(result, ("specular", "fresnel", "f0"), spec_model, f0_spec,
               derive=dict(common, part="f0", base_scale=base_scale, dielectric=[float(x) for x in f0_dielectric]))
+        if spec.get("vertex_color"):
+            result.note(APPROXIMATE, f"{node.label}: f0 = F0·(1−Metallic) + Base·Metallic·Color Attribute with "
+                                     f"Metallic from an image is no image times the vertex colour plus a number; "
+                                     f"the baked f0 leaves the vertex colour out (k_d keeps it: exact), as facet "
+                                     f"import-gltf does")
     result.note(EXACT, f"{node.label}: k_d = Base·(1−Metallic) and f0 = mix(F0, Base, Metallic) baked texel by texel "
                        f"from images '{base_tex['image']}' and '{metal['image']}' (glTF's base colour and "
                        f"metallic–roughness maps, as facet import-gltf bakes them)")
@@ -450,6 +471,14 @@ def principled_bsdf(node, weight, result):
     for name in ("Emission Color", "Emission"):
         if name in node.inputs:
             emission_tex = node.texture(name, "color")
+            if emission_tex and emission_tex.get("vertex_color"):
+                src = node.sources[name]
+                vc = src if src.get("type") == "VERTEX_COLOR" else \
+                    next(x for x in (src.get("a"), src.get("b")) if x and x.get("type") == "VERTEX_COLOR")
+                result.note(IGNORED, f"material '{result.material_name}': {node.label}: '{name}' is linked to "
+                                     f"{textures.node_label(vc)}; the add-on maps the vertex colour into a BSDF's "
+                                     f"colour only; the unlinked value is used")
+                emission_tex = None
             if emission_tex:
                 _bind(result, ("emission",), None, emission_tex, strength_value * weight)
                 result.note(EXACT, f"{node.label}: emission = image '{emission_tex['image']}' × Emission Strength "

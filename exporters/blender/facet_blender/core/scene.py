@@ -25,7 +25,7 @@ Approximations are returned as notes: a light radius (shadow_soft_size) or sun a
 import math
 
 from . import UserError
-from .coords import (clean_vector, column_scale, cross, det3, normal_matrix, normalize,
+from .coords import (clean_float, clean_vector, column_scale, cross, det3, normal_matrix, normalize,
                      to_facet, transform_direction, transform_point)
 
 # facet's scene format needs at least one object. Generating OSL reads only the lights
@@ -277,7 +277,7 @@ def world_tangent(matrix, tangent, flip):
 
 
 def mesh_objects(name, matrix, positions, triangles, corner_normals, materials, corner_uvs=None,
-                 corner_tangents=None):
+                 corner_tangents=None, corner_colors=None):
     """facet mesh objects (one per material) of one Blender mesh.
 
     positions:       [(x, y, z), ...] local vertex positions
@@ -294,6 +294,9 @@ def mesh_objects(name, matrix, positions, triangles, corner_normals, materials, 
                      bitangent sign, B = sign·(N × T), written as facet's "tangents"
                      [x, y, z, w] (glTF's TANGENT): T to world space and facet's axes, w the
                      sign, negated by a mirroring matrix (N × T flips under a reflection)
+    corner_colors:   None, or per triangle None (its material reads no vertex colour) or three
+                     corners' linear RGBA (a Blender colour attribute's `color`), written as
+                     facet's "colors" (glTF's COLOR_0)
 
     Positions go to world space through `matrix` (4x4 rows), normals through its
     inverse transpose. A vertex is split where its corners' normals differ. A mirroring
@@ -305,15 +308,18 @@ def mesh_objects(name, matrix, positions, triangles, corner_normals, materials, 
     world = {}
     uvs_of = {}      # material -> [texcoords, texcoords1]
     tangents_of = {}  # material -> tangents
+    colors_of = {}    # material -> colours
     for t, (tri, normals, material) in enumerate(zip(triangles, corner_normals, materials)):
         entry = out.setdefault(material, [{}, [], [], []])
         index, pos, nor, tris = entry
         corners = []
         uv_corners = corner_uvs[t] if corner_uvs is not None else (None, None, None)
         tangent_corners = (corner_tangents[t] if corner_tangents is not None else None) or (None, None, None)
-        for v, n, uv, tangent in zip(tri, normals, uv_corners, tangent_corners):
+        color_corners = (corner_colors[t] if corner_colors is not None else None) or (None, None, None)
+        for v, n, uv, tangent, color in zip(tri, normals, uv_corners, tangent_corners, color_corners):
             uv = tuple(tuple(x) for x in uv) if uv else ()
-            key = (v, tuple(n), uv, tuple(tangent) if tangent else None)
+            color = tuple(float(c) for c in color) if color else None
+            key = (v, tuple(n), uv, tuple(tangent) if tangent else None, color)
             i = index.get(key)
             if i is None:
                 if v not in world:
@@ -331,6 +337,8 @@ def mesh_objects(name, matrix, positions, triangles, corner_normals, materials, 
                     sets[k].append(texcoord(c))
                 if tangent:
                     tangents_of.setdefault(material, []).append(world_tangent(matrix, tangent, flip))
+                if color:
+                    colors_of.setdefault(material, []).append([clean_float(c) for c in color])
             corners.append(i)
         tris.append([corners[0], corners[2], corners[1]] if flip else corners)
     objects = []
@@ -344,6 +352,11 @@ def mesh_objects(name, matrix, positions, triangles, corner_normals, materials, 
                 raise UserError(f"object '{name}': material '{material}' has a normal map but not every "
                                 f"vertex has a tangent")
             obj["tangents"] = tangents_of[material]
+        if material in colors_of:
+            if len(colors_of[material]) != len(pos):
+                raise UserError(f"object '{name}': material '{material}' reads the vertex colour but not every "
+                                f"vertex has one")
+            obj["colors"] = colors_of[material]
         obj["triangles"] = tris
         objects.append(obj)
     return objects

@@ -34,6 +34,7 @@ How each setting maps (Cycles' Image Texture node, measured in /work/texconv/FIN
 | Image Texture Alpha output | channel "a" |
 | Normal Map node (tangent space, Strength 1) | "normal_map" {texture, uv, filter, wrap, transform, green "up", strength} |
 | Mix (Multiply, factor 1) of an image and a colour; Math Multiply of a channel and a number | the image's factor × that colour or number ("scale" of the spec; Blender's glTF importer makes these for baseColorFactor, emissiveFactor, metallicFactor and roughnessFactor beside a texture) |
+| Color Attribute's Color into a colour input, alone or through a Mix (Multiply, factor 1) with an image | "vertex_color": true (glTF's COLOR_0; Blender's glTF importer's wiring), with or without the image; the mesh's colour attribute goes out as "colors" (`blender/scene_data.py`) |
 
 Blender's UV has v up, facet's (glTF's) v down: the exporter writes a mesh's texture
 coordinates as (u, 1 − v_blender) (`core.scene.mesh_objects`), which puts the image where
@@ -250,11 +251,55 @@ def _times(a, b):
     return a * b
 
 
+def _vertex_color_product(src):
+    """(the other side's source, the Color Attribute source) of a Mix (Multiply, factor 1) of a
+    Color Attribute node's Color and another linked source, as Blender's glTF importer wires
+    COLOR_0 beside a base colour texture ("Mix Vertex Color"); None for any other node."""
+    if src.get("type") not in ("MIX", "MIX_RGB") or src.get("data_type") != "RGBA" or \
+            src.get("blend_type") != "MULTIPLY" or src.get("factor_linked") or src.get("factor") != 1.0:
+        return None
+    a, b = src.get("a"), src.get("b")
+    if a is None or b is None:
+        return None
+    for mine, other in ((a, b), (b, a)):
+        if mine.get("type") == "VERTEX_COLOR" and mine.get("output", "Color") == "Color" and \
+                other.get("type") != "VERTEX_COLOR":
+            return other, mine
+    return None
+
+
+def _vertex_color_spec(src, want, ctx):
+    """The spec of a Color Attribute node's Color feeding a colour socket: facet's
+    "vertex_color" without an image (the mesh's colour attribute `src["layer"]`, "" for the
+    render one). None (warned) for a number socket or the Alpha output."""
+    if want != "color" or src.get("output", "Color") != "Color":
+        ctx.note("ignored", f"{ctx.where(src)}: facet's vertex colour multiplies colours only (its Color output "
+                            f"into a colour input); its unlinked value is used")
+        return None
+    return {"vertex_color": True, "layer": src.get("layer", "")}
+
+
 def texture_of(src, want, ctx):
     """The texture spec of the source feeding a socket, or None (warned) when facet has
     no equivalent. `want` is "color" or "number". A constant factor between the image and the
-    socket (a Mix or Math node multiplying it) is the spec's "scale" (a number or an RGB list)."""
+    socket (a Mix or Math node multiplying it) is the spec's "scale" (a number or an RGB list).
+    A Color Attribute node, alone or multiplying an image (a Mix, Multiply, factor 1), is the
+    spec's "vertex_color" (glTF's COLOR_0; docs/textures.md, "Vertex colours"): a spec without
+    "image" is the vertex colour alone."""
     kind = src.get("type")
+    if kind == "VERTEX_COLOR":
+        return _vertex_color_spec(src, want, ctx)
+    product = _vertex_color_product(src)
+    if product is not None:
+        if _vertex_color_spec(product[1], want, ctx) is None:
+            return None
+        spec = texture_of(product[0], want, ctx)
+        if spec is None:
+            return None
+        if spec.get("vertex_color"):
+            ctx.note("ignored", f"{ctx.where(src)}: a vertex colour times a vertex colour; facet multiplies by one")
+            return None
+        return dict(spec, vertex_color=True, layer=product[1].get("layer", ""))
     if kind in ("MIX", "MIX_RGB", "MATH"):
         found = _constant_factor(src, ctx, want)
         if found is None:
@@ -351,11 +396,12 @@ def normal_map_of(src, ctx):
 
 # ----------------------------------------------------------------------------- bindings
 
-def binding(path, model, spec, factor=None, derive=None):
+def binding(path, model, spec, factor=None, derive=None, offset=None):
     """A parameter's texture: `path` of keys in the material JSON (["diffuse", "color"],
     ["specular", "fresnel", "f0"], ["normal_map"]), the lobe's model it was made for, the
-    texture spec (image, uv_map and facet's keys), factor and the function baked into
-    a derived image (None, {"op": "square"}, {"op": "affine", "scale": [3], "offset": [3]},
+    texture spec (image, uv_map and facet's keys; "vertex_color", with or without an image),
+    factor, offset (facet's "offset": value = offset + factor·vc·image) and the function baked
+    into a derived image (None, {"op": "square"}, {"op": "affine", "scale": [3], "offset": [3]},
     {"op": "metal_mix", ...}).
 
     The spec's "scale" (a constant factor between the image and the socket) goes into the
@@ -374,7 +420,32 @@ def binding(path, model, spec, factor=None, derive=None):
         b["factor"] = factor
     if derive is not None:
         b["derive"] = derive
+    if offset is not None:
+        b["offset"] = offset
     return b
+
+
+def has_image(b):
+    """Whether a binding reads an image (one that takes the vertex colour alone does not)."""
+    return b["spec"].get("image") is not None
+
+
+def unmapped_values(material_json):
+    """The key paths ("diffuse.color") of the values the add-on cannot hold yet: those that take
+    the vertex colour ("vertex_color": true, with or without an image) or an "offset"
+    (docs/textures.md, "Vertex colours"). Its panel and bindings have no place for either, so a
+    material with one is refused rather than imported without it."""
+    found = []
+
+    def walk(node, path):
+        for key, value in node.items():
+            if isinstance(value, dict) and (value.get("vertex_color") or "offset" in value) and \
+                    ("texture" in value or "vertex_color" in value):
+                found.append(".".join(path + [key]))
+            elif isinstance(value, dict):
+                walk(value, path + [key])
+    walk(material_json, [])
+    return found
 
 
 def split(material_json):
@@ -427,6 +498,8 @@ def uv_maps(bindings, material=""):
     mesh's active render UV map (an Image Texture with nothing in its Vector)."""
     names = []
     for b in bindings:
+        if not has_image(b):
+            continue
         name = b["spec"].get("uv_map", "")
         if name not in names:
             names.append(name)
@@ -480,8 +553,15 @@ def apply(material_json, bindings, files, material_keys=None):
                          f"{section} model {b.get('model')}; the model is now "
                          f"{data.get(section, {}).get('model', 'none')}, so it is left out")
             continue
-        name, space = files[file_key(b)]
         spec = b["spec"]
+        if not has_image(b):
+            tex = {"vertex_color": True}
+            for key in ("factor", "offset"):
+                if b.get(key) is not None:
+                    tex[key] = clean_vector(b[key]) if isinstance(b[key], (list, tuple)) else clean_float(b[key])
+            _put(data, path, tex)
+            continue
+        name, space = files[file_key(b)]
         tex = {"texture": name}
         for key in ("channel", "colorspace"):
             if section != "normal_map" and spec.get(key) is not None:
@@ -500,14 +580,30 @@ def apply(material_json, bindings, files, material_keys=None):
         for key in ("green", "strength"):
             if section == "normal_map" and spec.get(key) is not None:
                 tex[key] = spec[key]
-        if b.get("factor") is not None:      # Blender's float32 values written as typed
-            f = b["factor"]
-            tex["factor"] = clean_vector(f) if isinstance(f, (list, tuple)) else clean_float(f)
-        target = data
-        for key in path[:-1]:
-            target = target.setdefault(key, {})
-        target[path[-1]] = tex
+        for key in ("factor", "offset"):     # Blender's float32 values written as typed
+            f = b.get(key)
+            if f is not None:
+                tex[key] = clean_vector(f) if isinstance(f, (list, tuple)) else clean_float(f)
+        if spec.get("vertex_color"):
+            tex["vertex_color"] = True
+        _put(data, path, tex)
     return data, notes
+
+
+def _put(data, path, value):
+    target = data
+    for key in path[:-1]:
+        target = target.setdefault(key, {})
+    target[path[-1]] = value
+
+
+def vertex_color_layers(bindings):
+    """The colour attributes ("" for the render one) a material's bindings read, in order."""
+    layers = []
+    for b in bindings:
+        if b["spec"].get("vertex_color") and b["spec"].get("layer", "") not in layers:
+            layers.append(b["spec"].get("layer", ""))
+    return layers
 
 
 def absolute(material_json, folder):

@@ -223,7 +223,7 @@ def test_alpha_output_and_colour_to_number():
 
 @pytest.mark.parametrize("kind, name", [("TEX_NOISE", "Noise Texture"), ("TEX_VORONOI", "Voronoi Texture"),
                                         ("TEX_CHECKER", "Checker Texture"), ("MATH", "Math"),
-                                        ("VERTEX_COLOR", "Color Attribute"), ("VALTORGB", "Color Ramp")])
+                                        ("VALTORGB", "Color Ramp")])
 def test_unmappable_nodes_are_named_in_a_warning(kind, name):
     r = map_surface(principled({"Base Color": {"type": kind, "name": name, "output": "Color"}}), "Procedural")
     warnings = messages(r, IGNORED)
@@ -574,3 +574,91 @@ def test_a_specular_level_image_bakes_f0(inputs, unit):
     assert b["derive"]["scale"] == pytest.approx([unit * 0.75] * 3)
     assert b["derive"]["offset"] == pytest.approx([0.2, 0.1, 0.05])
     assert not any("unlinked value" in m for m in messages(r))
+
+
+def test_values_of_the_vertex_colour_are_named_as_unmapped():
+    """A material value that takes the vertex colour, or an offset, has no place in the add-on
+    yet: unmapped_values names it (the import refuses the material with those keys)."""
+    repo = os.path.join(os.path.dirname(__file__), "..", "..", "..", "..")
+    with open(os.path.join(repo, "examples", "textured", "textured_vertex_color.json")) as f:
+        data = json.load(f)
+    assert textures.unmapped_values(data) == ["ambient", "diffuse.color", "specular.alpha", "specular.fresnel.f0"]
+    with open(os.path.join(repo, "examples", "textured", "textured_ggx.json")) as f:
+        assert textures.unmapped_values(json.load(f)) == []
+
+
+# ----------------------------------------------------------------------------- vertex colours
+
+VERTEX_COLOR = {"type": "VERTEX_COLOR", "name": "Color Attribute", "output": "Color", "layer": ""}
+
+
+def product(a, b):
+    """A Mix (Multiply, factor 1) of two linked sources: Blender's importer's "Mix Vertex Color"."""
+    return {"type": "MIX", "name": "Mix Vertex Color", "output": "Result", "data_type": "RGBA",
+            "blend_type": "MULTIPLY", "clamp": False, "factor": 1.0, "factor_linked": False,
+            "a": a, "a_value": [1.0] * 4, "b": b, "b_value": [1.0] * 4}
+
+
+def test_a_color_attribute_is_the_vertex_colour_on_kd_and_f0():
+    """COLOR_0 as Blender's glTF importer wires it without a texture (the Color Attribute through
+    the baseColorFactor's Mix): k_d = base·(1 − m)·vc and f0 = 0.04·(1 − m) + base·m·vc, facet's
+    factor and offset, exact, no image."""
+    src = principled({"Base Color": mix(VERTEX_COLOR, [0.5, 0.25, 1.0, 1.0])}, Metallic=0.6)
+    r = map_surface(src, "Tinted")
+    by_path = {tuple(b["path"]): b for b in r.textures}
+    kd, f0 = by_path[("diffuse", "color")], by_path[("specular", "fresnel", "f0")]
+    assert kd["spec"] == {"vertex_color": True, "layer": ""} and not textures.has_image(kd)
+    assert kd["factor"] == pytest.approx([0.2, 0.1, 0.4])
+    assert f0["factor"] == pytest.approx([0.3, 0.15, 0.6]) and f0["offset"] == pytest.approx([0.016] * 3)
+    assert textures.uv_maps(r.textures) == [] and textures.vertex_color_layers(r.textures) == [""]
+    data, notes = textures.apply({"name": "Tinted", "diffuse": r.diffuse, "specular": r.specular}, r.textures, {})
+    assert not notes
+    assert data["diffuse"]["color"] == {"vertex_color": True, "factor": pytest.approx([0.2, 0.1, 0.4])}
+    assert data["specular"]["fresnel"]["f0"]["offset"] == pytest.approx([0.016] * 3)
+    assert any("Color Attribute -> \"vertex_color\" on k_d and f0" in m for m in messages(r, EXACT))
+    assert not any("unlinked value" in m for m in messages(r))
+
+
+def test_an_image_times_a_color_attribute_keeps_both(facet, tmp_path):
+    """Blender's importer's "Mix Vertex Color" (the image times the Color Attribute, either side)
+    -> the texture with "vertex_color": true, which facet accepts."""
+    for a, b in ((tex_image(image()), VERTEX_COLOR), (VERTEX_COLOR, tex_image(image()))):
+        r = map_surface(principled({"Base Color": product(a, b)}), "Checker")
+        (kd,) = [x for x in r.textures if x["path"] == ["diffuse", "color"]]
+        assert kd["spec"]["image"] == "checker" and kd["spec"]["vertex_color"] is True
+    files = {textures.file_key(kd): ("checker.png", None)}
+    (tmp_path / "checker.png").write_bytes(textures.pixels_png(2, 2, [1.0, 0.5, 0.25, 1.0] * 4))
+    data, _ = textures.apply({"name": "Checker", "diffuse": r.diffuse, "specular": r.specular}, r.textures, files)
+    assert data["diffuse"]["color"]["vertex_color"] is True and data["diffuse"]["color"]["texture"] == "checker.png"
+    (tmp_path / "m.json").write_text(json.dumps(data))
+    proc = subprocess.run([facet, "generate", str(tmp_path / "m.json"), "--target", "glsl"],
+                          stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    assert proc.returncode == 0, proc.stderr
+    assert "facet_color0" in proc.stdout
+
+
+def test_a_color_attribute_elsewhere_is_named():
+    """Into a number socket, or its Alpha output: no facet equivalent, named."""
+    r = map_surface(principled({"Roughness": VERTEX_COLOR,
+                                "Base Color": dict(VERTEX_COLOR, output="Alpha")}), "Odd")
+    assert r.textures == []
+    assert sum("vertex colour multiplies colours only" in m for m in messages(r, IGNORED)) == 2
+
+
+def test_mesh_colors_are_written_per_vertex_and_split_vertices():
+    positions = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0)]
+    tris = [(0, 1, 2), (0, 2, 3)]
+    n = ((0.0, 0.0, 1.0),) * 3
+    red, green, blue = (1.0, 0.0, 0.0, 1.0), (0.0, 1.0, 0.0, 0.5), (0.0, 0.0, 1.0, 1.0)
+    # Vertex 0 is red in one triangle and blue in the other (a face-corner colour): split.
+    colors = [(red, green, blue), (blue, blue, green)]
+    (obj,) = scene.mesh_objects("Quad", [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]], positions, tris,
+                                [n, n], ["M", "M"], None, None, colors)
+    assert len(obj["positions"]) == 5
+    assert obj["colors"] == [list(red), list(green), list(blue), list(blue), list(green)]
+
+
+def test_a_color_attribute_into_emission_is_named():
+    r = map_surface(principled({"Emission Color": VERTEX_COLOR}, **{"Emission Color": [0.5, 0.5, 0.5, 1.0]}), "Glow")
+    assert r.textures == []
+    assert any("'Color Attribute' (VERTEX_COLOR)" in m and "material 'Glow'" in m for m in messages(r, IGNORED))
