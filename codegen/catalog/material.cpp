@@ -2,6 +2,7 @@
 
 #include "catalog/checker.h"
 #include "catalog/texture.h"
+#include "core/text.h"
 
 #include <algorithm>
 #include <cmath>
@@ -138,6 +139,11 @@ Material parse_material(const json& doc, const std::string& file) {
   }
   if (!doc.contains("diffuse") && !doc.contains("specular"))
     sink.error("", "a material needs a \"diffuse\" or a \"specular\" lobe (or both)");
+  if (auto b = line_break(m.name))  // printed into every target's comments (core/text.h)
+    sink.error(doc.is_object() && doc.contains("name") ? "name" : "(file name)",
+               fmt::format("\"{}\" {}; a material's name is one line of text (it is printed into the generated "
+                           "code's comments)",
+                           one_line(m.name), describe(*b)));
   sink.throw_if_any();
   return m;
 }
@@ -396,6 +402,11 @@ std::string identifier(const std::string& name) {
   std::string s;
   for (unsigned char c : name) s += std::isalnum(c) ? char(c) : '_';
   if (s.empty() || std::isdigit(static_cast<unsigned char>(s[0]))) s = "m_" + s;
+  if (s.size() > kIdentifierMax) {  // a file name's limit is 255 bytes; keep names apart by a hash of the whole
+    uint64_t h = 14695981039346656037ull;  // FNV-1a
+    for (unsigned char c : name) h = (h ^ c) * 1099511628211ull;
+    s = fmt::format("{}_{:016x}", s.substr(0, kIdentifierMax - 17), h);
+  }
   return s;
 }
 

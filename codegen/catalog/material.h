@@ -84,7 +84,9 @@ nlohmann::json material_schema();
 nlohmann::json param_schema(const ParamDef& p);
 nlohmann::json model_schema(const ModelDef& m, const std::string& key);
 
-// A name usable as an identifier in GLSL, OSL and POV-Ray.
+// A name usable as an identifier in GLSL, OSL and POV-Ray, and in file names: letters, digits
+// and "_"; past kIdentifierMax characters, its first ones and a hash of the whole name.
+constexpr size_t kIdentifierMax = 64;
 std::string identifier(const std::string& name);
 
 }  // namespace facet

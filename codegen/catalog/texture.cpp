@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "core/io.h"
+#include "core/text.h"
 
 namespace facet {
 
@@ -214,6 +215,12 @@ class TextureReader {
     ref_.file = it->get<std::string>();
     std::filesystem::path f(ref_.file);
     ref_.path = f.is_absolute() ? f.string() : (std::filesystem::path(sink_.file()).parent_path() / f).string();
+    if (auto b = line_break(ref_.path)) {  // OSL and POV-Ray name the file in a string literal (core/text.h)
+      error("texture", fmt::format("the image's path \"{}\" {}; a texture's path is one line of text (it is "
+                                   "printed into the generated code)",
+                                   one_line(ref_.path), describe(*b)));
+      return;
+    }
     if (!ok_) return;  // decode only what is otherwise valid
     try {
       ref_.texels = load_texels(ref_.path);

@@ -17,6 +17,7 @@
 #include <fmt/format.h>
 
 #include "core/io.h"
+#include "core/text.h"
 #include "core/vec.h"
 #define TINYGLTF_IMPLEMENTATION  // the one translation unit with tinygltf's code
 #include "scene/gltf_read.h"
@@ -177,10 +178,31 @@ class Importer {
     check_gathered_parts();
     if (!have_camera_) frame_camera();
     if (s_.lights.empty()) add_default_light();
+    names_one_line();
     return std::move(s_);
   }
 
  private:
+  // A name from the file goes into generated code's comments and into facet's messages: a line
+  // break or a control character in it (core/text.h) is replaced by a visible stand-in, with a
+  // note, since an asset from anywhere may carry one (a line break would end the comment).
+  void names_one_line() {
+    std::vector<std::string> changed;
+    auto fix = [&](std::string& name, const std::string& what) {
+      if (auto b = line_break(name)) {
+        changed.push_back(fmt::format("{} \"{}\" ({})", what, one_line(name), describe(*b)));
+        name = one_line(name);
+      }
+    };
+    fix(s_.name, "the scene");
+    for (auto& o : s_.objects) fix(o.name, "object");
+    for (auto& [key, m] : s_.materials) fix(m.name, "material");
+    if (!changed.empty())
+      notes_.push_back(fmt::format("names made one line (a line break or control character shown as ␊, ␍, ␀, …; "
+                                   "names are printed into generated code): {}",
+                                   fmt::join(changed, "; ")));
+  }
+
   // A required extension facet does not implement is refused (glTF 2.0 §3.12: a loader that
   // does not support one of them must fail); one only used is named in a note, since the
   // file then renders without it, and what facet reads instead is the core glTF.

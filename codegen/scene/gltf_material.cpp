@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "core/text.h"
 #include "scene/gltf_images.h"
 
 namespace facet::gltf_detail {
@@ -265,7 +266,7 @@ void note_unimplemented_extensions(const tinygltf::Material& g, const std::strin
   if (!names.empty())
     notes.push_back(fmt::format("{}{}: {} ignored: facet does not implement {} yet; the material renders as its "
                                 "metallic–roughness core",
-                                mpath, g.name.empty() ? "" : " (\"" + g.name + "\")", names,
+                                mpath, g.name.empty() ? "" : " (\"" + one_line(g.name) + "\")", one_line(names),
                                 names.find(',') == std::string::npos ? "it" : "them"));
 }
 
@@ -304,7 +305,10 @@ json pbr_material(const tinygltf::Material& g, const std::string& mpath, GltfIma
                                   g.emissiveTexture.extensions_json_string, mpath + ".emissiveTexture");
   for (const auto* map : {&p.base_map, &p.mr_map, &p.occlusion_map, &normal_map, &emission_map})
     if (*map) sets.emplace_back((*map)->uv, (*map)->key + ".texCoord");
-  json m = {{"name", (g.name.empty() ? mpath : g.name) + (vertex_colors ? " (COLOR_0)" : "")}};
+  if (auto b = line_break(g.name))  // names go into generated code's comments (core/text.h)
+    notes.push_back(fmt::format("{}.name \"{}\" {}: made one line, a stand-in for each such character", mpath,
+                                one_line(g.name), describe(*b)));
+  json m = {{"name", one_line(g.name.empty() ? mpath : g.name) + (vertex_colors ? " (COLOR_0)" : "")}};
   json kd, f0;
   colours(p, images, kd, f0, mpath, notes);
   const bool diffuse = kd.is_object() || kd[0].get<double>() + kd[1].get<double>() + kd[2].get<double>() > 0;

@@ -8,6 +8,7 @@
 #include "catalog/checker.h"
 #include "catalog/program.h"
 #include "catalog/texture.h"
+#include "core/text.h"
 #include "scene/gltf.h"
 
 namespace facet {
@@ -360,6 +361,21 @@ void parse_lights(const json& doc, Scene& s, DiagnosticSink& sink) {
   });
 }
 
+// Names are printed into the generated code's comments (core/text.h): each must be one line.
+void check_names_one_line(const json& doc, const Scene& s, DiagnosticSink& sink) {
+  auto check = [&](const std::string& path, const std::string& what, const std::string& name) {
+    if (auto b = line_break(name))
+      sink.error(path, fmt::format("\"{}\" {}; {} is one line of text (it is printed into the generated code's "
+                                   "comments)",
+                                   one_line(name), describe(*b), what));
+  };
+  check(doc.contains("name") ? "name" : "(file name)", "a scene's name", s.name);
+  for (const auto& [key, m] : s.materials)  // (a material's own "name" its parser checks)
+    check(join_path("materials", one_line(key)), "a material's key", key);
+  for (size_t i = 0; i < s.objects.size(); ++i)
+    check(join_path(index_path("objects", i), "name"), "an object's name", s.objects[i].name);
+}
+
 }  // namespace
 
 Scene parse_scene(const json& doc, const std::string& file) {
@@ -380,6 +396,7 @@ Scene parse_scene(const json& doc, const std::string& file) {
   parse_exposure(doc, s, sink);
   parse_objects(doc, s, sink);
   parse_lights(doc, s, sink);
+  check_names_one_line(doc, s, sink);
   sink.throw_if_any();
   return s;
 }

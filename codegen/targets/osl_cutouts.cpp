@@ -8,6 +8,8 @@
 
 #include <fmt/format.h>
 
+#include "core/text.h"
+
 namespace facet::targets {
 
 Vec3 osl_blender(const Vec3& p) { return {p.x, -p.z, p.y}; }
@@ -62,7 +64,7 @@ bool osl_premultiplied(const TextureCall& c, const GenerateOptions& o) {
 std::string osl_image_file(const TextureCall& c, const GenerateOptions& o) {
   auto copy = o.image_files.find(c.texels->path);
   // An absolute path: Cycles opens it from wherever Blender runs.
-  return "\"" + (c.channel != 3 && copy != o.image_files.end() ? copy->second : absolute(c.texels->path)) + "\"";
+  return quoted_literal(c.channel != 3 && copy != o.image_files.end() ? copy->second : absolute(c.texels->path));
 }
 
 namespace {

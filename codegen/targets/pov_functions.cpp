@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "catalog/catalog.h"
+#include "core/text.h"
 #include "targets/pov_mesh.h"
 #include "targets/pov_scene.h"
 #include "targets/sweep_grid.h"
@@ -461,8 +462,8 @@ std::string PovScene::functions(bool objects) {
 // file, whose mesh2 objects every pass and copy of it instances.
 std::string PovScene::mesh_declarations(size_t o) {
   std::string out = data_[o].file.empty() ? "" : pov_mesh_decoder(data_[o], o);  // on the function route
-  return out + fmt::format("#include \"{}_mesh{}.inc\"  // mesh {} (\"{}\"): its mesh2, declared\n", stem_, o, o,
-                           s_.objects[o].name);
+  return out + fmt::format("#include {}  // mesh {} (\"{}\"): its mesh2, declared\n",
+                           quoted_literal(fmt::format("{}_mesh{}.inc", stem_, o)), o, s_.objects[o].name);
 }
 
 std::string PovScene::lights() {

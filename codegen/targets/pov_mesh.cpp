@@ -9,6 +9,7 @@
 
 #include <fmt/format.h>
 
+#include "core/text.h"
 #include "targets/pov_printer.h"
 #include "targets/templates.h"
 
@@ -192,7 +193,7 @@ std::string pov_mesh_decoder(const PovMeshData& d, size_t o) {
         pov_number(d.step[c] * 65535.0), plane + 1);
   }
   return render_template("pov/mesh_data.pov", {{"o", std::to_string(o)},
-                                               {"file", d.file},
+                                               {"file", quoted_literal(d.file)},
                                                {"blocks", std::to_string(d.blocks)},
                                                {"width", std::to_string(d.width())},
                                                {"height", std::to_string(d.height())},

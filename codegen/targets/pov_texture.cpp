@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "core/text.h"
 #include "targets/pov_printer.h"
 
 namespace facet::targets {
@@ -49,11 +50,11 @@ std::string pov_texture_declarations(const PovTexture& t) {
   const int w = c.texels->width, h = c.texels->height;
   std::string out = fmt::format("// Image {} (\"{}\", {}×{}): its texels as facet decoded them, in {}.\n", t.image,
                                 c.file, w, h, t.file);
-  out += fmt::format("#declare Facet_Image{} = function {{ pigment {{ image_map {{ ppm \"{}\" gamma 1.0 }} }} }}\n",
-                     t.image, t.file);
+  out += fmt::format("#declare Facet_Image{} = function {{ pigment {{ image_map {{ ppm {} gamma 1.0 }} }} }}\n",
+                     t.image, quoted_literal(t.file));
   if (!t.alpha.empty())
-    out += fmt::format("#declare Facet_Alpha{} = function {{ pigment {{ image_map {{ pgm \"{}\" gamma 1.0 }} }} }}\n",
-                       t.image, t.alpha);
+    out += fmt::format("#declare Facet_Alpha{} = function {{ pigment {{ image_map {{ pgm {} gamma 1.0 }} }} }}\n",
+                       t.image, quoted_literal(t.alpha));
   const std::string i = wrap_sdl("I", w, c.wrap[0]), j = wrap_sdl("J", h, c.wrap[1]);
   // Row J of the file is row J + 1 of the image (the row of zeros on top), from the top.
   const std::string at = fmt::format("({} + 0.5)/{}, 1 - ({} + 1.5)/{}, 0", i, w, j, h + 1);
