@@ -239,9 +239,11 @@ def _color_layer(mesh, name, obj_name, material):
 def _corner_colors(mesh, obj_name, loops, slot_materials, bindings_of):
     """Per triangle, None or its corners' linear RGBA of the colour attribute its material's
     vertex colour reads (facet's "colors")."""
-    layers, out = {}, []
+    layers, per_material, out = {}, {}, []
     for t, material in enumerate(slot_materials):
-        names = textures.vertex_color_layers(bindings_of(material))
+        names = per_material.get(material.name)
+        if names is None:
+            names = per_material[material.name] = textures.vertex_color_layers(bindings_of(material))
         if not names:
             out.append(None)
             continue

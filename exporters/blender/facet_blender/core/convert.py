@@ -413,6 +413,17 @@ def _cut_out(node, result):
                        + f", alpha_cutoff {float(cutoff):.4g} (glTF's alphaMode MASK as Blender's importer wires it)")
 
 
+def _color_attribute_in(src):
+    """The Color Attribute source under a chain of Mix nodes (what texture_of found there)."""
+    if src is None or src.get("type") == "VERTEX_COLOR":
+        return src
+    for side in ("a", "b"):
+        found = _color_attribute_in(src.get(side)) if src.get(side) else None
+        if found is not None:
+            return found
+    return None
+
+
 def principled_bsdf(node, weight, result):
     """(diffuse lobe, specular lobe, emission) of a Principled BSDF."""
     _cut_out(node, result)
@@ -472,11 +483,9 @@ def principled_bsdf(node, weight, result):
         if name in node.inputs:
             emission_tex = node.texture(name, "color")
             if emission_tex and emission_tex.get("vertex_color"):
-                src = node.sources[name]
-                vc = src if src.get("type") == "VERTEX_COLOR" else \
-                    next(x for x in (src.get("a"), src.get("b")) if x and x.get("type") == "VERTEX_COLOR")
+                vc = _color_attribute_in(node.sources[name])
                 result.note(IGNORED, f"material '{result.material_name}': {node.label}: '{name}' is linked to "
-                                     f"{textures.node_label(vc)}; the add-on maps the vertex colour into a BSDF's "
+                                     f"{textures.node_label(vc) if vc else 'a Color Attribute'}; the add-on maps the vertex colour into a BSDF's "
                                      f"colour only; the unlinked value is used")
                 emission_tex = None
             if emission_tex:

@@ -662,3 +662,10 @@ def test_a_color_attribute_into_emission_is_named():
     r = map_surface(principled({"Emission Color": VERTEX_COLOR}, **{"Emission Color": [0.5, 0.5, 0.5, 1.0]}), "Glow")
     assert r.textures == []
     assert any("'Color Attribute' (VERTEX_COLOR)" in m and "material 'Glow'" in m for m in messages(r, IGNORED))
+
+
+def test_a_color_attribute_two_mixes_deep_into_emission_is_named():
+    src = mix(product(tex_image(image("glow")), VERTEX_COLOR), [0.5, 0.5, 0.5, 1.0])
+    r = map_surface(principled({"Emission Color": src}, **{"Emission Color": [0.5, 0.5, 0.5, 1.0]}), "Glow")
+    assert not any(b["path"] == ["emission"] for b in r.textures)
+    assert any("'Color Attribute' (VERTEX_COLOR)" in m for m in messages(r, IGNORED))
