@@ -65,7 +65,9 @@ std::string ParamDef::allowed() const {
     case ParamKind::Color:
       return "an RGB array [r, g, b] or one number for grey, each " + range.describe() + image;
     case ParamKind::Vector:
-      return std::string(nonzero ? "an array of three numbers, not all zero" : "an array of three numbers") + ", each " +
+      return std::string(nonzero ? fmt::format("an array of three numbers, one of them at least {} in size",
+                                               kShortestDirection)
+                                 : "an array of three numbers") + ", each " +
              range.describe();
     case ParamKind::Model: {
       if (!fixed.empty()) {  // the shorthand form (attenuation)
@@ -85,7 +87,9 @@ std::string ParamDef::allowed() const {
     case ParamKind::String: return "a non-empty string";
     case ParamKind::Points:
       if (arity == 2) return "an array of [u, v], each " + range.describe();
-      return std::string(nonzero ? "an array of [x, y, z], none of them zero" : "an array of [x, y, z]") + ", each " +
+      return std::string(nonzero ? fmt::format("an array of [x, y, z], each with a component at least {} in size",
+                                               kShortestDirection)
+                                 : "an array of [x, y, z]") + ", each " +
              range.describe();
     case ParamKind::Triangles: return "an array of [a, b, c], indices of distinct vertices";
     case ParamKind::Index: return by_name ? "an index (a whole number ≥ 0) or a name" : "an index (a whole number ≥ 0)";

@@ -90,12 +90,16 @@ struct Range {
   static Range positive_coordinate() { return {0, kCoordinateMax, true, false, true}; }     // (0, 1e6]
 };
 
+// The shortest vector that is a direction: one component at least this in size (a shorter
+// one's length squared underflows in float32, where the targets normalize; docs/float32.md).
+constexpr double kShortestDirection = 1e-6;
+
 enum class ParamKind {
   Number,  // a finite JSON number within `range`
   Bool,
   Enum,    // one of `choices`
   Color,   // an RGB array, or one number for grey; components within `range`
-  Vector,  // three numbers (not all zero if `nonzero`)
+  Vector,  // three numbers (a direction if `nonzero`: some component at least kShortestDirection in size)
   Model,   // an object {"model": <a name of section `section`>, …its parameters}
   Object,  // an object holding the parameters of the fixed model `section`/`fixed`
   String,     // a non-empty string
@@ -136,7 +140,7 @@ struct ParamDef {
   std::string section;               // Model: the section to choose from; Object: the model's section
   std::string fixed;                 // Object: the model whose parameters the object holds;
                                      // Model: the model an object without "model" means
-  bool nonzero = false;              // Vector: a direction, so not the zero vector
+  bool nonzero = false;              // Vector: a direction, so no shorter than kShortestDirection
   bool every_lobe = false;           // one of the parameters every diffuse and specular lobe takes (color, toon)
   bool by_name = false;              // Index: a name is allowed as well as an index
   bool texturable = false;           // Number, Color: may come from an image ({"texture": …})

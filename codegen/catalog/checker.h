@@ -85,6 +85,17 @@ class Checker {
     return ok ? std::optional<RGB>(rgb) : std::nullopt;
   }
 
+  // Why a vector cannot be a direction, or none: the zero vector, or one so short that no
+  // component reaches kShortestDirection (its length's square underflows: [0, 1e-300, 0]
+  // normalized is NaN in double, and anything below ~1e-19 is in float32).
+  static std::optional<std::string> directionless(double x, double y, double z) {
+    if (x == 0 && y == 0 && z == 0) return std::string("the zero vector has no direction");
+    if (std::max({std::abs(x), std::abs(y), std::abs(z)}) < kShortestDirection)
+      return fmt::format("[{}, {}, {}] is too short to be a direction (no component reaches {})", x, y, z,
+                         kShortestDirection);
+    return std::nullopt;
+  }
+
   std::optional<RGB> vector(const json& j, const std::string& path, const ParamDef& p) {
     if (!j.is_array() || j.size() != 3) {
       std::string found = j.is_array() ? fmt::format("an array of {} values", j.size()) : json_type_name(j);
@@ -98,9 +109,11 @@ class Checker {
       if (x) v[i] = *x;
       else ok = false;
     }
-    if (ok && p.nonzero && v[0] == 0 && v[1] == 0 && v[2] == 0) {
-      sink_.error(path, "the zero vector has no direction; allowed: " + p.allowed());
-      return std::nullopt;
+    if (ok && p.nonzero) {
+      if (auto why = directionless(v[0], v[1], v[2])) {
+        sink_.error(path, *why + "; allowed: " + p.allowed());
+        return std::nullopt;
+      }
     }
     return ok ? std::optional<RGB>(v) : std::nullopt;
   }
@@ -142,9 +155,11 @@ class Checker {
                                               : fmt::format("expected {} numbers {}", counts[arity], p.range.describe()));
         continue;
       }
-      if (p.kind == ParamKind::Points && p.nonzero && v[0] == 0 && v[1] == 0 && v[2] == 0) {
-        bad(i, "the zero vector has no direction");
-        continue;
+      if (p.kind == ParamKind::Points && p.nonzero) {
+        if (auto why = directionless(v[0], v[1], v[2])) {
+          bad(i, *why);
+          continue;
+        }
       }
       if (p.kind == ParamKind::Triangles && (v[0] == v[1] || v[1] == v[2] || v[0] == v[2])) {
         bad(i, "a triangle needs three distinct vertices");

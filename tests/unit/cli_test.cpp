@@ -450,5 +450,38 @@ TEST(Cli, PublishedSchemaIsTheGeneratedOne) {
       << "run: build/bin/facet schema --scene > schemas/scene.schema.json";
 }
 
+
+// A vector so short that normalizing it underflows (issue 28: a directional light [0, -1e-300, 0]
+// gave 3,660 NaN pixels, a camera up [0, 1e-300, 0] a black image, a tangent axis [1e-300, 0, 0]
+// `inf` in every target's code) is refused like the zero vector, naming the key.
+TEST(Cli, DirectionsTooShortToNormalizeAreRefused) {
+  const json lambert = {{"model", "lambert"}, {"color", {0.5, 0.5, 0.5}}};
+  const json material = {{"name", "tiny"},
+                         {"diffuse", lambert},
+                         {"specular", {{"model", "ward"}, {"color", {1, 1, 1}}, {"alpha_x", 0.2}, {"alpha_y", 0.4}}},
+                         {"tangent_axis", {1e-300, 0, 0}}};
+  const fs::path mfile = scratch("tiny_tangent.json");
+  write_file_atomic(mfile.string(), material.dump());
+  ProcessResult r = facet({"generate", mfile.string(), "--target", "glsl"});
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("tangent_axis: [1e-300, 0, 0] is too short to be a direction"), std::string::npos)
+      << r.output;
+  const json scene = {
+      {"camera", {{"position", {0, 0, 4}}, {"look_at", {0, 0, 0}}, {"up", {0, 1e-300, 0}}, {"fov", 40}}},
+      {"materials", {{"grey", {{"diffuse", lambert}}}}},
+      {"objects",
+       {{{"type", "mesh"}, {"name", "tri"}, {"material", "grey"}, {"positions", {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}},
+         {"normals", {{0, 0, 1}, {0, 0, 1e-300}, {0, 0, 1}}}, {"triangles", {{0, 1, 2}}}}}},
+      {"lights", {{{"type", "directional"}, {"direction", {0, -1e-300, 0}}, {"color", {1, 1, 1}}}}}};
+  const fs::path sfile = scratch("tiny_scene.json");
+  write_file_atomic(sfile.string(), scene.dump());
+  r = facet({"render", "--scene", sfile.string(), "--size", "8x8", "-o", scratch("tiny.pfm").string()});
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  for (const char* key : {"camera.up: [0, 1e-300, 0]", "objects[0].normals[1]: [0, 0, 1e-300]",
+                          "lights[0].direction: [0, -1e-300, 0]"})
+    EXPECT_NE(r.output.find(std::string(key) + " is too short to be a direction"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(scratch("tiny.pfm")));
+}
+
 }  // namespace
 }  // namespace facet
