@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Writes examples/textures/normals.png: facet's own tangent-space normal map (no third-party
+"""Writes examples/textured/textures/normals.png: facet's own tangent-space normal map (no third-party
 asset), deterministic, in the OpenGL/glTF convention (+x right, +y up the picture, +z out).
 
 The surface is the height field h(u, v) = A sin(2π·2u) cos(2π·3v') over the unit square, v' = 1 − v
@@ -39,7 +39,7 @@ def png(width, height, rows):
 
 def main(argv):
     here = os.path.dirname(os.path.abspath(__file__))
-    out = argv[1] if len(argv) > 1 else os.path.join(here, "..", "examples", "textures", "normals.png")
+    out = argv[1] if len(argv) > 1 else os.path.join(here, "..", "examples", "textured", "textures", "normals.png")
     size = int(argv[2]) if len(argv) > 2 else 16
     data = png(size, size, normals(size))
     tmp = out + ".tmp"

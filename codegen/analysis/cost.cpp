@@ -432,9 +432,9 @@ void pov_timings(const std::vector<Material>& ms, const CostOptions& o, const fs
       const size_t i = round % 2 ? ms.size() - 1 - k : k;
       if (!out[i].error.empty()) continue;
       const std::string file = fmt::format("{}_{:03}.pov", identifier(ms[i].name), i);
-      ProcessResult r = run_process({"povray", "+I" + file, "-F", fmt::format("+W{}", o.pov_size),
-                                     fmt::format("+H{}", o.pov_size), "-A", "+WT1", "-D", "-GR", "File_Gamma=1.0"},
-                                    dir.string());
+      ProcessResult r = run_povray({"+I" + file, "-F", fmt::format("+W{}", o.pov_size), fmt::format("+H{}", o.pov_size),
+                                    "-A", "+WT1", "-D", "-GR", "File_Gamma=1.0"},
+                                   dir.string());
       double s = trace_cpu_seconds(r.output);
       if (r.exit_code != 0 || s < 0) {
         out[i].error = fmt::format("povray exited with {} and reported no trace time:\n{}", r.exit_code, r.output);
@@ -605,7 +605,7 @@ std::vector<CostRow> measure_costs(const std::vector<Material>& materials, const
     const ModelDef& base = cost_baseline_model();
     ms.insert(ms.begin(), lobe_material(default_spec(base), base.name));
   }
-  const fs::path dir = fs::absolute(options.workdir.empty() ? (fs::temp_directory_path() / "facet-cost").string()
+  const fs::path dir = fs::absolute(options.workdir.empty() ? (fs::path(private_work_folder()) / "cost").string()
                                                             : options.workdir);
   fs::create_directories(dir);
   std::vector<CostRow> rows = named_rows(ms);

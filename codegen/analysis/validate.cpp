@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <memory>
 #include <optional>
+#include <set>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -41,6 +42,7 @@ struct Case {
   std::optional<Material> material;  // absent: the scene's own materials
   std::string key;                   // names the images: the material file's stem, or the scene's name
   Scene scene;
+  std::string scene_key;             // names the scene's images and work folder (unique among the scenes)
   Render reference;
   std::string uninformative;  // why the reference proves nothing (validate.h), or ""
   std::string label() const { return material ? material->name : scene.name + " (its own materials)"; }
@@ -65,7 +67,7 @@ struct Case {
 };
 
 std::string image_name(const Case& c, const std::string& renderer, const char* suffix = "") {
-  return validate_image(c.key, c.scene.name, renderer + suffix);
+  return validate_image(c.key, c.scene_key, renderer + suffix);
 }
 
 // A renderer's image beside the reference: its preview at the exposure `ev` (stops) and
@@ -245,6 +247,19 @@ std::string validate_image(const std::string& key, const std::string& scene, con
 
 namespace {
 
+// Each name as an identifier, numbered (_2, _3, …) where two fold to one ("a-b", "a b").
+std::vector<std::string> unique_keys(const std::vector<std::string>& names) {
+  std::vector<std::string> out;
+  std::set<std::string> taken;
+  for (const auto& n : names) {
+    const std::string base = identifier(n);
+    std::string key = base;
+    for (int k = 2; !taken.insert(key).second; ++k) key = base + "_" + std::to_string(k);
+    out.push_back(key);
+  }
+  return out;
+}
+
 // The visible objects that show no shading: seen from behind, or reached by no light.
 std::string dark_objects(const Render& ref, const Scene& s) {
   std::vector<size_t> pixels(s.objects.size()), back(s.objects.size()), lit(s.objects.size());
@@ -329,7 +344,8 @@ namespace {
 struct Inputs {
   std::vector<Scene> scenes;
   std::vector<Material> materials;
-  std::vector<std::string> keys;  // per material: names its images
+  std::vector<std::string> keys;  // per material: names its images (unique_keys())
+  std::vector<std::string> scene_keys;  // per scene
   bool need_materials = false;    // a scene without materials of its own
 };
 
@@ -353,6 +369,9 @@ Inputs load_inputs(ValidateOptions& o) {
     in.materials.push_back(m);
     in.keys.push_back(identifier(m.name));
   }
+  in.keys = unique_keys(in.keys);  // p/x.json and q/x.json, "a-b" and "a b": images of their own
+  for (const auto& s : in.scenes) in.scene_keys.push_back(s.name);
+  in.scene_keys = unique_keys(in.scene_keys);
   for (const auto& s : in.scenes) {
     if (s.has_own_materials()) check_texture_sets(s, nullptr);
     else
@@ -389,12 +408,13 @@ std::vector<Case> reference_cases(const Inputs& in, const ValidateOptions& o, co
     cases.push_back(std::move(c));
     p.tick("reference " + cases.back().key + " on " + cases.back().scene.name, cases.size(), total);
   };
-  for (const auto& s : in.scenes) {
+  for (size_t k = 0; k < in.scenes.size(); ++k) {
+    const Scene& s = in.scenes[k];
     if (s.has_own_materials()) {
-      add(Case{std::nullopt, identifier(s.name), s, {}, {}});
+      add(Case{std::nullopt, in.scene_keys[k], s, in.scene_keys[k], {}, {}});
       continue;
     }
-    for (size_t i = 0; i < in.materials.size(); ++i) add(Case{in.materials[i], in.keys[i], s, {}, {}});
+    for (size_t i = 0; i < in.materials.size(); ++i) add(Case{in.materials[i], in.keys[i], s, in.scene_keys[k], {}, {}});
   }
   return cases;
 }
@@ -405,7 +425,8 @@ RenderJob job_for(const Case& c, const std::string& renderer, const ValidateOpti
   j.scene = c.scene;
   j.width = o.width;
   j.height = o.height;
-  j.workdir = (out / "work" / renderer / identifier(c.scene.name)).string();
+  j.workdir = (out / "work" / renderer / c.scene_key).string();
+  j.name = c.material ? c.key + "_" + c.scene_key : c.scene_key;  // unique in the folder
   j.max_value = 0;
   for (float v : c.reference.image.rgb) j.max_value = std::max<double>(j.max_value, v);
   j.tolerance = o.tolerance;  // POV-Ray brackets its exposures where one cannot hold the range to it
@@ -421,6 +442,10 @@ void report_phase(const std::string& renderer, const ValidateResult& result, siz
     const auto& r = result.rows[i];
     if (!r.pass && r.error.empty() && !r.uninformative.empty() && r.metrics.over == 0)
       p.out << fmt::format("    UNINFORMATIVE {} on {}: {}\n", r.material, r.scene, r.uninformative);
+    else if (!r.pass && r.error.empty() && r.metrics.pixels == 0)
+      p.out << fmt::format("    FAIL {} on {}: no pixel to compare: the reference sees no object's interior (no "
+                           "object in view, or none wider than 3 pixels)\n",
+                           r.material, r.scene);
     else if (!r.pass)
       p.out << fmt::format("    FAIL {} on {}: {}\n", r.material, r.scene,
                            r.error.empty() ? fmt::format("max |Δ|/max(1,|ref|) {:.3g}, {} pixels over, coverage "
@@ -497,6 +522,8 @@ ValidateResult validate(const ValidateOptions& options, std::ostream& progress) 
   if (o.python.empty()) o.python = default_python();
   Inputs in = load_inputs(o);
   fs::path out = o.out;
+  const FolderLock lock(out.string(), "--out");  // two runs on one folder would mix their files
+  fs::remove_all(out / "work");  // what an interrupted run left
   fs::create_directories(out / "images");
   fs::create_directories(out / "work");
   const Progress p{progress, o.interactive};
@@ -520,6 +547,7 @@ ValidateResult validate(const ValidateOptions& options, std::ostream& progress) 
   for (const auto& r : result.rows) metrics.push_back(row_json(r, o.width, o.height));
   write_file_atomic((out / "metrics.json").string(), metrics.dump(2) + "\n");
   write_report(out, o, cases, result);
+  fs::remove_all(out / "work");  // the renderers' files; the report has what they said
   progress << fmt::format("report: {}\n", (out / "report.html").string());
   return result;
 }

@@ -93,8 +93,8 @@ const ParamDef& alpha_param() {
   return p;
 }
 
-Material parse_material(const json& doc, const std::string& file) {
-  DiagnosticSink sink(file);
+Material parse_material(const json& doc, const std::string& file, const std::string& folder) {
+  DiagnosticSink sink(file, folder);
   Checker check(sink);
   Material m;
   m.source = file;

@@ -50,8 +50,9 @@ struct Material {
 const ParamDef& alpha_param();
 
 // Checks `doc` against the catalog; every problem becomes a Diagnostic naming
-// `file` and the key path. Throws InputError with all of them.
-Material parse_material(const nlohmann::json& doc, const std::string& file);
+// `file` and the key path. Throws InputError with all of them. Texture files are named
+// relative to, and must lie inside, `folder` (empty: `file`'s folder) or an allowed one.
+Material parse_material(const nlohmann::json& doc, const std::string& file, const std::string& folder = "");
 Material load_material(const std::string& path);
 
 // A material of one lobe: `spec` as the diffuse or the specular lobe (by its

@@ -214,7 +214,7 @@ class TextureReader {
     }
     ref_.file = it->get<std::string>();
     std::filesystem::path f(ref_.file);
-    ref_.path = f.is_absolute() ? f.string() : (std::filesystem::path(sink_.file()).parent_path() / f).string();
+    ref_.path = f.is_absolute() ? f.string() : (std::filesystem::path(sink_.folder()) / f).string();
     if (auto b = line_break(ref_.path)) {  // OSL and POV-Ray name the file in a string literal (core/text.h)
       error("texture", fmt::format("the image's path \"{}\" {}; a texture's path is one line of text (it is "
                                    "printed into the generated code)",
@@ -222,6 +222,12 @@ class TextureReader {
       return;
     }
     if (!ok_) return;  // decode only what is otherwise valid
+    // Like a glTF's URIs (core/io.h): a material or scene file, which may come from anywhere,
+    // names images inside its own folder, or in one the user allowed with --allow-path.
+    if (confined_path(sink_.folder(), ref_.file).empty()) {
+      error("texture", outside_folder_message(ref_.file, sink_.folder(), "a material or scene file", "the file's"));
+      return;
+    }
     try {
       ref_.texels = load_texels(ref_.path);
     } catch (const IoError& e) {

@@ -1,11 +1,14 @@
 // facet — the command line: every command is its own file (cli/command.h).
+#include <filesystem>
 #include <iostream>
+#include <new>
 
 #include <CLI/CLI.hpp>
 
 #include "cli/command.h"
 #include "core/diagnostics.h"
 #include "core/io.h"
+#include "core/text.h"
 
 int main(int argc, char** argv) {
   using namespace facet;
@@ -30,17 +33,35 @@ int main(int argc, char** argv) {
       cli::draw_shaders_command(app), cli::schema_command(app),
   };
 
+  std::vector<std::string> allowed;
+  app.add_option("--allow-path", allowed,
+                 "A folder from which the files a glTF names (buffers, images) and the textures a material or "
+                 "scene file names may also be read; without it, only files inside the naming file's own folder "
+                 "are (any command; may be repeated)")
+      ->check(CLI::ExistingDirectory)
+      ->type_name("DIR");
+  // --allow-path may also follow the command's name and its files: each command hands the options
+  // it does not know to this one.
+  for (const auto& c : commands) c.app->fallthrough();
+
   CLI11_PARSE(app, argc, argv);
+  for (const auto& dir : allowed) allow_folder(dir);
   set_progress_sink([](const std::string& line) { std::cerr << line << "\n"; });
 
   try {
     for (const auto& c : commands)
       if (c.app->parsed()) return c.run();
   } catch (const InputError& err) {
-    for (const auto& d : err.diagnostics()) std::cerr << "error: " << d.format() << "\n";
+    for (const auto& d : err.diagnostics()) std::cerr << "error: " << printable_lines(d.format()) << "\n";
     return 1;
   } catch (const IoError& err) {
-    std::cerr << "error: " << err.what() << "\n";
+    std::cerr << "error: " << printable_lines(err.what()) << "\n";
+    return 1;
+  } catch (const std::filesystem::filesystem_error& err) {  // a folder facet could not make, list or remove
+    std::cerr << "error: " << printable_lines(err.what()) << "\n";
+    return 1;
+  } catch (const std::bad_alloc&) {
+    std::cerr << "error: out of memory\n";
     return 1;
   }
   return 0;

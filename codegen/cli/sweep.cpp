@@ -12,6 +12,7 @@
 #include "analysis/validate.h"
 #include "catalog/material.h"
 #include "cli/command.h"
+#include "core/io.h"
 #include "renderers/renderer.h"
 
 using nlohmann::json;
@@ -64,7 +65,7 @@ int run_sweep(const SweepArgs& a) {
   SweepOptions o;
   o.settings.grid = a.grid;
   o.settings.random = a.random;
-  o.settings.workdir = a.workdir.empty() ? (std::filesystem::temp_directory_path() / "facet-sweep").string() : a.workdir;
+  o.settings.workdir = a.workdir.empty() ? (std::filesystem::path(private_work_folder()) / "sweep").string() : a.workdir;
   o.renderer.python = a.python;
   std::vector<std::vector<SweepCount>> rows =
       sweep_materials(ms, renderers, o, [&](const std::string& renderer) {

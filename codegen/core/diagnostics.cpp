@@ -2,11 +2,14 @@
 
 #include <algorithm>
 #include <cctype>
+#include <filesystem>
 #include <fstream>
 #include <set>
 #include <sstream>
 
 #include <fmt/format.h>
+
+#include "core/io.h"
 
 namespace facet {
 
@@ -28,6 +31,10 @@ std::string join_messages(const std::vector<Diagnostic>& ds) {
 
 InputError::InputError(std::vector<Diagnostic> diagnostics)
     : std::runtime_error(join_messages(diagnostics)), diagnostics_(std::move(diagnostics)) {}
+
+DiagnosticSink::DiagnosticSink(std::string file, std::string folder) : file_(std::move(file)), folder_(std::move(folder)) {
+  if (folder_.empty()) folder_ = std::filesystem::path(file_).parent_path().string();
+}
 
 void DiagnosticSink::error(const std::string& path, const std::string& message) {
   diagnostics_.push_back({file_, path, message, 0, 0});
@@ -111,6 +118,10 @@ class TrackingSax {
   bool binary(json::binary_t& v) { return value() && dom_.binary(v) && done(); }
   bool start_object(size_t n) {
     if (!value()) return false;
+    if (frames_.size() >= kMaxJsonDepth) {
+      too_deep_ = true;
+      return false;
+    }
     frames_.push_back({false, "", 0, {}});
     return dom_.start_object(n);
   }
@@ -130,6 +141,10 @@ class TrackingSax {
   }
   bool start_array(size_t n) {
     if (!value()) return false;
+    if (frames_.size() >= kMaxJsonDepth) {
+      too_deep_ = true;
+      return false;
+    }
     frames_.push_back({true, "", 0, {}});
     return dom_.start_array(n);
   }
@@ -155,6 +170,7 @@ class TrackingSax {
     }
     return p;
   }
+  size_t depth() const { return frames_.size(); }
   std::string current_path() const {
     // Within an array the next element is at index `count`.
     std::string p;
@@ -168,6 +184,7 @@ class TrackingSax {
   }
 
   std::string duplicate_;
+  bool too_deep_ = false;
   size_t error_position_ = 0;
   std::string error_token_;
   std::string error_what_;
@@ -211,6 +228,26 @@ std::string plain_message(const std::string& what) {
   return s;
 }
 
+// Where an array or object opens kMaxJsonDepth + 1 levels deep (outside strings).
+size_t too_deep_at(const std::string& text) {
+  size_t depth = 0;
+  bool in_string = false;
+  for (size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (in_string) {
+      if (c == '\\') ++i;
+      else if (c == '"') in_string = false;
+    } else if (c == '"') {
+      in_string = true;
+    } else if (c == '[' || c == '{') {
+      if (++depth > kMaxJsonDepth) return i;
+    } else if (c == ']' || c == '}') {
+      --depth;
+    }
+  }
+  return 0;
+}
+
 }  // namespace
 
 json parse_json(const std::string& text, const std::string& file) {
@@ -226,6 +263,13 @@ json parse_json(const std::string& text, const std::string& file) {
     d.message = "duplicate key; each key may appear once";
     throw InputError({d});
   }
+  if (sax.too_deep_) {
+    const std::string path = sax.path(sax.depth());  // the value that opened one level too many
+    d.path = path.size() <= 100 ? path : path.substr(0, 60) + "…" + path.substr(path.size() - 30);
+    line_column(text, too_deep_at(text), d.line, d.column);
+    d.message = fmt::format("arrays and objects nest deeper here than the {} levels facet reads", kMaxJsonDepth);
+    throw InputError({d});
+  }
   // A syntax error: name the position and the key the parser was reading.
   size_t pos = sax.error_position_ > 0 ? sax.error_position_ - 1 : 0;
   line_column(text, pos, d.line, d.column);
@@ -235,12 +279,13 @@ json parse_json(const std::string& text, const std::string& file) {
 }
 
 json read_json_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError({{path, "", "cannot open the file for reading", 0, 0}});
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  if (in.bad()) throw InputError({{path, "", "cannot read the file", 0, 0}});
-  const std::string text = ss.str();
+  std::string text;
+  try {
+    text = read_file(path, kMaxDocumentBytes);
+  } catch (const IoError& e) {  // the message begins with the path, which the diagnostic names
+    const std::string what = e.what();
+    throw InputError({{path, "", what.rfind(path + ": ", 0) == 0 ? what.substr(path.size() + 2) : what, 0, 0}});
+  }
   // About 70 MB a second: a file this big takes a second or more (inline meshes).
   if (text.size() >= 64'000'000) progress(fmt::format("reading {}: {} MB of JSON", path, text.size() / 1'000'000));
   return parse_json(text, path);

@@ -32,20 +32,27 @@ class InputError : public std::runtime_error {
 // Collects diagnostics while a document is checked; throws them all at the end.
 class DiagnosticSink {
  public:
-  explicit DiagnosticSink(std::string file) : file_(std::move(file)) {}
+  // `folder`: where the document's relative file names start, and the folder its files must
+  // lie in (core/io.h, confined_path()); empty: the folder of `file`.
+  explicit DiagnosticSink(std::string file, std::string folder = "");
   void error(const std::string& path, const std::string& message);
   bool empty() const { return diagnostics_.empty(); }
   void throw_if_any() const;
   const std::string& file() const { return file_; }
+  const std::string& folder() const { return folder_; }
 
  private:
-  std::string file_;
+  std::string file_, folder_;
   std::vector<Diagnostic> diagnostics_;
 };
 
 // JSON text → document. Syntax errors name the line, column and the key path the
 // parser had reached; duplicate keys and an empty document are errors too.
 nlohmann::json parse_json(const std::string& text, const std::string& file);
+// How deep parse_json() lets arrays and objects nest (README, "Reliability"): facet's files
+// nest a dozen levels; tinygltf and the printers walk documents recursively, so a document
+// nested thousands deep is refused before either sees it.
+inline constexpr size_t kMaxJsonDepth = 256;
 nlohmann::json read_json_file(const std::string& path);  // also reports a missing/unreadable file
 
 // Progress of a step that takes seconds (reading a big mesh): one line, without

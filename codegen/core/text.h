@@ -24,6 +24,9 @@ std::string describe(const LineBreak& b);
 // `text` with each such character replaced by a visible stand-in (U+2400 + c for a C0 control,
 // ␡ for DEL, ␤ for U+0085, U+2028 and U+2029): one line of printable text.
 std::string one_line(std::string_view text);
+// Lines of `text` made safe for a terminal: each line one_line() (NUL, ESC and the other
+// controls a name or path may bring shown as stand-ins), the line feeds between them kept.
+std::string printable_lines(std::string_view text);
 // A double-quoted string literal of `text` for OSL and POV-Ray (C's escapes): `\` and `"`
 // escaped. `text` must have no line_break() (checked where it was read).
 std::string quoted_literal(std::string_view text);

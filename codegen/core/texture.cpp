@@ -33,6 +33,21 @@ std::shared_ptr<const Texels> decode_texels(const std::string& bytes, const std:
   const auto* data = reinterpret_cast<const stbi_uc*>(bytes.data());
   const int size = int(bytes.size());
   int w = 0, h = 0, n = 0;
+  static const char kPng[] = "\x89PNG\r\n\x1a\n";
+  const bool png = bytes.compare(0, 8, kPng, 8) == 0;
+  if (png && bytes.size() >= 24 && bytes.compare(12, 4, "IHDR") == 0) {
+    // stb_image calls a PNG too big for it an "unknown image type": read the size from the
+    // IHDR chunk (PNG §11.2.2) so that the limit below names it.
+    auto be32 = [&](size_t at) {
+      uint32_t v = 0;
+      for (size_t i = 0; i < 4; ++i) v = v << 8 | uint8_t(bytes[at + i]);
+      return v;
+    };
+    const double side = std::max(be32(16), be32(20));
+    if (side > kMaxTextureSide)
+      throw IoError(fmt::format("{}: the PNG is {}×{} texels; allowed: at most {} a side and 1 GiB decoded", name,
+                                be32(16), be32(20), kMaxTextureSide));
+  }
   if (!stbi_info_from_memory(data, size, &w, &h, &n))
     throw IoError(name + ": not an image facet can decode (" + stb_reason() +
                   "); allowed: PNG, JPEG, TGA, BMP, PSD, GIF");
@@ -46,8 +61,6 @@ std::shared_ptr<const Texels> decode_texels(const std::string& bytes, const std:
   t->path = name;
   // 16 bits a channel from PNGs only: stb_image's 16-bit path for other formats (a PPM whose
   // maxval is over 255) returns a buffer of 8-bit size, which the fuzzer found read past its end.
-  static const char kPng[] = "\x89PNG\r\n\x1a\n";
-  const bool png = bytes.compare(0, 8, kPng, 8) == 0;
   t->bits = png && stbi_is_16_bit_from_memory(data, size) ? 16 : 8;
   int width = 0, height = 0;
   void* px = t->bits == 16 ? static_cast<void*>(stbi_load_16_from_memory(data, size, &width, &height, &t->channels, 4))

@@ -111,7 +111,8 @@ json batch_item(const RenderJob& j, const fs::path& dir) {
   json materials = json::object();
   for (const auto& o : j.scene.objects) {
     if (o.material.empty() || materials.contains(o.material)) continue;
-    materials[o.material] = write_osl(j.scene.materials.at(o.material), base + "_" + identifier(o.material) + ".osl");
+    materials[o.material] = write_osl(j.scene.materials.at(o.material),  // numbered: names may fold to one identifier
+                                      fmt::format("{}_{}_{}.osl", base, materials.size(), identifier(o.material)));
   }
   if (!materials.empty()) item["materials"] = materials;
   std::string output = (dir / (base + "_cycles")).string();

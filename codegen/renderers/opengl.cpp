@@ -615,12 +615,10 @@ struct PassScene {
   std::vector<const Material*> passes;
   SceneBuffers buffers;
   SceneTextures textures;
-  // "<material>_<scene>[_<pass's material>]<suffix>": the file a pass's source is written to
-  // (every pass's, past the last pass: the G-buffer's).
+  // pass_name()<suffix>: the file a pass's source is written to (every pass's, past the last
+  // pass: the G-buffer's).
   std::string file(size_t pass, const std::string& suffix) const {
-    std::string base = (job.material ? identifier(job.material->name) + "_" : std::string()) + identifier(job.scene.name);
-    if (passes.size() > 1 && pass < passes.size()) base += "_" + identifier(passes[pass]->name);
-    return base + suffix;
+    return (pass < passes.size() ? pass_name(job, pass, passes.size(), passes[pass]->name) : job_name(job)) + suffix;
   }
 };
 

@@ -158,9 +158,9 @@ RenderOutcome render_pov(const RenderJob& job) {
   for (const auto& entry : fs::directory_iterator(dir))
     if (entry.path().filename().string().rfind(base + "_frame", 0) == 0) fs::remove(entry.path());
 
-  ProcessResult r = run_process({"povray", "+I" + base + "_harness.pov", "+O" + base + "_frame.png",
-                                 fmt::format("+W{}", job.width), fmt::format("+H{}", job.height), "-A", "+FN16", "+UA",
-                                 "File_Gamma=1.0", "-D", "+KFI0", fmt::format("+KFF{}", frames - 1)},
+  ProcessResult r = run_povray({"+I" + base + "_harness.pov", "+O" + base + "_frame.png", fmt::format("+W{}", job.width),
+                                 fmt::format("+H{}", job.height), "-A", "+FN16", "+UA", "File_Gamma=1.0", "-D", "+KFI0",
+                                 fmt::format("+KFF{}", frames - 1)},
                                 dir);
   out.seconds = r.seconds;
   out.log = r.output;
@@ -186,7 +186,7 @@ SweepCount sweep_pov(const std::string& target, const SweepJob& job, int grid, c
   std::string base = identifier(job.material.name) + "_sweep";
   write_file_atomic((fs::path(workdir) / (base + ".pov")).string(),
                     job.source.empty() ? generate_pov_sweep(job.material) : job.source);
-  ProcessResult r = run_process({"povray", "+I" + base + ".pov", "+O" + base + ".png", fmt::format("+W{}", grid),
+  ProcessResult r = run_povray({"+I" + base + ".pov", "+O" + base + ".png", fmt::format("+W{}", grid),
                                  fmt::format("+H{}", grid), "-A", "+FN16", "File_Gamma=1.0", "-D"},
                                 workdir);
   if (r.exit_code != 0) {

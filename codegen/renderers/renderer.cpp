@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "core/io.h"
 #include "renderers/backends.h"
 
 namespace facet {
@@ -70,11 +71,16 @@ std::unique_ptr<Renderer> make_renderer(const std::string& name, const RendererS
 }
 
 std::string job_name(const RenderJob& job) {
+  if (!job.name.empty()) return identifier(job.name);
   return (job.material ? identifier(job.material->name) + "_" : std::string()) + identifier(job.scene.name);
 }
 
+std::string pass_name(const RenderJob& job, size_t k, size_t passes, const std::string& material) {
+  return job_name(job) + (passes > 1 ? "_" + std::to_string(k) + "_" + identifier(material) : "");
+}
+
 std::string RenderJob::folder() const {
-  return workdir.empty() ? (std::filesystem::temp_directory_path() / "facet-render").string() : workdir;
+  return workdir.empty() ? (std::filesystem::path(private_work_folder()) / "render").string() : workdir;
 }
 
 std::vector<RenderOutcome> failed_renders(size_t jobs, const std::string& why) {

@@ -44,13 +44,21 @@ struct RenderJob {
   PovRoute pov_route = PovRoute::Auto;
   // Render this code instead of generating it (tests feed deliberately wrong targets).
   std::string code_override;
-  // The workdir, or a temporary folder when it is empty: for the renderers
+  // Names the job's files in its folder, unique among the jobs that share the folder
+  // (facet validate numbers them); empty: from the material's and the scene's names.
+  std::string name;
+  // The workdir, or the process's private folder (core/io.h) when it is empty: for the renderers
   // whose tools need files (OpenGL writes its shaders only into a given workdir).
   std::string folder() const;
 };
 
-// "<material>_<scene>" (or "<scene>" when the scene brings its own materials): names files.
+// RenderJob::name, else "<material>_<scene>" (or "<scene>" when the scene brings its own
+// materials): names files.
 std::string job_name(const RenderJob& job);
+// The files of pass `k` of `passes` (one per material the scene's objects use): the job's
+// name, then the pass's number and material (numbered: two materials' names may fold to one
+// identifier).
+std::string pass_name(const RenderJob& job, size_t k, size_t passes, const std::string& material);
 
 struct RenderOutcome {
   bool ok = false;

@@ -835,7 +835,7 @@ RenderOutcome VulkanRenderer::render_one(const RenderJob& job) {
     return out;
   }
   for (size_t k = 0; k < passes.size(); ++k) {
-    const std::string name = job_name(job) + (passes.size() > 1 ? "_" + identifier(passes[k]->name) : "");
+    const std::string name = pass_name(job, k, passes.size(), passes[k]->name);
     RenderOutcome pass = shade(job, *passes[k], name, g.gbuffer, k);
     if (!pass.ok) {
       out.error = pass.error;
@@ -855,7 +855,7 @@ std::vector<SweepCount> VulkanRenderer::sweep(const std::vector<SweepJob>& jobs,
   if (!error_.empty()) return failed_sweeps(jobs.size(), info_.name, error_);
   std::vector<SweepCount> out(jobs.size());
   const std::string folder =
-      settings.workdir.empty() ? (std::filesystem::temp_directory_path() / "facet-sweep").string() : settings.workdir;
+      settings.workdir.empty() ? (std::filesystem::path(private_work_folder()) / "sweep").string() : settings.workdir;
   for (size_t i = 0; i < jobs.size(); ++i) {
     SweepCount& c = out[i];
     c.target = info_.name;

@@ -274,7 +274,7 @@ json WebglRenderer::job_data(const RenderJob& job, size_t& count, std::string& e
                                                      : job.code_override;
     if (!job.workdir.empty()) {
       fs::create_directories(job.workdir);
-      const std::string base = job_name(job) + (passes.size() > 1 ? "_" + identifier(passes[k]->name) : "");
+      const std::string base = pass_name(job, k, passes.size(), passes[k]->name);
       write_file_atomic((fs::path(job.workdir) / (base + ".webgl.frag")).string(), fragment);
     }
     data["passes"].push_back(page_pass(*passes[k], g.gbuffer, k, fragment));
@@ -324,7 +324,7 @@ void WebglRenderer::run_page(const std::vector<RenderJob>& jobs, const std::vect
 std::string WebglRenderer::chromium_dom(const RenderJob& first, const std::string& html, std::string& log,
                                         std::string& error) {
   static int runs = 0;
-  const fs::path folder = fs::temp_directory_path() / fmt::format("facet-webgl-{}-{}", ::getpid(), runs++);
+  const fs::path folder = fs::path(private_work_folder()) / fmt::format("webgl-{}", runs++);
   fs::create_directories(folder);
   const fs::path file = folder / (job_name(first) + ".html"), dom = folder / "dom.html";
   write_file_atomic(file.string(), html);

@@ -161,7 +161,7 @@ bool WgpuRenderer::prepare(const RenderJob& job, json& entries, RenderOutcome& o
     return false;
   }
   for (size_t k = 0; k < passes.size(); ++k) {
-    std::string base = job_name(job) + (passes.size() > 1 ? "_" + identifier(passes[k]->name) : "");
+    std::string base = pass_name(job, k, passes.size(), passes[k]->name);
     // Jobs of one batch may share a name and a folder (a test's variants of one material): numbered then.
     auto taken = [&](const std::string& b) {
       for (const auto& e : entries)
@@ -235,9 +235,8 @@ std::vector<RenderOutcome> WgpuRenderer::render(const std::vector<RenderJob>& jo
 std::vector<SweepCount> WgpuRenderer::sweep(const std::vector<SweepJob>& jobs, const SweepSettings& settings) {
   if (find_program(python_).empty()) return failed_sweeps(jobs.size(), "wgsl", "cannot run " + python_);
   std::vector<SweepCount> out(jobs.size());
-  // Without a workdir, a folder of this process's own under the temporary directory.
-  const fs::path dir = fs::absolute(settings.workdir.empty() ? fs::temp_directory_path() /
-                                                                  fmt::format("facet-wgpu-sweep-{}", ::getpid())
+  // Without a workdir, a folder in this process's own (core/io.h).
+  const fs::path dir = fs::absolute(settings.workdir.empty() ? fs::path(private_work_folder()) / "wgpu-sweep"
                                                             : fs::path(settings.workdir));
   fs::create_directories(dir);
   json items = json::array();

@@ -257,9 +257,33 @@ class Importer {
     if (scene_ext.is_object() && scene_ext.contains("ambient")) checked_["ambient"] = scene_ext["ambient"];
   }
 
-  // Node `ni` under the world transform `parent`: its camera (the first one met
-  // is the scene's), its light, its mesh, then its children.
+  // The hierarchy under root node `ni`, depth first, each node before its children: its
+  // camera (the first one met is the scene's), its light, its mesh. Walked with a stack of
+  // its own, so that a chain of any depth (a file may hold millions of nodes) needs no
+  // more than a vector.
+  struct NodeFrame {
+    int node;
+    Mat4 world;
+    size_t next_child = 0;
+  };
   void read_node(int ni, const Mat4& parent) {
+    std::vector<NodeFrame> path;
+    enter_node(ni, parent, path);
+    while (!path.empty()) {
+      NodeFrame& f = path.back();
+      const auto& children = model_.nodes[size_t(f.node)].children;
+      if (f.next_child == children.size()) {
+        on_path_[size_t(f.node)] = false;
+        path.pop_back();
+        continue;
+      }
+      const int child = children[f.next_child++];
+      const Mat4 world = f.world;  // `f` may move when the child is pushed
+      enter_node(child, world, path);
+    }
+  }
+
+  void enter_node(int ni, const Mat4& parent, std::vector<NodeFrame>& path) {
     if (ni < 0 || size_t(ni) >= model_.nodes.size()) reader_.fail("nodes", fmt::format("no node {}", ni));
     std::string npath = fmt::format("nodes[{}]", ni);
     if (on_path_[size_t(ni)]) reader_.fail(npath + ".children", "the node hierarchy has a cycle through this node");
@@ -269,8 +293,7 @@ class Importer {
     if (node.camera >= 0 && !have_camera_) read_camera(node, npath, world);
     read_light(node, npath, world);
     if (node.mesh >= 0) read_mesh(node, npath, world);
-    for (int child : node.children) read_node(child, world);
-    on_path_[size_t(ni)] = false;
+    path.push_back({ni, world, 0});
   }
 
   void read_camera(const tinygltf::Node& node, const std::string& npath, const Mat4& world) {
@@ -454,7 +477,8 @@ class Importer {
       tinygltf::Material none;
       none.name = "default";
       std::vector<std::pair<int, std::string>> sets;
-      s_.materials[key] = parse_material(gltf_detail::pbr_material(none, "default", images_, sets, notes_, colors), path_);
+      s_.materials[key] = parse_material(gltf_detail::pbr_material(none, "default", images_, sets, notes_, colors), path_,
+                                         images_.scene_folder());
       notes_.push_back(where + ": no material; glTF's default material taken (base colour 1, metallic 1, roughness "
                                "1: white metal; --default-material MATERIAL.json gives another)");
     }
@@ -479,7 +503,7 @@ class Importer {
     if (!own) map_texture_sets(m, sets, mpath);
     texture_sets_[mpath] = sets;
     try {
-      return parse_material(m, path_);
+      return parse_material(m, path_, images_.scene_folder());  // its images lie beside the scene
     } catch (const InputError& e) {
       // FACET_material's own key, or the glTF material with the key of the facet
       // material it became (a metallic–roughness factor beyond what float32 holds).

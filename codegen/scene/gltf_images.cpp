@@ -36,21 +36,6 @@ std::string safe_name(const std::string& s) {
   return out;
 }
 
-// RFC 3986 percent-decoding of a relative URI (glTF 2.0 §3.7.2: "URIs … percent-encoded").
-std::string percent_decoded(const std::string& uri) {
-  std::string out;
-  for (size_t i = 0; i < uri.size(); ++i) {
-    if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit(static_cast<unsigned char>(uri[i + 1])) &&
-        std::isxdigit(static_cast<unsigned char>(uri[i + 2]))) {
-      out.push_back(char(std::stoi(uri.substr(i + 1, 2), nullptr, 16)));
-      i += 2;
-    } else {
-      out.push_back(uri[i]);
-    }
-  }
-  return out;
-}
-
 const char* wrap_name(int gl) {
   switch (gl) {
     case TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE: return "clamp";
@@ -81,6 +66,7 @@ GltfImages::GltfImages(const tinygltf::Model& model, std::string gltf_path, std:
       notes_(notes),
       mipmap_noted_(model.samplers.size(), false) {
   fs::path out = output.empty() ? fs::path(path_).replace_extension(".json") : fs::path(output);
+  output_folder_ = fs::absolute(out.parent_path().empty() ? fs::path(".") : out.parent_path()).string();
   folder_ = (fs::absolute(out.parent_path().empty() ? fs::path(".") : out.parent_path()) /
              (out.stem().string() + ".textures"))
                 .lexically_normal()
@@ -186,7 +172,13 @@ std::string GltfImages::embedded_file(int image, const std::string& bytes, const
   if (ext.empty())
     fail(key, fmt::format("images[{}] has mimeType \"{}\"; facet reads image/png and image/jpeg (glTF's core formats)",
                           image, im.mimeType));
-  const std::string name = safe_name(im.name);
+  return planned_copy(image, ext, bytes, key);
+}
+
+// Image `image`'s bytes, checked and decoded now, planned as `<textures folder>/imageN_<name>.<ext>`.
+std::string GltfImages::planned_copy(int image, const std::string& ext, const std::string& bytes,
+                                     const std::string& key) {
+  const std::string name = safe_name(model_.images[size_t(image)].name);
   const std::string file =
       (fs::path(folder_) / fmt::format("image{}{}.{}", image, name.empty() ? "" : "_" + name, ext)).string();
   try {
@@ -202,19 +194,31 @@ std::string GltfImages::embedded_file(int image, const std::string& bytes, const
 std::string GltfImages::external_file(int image, const std::string& uri, const std::string& key) {
   if (source_folder_.empty())
     fail(key, fmt::format("images[{}].uri \"{}\" is an external file, and an import from memory reads none", image, uri));
-  fs::path file = fs::path(percent_decoded(uri));
-  if (file.is_relative()) file = fs::path(source_folder_) / file;
-  const std::string abs = fs::absolute(file).lexically_normal().string();
+  const std::string abs = uri_file(source_folder_, uri, path_, key);
   if (!fs::is_regular_file(abs))
     fail(key, fmt::format("images[{}].uri \"{}\" is not there ({}); an external image must sit where its URI says, "
                           "relative to the glTF file",
                           image, uri, abs));
+  if (inside_folder(abs, output_folder_)) {
+    try {
+      (void)load_texels(abs);
+    } catch (const IoError& e) {
+      fail(key, fmt::format("images[{}].uri: {}", image, e.what()));
+    }
+    return abs;
+  }
+  // The scene will be read with its images confined to its folder, so one from elsewhere
+  // goes beside it, bytes unchanged, like an image the glTF holds.
+  std::string bytes;
   try {
-    (void)load_texels(abs);
+    bytes = read_file(abs);
   } catch (const IoError& e) {
     fail(key, fmt::format("images[{}].uri: {}", image, e.what()));
   }
-  return abs;
+  const std::string ext = bytes.rfind("\x89PNG", 0) == 0 ? "png" : bytes.rfind("\xFF\xD8", 0) == 0 ? "jpg" : "";
+  if (ext.empty())
+    fail(key, fmt::format("images[{}].uri \"{}\" is neither a PNG nor a JPEG file (glTF's core formats)", image, uri));
+  return planned_copy(image, ext, bytes, key);
 }
 
 std::string GltfImages::bake(const std::string& name, int width, int height, int channels,

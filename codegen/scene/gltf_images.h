@@ -59,21 +59,26 @@ class GltfImages {
   // InputError naming the file and `key` (+ ".index", ".texCoord") when it cannot be read.
   TextureUse texture(int index, int tex_coord, const std::string& extensions_json, const std::string& key);
   // The file of image `image` (named at `key`), as an absolute path: an embedded image's
-  // planned file, an external one's own.
+  // planned file, an external one's own when it lies inside the scene's folder, else its
+  // planned copy (a scene names images inside its own folder only: catalog/texture.cpp).
   std::string image_file(int image, const std::string& key);
   // A 16-bit PNG computed by the import, planned as `<textures folder>/<name>.png`; its path.
   std::string bake(const std::string& name, int width, int height, int channels, const std::vector<uint16_t>& values);
 
   std::vector<GltfImportFile>& files() { return files_; }
+  // The folder of the scene the import writes: every image file above lies inside it.
+  const std::string& scene_folder() const { return output_folder_; }
   [[noreturn]] void fail(const std::string& key, const std::string& message) const;
 
  private:
   std::string embedded_file(int image, const std::string& bytes, const std::string& key);
   std::string external_file(int image, const std::string& uri, const std::string& key);
+  std::string planned_copy(int image, const std::string& ext, const std::string& bytes, const std::string& key);
   Sampler sampler_of(int sampler, const std::string& key);
 
   const tinygltf::Model& model_;
   std::string path_, source_folder_, folder_;  // the glTF file; its external images' folder; where images are written
+  std::string output_folder_;                  // the scene's folder
   std::vector<std::string>& notes_;
   std::map<int, std::string> image_paths_;
   std::vector<GltfImportFile> files_;

@@ -1,16 +1,19 @@
 // facet's reading of glTF triangles (gltf_read.h); tinygltf's own code is compiled in gltf.cpp.
 #include "scene/gltf_read.h"
 
+#include <cctype>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <map>
 
 #include <fmt/format.h>
 
 #include "core/diagnostics.h"
 #include "core/io.h"
+#include "core/text.h"
 
 namespace facet::gltf_detail {
 
@@ -777,21 +780,63 @@ tinygltf::FsCallbacks no_files() {
   return fs;
 }
 
-// Names a missing external buffer by its key, before tinygltf reports it bare.
-void check_external_buffers(const json& doc, const std::string& path, const std::string& folder) {
-  if (!doc.is_object() || !doc.contains("buffers") || !doc["buffers"].is_array() || folder.empty()) return;
+// The files a glTF's external buffers are, by the name tinygltf asks for them (its
+// JoinPath(folder, uri)): tinygltf reads those and nothing else (no search of the working
+// folder, no file outside the glTF's folder), each within read_file()'s limit.
+struct BufferFiles {
+  std::map<std::string, std::string> by_request;
+  const std::string* lookup(const std::string& request) const {
+    auto it = by_request.find(request);
+    return it == by_request.end() ? nullptr : &it->second;
+  }
+};
+
+tinygltf::FsCallbacks buffer_files(BufferFiles& files) {
+  tinygltf::FsCallbacks cb{};
+  cb.user_data = &files;
+  cb.ExpandFilePath = [](const std::string& p, void*) { return p; };
+  cb.FileExists = [](const std::string& p, void* u) { return static_cast<BufferFiles*>(u)->lookup(p) != nullptr; };
+  cb.ReadWholeFile = [](std::vector<unsigned char>* out, std::string* err, const std::string& p, void* u) {
+    const std::string* file = static_cast<BufferFiles*>(u)->lookup(p);
+    try {
+      if (!file) throw IoError(p + ": not a buffer of this glTF");
+      const std::string bytes = read_file(*file);
+      out->assign(bytes.begin(), bytes.end());
+      return true;
+    } catch (const IoError& e) {
+      if (err) *err += std::string(e.what()) + "\n";
+      return false;
+    }
+  };
+  cb.WriteWholeFile = [](std::string*, const std::string&, const std::vector<unsigned char>&, void*) { return false; };
+  return cb;
+}
+
+// tinygltf's JoinPath: the name it asks the callbacks for.
+std::string joined(const std::string& folder, const std::string& uri) {
+  if (folder.empty()) return uri;
+  return folder.back() == '/' || folder.back() == '\\' ? folder + uri : folder + "/" + uri;
+}
+
+// Each external buffer confined to the glTF's folder and there, named by its key, before
+// tinygltf reads it.
+BufferFiles external_buffers(const json& doc, const std::string& path, const std::string& folder) {
+  BufferFiles files;
+  if (!doc.is_object() || !doc.contains("buffers") || !doc["buffers"].is_array() || folder.empty()) return files;
   for (size_t i = 0; i < doc["buffers"].size(); ++i) {
     const json& b = doc["buffers"][i];
     if (!b.is_object() || !b.contains("uri") || !b["uri"].is_string()) continue;
     std::string uri = b["uri"];
     if (uri.rfind("data:", 0) == 0) continue;
-    fs::path file = fs::path(folder) / uri;
+    const std::string key = fmt::format("buffers[{}].uri", i);
+    const std::string file = uri_file(folder, uri, path, key);
     if (!fs::exists(file))
-      throw InputError({{path, fmt::format("buffers[{}].uri", i),
-                         fmt::format("\"{}\" is not there ({}); the buffer must sit beside the glTF", uri,
-                                     file.string()),
+      throw InputError({{path, key, fmt::format("\"{}\" is not there ({}); the buffer must sit beside the glTF",
+                                                one_line(uri), file),
                          0, 0}});
+    files.by_request[joined(folder, uri)] = file;
   }
+  return files;
 }
 
 // An image's encoded bytes as tinygltf hands them over (a data URI's), kept as they are:
@@ -892,12 +937,12 @@ tinygltf::Model load_model(const std::string& data, bool binary, const std::stri
   if (data.size() > std::numeric_limits<unsigned int>::max())
     throw InputError({{path, "", "is larger than 4 GiB, which glTF cannot address", 0, 0}});
   const json doc = binary ? check_glb(data, path) : parse_json(data, path);
-  check_external_buffers(doc, path, folder);
+  BufferFiles buffers = external_buffers(doc, path, folder);
   check_image_sources(doc, path);
   tinygltf::TinyGLTF loader;
   loader.SetStoreOriginalJSONForExtrasAndExtensions(true);
   loader.SetImageLoader(keep_image_bytes, nullptr);
-  if (folder.empty()) loader.SetFsCallbacks(no_files());
+  loader.SetFsCallbacks(folder.empty() ? no_files() : buffer_files(buffers));
   tinygltf::Model model;
   std::string err, warn;
   auto size = static_cast<unsigned int>(data.size());
@@ -913,9 +958,30 @@ tinygltf::Model load_model(const std::string& data, bool binary, const std::stri
   return model;
 }
 
+std::string percent_decoded(const std::string& uri) {
+  std::string out;
+  for (size_t i = 0; i < uri.size(); ++i) {
+    if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit(static_cast<unsigned char>(uri[i + 1])) &&
+        std::isxdigit(static_cast<unsigned char>(uri[i + 2]))) {
+      out.push_back(char(std::stoi(uri.substr(i + 1, 2), nullptr, 16)));
+      i += 2;
+    } else {
+      out.push_back(uri[i]);
+    }
+  }
+  return out;
+}
+
+std::string uri_file(const std::string& folder, const std::string& uri, const std::string& path,
+                     const std::string& key) {
+  const std::string file = confined_path(folder, percent_decoded(uri));
+  if (!file.empty()) return file;
+  throw InputError({{path, key, outside_folder_message(uri, folder, "a glTF", "the glTF's"), 0, 0}});
+}
+
 tinygltf::Model load_model_file(const std::string& path, std::vector<std::string>& notes) {
   if (!fs::exists(path)) throw InputError({{path, "", "no such file", 0, 0}});
-  if (!fs::is_regular_file(path)) throw InputError({{path, "", "is not a regular file", 0, 0}});
+  // read_file refuses a folder, a device or a FIFO by name (and never blocks on one).
   bool binary = fs::path(path).extension() == ".glb";
   std::string folder = fs::path(path).parent_path().string();
   std::string data = read_file(path);

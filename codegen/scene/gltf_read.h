@@ -204,4 +204,13 @@ tinygltf::Model load_model(const std::string& data, bool binary, const std::stri
 // The file at `path`, read and loaded; its bytes are freed before this returns.
 tinygltf::Model load_model_file(const std::string& path, std::vector<std::string>& notes);
 
+// RFC 3986 percent-decoding of a relative URI (glTF 2.0 §3.7.2: "URIs … percent-encoded").
+std::string percent_decoded(const std::string& uri);
+// The file an external `uri` (not a data: URI) of the glTF at `path` names, as an absolute
+// path: percent-decoded, relative to `folder` (the glTF's), and inside it or inside a folder
+// the user allowed (core/io.h, confined_path()). Else InputError naming `path` and `key`,
+// with one message whether or not such a file exists.
+std::string uri_file(const std::string& folder, const std::string& uri, const std::string& path,
+                     const std::string& key);
+
 }  // namespace facet::gltf_detail

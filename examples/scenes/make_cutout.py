@@ -4,7 +4,8 @@ cut-outs (facet's "alpha" and "alpha_cutoff", docs/textures.md):
     python3 examples/scenes/make_cutout.py
 
 A bent sheet and a UV sphere, both under a MASK material whose base colour texture is
-examples/textures/leaf.png (its alpha a leaf shape; alphaCutoff 0.5; the sphere's texture
+examples/scenes/textures/leaf.png, copied there from examples/textured/textures/ since a glTF
+reads images inside its own folder only (its alpha a leaf shape; alphaCutoff 0.5; the sphere's texture
 repeated 3 × 2 by KHR_texture_transform), over an opaque floor, lit by a point light from
 above and a sun, so that both cut-outs cast cut-out shadows on the floor and the sphere's
 inside shows through its holes. Plain glTF 2.0 (no FACET_ extension): the import maps MASK
@@ -14,6 +15,7 @@ import base64
 import json
 import math
 import os
+import shutil
 import struct
 
 
@@ -111,12 +113,15 @@ def main():
                                                         "roughnessFactor": 0.9}}],
         "textures": [{"source": 0, "sampler": 0}],
         "samplers": [{"magFilter": 9729, "minFilter": 9729, "wrapS": 10497, "wrapT": 10497}],
-        "images": [{"uri": "../textures/leaf.png"}],
+        "images": [{"uri": "textures/leaf.png"}],
         "accessors": accessors,
         "bufferViews": views,
         "buffers": [{"byteLength": len(blob),
                      "uri": "data:application/octet-stream;base64," + base64.b64encode(bytes(blob)).decode()}],
     }
+    here = os.path.dirname(os.path.abspath(__file__))
+    os.makedirs(os.path.join(here, "textures"), exist_ok=True)
+    shutil.copyfile(os.path.join(here, "..", "textured", "textures", "leaf.png"), os.path.join(here, "textures", "leaf.png"))
     out = os.path.join(os.path.dirname(os.path.abspath(__file__)), "cutout.gltf")
     with open(out, "w") as f:
         json.dump(gltf, f, indent=1)

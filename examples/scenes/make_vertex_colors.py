@@ -4,7 +4,8 @@ metallic–roughness materials whose metallic factor lies strictly between 0 and
     python3 examples/scenes/make_vertex_colors.py > examples/scenes/vertex_colors.gltf
 
 * top left, "painted" over a bent sheet: COLOR_0 VEC3 FLOAT, times a base colour texture
-  (examples/textures/checker.png, nearest) and factor, metallic 0.4;
+  (examples/scenes/textures/checker.png, copied there from examples/textured/textures/ since a glTF
+reads images inside its own folder only, nearest) and factor, metallic 0.4;
 * top right, two primitives of one mesh sharing "painted": the left COLOR_0 VEC4 normalized
   UNSIGNED_BYTE, the right none (white: the import gives it a material of its own);
 * bottom left, "plain" (no base colour texture, metallic 0.25, the checker as occlusion map):
@@ -20,6 +21,8 @@ library only.
 import base64
 import json
 import math
+import os
+import shutil
 import struct
 
 
@@ -143,12 +146,15 @@ def main():
         ],
         "textures": [{"source": 0, "sampler": 0}],
         "samplers": [{"magFilter": 9728, "minFilter": 9728}],
-        "images": [{"uri": "../textures/checker.png"}],
+        "images": [{"uri": "textures/checker.png"}],
         "buffers": [{"byteLength": len(w.data),
                      "uri": "data:application/octet-stream;base64," + base64.b64encode(bytes(w.data)).decode()}],
         "bufferViews": w.views,
         "accessors": w.accessors,
     }
+    here = os.path.dirname(os.path.abspath(__file__))
+    os.makedirs(os.path.join(here, "textures"), exist_ok=True)
+    shutil.copyfile(os.path.join(here, "..", "textured", "textures", "checker.png"), os.path.join(here, "textures", "checker.png"))
     print(json.dumps(gltf, indent=1))
 
 

@@ -1,12 +1,15 @@
 // libFuzzer target: glTF import, .gltf text and .glb containers (the first
 // byte chooses). Every file either imports into a scene or is refused with an
-// InputError; no external file is read (import_gltf_data without a folder).
+// InputError; no external file is read (import_gltf_data without a folder). An imported
+// scene goes through the POV-Ray scene generator, its names (made one line by the import)
+// changing nothing there but comments and identifiers (fuzz_pov_scene.h).
 #include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
 
 #include "fuzz_common.h"
+#include "fuzz_pov_scene.h"
 #include "scene/gltf.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
@@ -16,7 +19,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   facet::fuzz::refuse_only_with_input_errors("gltf", [&] {
     std::vector<std::string> notes;
     facet::GltfImportOptions options;
-    (void)facet::import_gltf_data(bytes, binary, binary ? "fuzz.glb" : "fuzz.gltf", "", options, notes);
+    facet::Scene s = facet::import_gltf_data(bytes, binary, binary ? "fuzz.glb" : "fuzz.gltf", "", options, notes);
+    static const facet::Material lambert = facet::model_materials().front();
+    facet::fuzz::pov_scene_names_are_data("gltf: the POV-Ray scene", s, lambert);
   });
   return 0;
 }

@@ -27,9 +27,14 @@ GLTF_KEYS = ['asset', 'version', '2.0', 'scenes', 'scene', 'nodes', 'children', 
 
 TEXTURE_KEYS = ['texture', 'channel', 'uv', 'transform', 'offset', 'scale', 'rotation', 'colorspace', 'srgb',
                 'linear', 'filter', 'nearest', 'bilinear', 'wrap', 'repeat', 'clamp', 'mirror', 'factor', 'rgb',
-                'r', 'g', 'b', 'a', '../textures/checker.png', '../textures/roughness16.png', 'texcoords',
+                'r', 'g', 'b', 'a', 'textures/checker.png', 'textures/roughness16.png', 'texcoords',
                 'texcoords1', 'tangents', 'colors', 'vertex_color', 'normal_map', 'green', 'up', 'down', 'strength',
-                '../textures/normals.png']
+                'textures/normals.png']
+# What names and paths must survive (issue 28), as JSON string text: comment ends, a
+# backslash, escaped line breaks (\n, \r, U+0085, U+2028), a quote, preprocessor and POV-Ray
+# directives, paths leading out of the file's folder.
+HOSTILE_TOKENS = ['*/', '/*', '//', '\\\\', '\\n', '\\r', '\\u0085', '\\u2028', '\\"', '#error', '#fopen',
+                  '#include', '#declare', '#write', '../', '/proc/self/environ', '%2e%2e', '\\u0000']
 IMAGE_TOKENS = ['\x89PNG\r\n\x1a\n', 'IHDR', 'IDAT', 'IEND', 'PLTE', 'tRNS', 'gAMA', 'sRGB', '\xff\xd8\xff',
                 'P5', 'P6', 'BM', 'GIF89a', '8BPS', '\x00\x00\x00\x0d']
 
@@ -72,7 +77,7 @@ def main():
     catalog = json.load(sys.stdin)
     shading = ['diffuse', 'specular', 'fresnel', 'geometry', 'modifier']
     material = names(catalog, shading) | {'model', 'name', 'ambient', 'emission', 'diffuse', 'specular',
-                                          'tangent_axis', '$schema'} | set(TEXTURE_KEYS)
+                                          'tangent_axis', '$schema'} | set(TEXTURE_KEYS) | set(HOSTILE_TOKENS)
     scene = material | names(catalog, ['camera', 'object', 'light', 'attenuation']) | {
         'camera', 'objects', 'lights', 'materials', 'material', 'attenuation'}
     write(folder + '/material.dict', material | set(JSON_TOKENS))

@@ -51,8 +51,8 @@ def hostile_material(work):
     """The material and its images in a folder whose name and files' names need escaping."""
     folder = os.path.join(work, 'lib "odd" \\ #1')
     os.makedirs(folder, exist_ok=True)
-    shutil.copy(os.path.join(REPO, "examples", "textures", "checker.png"), os.path.join(folder, 'check "er" #2.png'))
-    shutil.copy(os.path.join(REPO, "examples", "textures", "roughness16.png"), os.path.join(folder, 'rough\\ness.png'))
+    shutil.copy(os.path.join(REPO, "examples", "textured", "textures", "checker.png"), os.path.join(folder, 'check "er" #2.png'))
+    shutil.copy(os.path.join(REPO, "examples", "textured", "textures", "roughness16.png"), os.path.join(folder, 'rough\\ness.png'))
     material = {"name": HOSTILE,
                 "diffuse": {"model": "lambert", "color": {"texture": 'check "er" #2.png', "factor": 0.8}},
                 "specular": {"model": "ggx", "color": [1, 1, 1], "alpha": {"texture": "rough\\ness.png", "factor": 0.5},

@@ -21,6 +21,7 @@
 #include "renderers/compare.h"
 #include "renderers/hlsl_shading.h"
 #include "renderers/opengl.h"
+#include "renderers/process.h"
 #include "renderers/renderer.h"
 #include "renderers/sweep.h"
 #include "targets/targets.h"
@@ -230,6 +231,39 @@ TEST(Detection, PovMissingPiFails) {
   f.job.code_override = inject(good, "{ pi/4*D*G*F/NoV }", "{ 1/4*D*G*F/NoV }");
   ComparisonRow bad = judged(f, render_one("pov", f.job));
   EXPECT_FALSE(bad.pass) << "max |Δ|/max(1,|ref|) " << bad.metrics.max_excess;
+}
+
+// POV-Ray's scene language reads and writes files (#fopen, #read, #write, #include), and
+// POV-Ray 3.7 enforces no povray.conf (renderers/process.h): facet confines it to its work
+// folder. A scene that writes outside it, or reads a file outside it, fails to render and
+// leaves nothing; the same scene writing inside the folder renders (so the confinement,
+// not a broken scene, is what stops it).
+TEST(Detection, PovCannotReadOrWriteOutsideItsFolder) {
+  ASSERT_GT(landlock_abi(), 0) << "this kernel has no Landlock: POV-Ray would run unconfined";
+  Fixture f = fixture("lambert", "pov");
+  GenerateOptions o;
+  o.target = Target::Pov;
+  o.scene = f.scene;
+  const std::string good = generate(f.material, o);
+  const fs::path outside = fs::temp_directory_path() / ("facet-outside-" + std::to_string(::getpid()));
+  fs::create_directories(outside);
+  const fs::path secret = outside / "secret.inc", pwned = outside / "PWNED.txt";
+  write_file_atomic(secret.string(), "#declare Facet_Secret = 1;\n");
+  auto writes = [&](const std::string& file) {
+    return "#fopen Facet_F \"" + file + "\" write\n#write(Facet_F, \"pwned\\n\")\n#fclose Facet_F\n" + good;
+  };
+  f.job.code_override = writes("inside.txt");
+  EXPECT_TRUE(judged(f, render_one("pov", f.job)).pass) << "writing inside its own folder must work";
+  EXPECT_TRUE(fs::exists(fs::path(f.job.workdir) / "inside.txt"));
+  f.job.code_override = writes(pwned.string());
+  RenderOutcome wrote = render_one("pov", f.job);
+  EXPECT_FALSE(wrote.ok);
+  EXPECT_FALSE(fs::exists(pwned)) << "POV-Ray wrote outside its folder";
+  f.job.code_override = "#include \"" + secret.string() + "\"\n" + good;
+  RenderOutcome read = render_one("pov", f.job);
+  EXPECT_FALSE(read.ok) << "POV-Ray read a file outside its folder";
+  EXPECT_NE(read.error.find(secret.string()), std::string::npos) << read.error;
+  fs::remove_all(outside);
 }
 
 TEST(Detection, PovExponentOffByOneFails) {
@@ -455,7 +489,8 @@ TEST(Detection, OslMeshOnBlendersNormalsFails) {
 // reads no image's colour (which a code override would read premultiplied: cycles.cpp).
 Fixture cutout_fixture(const std::string& renderer) {
   Fixture f = fixture("lambert", renderer, "materials", "shadows");
-  const std::string leaf = (kSource / "examples/textures/leaf.png").string();
+  const std::string leaf = (kSource / "examples/textured/textures/leaf.png").string();
+  allow_folder((kSource / "examples").string());  // as --allow-path: the image is outside the file's folder
   f.material = parse_material(
       {{"name", "cutout"},
        {"diffuse", {{"model", "lambert"}, {"color", {0.55, 0.7, 0.3}}}},

@@ -173,7 +173,8 @@ TEST(GltfVertexColours, APrimitiveWithoutColoursIsWhiteInAMeshWithSome) {
 // accessor; so are a count unlike POSITION's and a VEC2.
 TEST(GltfVertexColours, BadColoursAreRefused) {
   json g = json::parse(read_file(kExample.string()));
-  g["images"][0]["uri"] = (kSource / "examples/textures/checker.png").string();
+  facet::allow_folder((kSource / "examples").string());  // as --allow-path: the image is outside the file's folder
+  g["images"][0]["uri"] = (kSource / "examples/textured/textures/checker.png").string();
   const int color = g["meshes"][0]["primitives"][0]["attributes"]["COLOR_0"];
   auto refused = [&](const json& file, const std::string& key, const std::string& words) {
     const fs::path p = test::scratch("gltf_colors", "bad.gltf");
@@ -236,7 +237,8 @@ TEST(GltfVertexColours, ExportWritesColor0AndTheImportReadsItBack) {
 // therefore covers what it covers opaque.
 TEST(GltfVertexColours, TheCutOutLeavesTheVertexAlphaOutWithANote) {
   json g = json::parse(read_file(kExample.string()));
-  g["images"][0]["uri"] = (kSource / "examples/textures/checker.png").string();
+  facet::allow_folder((kSource / "examples").string());  // as --allow-path: the image is outside the file's folder
+  g["images"][0]["uri"] = (kSource / "examples/textured/textures/checker.png").string();
   g["materials"][1]["alphaMode"] = "MASK";
   g["materials"][1]["alphaCutoff"] = 0.6;
   const fs::path p = test::scratch("gltf_colors", "masked.gltf");

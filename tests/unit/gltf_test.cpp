@@ -459,7 +459,8 @@ TEST(GltfTextures, AlphaModeMaskIsACutOut) {
   g["materials"][0]["alphaMode"] = "MASK";
   g["materials"][0]["alphaCutoff"] = 0.3;
   std::vector<std::string> notes;
-  Scene s = import_gltf(write_gltf("mask.gltf", g).string(), {}, notes);
+  const fs::path file = write_gltf("mask.gltf", g);
+  Scene s = import_gltf(file.string(), {}, notes);
   const Material& m = s.materials.begin()->second;
   ASSERT_TRUE(m.masked());
   EXPECT_EQ(*m.alpha_cutoff, 0.3);
@@ -472,8 +473,8 @@ TEST(GltfTextures, AlphaModeMaskIsACutOut) {
   Scene t = import_gltf(write_gltf("mask_factor.gltf", g).string(), {}, notes);
   EXPECT_FALSE(t.materials.begin()->second.alpha.texture);
   EXPECT_EQ(t.materials.begin()->second.alpha.number, 0.8);
-  // The material round-trips through facet's own JSON.
-  EXPECT_EQ(to_json(parse_material(to_json(m), "round trip")), to_json(m));
+  // The material round-trips through facet's own JSON (read as a file beside the scene would be).
+  EXPECT_EQ(to_json(parse_material(to_json(m), (file.parent_path() / "round_trip.json").string())), to_json(m));
   g["materials"][0]["alphaMode"] = "BLEND";
   notes.clear();
   Scene b = import_gltf(write_gltf("blend.gltf", g).string(), {}, notes);
@@ -483,22 +484,29 @@ TEST(GltfTextures, AlphaModeMaskIsACutOut) {
   EXPECT_TRUE(noted);
 }
 
-TEST(GltfTextures, ExternalImageIsReferencedWhereItIs) {
-  // "my image.png" beside the glTF, its URI percent-encoded; the scene is written one folder down.
+TEST(GltfTextures, ExternalImageIsReferencedWhereItIsOrCopied) {
+  // "my image.png" beside the glTF, its URI percent-encoded. A scene written in that folder
+  // names it where it is; one written a folder down gets a copy beside it, bytes unchanged,
+  // since a scene names images inside its own folder only (issue 28, catalog/texture.cpp).
   const fs::path folder = scratch("external");
   fs::remove_all(folder);
   fs::create_directories(folder / "out");
   write_file_atomic((folder / "my image.png").string(), small_png());
-  json g = textured_triangle(json::array({{{"uri", "my%20image.png"}}}));
+  json g = textured_triangle(json::array({{{"uri", "my%20image.png"}, {"name", "mine"}}}));
   write_file_atomic((folder / "ext.gltf").string(), g.dump());
-  GltfImportOptions o;
-  o.output = (folder / "out/scene.json").string();
   std::vector<std::string> notes;
   std::vector<GltfImportFile> files;
+  GltfImportOptions o;
+  o.output = (folder / "scene.json").string();
   Scene s = import_gltf((folder / "ext.gltf").string(), o, notes, &files);
-  EXPECT_TRUE(files.empty()) << "an external image is not copied";
-  json written = to_json(s, o.output);
-  EXPECT_EQ(written["materials"]["m"]["diffuse"]["color"]["texture"], "../my image.png");
+  EXPECT_TRUE(files.empty()) << "an external image inside the scene's folder is not copied";
+  EXPECT_EQ(to_json(s, o.output)["materials"]["m"]["diffuse"]["color"]["texture"], "my image.png");
+
+  o.output = (folder / "out/scene.json").string();
+  s = import_gltf((folder / "ext.gltf").string(), o, notes, &files);
+  ASSERT_EQ(files.size(), 1u);
+  EXPECT_EQ(files[0].bytes, small_png());
+  EXPECT_EQ(to_json(s, o.output)["materials"]["m"]["diffuse"]["color"]["texture"], "scene.textures/image0_mine.png");
 }
 
 TEST(GltfTextures, ImportFromMemoryReadsNoExternalImage) {

@@ -167,6 +167,48 @@ void expect_error(const std::string& material, const std::string& key, const std
   }
 }
 
+// A material or scene file names images inside its own folder only (issue 28), like a glTF's
+// URIs: "..", an absolute path and a symbolic link leading out are refused, with one message
+// whether the file named is there or not; a folder allowed (--allow-path) lets it in.
+TEST(Texture, TexturesOutsideTheFilesFolderAreRefused) {
+  const fs::path dir = test::scratch("texture_outside", "");
+  fs::remove_all(dir);
+  fs::create_directories(dir / "inside" / "sub");
+  fs::create_directories(dir / "outside");
+  const fs::path checker = kSource / "examples/textured/textures/checker.png";
+  fs::copy_file(checker, dir / "outside" / "c.png");
+  fs::copy_file(checker, dir / "inside" / "sub" / "c.png");
+  fs::create_symlink(dir / "outside" / "c.png", dir / "inside" / "link.png");
+  const std::string file = (dir / "inside" / "m.json").string();
+  auto message = [&](const std::string& texture) {
+    const nlohmann::json m = {{"diffuse", {{"model", "lambert"}, {"color", {{"texture", texture}}}}}};
+    try {
+      parse_material(m, file);
+    } catch (const InputError& e) {
+      for (const auto& d : e.diagnostics())
+        if (d.path == "diffuse.color.texture" && d.file == file) {
+          std::string said = d.message;
+          for (size_t at; (at = said.find(texture)) != std::string::npos;) said.replace(at, texture.size(), "<name>");
+          return said;
+        }
+      return std::string("another error: ") + e.what();
+    }
+    return std::string("accepted");
+  };
+  const std::string refused = message("../outside/c.png");
+  EXPECT_NE(refused.find("cannot be used"), std::string::npos) << refused;
+  EXPECT_NE(refused.find("--allow-path"), std::string::npos) << refused;
+  EXPECT_EQ(message("../outside/missing.png"), refused);
+  EXPECT_EQ(message((dir / "outside" / "c.png").string()), refused);
+  EXPECT_EQ(message((dir / "outside" / "missing.png").string()), refused);
+  EXPECT_EQ(message("link.png"), refused);
+  EXPECT_EQ(message("/proc/self/environ"), refused);
+  EXPECT_EQ(message("sub/../sub/c.png"), "accepted");  // ".." that stays inside is fine
+  allow_folder((dir / "outside").string());
+  EXPECT_EQ(message((dir / "outside" / "c.png").string()), "accepted");
+  EXPECT_EQ(message("link.png"), "accepted");
+}
+
 TEST(Texture, BadTexturesNameTheFileAndKey) {
   const std::string dir = test::scratch("texture", "").string();
   write_file_atomic((fs::path(dir) / "not_an_image.png").string(), "this is text, not a PNG");

@@ -105,6 +105,25 @@ def code_to(exe, data, name, path, target, library=False, files=None):
         cli.write_all_atomic(os.path.dirname(os.path.abspath(path)), files)
 
 
+def allow_texture_folders(data):
+    """`--allow-path` for each folder the material's absolute texture paths lie in: facet reads
+    a material file's images inside its own folder only, and a material written to a temporary
+    folder names images written elsewhere (blender/operators.py textured_material)."""
+    folders = []
+
+    def walk(node):
+        if isinstance(node, dict):
+            for key, value in node.items():
+                if key == "texture" and isinstance(value, str) and os.path.isabs(value):
+                    folder = os.path.dirname(value)
+                    if folder not in folders:
+                        folders.append(folder)
+                else:
+                    walk(value)
+    walk(data)
+    return [arg for folder in folders for arg in ("--allow-path", folder)]
+
+
 def osl_shader(exe, data, name, scene, scene_name):
     """The OSL shader (text) of the material lit by `scene`'s lights and ambient colour
     (`facet generate --target osl --scene`)."""
@@ -114,6 +133,7 @@ def osl_shader(exe, data, name, scene, scene_name):
         replace[scene_path] = f"scene '{scene_name}'"
         cli.write_atomic(scene_path, cli.dump_json(scene))
         osl_path = os.path.join(tmp, "material.osl")
-        cli.generate_to(exe, osl_path, [temp, "--target", "osl", "--scene", scene_path], replace)
+        cli.generate_to(exe, osl_path, [temp, "--target", "osl", "--scene", scene_path] + allow_texture_folders(data),
+                        replace)
         with open(osl_path, encoding="utf-8") as f:
             return f.read()

@@ -9,7 +9,7 @@ import subprocess
 
 import pytest
 
-from facet_blender.core import UserError, scene, textures
+from facet_blender.core import UserError, generate, scene, textures
 from facet_blender.core.convert import APPROXIMATE, EXACT, IGNORED, map_surface
 from support import read_png
 
@@ -521,11 +521,24 @@ def test_facet_reads_what_apply_writes(facet, tmp_path):
     assert "facet_texture_diffuse_color" in text and "facet_texture_specular_alpha" in text
     absolute = textures.absolute(data, "/x")
     assert absolute["diffuse"]["color"]["texture"] == os.path.join("/x", "checker.png")
+    # Generate OSL's material file, in a folder of its own, names its images where they were
+    # written: facet reads images elsewhere only with --allow-path (issue 28).
+    elsewhere = tmp_path / "elsewhere"
+    elsewhere.mkdir()
+    moved = elsewhere / "m.json"
+    moved.write_text(json.dumps(textures.absolute(data, str(tmp_path))))
+    command = [facet, "generate", str(moved), "--target", "osl", "-o", str(elsewhere / "m.osl")]
+    proc = subprocess.run(command, stderr=subprocess.PIPE, text=True)
+    assert proc.returncode == 1 and "cannot be used" in proc.stderr and "--allow-path" in proc.stderr, proc.stderr
+    allow = generate.allow_texture_folders(textures.absolute(data, str(tmp_path)))
+    assert allow == ["--allow-path", str(tmp_path)]
+    proc = subprocess.run(command + allow, stderr=subprocess.PIPE, text=True)
+    assert proc.returncode == 0, proc.stderr
 
 
 def test_a_material_files_textures_round_trip():
     """split + binding_of_json + apply give back the file's texture objects (uv written out)."""
-    tex_kd = {"texture": "../textures/checker.png", "filter": "nearest", "wrap": "mirror", "factor": 0.8,
+    tex_kd = {"texture": "textures/checker.png", "filter": "nearest", "wrap": "mirror", "factor": 0.8,
               "transform": {"offset": [0.1, 0.2], "scale": [3, 2], "rotation": 0.5}}
     tex_alpha = {"texture": "r16.png", "wrap": ["clamp", "repeat"], "channel": "g", "uv": 1}
     data = {"name": "T", "diffuse": {"model": "lambert", "color": tex_kd},

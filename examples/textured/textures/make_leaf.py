@@ -1,7 +1,7 @@
-"""Writes examples/textures/leaf.png: a 16×16 RGBA image for cut-out materials (glTF's
+"""Writes examples/textured/textures/leaf.png: a 16×16 RGBA image for cut-out materials (glTF's
 alphaMode MASK, facet's "alpha_cutoff"), through numpy and Blender's own image writer:
 
-    .venv/bin/python examples/textures/make_leaf.py
+    .venv/bin/python examples/textured/textures/make_leaf.py
 
 The alpha falls off from the middle as a leaf-shaped distance, so a bilinear lookup crosses
 a cutoff of 0.5 along a smooth curve through many texels, and the colour varies across it
