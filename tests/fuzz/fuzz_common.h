@@ -9,7 +9,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -37,16 +36,19 @@ inline void fail(const char* what, const std::string& why, const std::string& li
   std::abort();
 }
 
+// The lines of `text`, split at \n and at \r (which ends a // comment in GLSL too).
 inline std::vector<std::string> lines_of(const std::string& text) {
-  std::vector<std::string> lines;
-  std::istringstream in(text);
-  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  std::vector<std::string> lines(1);
+  for (char c : text) {
+    if (c == '\n' || c == '\r') lines.emplace_back();
+    else lines.back() += c;
+  }
   return lines;
 }
 
 // A line's code: what precedes its "//" (every target comments with // alone), each run of
-// identifier characters made one "w", so that two lines whose names differ compare equal
-// when the names changed identifiers only.
+// identifier characters made one "w" and white space left out, so that two lines whose names
+// differ compare equal when the names changed identifiers only.
 inline std::string shape_of(const std::string& line) {
   const std::string code = line.substr(0, line.find("//"));
   std::string shape;
@@ -54,6 +56,8 @@ inline std::string shape_of(const std::string& line) {
     if (std::isalnum(static_cast<unsigned char>(code[i])) || code[i] == '_') {
       while (i < code.size() && (std::isalnum(static_cast<unsigned char>(code[i])) || code[i] == '_')) ++i;
       shape += 'w';
+    } else if (std::isspace(static_cast<unsigned char>(code[i]))) {
+      ++i;
     } else {
       shape += code[i++];
     }
@@ -61,33 +65,42 @@ inline std::string shape_of(const std::string& line) {
   return shape;
 }
 
-// The injection oracle (issue 28): `named` is a target's code for a material with a name from
-// the fuzzer, `plain` the same material named "n". The name may change comments (a long one
-// wraps over more comment lines) and identifiers, nothing else: the same lines of code in the
-// same order, each the same but for identifier characters, and no more lines ending in a
-// backslash (which would splice the next line into a comment in every C preprocessor: GLSL,
-// HLSL, OSL).
+// The injection oracle (issue 28): `named` is a target's code for a material or scene with
+// names from the fuzzer, `plain` the same with plain names ("n"). The names may change
+// comments (a long one wraps over more comment lines) and identifiers (a longer one wraps a
+// line of code at another place), nothing else: the same code, token for token, but for
+// identifier characters and line breaks, and no more lines ending in a backslash (which would
+// splice the next line into a comment in every C preprocessor: GLSL, HLSL, OSL).
 inline void same_structure(const char* what, const std::string& named, const std::string& plain) {
-  auto code = [](const std::string& text, std::vector<std::string>& shapes, std::vector<std::string>& lines) {
+  struct Code {
+    std::string shape;                 // every line's shape_of(), one after another
+    std::vector<size_t> line_at;       // the line each character of `shape` came from
+    std::vector<std::string> lines;
     size_t splices = 0;
-    for (const std::string& line : lines_of(text)) {
-      if (!line.empty() && line.back() == '\\') ++splices;
+  };
+  auto code = [](const std::string& text) {
+    Code c;
+    c.lines = lines_of(text);
+    for (size_t k = 0; k < c.lines.size(); ++k) {
+      const std::string& line = c.lines[k];
+      if (!line.empty() && line.back() == '\\') ++c.splices;
       const size_t first = line.find_first_not_of(" \t");
       if (first != std::string::npos && line.compare(first, 2, "//") == 0) continue;  // a comment line
-      shapes.push_back(shape_of(line));
-      lines.push_back(line);
+      const std::string s = shape_of(line);
+      c.shape += s;
+      c.line_at.insert(c.line_at.end(), s.size(), k);
     }
-    return splices;
+    return c;
   };
-  std::vector<std::string> a, b, a_lines, b_lines;
-  const size_t a_splices = code(named, a, a_lines), b_splices = code(plain, b, b_lines);
-  if (a_splices != b_splices) fail(what, "a name ends a line with a backslash", named.substr(0, 2000));
-  if (a.size() != b.size())
-    fail(what, "a name changed the number of lines of code (" + std::to_string(a.size()) + " vs " +
-                   std::to_string(b.size()) + ")",
-         named.substr(0, 2000));
-  for (size_t i = 0; i < a.size(); ++i)
-    if (a[i] != b[i]) fail(what, "a name changed a line of code", a_lines[i] + "\n  instead of\n" + b_lines[i]);
+  const Code a = code(named), b = code(plain);
+  if (a.splices != b.splices) fail(what, "a name ends a line with a backslash", named.substr(0, 2000));
+  size_t i = 0;
+  while (i < a.shape.size() && i < b.shape.size() && a.shape[i] == b.shape[i]) ++i;
+  if (i == a.shape.size() && i == b.shape.size()) return;
+  auto line = [](const Code& c, size_t at) {
+    return c.line_at.empty() ? std::string("(no code)") : c.lines[c.line_at[std::min(at, c.line_at.size() - 1)]];
+  };
+  fail(what, "a name changed the code", line(a, i) + "\n  instead of\n" + line(b, i));
 }
 
 // No non-finite literal reaches code: the words nan, inf and infinity outside comments.

@@ -16,7 +16,8 @@ crash, no collision, nothing left behind.
 5. Collisions: two materials named "a-b" and "a b", and two files p/x.json and q/x.json, in one
    `facet validate`: four images of their own, every one passing.
 6. Concurrency: two `facet render -r pov` of the same material at once (no --workdir) both
-   match the reference; a second `facet validate` on an --out that a first one holds is refused
+   match the reference; two `facet validate` of the same material at once, each with its own
+   --out, both pass with their own images; a second `facet validate` on an --out that a first one holds is refused
    while the first runs, and the first passes.
 7. kill -9: during `facet validate -r pov` (while POV-Ray runs) — no POV-Ray process outlives it
    —, then a rerun passes and leaves no work files, no temporary files, no private work folder;
@@ -310,6 +311,17 @@ def concurrency(facet, work):
         out, err = p.communicate(timeout=300)
         check(p.returncode == 0, f"concurrent render {i + 1} of 2 (same material, no --workdir) matches the reference",
               out[-300:] + err[-300:])
+    # Two validates of the same material at once, each with its own --out: separate, correct results.
+    lambert = os.path.join(REPO, "examples", "materials", "lambert.json")
+    both = [subprocess.Popen([facet, "validate", lambert, "--renderers", "reference,pov", "--scene", "single", "--size",
+                              "64x64", "--out", os.path.join(folder, f"v{i}")], stdout=subprocess.PIPE,
+                             stderr=subprocess.PIPE, text=True) for i in range(2)]
+    for i, p in enumerate(both):
+        o, e = p.communicate(timeout=600)
+        images = glob.glob(os.path.join(folder, f"v{i}", "images", "*_pov.png"))
+        check(p.returncode == 0 and len(images) == 1,
+              f"concurrent validate {i + 1} of 2 (same material, its own --out) passes with its own images",
+              o[-300:] + e[-300:])
     out = os.path.join(folder, "validate")
     first = subprocess.Popen([facet, "validate", "--renderers", "reference,pov", "--scene", "single", "--size",
                               "96x96", "--out", out], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
