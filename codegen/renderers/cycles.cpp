@@ -27,7 +27,9 @@ using nlohmann::json;
 std::string default_python() {
   if (const char* p = std::getenv("FACET_PYTHON"); p && *p) return p;
 #ifdef FACET_DEFAULT_PYTHON
-  if (fs::exists(FACET_DEFAULT_PYTHON)) return FACET_DEFAULT_PYTHON;
+  // Without throwing: a user who may not look into the build's folder gets "python3" (issue 28).
+  std::error_code ec;
+  if (fs::exists(FACET_DEFAULT_PYTHON, ec)) return FACET_DEFAULT_PYTHON;
 #endif
   return "python3";
 }

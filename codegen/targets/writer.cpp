@@ -200,6 +200,16 @@ void wrap_to(std::string& out, std::string_view text, size_t indent, size_t widt
 
 void comment_to(std::string& out, std::string_view text, std::string_view indent, std::string_view marker,
                 size_t width) {
+  // One comment line. A backslash must not end it: in GLSL, HLSL and OSL (C preprocessors) it
+  // would splice the next line, code included, into the comment.
+  auto line_to = [&](std::string_view line) {
+    out.append(indent).append(marker);
+    if (!line.empty()) out.append(" ").append(line);
+    if (!line.empty() && line.back() == '\\') out += "·";  // "\·": a name's backslash at the end
+    out += '\n';
+  };
+  // A space to break at: not after a backslash where another will do.
+  auto fits = [](std::string_view line, size_t cut) { return cut != 0 && line[cut - 1] != '\\'; };
   for (size_t start = 0; start < text.size();) {
     size_t end = text.find('\n', start);
     if (end == std::string_view::npos) end = text.size();
@@ -208,14 +218,16 @@ void comment_to(std::string& out, std::string_view text, std::string_view indent
     // Word-wrapped where a width is asked for and a word boundary allows.
     while (width != 0 && lead + line.size() > width) {
       size_t cut = line.rfind(' ', width - lead);
-      if (cut == std::string_view::npos || cut == 0) cut = line.find(' ', width - lead);
+      while (cut != std::string_view::npos && cut != 0 && !fits(line, cut)) cut = line.rfind(' ', cut - 1);
+      if (cut == std::string_view::npos || cut == 0) {
+        cut = line.find(' ', width - lead);
+        while (cut != std::string_view::npos && !fits(line, cut)) cut = line.find(' ', cut + 1);
+      }
       if (cut == std::string_view::npos) break;
-      out.append(indent).append(marker).append(" ").append(line.substr(0, cut)).append("\n");
+      line_to(line.substr(0, cut));
       line.remove_prefix(cut + 1);
     }
-    out.append(indent).append(marker);
-    if (!line.empty()) out.append(" ").append(line);
-    out += '\n';
+    line_to(line);
     start = end + 1;
   }
 }

@@ -80,7 +80,9 @@ class ExprWriter {
 void wrap_to(std::string& out, std::string_view text, size_t indent, size_t width);
 
 // "// text" lines, one per line of `text` (and, with a width, word-wrapped to it),
-// each with `indent` before it.
+// each with `indent` before it. No line ends in a backslash (a C preprocessor would splice
+// the next line into the comment): lines break elsewhere, and one that ends in a name's
+// backslash gets a "·" after it.
 void comment_to(std::string& out, std::string_view text, std::string_view indent, std::string_view marker = "//",
                 size_t width = 0);
 

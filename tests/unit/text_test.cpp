@@ -3,6 +3,7 @@
 
 #include "catalog/material.h"
 #include "core/text.h"
+#include "targets/writer.h"
 
 namespace facet {
 namespace {
@@ -40,6 +41,21 @@ TEST(Text, LongIdentifiersKeepTheirStartAndAHashOfTheWhole) {
   EXPECT_NE(identifier(a), identifier(b));   // the hash tells them apart
   EXPECT_EQ(identifier(a), identifier(a));   // and is the same every run
   EXPECT_EQ(identifier("gold 2"), "gold_2");  // short names as ever
+}
+
+// A C preprocessor (GLSL, HLSL, OSL) splices the line after a backslash-ended line into a
+// // comment: a name's backslash never ends a comment line, where the words wrap or not.
+TEST(Text, NoCommentLineEndsInABackslash) {
+  const std::string name = "object \"a \\ b\" " + std::string(60, 'x') + " and more words after it";
+  for (size_t width : {0, 20, 40, 50, 80}) {
+    std::string out;
+    targets::comment_to(out, name, "  ", "//", width);
+    targets::comment_to(out, "ends in \\", "", "//", width);
+    for (size_t end = out.find('\n'); end != std::string::npos; end = out.find('\n', end + 1))
+      EXPECT_NE(out[end - 1], '\\') << "width " << width << ":\n" << out;
+    EXPECT_NE(out.find("\\ b"), std::string::npos) << out;  // the name's backslash is still there
+    EXPECT_NE(out.find("ends in \\·"), std::string::npos) << out;
+  }
 }
 
 }  // namespace
