@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "catalog/material.h"
 #include "core/image.h"
 #include "core/io.h"
 
@@ -223,7 +224,14 @@ std::string GltfImages::external_file(int image, const std::string& uri, const s
 
 std::string GltfImages::bake(const std::string& name, int width, int height, int channels,
                              const std::vector<uint16_t>& values) {
-  const std::string file = (fs::path(folder_) / (safe_name(name) + ".png")).string();
+  // Named from the whole name (identifier(): past 64 characters its start and a hash, never
+  // cut short), numbered where two materials' names make one identifier ("a-b", "a b").
+  const std::string base = (fs::path(folder_) / identifier(name)).string();
+  std::string file = base + ".png";
+  auto planned = [&](const std::string& f) {
+    return std::any_of(files_.begin(), files_.end(), [&](const GltfImportFile& p) { return p.path == f; });
+  };
+  for (int k = 2; planned(file); ++k) file = fmt::format("{}_{}.png", base, k);
   std::string bytes = encode_png16(width, height, channels, values, file);
   remember_texels(file, decode_texels(bytes, file));
   files_.push_back({file, std::move(bytes)});
