@@ -37,6 +37,15 @@ std::string safe_name(const std::string& s) {
   return out;
 }
 
+// "image/png" or "image/jpeg" by the file's signature (glTF's core formats), else "".
+std::string mime_of(const std::string& bytes) {
+  if (bytes.compare(0, 8, "\x89PNG\r\n\x1a\n", 8) == 0) return "image/png";
+  if (bytes.size() >= 3 && static_cast<unsigned char>(bytes[0]) == 0xFF && static_cast<unsigned char>(bytes[1]) == 0xD8 &&
+      static_cast<unsigned char>(bytes[2]) == 0xFF)
+    return "image/jpeg";
+  return "";
+}
+
 const char* wrap_name(int gl) {
   switch (gl) {
     case TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE: return "clamp";
@@ -216,7 +225,8 @@ std::string GltfImages::external_file(int image, const std::string& uri, const s
   } catch (const IoError& e) {
     fail(key, fmt::format("images[{}].uri: {}", image, e.what()));
   }
-  const std::string ext = bytes.rfind("\x89PNG", 0) == 0 ? "png" : bytes.rfind("\xFF\xD8", 0) == 0 ? "jpg" : "";
+  const std::string mime = mime_of(bytes);
+  const std::string ext = mime == "image/png" ? "png" : mime == "image/jpeg" ? "jpg" : "";
   if (ext.empty())
     fail(key, fmt::format("images[{}].uri \"{}\" is neither a PNG nor a JPEG file (glTF's core formats)", image, uri));
   return planned_copy(image, ext, bytes, key);
@@ -252,14 +262,6 @@ std::string percent_encoded(const std::string& path) {
       out += fmt::format("%{:02X}", c);
   }
   return out;
-}
-
-std::string mime_of(const std::string& bytes) {
-  if (bytes.compare(0, 8, "\x89PNG\r\n\x1a\n", 8) == 0) return "image/png";
-  if (bytes.size() >= 3 && static_cast<unsigned char>(bytes[0]) == 0xFF && static_cast<unsigned char>(bytes[1]) == 0xD8 &&
-      static_cast<unsigned char>(bytes[2]) == 0xFF)
-    return "image/jpeg";
-  return "";
 }
 
 int gl_wrap(TextureWrap w) {

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <functional>
 #include <filesystem>
+#include <set>
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
@@ -553,6 +554,35 @@ TEST(GltfTextures, MetallicRoughnessMapIsBakedTexelByTexel) {
   bool baked = false;
   for (const auto& n : notes) baked |= n.find("baked GGX α = (roughness·G)²") != std::string::npos;
   EXPECT_TRUE(baked) << "the import says what it baked";
+}
+
+// Each baked image is a file of its own (issue 28): named from the whole material name (a
+// long one was cut at 40 characters, so k_d, f0 and α shared one file), numbered where two
+// names make one identifier ("…-b" and "… b").
+TEST(GltfTextures, BakedImagesNeverShareAFile) {
+  std::vector<uint8_t> rgb(4 * 2 * 3, 128);
+  const std::string mr = encode_png(4, 2, rgb, "mr.png");
+  json g = textured_triangle(json::array({data_uri_image(small_png()), data_uri_image(mr)}), true);
+  const std::string stem(50, 'm');
+  g["materials"][0]["name"] = stem + "-b";
+  json second = g["materials"][0];
+  second["name"] = stem + " b";
+  g["materials"].push_back(second);
+  json mesh = g["meshes"][0];
+  mesh["primitives"][0]["material"] = 1;
+  g["meshes"].push_back(mesh);
+  g["nodes"].push_back({{"mesh", 1}});
+  g["scenes"][0]["nodes"].push_back(int(g["nodes"].size()) - 1);
+  std::vector<std::string> notes;
+  Scene s = import_gltf(write_gltf("baked_names.gltf", g).string(), {}, notes);
+  ASSERT_EQ(s.materials.size(), 2u);
+  std::set<std::string> files;
+  for (const auto& [key, m] : s.materials)
+    for (const Value* v : {&m.specular->at("alpha"), &m.diffuse->at("color"), &m.specular->at("fresnel").model->at("f0")}) {
+      ASSERT_TRUE(v->texture) << key;
+      files.insert(v->texture->path);
+    }
+  EXPECT_EQ(files.size(), 6u) << "two materials, three baked images each";
 }
 
 // normalTexture becomes the normal map (scale its strength, +Y up), emissiveTexture the
