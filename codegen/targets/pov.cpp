@@ -599,7 +599,8 @@ std::string PovScene::native() {
     if (s_.objects[o].type == Object::Type::Mesh) objects += mesh_declarations(o);
   for (size_t o = 0; o < s_.objects.size(); ++o) {
     if (absent(o)) {
-      objects += fmt::format("// object \"{}\" is cut out everywhere (its alpha is below its cutoff)\n", s_.objects[o].name);
+      comment_to(objects, fmt::format("object \"{}\" is cut out everywhere (its alpha is below its cutoff)", s_.objects[o].name),
+                 "", "//", kPovWidth);
       continue;
     }
     const PovShading& sh = shading(o);
