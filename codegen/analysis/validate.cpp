@@ -524,8 +524,20 @@ ValidateResult validate(const ValidateOptions& options, std::ostream& progress) 
   fs::path out = o.out;
   const FolderLock lock(out.string(), "--out");  // two runs on one folder would mix their files
   fs::remove_all(out / "work");  // what an interrupted run left
+  // An earlier run's report goes first: a run that fails (a full disk) leaves no report that
+  // describes other images than the ones in the folder.
+  fs::remove(out / "report.html");
+  fs::remove(out / "metrics.json");
   fs::create_directories(out / "images");
   fs::create_directories(out / "work");
+  // The renderers' files, removed however this ends: done, or failed on a write.
+  struct RemoveWork {
+    fs::path work;
+    ~RemoveWork() {
+      std::error_code ignored;
+      fs::remove_all(work, ignored);
+    }
+  } remove_work{out / "work"};
   const Progress p{progress, o.interactive};
   ValidateResult result;
 
@@ -546,8 +558,7 @@ ValidateResult validate(const ValidateOptions& options, std::ostream& progress) 
   json metrics = json::array();
   for (const auto& r : result.rows) metrics.push_back(row_json(r, o.width, o.height));
   write_file_atomic((out / "metrics.json").string(), metrics.dump(2) + "\n");
-  write_report(out, o, cases, result);
-  fs::remove_all(out / "work");  // the renderers' files; the report has what they said
+  write_report(out, o, cases, result);  // the renderers' files go with remove_work: the report has what they said
   progress << fmt::format("report: {}\n", (out / "report.html").string());
   return result;
 }

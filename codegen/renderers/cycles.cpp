@@ -24,14 +24,20 @@ namespace facet {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-std::string default_python() {
-  if (const char* p = std::getenv("FACET_PYTHON"); p && *p) return p;
-#ifdef FACET_DEFAULT_PYTHON
+std::string choose_python(const char* environment, const char* build_python) {
+  if (environment && *environment) return environment;
   // Without throwing: a user who may not look into the build's folder gets "python3" (issue 28).
   std::error_code ec;
-  if (fs::exists(FACET_DEFAULT_PYTHON, ec)) return FACET_DEFAULT_PYTHON;
-#endif
+  if (build_python && *build_python && fs::exists(build_python, ec)) return build_python;
   return "python3";
+}
+
+std::string default_python() {
+#ifdef FACET_DEFAULT_PYTHON
+  return choose_python(std::getenv("FACET_PYTHON"), FACET_DEFAULT_PYTHON);
+#else
+  return choose_python(std::getenv("FACET_PYTHON"), nullptr);
+#endif
 }
 
 namespace {

@@ -86,7 +86,18 @@ std::string povray_error(const ProcessResult& r) {
   std::istringstream lines(r.output);
   for (std::string line; std::getline(lines, line);)
     if (line.find("Error") != std::string::npos || line.find("error") != std::string::npos) errors += line + " ";
+  // A write that failed (a full disk, a file-size limit) POV-Ray reports only as this line.
+  if (r.output.find("Cannot access data in file") != std::string::npos)
+    errors = "it could not write its image (is the disk full, or a file-size limit reached?): " + errors;
   return fmt::format("povray exited with {}: {}\n{}", r.exit_code, errors, r.output);
+}
+
+// Removes the files in `dir` whose names start with `prefix`: POV-Ray's images, partial where
+// it failed, and the BASE.pov-state it leaves when it stops before the end (a full disk).
+void remove_starting_with(const std::string& dir, const std::string& prefix) {
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(dir, ec))
+    if (entry.path().filename().string().rfind(prefix, 0) == 0) fs::remove(entry.path(), ec);
 }
 
 // The frames BASE_frameN.png by N: POV-Ray numbers them with as many digits as the last one needs.
@@ -155,8 +166,7 @@ RenderOutcome render_pov(const RenderJob& job) {
                            job.max_value, exposure.size(), ratio);
   const int frames = passes * int(exposure.size());
   write_file_atomic((fs::path(dir) / (base + "_harness.pov")).string(), harness(base, passes, exposure));
-  for (const auto& entry : fs::directory_iterator(dir))
-    if (entry.path().filename().string().rfind(base + "_frame", 0) == 0) fs::remove(entry.path());
+  remove_starting_with(dir, base + "_frame");  // an earlier run's frames
 
   ProcessResult r = run_povray({"+I" + base + "_harness.pov", "+O" + base + "_frame.png", fmt::format("+W{}", job.width),
                                  fmt::format("+H{}", job.height), "-A", "+FN16", "+UA", "File_Gamma=1.0", "-D", "+KFI0",
@@ -166,11 +176,13 @@ RenderOutcome render_pov(const RenderJob& job) {
   out.log = r.output;
   if (r.exit_code != 0) {
     out.error = povray_error(r);
+    remove_starting_with(dir, base + "_frame");  // its partial frames and .pov-state, in a --workdir too
     return out;
   }
   std::map<int, std::string> files = frame_files(dir, base, frames);
   if (int(files.size()) != frames) {
     out.error = fmt::format("povray wrote {} of {} frames:\n{}", files.size(), frames, r.output);
+    remove_starting_with(dir, base + "_frame");
     return out;
   }
   combine_frames(job, files, passes, exposure, out);
@@ -190,7 +202,10 @@ SweepCount sweep_pov(const std::string& target, const SweepJob& job, int grid, c
                                  fmt::format("+H{}", grid), "-A", "+FN16", "File_Gamma=1.0", "-D"},
                                 workdir);
   if (r.exit_code != 0) {
-    c.error = fmt::format("povray exited with {}:\n{}", r.exit_code, r.output);
+    c.error = povray_error(r);
+    std::error_code ignored;  // a partial image and the .pov-state POV-Ray leaves when it stops early
+    fs::remove(fs::path(workdir) / (base + ".png"), ignored);
+    fs::remove(fs::path(workdir) / (base + ".pov-state"), ignored);
     return c;
   }
   Image img = read_png((fs::path(workdir) / (base + ".png")).string());

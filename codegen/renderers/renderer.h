@@ -166,5 +166,9 @@ std::unique_ptr<Renderer> make_renderer(const std::string& name, const RendererS
 
 // The Python with bpy: FACET_PYTHON, else the build's .venv, else "python3".
 std::string default_python();
+// default_python()'s choice given the environment's value and the build's path (either may be
+// null): a build path this user cannot look at (no permission, a link loop, a name too long)
+// falls back to "python3" instead of throwing (issue 28).
+std::string choose_python(const char* environment, const char* build_python);
 
 }  // namespace facet

@@ -23,11 +23,20 @@ crash, no collision, nothing left behind.
    —, then a rerun passes and leaves no work files, no temporary files, no private work folder;
    during `facet import-gltf` (while it writes its output) — the rerun removes the temporary
    file the killed run left and writes the scene.
-8. Afterwards $TMPDIR (a folder of this script's own) holds nothing: no run left its work folder.
+8. A full disk, as the file-size limit (`ulimit -f`, SIGXFSZ ignored) makes it: every write past
+   the limit fails with EFBIG as one past the disk's end fails with ENOSPC. At limits that stop
+   facet's own writes and POV-Ray's image: `render -r pov` (with and without --workdir),
+   `validate`, `sweep` and `import-gltf` (whose image is too big) fail with an error naming what
+   could not be written, and leave no partial output, no temporary file, no `.pov-state`, no
+   work folder and no report of a run that did not finish.
+9. Afterwards $TMPDIR (a folder of this script's own) holds nothing: no run left its work folder.
 
 Prints one line per check; exits 1 on any failure.
 """
 import base64
+import random
+import resource
+import zlib
 import glob
 import json
 import os
@@ -385,6 +394,117 @@ def kill_import(facet, work):
     check(not left, "the rerun removed the killed run's temporary file", str(left))
 
 
+def file_size_limited(kib):
+    """For Popen's preexec_fn: files this process (and its children: POV-Ray) writes may not grow
+    past `kib` KiB, and a write past that fails (EFBIG) instead of killing the writer, as a write
+    past a full disk's end fails with ENOSPC."""
+    def limit():
+        signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
+        resource.setrlimit(resource.RLIMIT_FSIZE, (kib * 1024, kib * 1024))
+    return limit
+
+
+def noise_png(path, side):
+    """An RGB PNG of random texels: it does not compress, so its size is about 3·side² bytes."""
+    rng = random.Random(28)
+    raw = b"".join(b"\0" + bytes(rng.getrandbits(8) for _ in range(3 * side)) for _ in range(side))
+
+    def chunk(kind, data):
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
+    with open(path, "wb") as f:
+        f.write(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", side, side, 8, 2, 0, 0, 0)) +
+                chunk(b"IDAT", zlib.compress(raw)) + chunk(b"IEND", b""))
+
+
+def leftovers(*folders):
+    """What a failed run must not leave: temporary files, POV-Ray's state and work folders."""
+    found = []
+    for folder in folders:
+        for root, dirs, files in os.walk(folder):
+            found += [os.path.join(root, n) for n in files if n.startswith(".facet-") or n.endswith(".pov-state")]
+            found += [os.path.join(root, d) for d in dirs if d == "work"]
+    return found
+
+
+def full_disk(facet, work):
+    folder = os.path.join(work, "full_disk")
+    os.makedirs(folder)
+    ward = os.path.join(REPO, "examples", "materials", "ward.json")
+    before = our_tmp_folders()
+
+    def limited(cmd, kib):
+        return subprocess.run(cmd, capture_output=True, text=True, timeout=300, preexec_fn=file_size_limited(kib))
+
+    # render -r pov: at 4 KiB facet's own scene file is too big; at 60 KiB POV-Ray's 128² image.
+    for kib, says in ((4, "cannot write: File too large"), (60, "could not write its image")):
+        for workdir in (None, os.path.join(folder, f"render_work_{kib}")):
+            out = os.path.join(folder, f"render_{kib}_{'workdir' if workdir else 'private'}")
+            os.makedirs(out)
+            cmd = [facet, "render", ward, "-r", "pov", "--size", "128x128", "-o", os.path.join(out, "ward.png")]
+            r = limited(cmd + (["--workdir", workdir] if workdir else []), kib)
+            what = f"render -r pov at {kib} KiB{' with --workdir' if workdir else ''}"
+            check(r.returncode == 1 and says in r.stderr, f"{what}: exit 1, '{says}'", r.stderr[:300])
+            check(os.listdir(out) == [], f"{what}: no output, partial or whole", str(os.listdir(out)))
+            if workdir:
+                frames = [n for n in os.listdir(workdir) if "_frame" in n]
+                check(not frames, f"{what}: no frame nor .pov-state left in the --workdir", str(frames))
+            check(not leftovers(out, *( [workdir] if workdir else [])), f"{what}: no temporary file",
+                  str(leftovers(out)))
+    # The same render without a limit, to show the limits are what stopped it.
+    out = os.path.join(folder, "render_unlimited")
+    os.makedirs(out)
+    r = run([facet, "render", ward, "-r", "pov", "--size", "128x128", "-o", os.path.join(out, "ward.png")])
+    check(r.returncode == 0 and os.listdir(out) == ["ward.png"], "the same render without a limit writes its image",
+          r.stderr[:300])
+
+    # validate: at 20 KiB facet's POV-Ray scene fails (an error: nothing to report); at 60 KiB
+    # POV-Ray's images (a FAIL row saying why, and a report of it).
+    for kib in (20, 60):
+        out = os.path.join(folder, f"validate_{kib}")
+        os.makedirs(os.path.join(out, "images"))
+        with open(os.path.join(out, "report.html"), "w") as f:
+            f.write("an earlier run's report\n")
+        r = limited([facet, "validate", ward, "--renderers", "reference,pov", "--size", "128x128", "--out", out], kib)
+        check(r.returncode == 1, f"validate at {kib} KiB: exit 1", r.stdout[-300:] + r.stderr[-300:])
+        if kib == 20:
+            check("cannot write: File too large" in r.stderr, "validate at 20 KiB: says which file", r.stderr[-300:])
+            check(not os.path.exists(os.path.join(out, "report.html")),
+                  "validate at 20 KiB: no report left of an earlier run", str(os.listdir(out)))
+        else:
+            report = open(os.path.join(out, "report.html")).read() if os.path.exists(
+                os.path.join(out, "report.html")) else ""
+            check("could not write its image" in r.stdout + r.stderr and "could not write its image" in report,
+                  "validate at 60 KiB: POV-Ray's rows FAIL saying it could not write, in the report too",
+                  r.stdout[-400:] + r.stderr[-400:])
+        check(not leftovers(out), f"validate at {kib} KiB: no work folder, temporary file or .pov-state",
+              str(leftovers(out)))
+
+    # sweep -r pov in a --workdir: POV-Ray's 256² image does not fit in 100 KiB.
+    sweep_work = os.path.join(folder, "sweep_work")
+    r = limited([facet, "sweep", ward, "--renderers", "pov", "--workdir", sweep_work], 100)
+    check(r.returncode == 1 and "could not write its image" in r.stdout + r.stderr, "sweep -r pov at 100 KiB: exit 1",
+          r.stdout[-300:] + r.stderr[-300:])
+    left = [n for n in os.listdir(os.path.join(sweep_work, "pov")) if not n.endswith(".pov")]
+    check(not left, "sweep at 100 KiB: no partial image nor .pov-state in the --workdir", str(left))
+
+    # import-gltf: the scene fits, its 200 KiB image does not.
+    source = os.path.join(folder, "gltf")
+    os.makedirs(source)
+    noise_png(os.path.join(source, "noise.png"), 256)
+    gltf = write_json(os.path.join(source, "noise.gltf"), triangle_gltf(image_uri="noise.png"))
+    out = os.path.join(folder, "import")
+    os.makedirs(out)
+    r = limited([facet, "import-gltf", gltf, "-o", os.path.join(out, "scene.json")], 64)
+    check(r.returncode == 1 and "File too large" in r.stderr and "noise" in r.stderr,
+          "import-gltf at 64 KiB: exit 1 naming the image that did not fit", r.stderr[-300:])
+    check(os.listdir(out) == [], "import-gltf at 64 KiB: no scene, no image folder, no temporary file",
+          str(os.listdir(out)))
+    r = run([facet, "import-gltf", gltf, "-o", os.path.join(out, "scene.json")])
+    check(r.returncode == 0, "the same import without a limit writes the scene", r.stderr[-300:])
+    check(not (our_tmp_folders() - before), "no private work folder left by the runs on a full disk",
+          str(our_tmp_folders() - before))
+
+
 def main():
     facet, work = os.path.abspath(sys.argv[1]), os.path.abspath(sys.argv[2])
     shutil.rmtree(work, ignore_errors=True)
@@ -393,7 +513,8 @@ def main():
     # program's (a test running beside this one) can be mistaken for one of them.
     os.environ["TMPDIR"] = os.path.join(work, "tmp")
     os.makedirs(os.environ["TMPDIR"])
-    for step in (uris, texture_paths, not_files, depth_and_size, validate_out, collisions, concurrency, kill_validate, kill_import):
+    for step in (uris, texture_paths, not_files, depth_and_size, validate_out, collisions, concurrency, kill_validate, kill_import,
+                 full_disk):
         print(f"== {step.__name__}", flush=True)
         step(facet, work)
     left = os.listdir(os.environ["TMPDIR"])

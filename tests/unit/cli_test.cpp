@@ -370,6 +370,29 @@ TEST(Cli, RenderWithARendererThatCannotRunSaysWhy) {
   EXPECT_NE(r.output.find("error: Cycles: cannot run /nonexistent/python3"), std::string::npos) << r.output;
 }
 
+// The build's Python path that this user cannot look at (a folder without permission, or, as
+// here whoever runs the test, a link loop or a name too long: stat fails with something other
+// than "not found") is passed over for "python3", never thrown out of `facet render -r
+// reference` (issue 28). FACET_PYTHON still wins.
+TEST(Cli, ABuildPythonThatCannotBeLookedAtFallsBackToPython3) {
+  fs::path dir = scratch("python_loop");
+  fs::create_directories(dir);
+  fs::remove(dir / "loop");
+  fs::create_symlink("loop", dir / "loop");
+  const std::string looped = (dir / "loop" / "bin" / "python").string();
+  std::error_code ec;
+  EXPECT_FALSE(fs::exists(looped, ec));
+  ASSERT_TRUE(ec) << "stat of a path through a link loop should fail with ELOOP";
+  EXPECT_THROW((void)fs::exists(looped), fs::filesystem_error) << "the throwing form is what crashed before";
+  EXPECT_EQ(choose_python(nullptr, looped.c_str()), "python3");
+  const std::string too_long = "/" + std::string(5000, 'p') + "/python";
+  EXPECT_EQ(choose_python("", too_long.c_str()), "python3");
+  EXPECT_EQ(choose_python("/opt/bpy/python", looped.c_str()), "/opt/bpy/python");
+  const std::string present = kFacet;  // any file that is there
+  EXPECT_EQ(choose_python(nullptr, present.c_str()), present);
+  EXPECT_EQ(choose_python(nullptr, nullptr), "python3");
+}
+
 TEST(Cli, UnknownTargetIsAUsageError) {
   ProcessResult r = facet({"generate", (kSource / "examples/materials/lambert.json").string(), "--target", "metal"});
   EXPECT_NE(r.exit_code, 0);
