@@ -269,6 +269,8 @@ void mark_texturable(std::vector<ModelDef>& all) {
     for (auto& p : m.params) {
       // Toon's width 0 selects the hard step when the code is generated: it stays a number.
       if (m.name == "toon" && p.name == "width") continue;
+      // gltf_pbr needs max(specular_color) in closed form (catalog/specular.cpp).
+      if (m.name == "gltf_pbr" && p.name == "specular_color") continue;
       p.texturable = p.kind == ParamKind::Number || p.kind == ParamKind::Color;
     }
   }

@@ -264,6 +264,11 @@ struct ModelDef {
   // the given values, for the metallic–roughness fallback of a glTF export
   // (roughnessFactor = √α). Null: no equivalent; the export takes α = 1.
   std::function<double(const ModelSpec& lobe)> ggx_alpha;
+  // Specular lobes: the lobe is glTF's own BRDF (Appendix B with KHR_materials_ior and
+  // KHR_materials_specular), its parameters glTF's: base_color, metallic, roughness, ior,
+  // specular, specular_color. The glTF import writes it; the export writes its factors,
+  // maps and extensions back as they are.
+  bool gltf_brdf = false;
   // Fresnel terms: the reflectance at normal incidence F(0) as a colour, where the
   // term states it. glTF's metallic workflow takes it as a conductor's base colour:
   // a specular-only material whose Fresnel term has it exports as a metal.
@@ -337,6 +342,8 @@ class LobeContext {
   // microfacet lobes as a visibility term instead (terms::visibility_smith_ggx).
   ir::Expr geometry();
   const std::string& lobe() const { return lobe_; }
+  // The material's values, for constants derived from them in closed form.
+  const ModelSpec& spec() const { return spec_; }
 
  private:
   const ModelSpec& spec_;
@@ -382,6 +389,16 @@ ir::FunctionPtr microfacet(ir::Type F);
 // Smith GGX as the visibility G / (4 (n·l)(n·v)), and ρ = π D V F (n·l) with it.
 ir::FunctionPtr visibility_smith_ggx();
 ir::FunctionPtr microfacet_visibility(ir::Type F);
+// The height-correlated Smith GGX visibility of glTF 2.0 Appendix B.
+ir::FunctionPtr visibility_smith_ggx_correlated();
+// The layering operators (catalog section "layering"): fresnel_w = (1 − |v·h|)^5; Schlick's
+// F with a free f90; fresnel_mix, conductor_fresnel and mix as glTF 2.0 Appendix B and
+// KHR_materials_specular define them.
+ir::FunctionPtr fresnel_weight();
+ir::FunctionPtr fresnel_schlick_f90();
+ir::FunctionPtr fresnel_mix();
+ir::FunctionPtr conductor_fresnel();
+ir::FunctionPtr mix_by();
 ir::FunctionPtr blinn(ir::Type F);
 ir::FunctionPtr ward();
 ir::FunctionPtr ward_nvidia();

@@ -1,14 +1,16 @@
 // Specular models (ρ_s) of MODELS.md: the classic lobes, the microfacet
 // family, Blinn's Trowbridge–Reitz model and Ward's anisotropic model.
+#include <algorithm>
 #include <cmath>
 
 #include "catalog/catalog_internal.h"
+#include "core/vec.h"
 
 namespace facet::catalog_detail {
 
 namespace {
 
-const std::vector<std::string> kGeometries = {"none", "v_cavity", "smith_ggx"};
+const std::vector<std::string> kGeometries = {"none", "v_cavity", "smith_ggx", "smith_ggx_correlated"};
 
 ParamDef approximation_param() {
   return choice("approximation",
@@ -17,8 +19,10 @@ ParamDef approximation_param() {
 }
 
 ParamDef geometry_param(const std::string& fallback) {
-  return choice("geometry", "masking-shadowing term G; smith_ggx uses the lobe's roughness as α", kGeometries,
-                fallback);
+  return choice("geometry",
+                "masking-shadowing term G; smith_ggx (separable) and smith_ggx_correlated (height-correlated, "
+                "glTF's) use the lobe's roughness as α",
+                kGeometries, fallback);
 }
 
 // x^n, or Schlick's rational approximation of it when the material asks.
@@ -33,8 +37,11 @@ ir::Expr power(LobeContext& c, const ir::FunctionPtr& exact_form, std::vector<ir
 // the same product without the factors that cancel.
 ir::Expr microfacet(LobeContext& c, const ir::Expr& D, const ir::Expr& alpha) {
   ir::Expr d = c.let("D", D);
-  if (c.choice("geometry") == "smith_ggx") {
-    ir::Expr v = c.let("V", ir::call(terms::visibility_smith_ggx(), {c.NoL(), c.NoV(), alpha}));
+  const std::string& geometry = c.choice("geometry");
+  if (geometry == "smith_ggx" || geometry == "smith_ggx_correlated") {
+    ir::Expr v = c.let("V", ir::call(geometry == "smith_ggx" ? terms::visibility_smith_ggx()
+                                                      : terms::visibility_smith_ggx_correlated(),
+                                     {c.NoL(), c.NoV(), alpha}));
     ir::Expr f = c.let("F", c.fresnel());
     return ir::call(terms::microfacet_visibility(f.type()), {d, v, f, c.NoL()});
   }
@@ -243,6 +250,74 @@ void add_specular(std::vector<ModelDef>& all) {
     m.physics_note = "symmetric; Smith G1 is exact for GGX facets and G = G1(l) G1(v) ≤ G1(l), so with F ≤ 1 the "
                      "albedo is ≤ 1 (Walter et al. 2007; Heitz 2014); energy of multiple scattering is lost";
     m.ggx_alpha = alpha_is("alpha");
+    add_lobe_params(m);
+    all.push_back(m);
+  }
+  {
+    ModelDef m;
+    m.section = "specular";
+    m.name = "gltf_pbr";
+    m.title = "glTF metallic–roughness";
+    m.citation = "The Khronos Group, \"glTF 2.0 Specification\", Appendix B \"BRDF Implementation\"; "
+                 "KHR_materials_ior; KHR_materials_specular";
+    m.formula = "ρ = π f (n·l), f = mix(fresnel_mix(F, diffuse, specular_brdf), conductor_fresnel(base_color, "
+                "specular_brdf), metallic); specular_brdf = V D, GGX D, height-correlated Smith V, α = roughness²; "
+                "F = f0 + (specular − f0)(1 − |v·h|)^5, f0 = min(((ior − 1)/(ior + 1))² specular_color, 1) specular";
+    m.doc = "The whole BRDF a glTF file's material means, diffuse included, as its specification writes it: a "
+            "dielectric (a Lambert base under a GGX layer, the base weighted by 1 − max(F)) and a metal (the GGX "
+            "lobe tinted by the base colour's Schlick Fresnel), mixed by metallic. ior and specular / specular_color "
+            "are KHR_materials_ior and KHR_materials_specular; their defaults (1.5, 1, white) give the core "
+            "specification's f0 = 0.04. Write it as the material's specular lobe, alone.";
+    // The glTF defaults (glTF 2.0 §3.9.2 "Metallic-Roughness Material"; the extensions' READMEs).
+    m.params = {
+        color("base_color", "baseColorFactor: the diffuse colour of a dielectric, f0 of a metal", Range::closed(0, 1),
+              {1, 1, 1}),
+        number("metallic", "metallicFactor: 0 a dielectric, 1 a metal, mixed between", Range::closed(0, 1), 1,
+               false),
+        number("roughness",
+               "roughnessFactor; α = roughness², at least 1e-3 (α = 0 is a delta the specification says to clamp)",
+               Range::closed(0, 1), 1, false),
+        number("ior", "KHR_materials_ior: f0 = ((ior − 1)/(ior + 1))² (0 gives f0 = 1, as the extension allows)",
+               Range::closed(0, kScalarMax), 1.5, false),
+        number("specular", "KHR_materials_specular specularFactor: f90 of the dielectric, and a factor of its f0",
+               Range::closed(0, 1), 1, false),
+        color("specular_color", "KHR_materials_specular specularColorFactor: the dielectric f0's colour (not an image)",
+              Range::color(), {1, 1, 1})};
+    m.cycles = approximate("principled_bsdf: its dielectric is energy-compensated, not Appendix B's fresnel_mix");
+    m.pov = none(kMicrofacetPov);
+    m.blender_nodes = nodes_none("not built yet: the Principled BSDF mapping is issue 29's Blender part");
+    m.build = [](LobeContext& c) {
+      // glTF 2.0 Appendix B, "Metal BRDF and Dielectric BRDF", with KHR_materials_specular's
+      // dielectric_f0 / f90 and KHR_materials_ior's f0 ("Interaction with other extensions").
+      ir::Expr base = c.number("base_color"), specular = c.number("specular");
+      ir::Expr alpha = c.let("alpha", ir::max(ir::sq(c.number("roughness")), kRoughnessMin));
+      ir::Expr D = c.let("D", ir::call(terms::distribution_ggx(), {c.NoH(), alpha}));
+      ir::Expr V = c.let("V", ir::call(terms::visibility_smith_ggx_correlated(), {c.NoL(), c.NoV(), alpha}));
+      ir::Expr layer = c.let("specular_brdf", kPi * D * V * c.NoL());  // ρ of specular_brdf(α)
+      ir::Expr w = c.let("w", ir::call(terms::fresnel_weight(), {c.VoH()}));  // fresnel_w
+      ir::Expr ior = c.number("ior");
+      ir::Expr f0_ior = c.let("f0_ior", ir::sq((ior - 1.0) / (ior + 1.0)));
+      ir::Expr f0 = c.let("dielectric_f0", ir::min(f0_ior * c.number("specular_color"), ir::color(1, 1, 1)) * specular);
+      ir::Expr F = c.let("dielectric_fresnel", ir::call(terms::fresnel_schlick_f90(), {f0, specular, w}));
+      // max(F) in closed form: F = f0 (1 − w) + f90 w with 1 − w ≥ 0 is largest where f0 is, and
+      // max(min(a c, 1)) = min(a max(c), 1) for a ≥ 0: so specular_color must be a constant.
+      const std::array<double, 3>& tint = c.spec().at("specular_color").rgb;
+      ir::Expr tint_max = ir::constant(c.lobe() + "_specular_color_max", std::max({tint[0], tint[1], tint[2]}));
+      ir::Expr F_max = c.let("dielectric_fresnel_max", ir::min(f0_ior * tint_max, 1.0) * specular * (1.0 - w) + specular * w);
+      ir::Expr dielectric =
+          c.let("dielectric_brdf", ir::call(terms::fresnel_mix(), {F, F_max, layer, base * c.NoL()}));
+      ir::Expr metal = c.let("metal_brdf", ir::call(terms::conductor_fresnel(), {base, w, layer}));
+      return ir::call(terms::mix_by(), {dielectric, metal, c.number("metallic")});
+    };
+    m.reciprocal = true;
+    m.physics_note = "symmetric: D, V and F (of v·h = l·h) are, and so is the diffuse weight 1 − max(F); the "
+                     "specification says fresnel_mix is not energy conserving (Appendix B, \"Coupling Diffuse and "
+                     "Specular Reflection\"), and single-scattering GGX loses energy, so no bound is claimed";
+    m.gltf_brdf = true;
+    m.ggx_alpha = [](const ModelSpec& s) {
+      const double r = s.at("roughness").number;
+      return std::max(r * r, kRoughnessMin);
+    };
     add_lobe_params(m);
     all.push_back(m);
   }

@@ -249,6 +249,81 @@ FunctionPtr visibility_smith_ggx() {
 
 FunctionPtr fresnel_schlick(Type f0) { return typed<fresnel_schlick_form>(f0); }
 
+FunctionPtr visibility_smith_ggx_correlated() {
+  static const FunctionPtr f = [] {
+    FunctionBuilder fb("V_smith_ggx_correlated",
+                       "Heitz 2014, height-correlated Smith for GGX, as glTF 2.0 Appendix B \"Specular BRDF\" "
+                       "writes it: V = G / (4 |n·l| |n·v|) = 1 / (2 (|n·v| s_l + |n·l| s_v)), "
+                       "s_x = √(α² + (1−α²)x²)",
+                       "χ⁺(h·l) χ⁺(h·v) is 1: h bisects l and v, so h·l = h·v > 0 wherever the horizon rule\n"
+                       "lets the lobe be seen. s_x² is summed as α²·max(1 − x², 0) + x², as in V_smith_ggx.");
+    Expr NoL = fb.param("NoL"), NoV = fb.param("NoV"), alpha = fb.param("alpha");
+    Expr a2 = fb.let("a2", alpha * alpha);
+    Expr sl = fb.let("s_l", sqrt(a2 * max(1.0 - NoL * NoL, 0.0) + NoL * NoL));
+    Expr sv = fb.let("s_v", sqrt(a2 * max(1.0 - NoV * NoV, 0.0) + NoV * NoV));
+    return fb.returns(0.5 / (NoV * sl + NoL * sv));
+  }();
+  return f;
+}
+
+FunctionPtr fresnel_weight() {
+  static const FunctionPtr f = [] {
+    FunctionBuilder fb("fresnel_w",
+                       "glTF 2.0 Appendix B \"Fresnel\" (Schlick 1994): fresnel_w = (1 − |v·h|)^5, the weight "
+                       "of f90 against f0",
+                       "The base is clamped at 0 (v·h a hair above 1).");
+    Expr VoH = fb.param("VoH");
+    return fb.returns(pow(pos(1.0 - abs(VoH)), 5.0));
+  }();
+  return f;
+}
+
+FunctionPtr fresnel_schlick_f90() {
+  static const FunctionPtr f = [] {
+    FunctionBuilder fb("F_schlick_f90",
+                       "KHR_materials_specular, \"Implementation\": F = f0 + (f90 − f0) fresnel_w, "
+                       "mix(f0, f90, fresnel_w) (Schlick 1994 with f90 free)");
+    Expr f0 = fb.param("f0", Type::Color), f90 = fb.param("f90"), w = fb.param("w");
+    return fb.returns(f0 + (f90 - f0) * w);
+  }();
+  return f;
+}
+
+FunctionPtr fresnel_mix() {
+  static const FunctionPtr f = [] {
+    FunctionBuilder fb("fresnel_mix",
+                       "glTF 2.0 Appendix B \"Fresnel\" and KHR_materials_specular, \"Implementation\": "
+                       "F ⊗ layer + (1 − max(F)) base, the base (diffuse) weighted by what the layer "
+                       "(specular) does not reflect",
+                       "F_max is max(F.r, F.g, F.b), passed in: the material knows it in closed form.");
+    Expr F = fb.param("F", Type::Color), F_max = fb.param("F_max"), layer = fb.param("layer");
+    Expr base = fb.param("base", Type::Color);
+    return fb.returns(F * layer + (1.0 - F_max) * base);
+  }();
+  return f;
+}
+
+FunctionPtr conductor_fresnel() {
+  static const FunctionPtr f = [] {
+    FunctionBuilder fb("conductor_fresnel",
+                       "glTF 2.0 Appendix B \"Fresnel\": bsdf ⊗ (f0 + (1 − f0) fresnel_w), a metal's tint");
+    Expr f0 = fb.param("f0", Type::Color), w = fb.param("w"), bsdf = fb.param("bsdf");
+    return fb.returns(bsdf * (f0 + (1.0 - f0) * w));
+  }();
+  return f;
+}
+
+FunctionPtr mix_by() {
+  static const FunctionPtr f = [] {
+    FunctionBuilder fb("mix_by",
+                       "glTF 2.0 Appendix B \"General\": mix(a, b, t) = (1 − t) a + t b, the metallic blend "
+                       "of the dielectric and the metal");
+    Expr a = fb.param("a", Type::Color), b = fb.param("b", Type::Color), t = fb.param("t");
+    return fb.returns((1.0 - t) * a + t * b);
+  }();
+  return f;
+}
+
 FunctionPtr fresnel_exact() {
   static const FunctionPtr f = [] {
     FunctionBuilder fb("F_exact",

@@ -54,6 +54,13 @@ void add_terms(std::vector<ModelDef>& all) {
   all.push_back(entry("geometry", "smith_ggx", "Smith GGX, separable", "Walter et al. 2007, after Smith 1967",
                       "G = G1(n·l) G1(n·v), G1(x) = 2x/(x + √(α² + (1−α²)x²))",
                       "Uncorrelated masking and shadowing for the GGX distribution; α is the lobe's roughness."));
+  all.push_back(entry("geometry", "smith_ggx_correlated", "Smith GGX, height-correlated",
+                      "Heitz 2014, \"Understanding the Masking-Shadowing Function in Microfacet-Based BRDFs\"; "
+                      "glTF 2.0 Appendix B, \"Specular BRDF\"",
+                      "V = G/(4 (n·l)(n·v)) = 1/(2((n·v)√(α² + (1−α²)(n·l)²) + (n·l)√(α² + (1−α²)(n·v)²)))",
+                      "Masking and shadowing correlated by the height of the facet: the form glTF's BRDF uses. "
+                      "Never darker than the separable form, which counts a facet high enough to be seen "
+                      "and lit twice."));
   // Distributions
   all.push_back(entry("distribution", "beckmann", "Beckmann distribution", "Beckmann & Spizzichino 1963",
                       "D = exp(−tan²θ_h/m²)/(π m² cos⁴θ_h)", "Gaussian facet slopes of RMS m."));
@@ -62,6 +69,20 @@ void add_terms(std::vector<ModelDef>& all) {
                       "Ellipsoidal facets; a longer tail than Beckmann."));
   all.push_back(entry("distribution", "trowbridge_reitz", "Trowbridge–Reitz, Blinn's form",
                       "Blinn 1977", "D = (c²/((n·h)²(c²−1)+1))²", "Unnormalized; c is the eccentricity."));
+  // Layering operators: how a material combines lobes, each weighted by what another does
+  // not reflect (glTF 2.0 Appendix B, "Material Structure"). Their functions are in terms::.
+  all.push_back(entry("layering", "fresnel_mix", "Fresnel mix",
+                      "glTF 2.0 Appendix B, \"Fresnel\"; KHR_materials_specular, \"Implementation\"",
+                      "fresnel_mix(F, base, layer) = F ⊗ layer + (1 − max(F)) base, "
+                      "F = f0 + (f90 − f0)(1 − |v·h|)^5",
+                      "A specular layer over a diffuse base: the base gets the light the layer's Fresnel term "
+                      "does not reflect. With a grey f0 and f90 = 1 it is Appendix B's mix(base, layer, F)."));
+  all.push_back(entry("layering", "conductor_fresnel", "Conductor Fresnel", "glTF 2.0 Appendix B, \"Fresnel\"",
+                      "conductor_fresnel(f0, bsdf) = bsdf ⊗ (f0 + (1 − f0)(1 − |v·h|)^5)",
+                      "A metal: the specular lobe tinted by Schlick's Fresnel term of the base colour."));
+  all.push_back(entry("layering", "mix", "Mix", "glTF 2.0 Appendix B, \"General\"",
+                      "mix(a, b, t) = (1 − t) a + t b",
+                      "Two materials blended by a weight: glTF's dielectric and metal by `metallic`."));
   // Modifiers
   {
     auto m = entry("modifier", "toon", "Toon", "Lake et al. 2000, \"Stylized Rendering Techniques for Scalable Real-Time 3D Animation\"",

@@ -362,7 +362,7 @@ std::string index_page(const std::vector<Material>& ms, const DocsOptions& o, co
 std::string terms_page() {
   const std::vector<std::pair<std::string, std::string>> sections = {
       {"fresnel", "Fresnel terms (F)"},      {"geometry", "Masking and shadowing (G)"},
-      {"distribution", "Facet distributions (D)"}, {"modifier", "Modifiers"},
+      {"distribution", "Facet distributions (D)"}, {"layering", "Layering operators"}, {"modifier", "Modifiers"},
       {"term", "Ambient and emission"},      {"light", "Lights"},
       {"attenuation", "Attenuation laws"}};
   std::string b = "<h1>Terms, lights and attenuation</h1>\n<p>The parts the lobes are built from and the scene's "

@@ -777,13 +777,97 @@ class Exporter {
     return int(model_.accessors.size() - 1);
   }
 
+  // A texture `t` exactly as a glTF textureInfo: an image (no vertex colour, no offset) in
+  // `colorspace`, of channel `channel`; else false, and why in `why`.
+  bool texture_as_gltf(const TextureRef& t, const char* channel, const char* colorspace, tinygltf::TextureInfo& info,
+                       std::string& why) {
+    if (!t.has_image() || t.vertex_color || t.bias != RGB{0, 0, 0}) {
+      why = "a vertex colour or an offset";
+      return false;
+    }
+    if (t.channel != channel || t.colorspace != colorspace) {
+      why = fmt::format("channel {} in {} where glTF reads {} in {}", t.channel, t.colorspace, channel, colorspace);
+      return false;
+    }
+    images_.texture_info(t, info, used_);
+    return true;
+  }
+
+  // glTF's own BRDF (ModelDef::gltf_brdf) written back as glTF: pbrMetallicRoughness's factors
+  // and maps, KHR_materials_ior and KHR_materials_specular (glTF 2.0 §3.9.2; the extensions'
+  // READMEs). False, with a note, where the lobe holds what glTF cannot say (a colour k_s, toon,
+  // a metallic and a roughness map that are not one image's B and G, …): the fallback then.
+  bool gltf_brdf(const std::string& key, const Material& m, tinygltf::Material& g) {
+    if (m.diffuse || !m.specular || !m.specular->def->gltf_brdf) return false;
+    const ModelSpec& s = *m.specular;
+    std::string why;
+    auto give_up = [&](const std::string& what) {
+      notes_.push_back(fmt::format("materials.{}: glTF cannot say {} of its gltf_pbr lobe; the metallic–roughness "
+                                   "core is approximate (FACET_material carries the material)",
+                                   key, what));
+      return false;
+    };
+    if (s.at("color").texture || s.at("color").rgb != RGB{1, 1, 1}) return give_up("the colour k_s");
+    if (s.values.count("toon") && s.at("toon").model) return give_up("the toon modifier");
+    auto& pbr = g.pbrMetallicRoughness;
+    const Value& base = s.at("base_color");
+    pbr.baseColorFactor = {base.rgb[0], base.rgb[1], base.rgb[2], 1.0};
+    if (base.texture && !texture_as_gltf(*base.texture, "rgb", "srgb", pbr.baseColorTexture, why))
+      return give_up("the base colour's map (" + why + ")");
+    const Value &metal = s.at("metallic"), &rough = s.at("roughness");
+    pbr.metallicFactor = metal.number;
+    pbr.roughnessFactor = rough.number;
+    if (metal.texture || rough.texture) {
+      // One image's B (metallic) and G (roughness): the same file, sampler, set and transform.
+      const bool one = metal.texture && rough.texture && metal.texture->path == rough.texture->path &&
+                       metal.texture->uv == rough.texture->uv && metal.texture->sampler.filter == rough.texture->sampler.filter &&
+                       metal.texture->sampler.wrap == rough.texture->sampler.wrap &&
+                       metal.texture->offset == rough.texture->offset && metal.texture->scale == rough.texture->scale &&
+                       metal.texture->rotation == rough.texture->rotation;
+      if (!one) return give_up("metallic and roughness maps that are not one image's B and G");
+      const TextureRef& r = *rough.texture;
+      if (r.channel != "g" || r.colorspace != "linear" || r.vertex_color || r.bias != RGB{0, 0, 0})
+        return give_up("a roughness map other than the image's G, linear");
+      if (!texture_as_gltf(*metal.texture, "b", "linear", pbr.metallicRoughnessTexture, why))
+        return give_up("the metallic map (" + why + ")");
+    }
+    if (s.at("ior").number != 1.5 || s.at("ior").texture) {
+      if (s.at("ior").texture) return give_up("an ior map");
+      tinygltf::Value::Object ior;
+      ior["ior"] = tinygltf::Value(s.at("ior").number);
+      g.extensions["KHR_materials_ior"] = tinygltf::Value(ior);
+      used_.insert("KHR_materials_ior");
+    }
+    const Value &specular = s.at("specular"), &tint = s.at("specular_color");
+    if (specular.texture || specular.number != 1 || tint.rgb != RGB{1, 1, 1}) {
+      tinygltf::Value::Object ext;
+      ext["specularFactor"] = tinygltf::Value(specular.number);
+      ext["specularColorFactor"] = tinygltf::Value(tinygltf::Value::Array{
+          tinygltf::Value(tint.rgb[0]), tinygltf::Value(tint.rgb[1]), tinygltf::Value(tint.rgb[2])});
+      if (specular.texture) {
+        tinygltf::TextureInfo info;
+        if (!texture_as_gltf(*specular.texture, "a", "linear", info, why)) return give_up("the specular map (" + why + ")");
+        tinygltf::Value::Object t;
+        t["index"] = tinygltf::Value(info.index);
+        t["texCoord"] = tinygltf::Value(info.texCoord);
+        if (!info.extensions.empty()) t["extensions"] = tinygltf::Value(info.extensions);
+        ext["specularTexture"] = tinygltf::Value(t);
+      }
+      g.extensions["KHR_materials_specular"] = tinygltf::Value(ext);
+      used_.insert("KHR_materials_specular");
+    }
+    g.emissiveFactor = {std::clamp(m.emission[0], 0.0, 1.0), std::clamp(m.emission[1], 0.0, 1.0),
+                        std::clamp(m.emission[2], 0.0, 1.0)};
+    return true;
+  }
+
   // The full facet description (FACET_material, its images as the glTF's: "images" maps
   // each file name it uses to one) beside the metallic–roughness fallback, whose base
   // colour is the diffuse colour's map where that is an sRGB colour map.
   void add_material(const std::string& key, const Material& m) {
     tinygltf::Material g;
     g.name = key;
-    fallback_pbr(m, g);
+    if (!gltf_brdf(key, m, g)) fallback_pbr(m, g);
     json images = json::object();
     json own = {{"material", images_.material_images(to_json(m), images)}};
     if (!images.empty()) own["images"] = images;

@@ -229,6 +229,45 @@ TEST(Gltf, MetallicRoughnessMapsOntoGgx) {
   EXPECT_TRUE(told) << "the approximate dielectric diffuse is reported";
 }
 
+// glTF's own BRDF goes out as glTF says it: the factors, the metallic–roughness map (one
+// image's B and G), KHR_materials_ior and KHR_materials_specular (with specularTexture's A).
+TEST(Gltf, GltfBrdfExportsAsItsFactorsMapsAndExtensions) {
+  const fs::path folder = scratch("gltf_brdf_export");
+  fs::remove_all(folder);
+  fs::create_directories(folder / "textures");
+  fs::copy_file(kSource / "examples/textured/textures/leaf.png", folder / "textures/leaf.png");
+  const json lobe = {{"model", "gltf_pbr"},
+                     {"base_color", {{"texture", "textures/leaf.png"}, {"colorspace", "srgb"}, {"factor", {0.9, 0.8, 0.7}}}},
+                     {"metallic", {{"texture", "textures/leaf.png"}, {"channel", "b"}, {"factor", 0.6}}},
+                     {"roughness", {{"texture", "textures/leaf.png"}, {"channel", "g"}, {"factor", 0.7}}},
+                     {"ior", 1.8},
+                     {"specular", {{"texture", "textures/leaf.png"}, {"channel", "a"}, {"factor", 0.9}}},
+                     {"specular_color", {1.0, 0.5, 0.25}}};
+  write_file_atomic((folder / "m.json").string(), json{{"name", "painted"}, {"specular", lobe}}.dump());
+  const Material m = load_material((folder / "m.json").string());
+  const std::string out = (folder / "out.gltf").string();
+  std::vector<std::string> notes;
+  export_gltf(load_scene("single"), &m, out, notes);
+  json doc = json::parse(read_file(out));
+  json& g = doc["materials"][0];
+  const json& pbr = g["pbrMetallicRoughness"];
+  EXPECT_EQ(pbr["baseColorFactor"], json::array({0.9, 0.8, 0.7, 1.0}));
+  EXPECT_EQ(pbr["metallicFactor"], 0.6);
+  EXPECT_EQ(pbr["roughnessFactor"], 0.7);
+  EXPECT_TRUE(pbr.contains("baseColorTexture") && pbr.contains("metallicRoughnessTexture")) << pbr.dump();
+  EXPECT_EQ(g["extensions"]["KHR_materials_ior"]["ior"], 1.8);
+  EXPECT_EQ(g["extensions"]["KHR_materials_specular"]["specularFactor"], 0.9);
+  EXPECT_EQ(g["extensions"]["KHR_materials_specular"]["specularColorFactor"], json::array({1.0, 0.5, 0.25}));
+  EXPECT_TRUE(g["extensions"]["KHR_materials_specular"].contains("specularTexture"));
+  for (const char* used : {"KHR_materials_ior", "KHR_materials_specular"})
+    EXPECT_NE(std::find(doc["extensionsUsed"].begin(), doc["extensionsUsed"].end(), used), doc["extensionsUsed"].end())
+        << used;
+  for (const auto& n : notes) EXPECT_EQ(n.find("approximate"), std::string::npos) << n;
+  // FACET_material carries the lobe itself: the round trip through facet is exact.
+  Scene back = import_gltf(out, {}, notes);
+  EXPECT_EQ(to_json(back.materials.begin()->second)["specular"], to_json(m)["specular"]);
+}
+
 TEST(Gltf, ExportFallbackIsTheNearestMetallicRoughness) {
   // What viewers without FACET_material show. A conductor (no diffuse, a Fresnel
   // term that states f0) is a metal of base colour f0; roughness is √α.
