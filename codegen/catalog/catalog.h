@@ -393,12 +393,12 @@ ir::FunctionPtr microfacet_visibility(ir::Type F);
 ir::FunctionPtr visibility_smith_ggx_correlated();
 // The layering operators (catalog section "layering"): fresnel_w = (1 − |v·h|)^5; Schlick's
 // F with a free f90; fresnel_mix, conductor_fresnel and mix as glTF 2.0 Appendix B and
-// KHR_materials_specular define them.
+// KHR_materials_specular define them. A grey F keeps them scalar (fresnel_mix's max(F) is F).
 ir::FunctionPtr fresnel_weight();
-ir::FunctionPtr fresnel_schlick_f90();
-ir::FunctionPtr fresnel_mix();
-ir::FunctionPtr conductor_fresnel();
-ir::FunctionPtr mix_by();
+ir::FunctionPtr fresnel_schlick_f90(ir::Type f0);
+ir::FunctionPtr fresnel_mix(ir::Type F, ir::Type base);
+ir::FunctionPtr conductor_fresnel(ir::Type f0);
+ir::FunctionPtr mix_by(ir::Type type);
 ir::FunctionPtr blinn(ir::Type F);
 ir::FunctionPtr ward();
 ir::FunctionPtr ward_nvidia();

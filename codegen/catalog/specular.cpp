@@ -260,23 +260,28 @@ void add_specular(std::vector<ModelDef>& all) {
     m.title = "glTF metallic–roughness";
     m.citation = "The Khronos Group, \"glTF 2.0 Specification\", Appendix B \"BRDF Implementation\"; "
                  "KHR_materials_ior; KHR_materials_specular";
-    m.formula = "ρ = π f (n·l), f = mix(fresnel_mix(F, diffuse, specular_brdf), conductor_fresnel(base_color, "
-                "specular_brdf), metallic); specular_brdf = V D, GGX D, height-correlated Smith V, α = roughness²; "
-                "F = f0 + (specular − f0)(1 − |v·h|)^5, f0 = min(((ior − 1)/(ior + 1))² specular_color, 1) specular";
+    // Short words: the add-on's panel wraps the formula at 27 characters (220 px) and keeps words whole.
+    m.formula = "ρ = π f (n·l), f = (1 − metallic) dielectric + metallic metal, dielectric = F S + (1 − max F) "
+                "base_color/π, metal = S (base_color + (1 − base_color) w), S = D V (GGX, height-correlated "
+                "Smith, α = roughness²), F = f0 + (specular − f0) w, w = (1 − |v·h|)^5, f0 = min(F0(ior) "
+                "specular_color, 1) specular, F0(ior) = ((ior − 1)/(ior + 1))²";
     m.doc = "The whole BRDF a glTF file's material means, diffuse included, as its specification writes it: a "
             "dielectric (a Lambert base under a GGX layer, the base weighted by 1 − max(F)) and a metal (the GGX "
             "lobe tinted by the base colour's Schlick Fresnel), mixed by metallic. ior and specular / specular_color "
             "are KHR_materials_ior and KHR_materials_specular; their defaults (1.5, 1, white) give the core "
             "specification's f0 = 0.04. Write it as the material's specular lobe, alone.";
-    // The glTF defaults (glTF 2.0 §3.9.2 "Metallic-Roughness Material"; the extensions' READMEs).
+    // Defaults: Blender's Principled BSDF's (a grey dielectric, roughness 0.5), not glTF's white
+    // rough metal (1, 1, 1), which the import writes out whenever a file leaves them out; the
+    // extensions' defaults are their READMEs'.
     m.params = {
-        color("base_color", "baseColorFactor: the diffuse colour of a dielectric, f0 of a metal", Range::closed(0, 1),
-              {1, 1, 1}),
-        number("metallic", "metallicFactor: 0 a dielectric, 1 a metal, mixed between", Range::closed(0, 1), 1,
-               false),
+        color("base_color", "baseColorFactor: the diffuse colour of a dielectric, f0 of a metal (glTF's default 1)",
+              Range::closed(0, 1), {0.8, 0.8, 0.8}),
+        number("metallic", "metallicFactor: 0 a dielectric, 1 a metal, mixed between (glTF's default 1)",
+               Range::closed(0, 1), 0, false),
         number("roughness",
-               "roughnessFactor; α = roughness², at least 1e-3 (α = 0 is a delta the specification says to clamp)",
-               Range::closed(0, 1), 1, false),
+               "roughnessFactor; α = roughness², at least 1e-3 (α = 0 is a delta the specification says to clamp; "
+               "glTF's default 1)",
+               Range::closed(0, 1), 0.5, false),
         number("ior", "KHR_materials_ior: f0 = ((ior − 1)/(ior + 1))² (0 gives f0 = 1, as the extension allows)",
                Range::closed(0, kScalarMax), 1.5, false),
         number("specular", "KHR_materials_specular specularFactor: f90 of the dielectric, and a factor of its f0",
@@ -289,25 +294,55 @@ void add_specular(std::vector<ModelDef>& all) {
     m.build = [](LobeContext& c) {
       // glTF 2.0 Appendix B, "Metal BRDF and Dielectric BRDF", with KHR_materials_specular's
       // dielectric_f0 / f90 and KHR_materials_ior's f0 ("Interaction with other extensions").
-      ir::Expr base = c.number("base_color"), specular = c.number("specular");
-      ir::Expr alpha = c.let("alpha", ir::max(ir::sq(c.number("roughness")), kRoughnessMin));
+      // A grey base colour (and specular_color) keeps the lobe one number until k_s ⊗ ρ.
+      ir::Expr base = c.parameter(c.spec(), "base_color", c.lobe() + "_base_color", true);
+      ir::Expr specular = c.number("specular");
+      // α = roughness², floored: a constant where roughness is a number, else computed where it shades.
+      const double roughness = c.spec().at("roughness").number;
+      ir::Expr alpha = c.textured(c.spec(), "roughness")
+                           ? c.let("alpha", ir::max(ir::sq(c.number("roughness")), kRoughnessMin))
+                           : ir::constant(c.lobe() + "_alpha", std::max(roughness * roughness, kRoughnessMin));
       ir::Expr D = c.let("D", ir::call(terms::distribution_ggx(), {c.NoH(), alpha}));
       ir::Expr V = c.let("V", ir::call(terms::visibility_smith_ggx_correlated(), {c.NoL(), c.NoV(), alpha}));
       ir::Expr layer = c.let("specular_brdf", kPi * D * V * c.NoL());  // ρ of specular_brdf(α)
-      ir::Expr w = c.let("w", ir::call(terms::fresnel_weight(), {c.VoH()}));  // fresnel_w
+      // fresnel_w takes |v·h| itself (Appendix B): v·h unclamped.
+      ir::Expr w = c.let("w", ir::call(terms::fresnel_weight(), {c.input(Input::VoH)}));
+      // metallic 0 or 1 as a number (most materials): the other side of the mix is weighted 0
+      // and left out of the code (it is finite, so (1 − t) a + t b is the one side exactly).
+      const bool textured_metal = c.textured(c.spec(), "metallic");
+      const double metallic = c.spec().at("metallic").number;
+      ir::Expr metal = 0.0, dielectric = 0.0;
+      if (textured_metal || metallic > 0)
+        metal = c.let("metal_brdf", ir::call(terms::conductor_fresnel(base.type()), {base, w, layer}));
+      if (!textured_metal && metallic == 1) return metal;
       ir::Expr ior = c.number("ior");
       ir::Expr f0_ior = c.let("f0_ior", ir::sq((ior - 1.0) / (ior + 1.0)));
-      ir::Expr f0 = c.let("dielectric_f0", ir::min(f0_ior * c.number("specular_color"), ir::color(1, 1, 1)) * specular);
-      ir::Expr F = c.let("dielectric_fresnel", ir::call(terms::fresnel_schlick_f90(), {f0, specular, w}));
-      // max(F) in closed form: F = f0 (1 − w) + f90 w with 1 − w ≥ 0 is largest where f0 is, and
-      // max(min(a c, 1)) = min(a max(c), 1) for a ≥ 0: so specular_color must be a constant.
+      // A grey specular_color (the default) keeps F one number, its own max.
       const std::array<double, 3>& tint = c.spec().at("specular_color").rgb;
-      ir::Expr tint_max = ir::constant(c.lobe() + "_specular_color_max", std::max({tint[0], tint[1], tint[2]}));
-      ir::Expr F_max = c.let("dielectric_fresnel_max", ir::min(f0_ior * tint_max, 1.0) * specular * (1.0 - w) + specular * w);
-      ir::Expr dielectric =
-          c.let("dielectric_brdf", ir::call(terms::fresnel_mix(), {F, F_max, layer, base * c.NoL()}));
-      ir::Expr metal = c.let("metal_brdf", ir::call(terms::conductor_fresnel(), {base, w, layer}));
-      return ir::call(terms::mix_by(), {dielectric, metal, c.number("metallic")});
+      const bool grey = tint[0] == tint[1] && tint[1] == tint[2];
+      ir::Expr color = c.parameter(c.spec(), "specular_color", c.lobe() + "_specular_color", true);
+      ir::Expr f0 = c.let("dielectric_f0", ir::min(f0_ior * color, grey ? ir::Expr(1.0) : ir::color(1, 1, 1)) * specular);
+      ir::Expr F = c.let("dielectric_fresnel", ir::call(terms::fresnel_schlick_f90(f0.type()), {f0, specular, w}));
+      if (grey) {
+        dielectric =
+            c.let("dielectric_brdf", ir::call(terms::fresnel_mix(F.type(), base.type()), {F, layer, base * c.NoL()}));
+      } else {
+        // max(F) in closed form: F = f0 (1 − w) + f90 w with 1 − w ≥ 0 is largest where f0 is,
+        // and max(min(a c, 1)) = min(a max(c), 1) for a ≥ 0: so specular_color must be a constant.
+        ir::Expr tint_max = ir::constant(c.lobe() + "_specular_color_max", std::max({tint[0], tint[1], tint[2]}));
+        ir::Expr F_max =
+            c.let("dielectric_fresnel_max", ir::min(f0_ior * tint_max, 1.0) * specular * (1.0 - w) + specular * w);
+        dielectric =
+            c.let("dielectric_brdf",
+                  ir::call(terms::fresnel_mix(F.type(), base.type()), {F, F_max, layer, base * c.NoL()}));
+      }
+      if (!textured_metal && metallic == 0) return dielectric;
+      // The two sides as one type: a grey one as a colour where the other is coloured.
+      if (dielectric.type() != metal.type()) {
+        if (dielectric.type() == ir::Type::Float) dielectric = dielectric * ir::color(1, 1, 1);
+        else metal = metal * ir::color(1, 1, 1);
+      }
+      return ir::call(terms::mix_by(metal.type()), {dielectric, metal, c.number("metallic")});
     };
     m.reciprocal = true;
     m.physics_note = "symmetric: D, V and F (of v·h = l·h) are, and so is the diffuse weight 1 − max(F); the "

@@ -278,51 +278,57 @@ FunctionPtr fresnel_weight() {
   return f;
 }
 
-FunctionPtr fresnel_schlick_f90() {
-  static const FunctionPtr f = [] {
-    FunctionBuilder fb("F_schlick_f90",
-                       "KHR_materials_specular, \"Implementation\": F = f0 + (f90 − f0) fresnel_w, "
-                       "mix(f0, f90, fresnel_w) (Schlick 1994 with f90 free)");
-    Expr f0 = fb.param("f0", Type::Color), f90 = fb.param("f90"), w = fb.param("w");
-    return fb.returns(f0 + (f90 - f0) * w);
-  }();
-  return f;
+namespace {
+FunctionPtr fresnel_schlick_f90_form(Type type) {
+  FunctionBuilder fb(type == Type::Float ? "F_schlick_f90" : "F_schlick_f90_rgb",
+                     "KHR_materials_specular, \"Implementation\": F = f0 + (f90 − f0) fresnel_w, "
+                     "mix(f0, f90, fresnel_w) (Schlick 1994 with f90 free)");
+  Expr f0 = fb.param("f0", type), f90 = fb.param("f90"), w = fb.param("w");
+  return fb.returns(f0 + (f90 - f0) * w);
 }
 
-FunctionPtr fresnel_mix() {
-  static const FunctionPtr f = [] {
-    FunctionBuilder fb("fresnel_mix",
-                       "glTF 2.0 Appendix B \"Fresnel\" and KHR_materials_specular, \"Implementation\": "
-                       "F ⊗ layer + (1 − max(F)) base, the base (diffuse) weighted by what the layer "
-                       "(specular) does not reflect",
-                       "F_max is max(F.r, F.g, F.b), passed in: the material knows it in closed form.");
-    Expr F = fb.param("F", Type::Color), F_max = fb.param("F_max"), layer = fb.param("layer");
-    Expr base = fb.param("base", Type::Color);
-    return fb.returns(F * layer + (1.0 - F_max) * base);
-  }();
-  return f;
+// A grey F is its own max: F_max is then F. A grey base keeps the result one number.
+FunctionPtr fresnel_mix_form(Type F_type, Type base_type) {
+  const bool grey = F_type == Type::Float;
+  FunctionBuilder fb(std::string("fresnel_mix") + (grey ? "" : "_rgb") + (base_type == Type::Float ? "" : "_base_rgb"),
+                     "glTF 2.0 Appendix B \"Fresnel\" and KHR_materials_specular, \"Implementation\": "
+                     "F ⊗ layer + (1 − max(F)) base, the base (diffuse) weighted by what the layer "
+                     "(specular) does not reflect",
+                     grey ? "F is grey: max(F) is F."
+                          : "F_max is max(F.r, F.g, F.b), passed in: the material knows it in closed form.");
+  Expr F = fb.param("F", F_type);
+  Expr F_max = grey ? F : fb.param("F_max");
+  Expr layer = fb.param("layer"), base = fb.param("base", base_type);
+  return fb.returns(F * layer + (1.0 - F_max) * base);
 }
 
-FunctionPtr conductor_fresnel() {
-  static const FunctionPtr f = [] {
-    FunctionBuilder fb("conductor_fresnel",
-                       "glTF 2.0 Appendix B \"Fresnel\": bsdf ⊗ (f0 + (1 − f0) fresnel_w), a metal's tint");
-    Expr f0 = fb.param("f0", Type::Color), w = fb.param("w"), bsdf = fb.param("bsdf");
-    return fb.returns(bsdf * (f0 + (1.0 - f0) * w));
-  }();
-  return f;
+FunctionPtr conductor_fresnel_form(Type type) {
+  FunctionBuilder fb(type == Type::Float ? "conductor_fresnel" : "conductor_fresnel_rgb",
+                     "glTF 2.0 Appendix B \"Fresnel\": bsdf ⊗ (f0 + (1 − f0) fresnel_w), a metal's tint");
+  Expr f0 = fb.param("f0", type), w = fb.param("w"), bsdf = fb.param("bsdf");
+  return fb.returns(bsdf * (f0 + (1.0 - f0) * w));
 }
 
-FunctionPtr mix_by() {
-  static const FunctionPtr f = [] {
-    FunctionBuilder fb("mix_by",
-                       "glTF 2.0 Appendix B \"General\": mix(a, b, t) = (1 − t) a + t b, the metallic blend "
-                       "of the dielectric and the metal");
-    Expr a = fb.param("a", Type::Color), b = fb.param("b", Type::Color), t = fb.param("t");
-    return fb.returns((1.0 - t) * a + t * b);
-  }();
-  return f;
+FunctionPtr mix_by_form(Type type) {
+  FunctionBuilder fb(type == Type::Float ? "mix_by" : "mix_by_rgb",
+                     "glTF 2.0 Appendix B \"General\": mix(a, b, t) = (1 − t) a + t b, the metallic blend "
+                     "of the dielectric and the metal");
+  Expr a = fb.param("a", type), b = fb.param("b", type), t = fb.param("t");
+  return fb.returns((1.0 - t) * a + t * b);
 }
+}  // namespace
+
+FunctionPtr fresnel_schlick_f90(Type f0) { return typed<fresnel_schlick_f90_form>(f0); }
+
+FunctionPtr fresnel_mix(Type F, Type base) {
+  static const FunctionPtr f[2][2] = {{fresnel_mix_form(Type::Float, Type::Float), fresnel_mix_form(Type::Float, Type::Color)},
+                                      {fresnel_mix_form(Type::Color, Type::Float), fresnel_mix_form(Type::Color, Type::Color)}};
+  return f[F == Type::Color][base == Type::Color];
+}
+
+FunctionPtr conductor_fresnel(Type f0) { return typed<conductor_fresnel_form>(f0); }
+
+FunctionPtr mix_by(Type type) { return typed<mix_by_form>(type); }
 
 FunctionPtr fresnel_exact() {
   static const FunctionPtr f = [] {

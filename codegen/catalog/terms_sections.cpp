@@ -26,6 +26,25 @@ ModelDef entry(std::string section, std::string name, std::string title, std::st
 }
 }  // namespace
 
+namespace {
+// Layering operators: how a material combines lobes, each weighted by what another does
+// not reflect (glTF 2.0 Appendix B, "Material Structure"). Their functions are in terms::.
+void add_layering_operators(std::vector<ModelDef>& all) {
+  all.push_back(entry("layering", "fresnel_mix", "Fresnel mix",
+                      "glTF 2.0 Appendix B, \"Fresnel\"; KHR_materials_specular, \"Implementation\"",
+                      "fresnel_mix(F, base, layer) = F ⊗ layer + (1 − max(F)) base, "
+                      "F = f0 + (f90 − f0)(1 − |v·h|)^5",
+                      "A specular layer over a diffuse base: the base gets the light the layer's Fresnel term "
+                      "does not reflect. With a grey f0 and f90 = 1 it is Appendix B's mix(base, layer, F)."));
+  all.push_back(entry("layering", "conductor_fresnel", "Conductor Fresnel", "glTF 2.0 Appendix B, \"Fresnel\"",
+                      "conductor_fresnel(f0, bsdf) = bsdf ⊗ (f0 + (1 − f0)(1 − |v·h|)^5)",
+                      "A metal: the specular lobe tinted by Schlick's Fresnel term of the base colour."));
+  all.push_back(entry("layering", "mix", "Mix", "glTF 2.0 Appendix B, \"General\"",
+                      "mix(a, b, t) = (1 − t) a + t b",
+                      "Two materials blended by a weight: glTF's dielectric and metal by `metallic`."));
+}
+}  // namespace
+
 void add_terms(std::vector<ModelDef>& all) {
   // Fresnel
   all.push_back(entry("fresnel", "none", "No Fresnel", "", "F = 1", "Reflection independent of angle."));
@@ -69,20 +88,7 @@ void add_terms(std::vector<ModelDef>& all) {
                       "Ellipsoidal facets; a longer tail than Beckmann."));
   all.push_back(entry("distribution", "trowbridge_reitz", "Trowbridge–Reitz, Blinn's form",
                       "Blinn 1977", "D = (c²/((n·h)²(c²−1)+1))²", "Unnormalized; c is the eccentricity."));
-  // Layering operators: how a material combines lobes, each weighted by what another does
-  // not reflect (glTF 2.0 Appendix B, "Material Structure"). Their functions are in terms::.
-  all.push_back(entry("layering", "fresnel_mix", "Fresnel mix",
-                      "glTF 2.0 Appendix B, \"Fresnel\"; KHR_materials_specular, \"Implementation\"",
-                      "fresnel_mix(F, base, layer) = F ⊗ layer + (1 − max(F)) base, "
-                      "F = f0 + (f90 − f0)(1 − |v·h|)^5",
-                      "A specular layer over a diffuse base: the base gets the light the layer's Fresnel term "
-                      "does not reflect. With a grey f0 and f90 = 1 it is Appendix B's mix(base, layer, F)."));
-  all.push_back(entry("layering", "conductor_fresnel", "Conductor Fresnel", "glTF 2.0 Appendix B, \"Fresnel\"",
-                      "conductor_fresnel(f0, bsdf) = bsdf ⊗ (f0 + (1 − f0)(1 − |v·h|)^5)",
-                      "A metal: the specular lobe tinted by Schlick's Fresnel term of the base colour."));
-  all.push_back(entry("layering", "mix", "Mix", "glTF 2.0 Appendix B, \"General\"",
-                      "mix(a, b, t) = (1 − t) a + t b",
-                      "Two materials blended by a weight: glTF's dielectric and metal by `metallic`."));
+  add_layering_operators(all);
   // Modifiers
   {
     auto m = entry("modifier", "toon", "Toon", "Lake et al. 2000, \"Stylized Rendering Techniques for Scalable Real-Time 3D Animation\"",
