@@ -266,8 +266,8 @@ struct ModelDef {
   std::function<double(const ModelSpec& lobe)> ggx_alpha;
   // Specular lobes: the lobe is glTF's own BRDF (Appendix B with KHR_materials_ior and
   // KHR_materials_specular), its parameters glTF's: base_color, metallic, roughness, ior,
-  // specular, specular_color. The glTF import writes it; the export writes its factors,
-  // maps and extensions back as they are.
+  // specular, specular_color. The export writes its factors, maps and extensions as they
+  // are (the import moves to it with the Blender add-on's Principled mapping: issue 29).
   bool gltf_brdf = false;
   // Fresnel terms: the reflectance at normal incidence F(0) as a colour, where the
   // term states it. glTF's metallic workflow takes it as a conductor's base colour:
