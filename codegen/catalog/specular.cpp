@@ -271,8 +271,8 @@ void add_specular(std::vector<ModelDef>& all) {
             "are KHR_materials_ior and KHR_materials_specular; their defaults (1.5, 1, white) give the core "
             "specification's f0 = 0.04. Write it as the material's specular lobe, alone.";
     // Defaults: Blender's Principled BSDF's (a grey dielectric, roughness 0.5), not glTF's white
-    // rough metal (1, 1, 1), which the import writes out whenever a file leaves them out; the
-    // extensions' defaults are their READMEs'.
+    // rough metal (1, 1, 1), which a glTF import states for a file that leaves its factors out;
+    // the extensions' defaults are their READMEs'.
     m.params = {
         color("base_color", "baseColorFactor: the diffuse colour of a dielectric, f0 of a metal (glTF's default 1)",
               Range::closed(0, 1), {0.8, 0.8, 0.8}),
