@@ -15,6 +15,7 @@
 //    values to 0, which would turn 0/0 into NaN where the numerator underflowed
 //    first. The floor only bites for roughness below about 1e-15.
 #include <cmath>
+#include <utility>
 
 #include "catalog/catalog.h"
 #include "core/vec.h"
@@ -226,6 +227,15 @@ FunctionPtr fresnel_schlick_form(Type type) {
   Expr f0 = fb.param("f0", type), VoH = fb.param("VoH");
   return fb.returns(f0 + (1.0 - f0) * pow(pos(1.0 - VoH), 5.0));
 }
+
+// Smith's s_l and s_v for GGX, s_x = √(α² + (1 − α²)x²), both visibility forms' lets: s_x² summed
+// as α²·max(1 − x², 0) + x² (see V_smith_ggx's note).
+std::pair<Expr, Expr> smith_roots(FunctionBuilder& fb, const Expr& NoL, const Expr& NoV, const Expr& alpha) {
+  Expr a2 = fb.let("a2", alpha * alpha);
+  Expr sl = fb.let("s_l", sqrt(a2 * max(1.0 - NoL * NoL, 0.0) + NoL * NoL));
+  Expr sv = fb.let("s_v", sqrt(a2 * max(1.0 - NoV * NoV, 0.0) + NoV * NoV));
+  return {sl, sv};
+}
 }  // namespace
 
 FunctionPtr visibility_smith_ggx() {
@@ -239,9 +249,7 @@ FunctionPtr visibility_smith_ggx() {
                        "terms ≥ 0: α² + (1 − α²)x² cancels at x ≈ 1 for large α (α = 1e4: 1e8 − 1e8 in\n"
                        "float32), and SwiftShader rounded it below 0, a NaN under the root.");
     Expr NoL = fb.param("NoL"), NoV = fb.param("NoV"), alpha = fb.param("alpha");
-    Expr a2 = fb.let("a2", alpha * alpha);
-    Expr sl = fb.let("s_l", sqrt(a2 * max(1.0 - NoL * NoL, 0.0) + NoL * NoL));
-    Expr sv = fb.let("s_v", sqrt(a2 * max(1.0 - NoV * NoV, 0.0) + NoV * NoV));
+    const auto [sl, sv] = smith_roots(fb, NoL, NoV, alpha);
     return fb.returns(1.0 / ((NoL + sl) * (NoV + sv)));
   }();
   return f;
@@ -258,9 +266,7 @@ FunctionPtr visibility_smith_ggx_correlated() {
                        "χ⁺(h·l) χ⁺(h·v) is 1: h bisects l and v, so h·l = h·v > 0 wherever the horizon rule\n"
                        "lets the lobe be seen. s_x² is summed as α²·max(1 − x², 0) + x², as in V_smith_ggx.");
     Expr NoL = fb.param("NoL"), NoV = fb.param("NoV"), alpha = fb.param("alpha");
-    Expr a2 = fb.let("a2", alpha * alpha);
-    Expr sl = fb.let("s_l", sqrt(a2 * max(1.0 - NoL * NoL, 0.0) + NoL * NoL));
-    Expr sv = fb.let("s_v", sqrt(a2 * max(1.0 - NoV * NoV, 0.0) + NoV * NoV));
+    const auto [sl, sv] = smith_roots(fb, NoL, NoV, alpha);
     return fb.returns(0.5 / (NoV * sl + NoL * sv));
   }();
   return f;

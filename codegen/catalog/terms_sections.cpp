@@ -24,9 +24,7 @@ ModelDef entry(std::string section, std::string name, std::string title, std::st
   m.doc = std::move(doc);
   return m;
 }
-}  // namespace
 
-namespace {
 // Layering operators: how a material combines lobes, each weighted by what another does
 // not reflect (glTF 2.0 Appendix B, "Material Structure"). Their functions are in terms::.
 void add_layering_operators(std::vector<ModelDef>& all) {

@@ -78,6 +78,11 @@ tinygltf::Value value_of(const json& j) {
   }
 }
 
+// glTF's emissiveFactor of `m`: its emission, each channel at most 1 (FACET_material keeps more).
+std::vector<double> clamped_emission(const Material& m) {
+  return {std::clamp(m.emission[0], 0.0, 1.0), std::clamp(m.emission[1], 0.0, 1.0), std::clamp(m.emission[2], 0.0, 1.0)};
+}
+
 // The nearest metallic–roughness material, from what the catalog says of the
 // lobes: the specular lobe's equivalent GGX α (roughness = √α; α = 1 where it has
 // none) and, for a material without diffuse whose Fresnel term states F(0), a
@@ -100,8 +105,7 @@ void fallback_pbr(const Material& m, tinygltf::Material& g) {
   g.pbrMetallicRoughness.baseColorFactor = {base[0], base[1], base[2], 1.0};
   g.pbrMetallicRoughness.metallicFactor = metal;
   g.pbrMetallicRoughness.roughnessFactor = std::clamp(std::sqrt(alpha), 0.0, 1.0);
-  g.emissiveFactor = {std::clamp(m.emission[0], 0.0, 1.0), std::clamp(m.emission[1], 0.0, 1.0),
-                      std::clamp(m.emission[2], 0.0, 1.0)};
+  g.emissiveFactor = clamped_emission(m);
 }
 
 // A sphere as a UV mesh (the analytic definition travels in FACET_object).
@@ -777,62 +781,63 @@ class Exporter {
     return int(model_.accessors.size() - 1);
   }
 
-  // A texture `t` exactly as a glTF textureInfo: an image (no vertex colour, no offset) in
-  // `colorspace`, of channel `channel`; else false, and why in `why`.
-  bool texture_as_gltf(const TextureRef& t, const char* channel, const char* colorspace, tinygltf::TextureInfo& info,
-                       std::string& why) {
-    if (!t.has_image() || t.vertex_color || t.bias != RGB{0, 0, 0}) {
-      why = "a vertex colour or an offset";
-      return false;
-    }
-    if (t.channel != channel || t.colorspace != colorspace) {
-      why = fmt::format("channel {} in {} where glTF reads {} in {}", t.channel, t.colorspace, channel, colorspace);
-      return false;
-    }
-    images_.texture_info(t, info, used_);
-    return true;
+  // Why the texture `t` is no glTF textureInfo of channel `channel` in `colorspace` (a vertex
+  // colour, an offset, another channel or colour space); "" where it is one.
+  static std::string gltf_texture_unsaid(const TextureRef& t, const char* channel, const char* colorspace) {
+    if (!t.has_image() || t.vertex_color || t.bias != RGB{0, 0, 0}) return "a vertex colour or an offset";
+    if (t.channel != channel || t.colorspace != colorspace)
+      return fmt::format("channel {} in {} where glTF reads {} in {}", t.channel, t.colorspace, channel, colorspace);
+    return "";
   }
 
-  // glTF's own BRDF (ModelDef::gltf_brdf) written back as glTF: pbrMetallicRoughness's factors
-  // and maps, KHR_materials_ior and KHR_materials_specular (glTF 2.0 §3.9.2; the extensions'
-  // READMEs). False, with a note, where the lobe holds what glTF cannot say (a colour k_s, toon,
-  // a metallic and a roughness map that are not one image's B and G, …): the fallback then.
+  // What of glTF's own BRDF (ModelDef::gltf_brdf) glTF cannot say — a colour k_s, toon, maps
+  // glTF does not read that way, metallic and roughness maps that are not one image's B and G,
+  // an ior map —, or "" where it says all of it. Decided before anything is written.
+  static std::string gltf_brdf_unsaid(const ModelSpec& s) {
+    if (s.at("color").texture || s.at("color").rgb != RGB{1, 1, 1}) return "the colour k_s";
+    if (s.values.count("toon") && s.at("toon").model) return "the toon modifier";
+    if (s.at("ior").texture) return "an ior map";
+    auto map = [](const Value& v, const char* channel, const char* colorspace, const char* what) {
+      const std::string why = v.texture ? gltf_texture_unsaid(*v.texture, channel, colorspace) : "";
+      return why.empty() ? why : fmt::format("the {} map ({})", what, why);
+    };
+    const Value &metal = s.at("metallic"), &rough = s.at("roughness");
+    for (const std::string& why : {map(s.at("base_color"), "rgb", "srgb", "base colour"),
+                                   map(metal, "b", "linear", "metallic"), map(rough, "g", "linear", "roughness"),
+                                   map(s.at("specular"), "a", "linear", "specular")})
+      if (!why.empty()) return why;
+    if (!metal.texture && !rough.texture) return "";
+    // One image's B (metallic) and G (roughness): the same file, sampler, set and transform.
+    const bool one = metal.texture && rough.texture && metal.texture->path == rough.texture->path &&
+                     metal.texture->uv == rough.texture->uv &&
+                     metal.texture->sampler.filter == rough.texture->sampler.filter &&
+                     metal.texture->sampler.wrap == rough.texture->sampler.wrap &&
+                     metal.texture->offset == rough.texture->offset && metal.texture->scale == rough.texture->scale &&
+                     metal.texture->rotation == rough.texture->rotation;
+    return one ? "" : "metallic and roughness maps that are not one image's B and G";
+  }
+
+  // glTF's own BRDF written back as glTF: pbrMetallicRoughness's factors and maps,
+  // KHR_materials_ior and KHR_materials_specular (glTF 2.0 §3.9.2; the extensions' READMEs).
+  // False, with a note and nothing written, where the lobe holds what glTF cannot say: the
+  // fallback then.
   bool gltf_brdf(const std::string& key, const Material& m, tinygltf::Material& g) {
     if (m.diffuse || !m.specular || !m.specular->def->gltf_brdf) return false;
     const ModelSpec& s = *m.specular;
-    std::string why;
-    auto give_up = [&](const std::string& what) {
+    if (const std::string why = gltf_brdf_unsaid(s); !why.empty()) {
       notes_.push_back(fmt::format("materials.{}: glTF cannot say {} of its gltf_pbr lobe; the metallic–roughness "
                                    "core is approximate (FACET_material carries the material)",
-                                   key, what));
+                                   key, why));
       return false;
-    };
-    if (s.at("color").texture || s.at("color").rgb != RGB{1, 1, 1}) return give_up("the colour k_s");
-    if (s.values.count("toon") && s.at("toon").model) return give_up("the toon modifier");
-    auto& pbr = g.pbrMetallicRoughness;
-    const Value& base = s.at("base_color");
-    pbr.baseColorFactor = {base.rgb[0], base.rgb[1], base.rgb[2], 1.0};
-    if (base.texture && !texture_as_gltf(*base.texture, "rgb", "srgb", pbr.baseColorTexture, why))
-      return give_up("the base colour's map (" + why + ")");
-    const Value &metal = s.at("metallic"), &rough = s.at("roughness");
-    pbr.metallicFactor = metal.number;
-    pbr.roughnessFactor = rough.number;
-    if (metal.texture || rough.texture) {
-      // One image's B (metallic) and G (roughness): the same file, sampler, set and transform.
-      const bool one = metal.texture && rough.texture && metal.texture->path == rough.texture->path &&
-                       metal.texture->uv == rough.texture->uv && metal.texture->sampler.filter == rough.texture->sampler.filter &&
-                       metal.texture->sampler.wrap == rough.texture->sampler.wrap &&
-                       metal.texture->offset == rough.texture->offset && metal.texture->scale == rough.texture->scale &&
-                       metal.texture->rotation == rough.texture->rotation;
-      if (!one) return give_up("metallic and roughness maps that are not one image's B and G");
-      const TextureRef& r = *rough.texture;
-      if (r.channel != "g" || r.colorspace != "linear" || r.vertex_color || r.bias != RGB{0, 0, 0})
-        return give_up("a roughness map other than the image's G, linear");
-      if (!texture_as_gltf(*metal.texture, "b", "linear", pbr.metallicRoughnessTexture, why))
-        return give_up("the metallic map (" + why + ")");
     }
-    if (s.at("ior").number != 1.5 || s.at("ior").texture) {
-      if (s.at("ior").texture) return give_up("an ior map");
+    auto& pbr = g.pbrMetallicRoughness;
+    const Value &base = s.at("base_color"), &metal = s.at("metallic");
+    pbr.baseColorFactor = {base.rgb[0], base.rgb[1], base.rgb[2], 1.0};
+    pbr.metallicFactor = metal.number;
+    pbr.roughnessFactor = s.at("roughness").number;
+    if (base.texture) images_.texture_info(*base.texture, pbr.baseColorTexture, used_);
+    if (metal.texture) images_.texture_info(*metal.texture, pbr.metallicRoughnessTexture, used_);
+    if (s.at("ior").number != 1.5) {
       tinygltf::Value::Object ior;
       ior["ior"] = tinygltf::Value(s.at("ior").number);
       g.extensions["KHR_materials_ior"] = tinygltf::Value(ior);
@@ -846,7 +851,7 @@ class Exporter {
           tinygltf::Value(tint.rgb[0]), tinygltf::Value(tint.rgb[1]), tinygltf::Value(tint.rgb[2])});
       if (specular.texture) {
         tinygltf::TextureInfo info;
-        if (!texture_as_gltf(*specular.texture, "a", "linear", info, why)) return give_up("the specular map (" + why + ")");
+        images_.texture_info(*specular.texture, info, used_);
         tinygltf::Value::Object t;
         t["index"] = tinygltf::Value(info.index);
         t["texCoord"] = tinygltf::Value(info.texCoord);
@@ -856,8 +861,7 @@ class Exporter {
       g.extensions["KHR_materials_specular"] = tinygltf::Value(ext);
       used_.insert("KHR_materials_specular");
     }
-    g.emissiveFactor = {std::clamp(m.emission[0], 0.0, 1.0), std::clamp(m.emission[1], 0.0, 1.0),
-                        std::clamp(m.emission[2], 0.0, 1.0)};
+    g.emissiveFactor = clamped_emission(m);
     return true;
   }
 

@@ -276,6 +276,31 @@ TEST(Gltf, GltfBrdfExportsAsItsFactorsMapsAndExtensions) {
   EXPECT_EQ(b, a);
 }
 
+// What glTF cannot say (here a metallic map without its roughness half) is decided before
+// anything is written: the fallback then has no map of the lobe and the file no texture nobody
+// reads (the first export wrote the base colour's map, then gave up, leaving it behind).
+TEST(Gltf, WhatGltfCannotSayOfTheLobeLeavesNothingBehind) {
+  const fs::path folder = scratch("gltf_brdf_unsaid");
+  fs::remove_all(folder);
+  fs::create_directories(folder / "textures");
+  fs::copy_file(kSource / "examples/textured/textures/leaf.png", folder / "textures/leaf.png");
+  const json lobe = {{"model", "gltf_pbr"},
+                     {"base_color", {{"texture", "textures/leaf.png"}, {"colorspace", "srgb"}}},
+                     {"metallic", {{"texture", "textures/leaf.png"}, {"channel", "b"}}}};
+  write_file_atomic((folder / "m.json").string(), json{{"name", "half"}, {"specular", lobe}}.dump());
+  const Material m = load_material((folder / "m.json").string());
+  const std::string out = (folder / "out.gltf").string();
+  std::vector<std::string> notes;
+  export_gltf(load_scene("single"), &m, out, notes);
+  const json doc = json::parse(read_file(out));
+  const json& pbr = doc["materials"][0]["pbrMetallicRoughness"];
+  EXPECT_FALSE(pbr.contains("baseColorTexture") || pbr.contains("metallicRoughnessTexture")) << pbr.dump();
+  EXPECT_FALSE(doc.contains("textures")) << doc.value("textures", json()).dump();
+  bool said = false;
+  for (const auto& n : notes) said |= n.find("not one image's B and G") != std::string::npos;
+  EXPECT_TRUE(said);
+}
+
 TEST(Gltf, ExportFallbackIsTheNearestMetallicRoughness) {
   // What viewers without FACET_material show. A conductor (no diffuse, a Fresnel
   // term that states f0) is a metal of base colour f0; roughness is √α.
