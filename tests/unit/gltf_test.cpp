@@ -229,13 +229,19 @@ TEST(Gltf, MetallicRoughnessMapsOntoGgx) {
   EXPECT_TRUE(told) << "the approximate dielectric diffuse is reported";
 }
 
-// glTF's own BRDF goes out as glTF says it: the factors, the metallic–roughness map (one
-// image's B and G), KHR_materials_ior and KHR_materials_specular (with specularTexture's A).
-TEST(Gltf, GltfBrdfExportsAsItsFactorsMapsAndExtensions) {
-  const fs::path folder = scratch("gltf_brdf_export");
+// A material of one gltf_pbr lobe `lobe` (its maps read textures/leaf.png), in a folder of its own.
+Material leaf_lobe_material(const std::string& folder_name, const std::string& name, const json& lobe) {
+  const fs::path folder = scratch(folder_name);
   fs::remove_all(folder);
   fs::create_directories(folder / "textures");
   fs::copy_file(kSource / "examples/textured/textures/leaf.png", folder / "textures/leaf.png");
+  write_file_atomic((folder / "m.json").string(), json{{"name", name}, {"specular", lobe}}.dump());
+  return load_material((folder / "m.json").string());
+}
+
+// glTF's own BRDF goes out as glTF says it: the factors, the metallic–roughness map (one
+// image's B and G), KHR_materials_ior and KHR_materials_specular (with specularTexture's A).
+TEST(Gltf, GltfBrdfExportsAsItsFactorsMapsAndExtensions) {
   const json lobe = {{"model", "gltf_pbr"},
                      {"base_color", {{"texture", "textures/leaf.png"}, {"colorspace", "srgb"}, {"factor", {0.9, 0.8, 0.7}}}},
                      {"metallic", {{"texture", "textures/leaf.png"}, {"channel", "b"}, {"factor", 0.6}}},
@@ -243,9 +249,8 @@ TEST(Gltf, GltfBrdfExportsAsItsFactorsMapsAndExtensions) {
                      {"ior", 1.8},
                      {"specular", {{"texture", "textures/leaf.png"}, {"channel", "a"}, {"factor", 0.9}}},
                      {"specular_color", {1.0, 0.5, 0.25}}};
-  write_file_atomic((folder / "m.json").string(), json{{"name", "painted"}, {"specular", lobe}}.dump());
-  const Material m = load_material((folder / "m.json").string());
-  const std::string out = (folder / "out.gltf").string();
+  const Material m = leaf_lobe_material("gltf_brdf_export", "painted", lobe);
+  const std::string out = (scratch("gltf_brdf_export") / "out.gltf").string();
   std::vector<std::string> notes;
   export_gltf(load_scene("single"), &m, out, notes);
   json doc = json::parse(read_file(out));
@@ -280,16 +285,11 @@ TEST(Gltf, GltfBrdfExportsAsItsFactorsMapsAndExtensions) {
 // anything is written: the fallback then has no map of the lobe and the file no texture nobody
 // reads (the first export wrote the base colour's map, then gave up, leaving it behind).
 TEST(Gltf, WhatGltfCannotSayOfTheLobeLeavesNothingBehind) {
-  const fs::path folder = scratch("gltf_brdf_unsaid");
-  fs::remove_all(folder);
-  fs::create_directories(folder / "textures");
-  fs::copy_file(kSource / "examples/textured/textures/leaf.png", folder / "textures/leaf.png");
   const json lobe = {{"model", "gltf_pbr"},
                      {"base_color", {{"texture", "textures/leaf.png"}, {"colorspace", "srgb"}}},
                      {"metallic", {{"texture", "textures/leaf.png"}, {"channel", "b"}}}};
-  write_file_atomic((folder / "m.json").string(), json{{"name", "half"}, {"specular", lobe}}.dump());
-  const Material m = load_material((folder / "m.json").string());
-  const std::string out = (folder / "out.gltf").string();
+  const Material m = leaf_lobe_material("gltf_brdf_unsaid", "half", lobe);
+  const std::string out = (scratch("gltf_brdf_unsaid") / "out.gltf").string();
   std::vector<std::string> notes;
   export_gltf(load_scene("single"), &m, out, notes);
   const json doc = json::parse(read_file(out));
