@@ -290,7 +290,11 @@ void add_specular(std::vector<ModelDef>& all) {
               Range::color(), {1, 1, 1})};
     m.cycles = approximate("principled_bsdf: its dielectric is energy-compensated, not Appendix B's fresnel_mix");
     m.pov = none(kMicrofacetPov);
-    m.blender_nodes = nodes_none("not built yet: the Principled BSDF mapping is issue 29's Blender part");
+    m.blender_nodes = nodes_approximate(
+        "Principled BSDF (Blender 4), GGX, as Blender's glTF importer builds it: Base Color, Metallic, Roughness, "
+        "IOR, Specular IOR Level = specular/2, Specular Tint = specular_color; a GGX metal is glTF's exactly, a "
+        "dielectric Cycles' energy-compensated layering (docs/blender.md, F)",
+        0.106);
     m.build = [](LobeContext& c) {
       // glTF 2.0 Appendix B, "Metal BRDF and Dielectric BRDF", with KHR_materials_specular's
       // dielectric_f0 / f90 and KHR_materials_ior's f0 ("Interaction with other extensions").

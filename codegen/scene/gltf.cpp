@@ -46,6 +46,7 @@ const char* kLightsExt = "KHR_lights_punctual";
 const std::set<std::string> kSupportedRequired = {kLightsExt,
                                                   "KHR_texture_transform",
                                                   "KHR_materials_emissive_strength",
+                                                  "KHR_materials_ior",
                                                   kMaterialExt,
                                                   kObjectExt,
                                                   kLightExt,

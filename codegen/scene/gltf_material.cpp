@@ -59,124 +59,6 @@ double metal_at(const Pbr& p, int i, int j, int w, int h) {
   return p.metal * sample(t, p.mr_map->sampler, (i + 0.5) / w, (j + 0.5) / h)[2];
 }
 
-// The grid k_d and f0 are baked on: the base colour map's where there is one, else the
-// metallic–roughness map's. Both maps must read the same texture coordinates.
-const TextureUse& bake_grid(const Pbr& p, const GltfImages& images, const std::string& mpath,
-                           std::vector<std::string>& notes) {
-  if (!p.base_map) return *p.mr_map;
-  if (p.mr_map && !p.base_map->same_mapping(*p.mr_map))
-    images.fail(p.mr_map->key + ".texCoord",
-                fmt::format("reads other texture coordinates (set or KHR_texture_transform) than {}; facet bakes k_d "
-                            "and f0 texel by texel from both and needs them to agree",
-                            p.base_map->key));
-  if (p.mr_map && (p.mr_map->sampler.filter != p.base_map->sampler.filter ||
-                   p.mr_map->sampler.wrap != p.base_map->sampler.wrap))
-    notes.push_back(fmt::format("{}: the metallic–roughness and base colour maps have different samplers; the baked "
-                                "k_d and f0 are read with the base colour map's, α with the metallic–roughness map's",
-                                mpath));
-  if (p.mr_map && (p.mr_map->texels->width != p.base_map->texels->width ||
-                   p.mr_map->texels->height != p.base_map->texels->height))
-    notes.push_back(fmt::format("{}: the metallic–roughness map ({}×{}) and the base colour map ({}×{}) differ in "
-                                "size; k_d and f0 are baked at the base colour map's texels, metallic sampled there",
-                                mpath, p.mr_map->texels->width, p.mr_map->texels->height, p.base_map->texels->width,
-                                p.base_map->texels->height));
-  return *p.base_map;
-}
-
-// A linear map of the grid `g` (its sampler, coordinates and transform) holding `file`.
-json baked_spec(const TextureUse& g, const std::string& file, bool color) {
-  json s = g.spec;
-  s["texture"] = file;
-  s["colorspace"] = "linear";
-  if (!color) s["channel"] = "r";
-  return s;
-}
-
-// k_d = base·(1 − metallic) and f0 = 0.04·(1 − metallic) + base·metallic, texel by texel.
-void bake_kd_f0(const Pbr& p, GltfImages& images, json& kd, json& f0, const std::string& mpath,
-                std::vector<std::string>& notes) {
-  const TextureUse& g = bake_grid(p, images, mpath, notes);
-  const int w = g.texels->width, h = g.texels->height;
-  std::vector<uint16_t> kd16(size_t(w) * size_t(h) * 3), f016(kd16.size());
-  for (int j = 0; j < h; ++j)
-    for (int i = 0; i < w; ++i) {
-      const RGB b = base_at(p, i, j);
-      const double m = metal_at(p, i, j, w, h);
-      for (size_t k = 0; k < 3; ++k) {
-        const size_t at = (size_t(j) * size_t(w) + size_t(i)) * 3 + k;
-        kd16[at] = unorm16(b[k] * (1 - m));
-        f016[at] = unorm16(0.04 * (1 - m) + b[k] * m);
-      }
-    }
-  const std::string kd_file = images.bake(p.name + "_kd", w, h, 3, kd16);
-  const std::string f0_file = images.bake(p.name + "_f0", w, h, 3, f016);
-  kd = baked_spec(g, kd_file, true);
-  f0 = baked_spec(g, f0_file, true);
-  notes.push_back(fmt::format("{}: baked k_d = base·(1 − metallic) and f0 = 0.04·(1 − metallic) + base·metallic "
-                              "texel by texel ({}×{}, 16-bit linear) into {} and {}",
-                              mpath, w, h, kd_file, f0_file));
-}
-
-// GGX α = max((roughness·G)², kRoughnessMin) texel by texel, from the metallic–roughness map.
-json bake_alpha(const Pbr& p, GltfImages& images, const std::string& mpath, std::vector<std::string>& notes) {
-  const TextureUse& g = *p.mr_map;
-  const int w = g.texels->width, h = g.texels->height;
-  std::vector<uint16_t> v(size_t(w) * size_t(h));
-  for (int j = 0; j < h; ++j)
-    for (int i = 0; i < w; ++i) {
-      const double r = p.rough * g.texels->at(i, j)[1];
-      v[size_t(j) * size_t(w) + size_t(i)] = unorm16(std::max(r * r, kRoughnessMin));
-    }
-  const std::string file = images.bake(p.name + "_alpha", w, h, 1, v);
-  notes.push_back(fmt::format("{}: baked GGX α = (roughness·G)² texel by texel ({}×{}, 16-bit linear) into {}", mpath,
-                              w, h, file));
-  return baked_spec(g, file, false);
-}
-
-// The diffuse colour and Schlick's f0: numbers, a map times a factor (and the vertex
-// colour), or baked maps. With metallic m a number, f0 = 0.04·(1 − m) + base·m is the base
-// colour map (and COLOR_0) times base·m plus the offset 0.04·(1 − m): exact, no bake (until
-// texture values had offsets f0 was baked texel by texel wherever 0 < m < 1).
-void colours(const Pbr& p, GltfImages& images, json& kd, json& f0, const std::string& mpath,
-             std::vector<std::string>& notes) {
-  RGB kd_c, f0_c, base_m;
-  for (size_t c = 0; c < 3; ++c) {
-    kd_c[c] = p.base[c] * (1 - p.metal);
-    f0_c[c] = 0.04 * (1 - p.metal) + p.base[c] * p.metal;
-    base_m[c] = p.base[c] * p.metal;
-  }
-  kd = kd_c;
-  f0 = f0_c;
-  if (p.mr_map && p.metal > 0) {
-    bake_kd_f0(p, images, kd, f0, mpath, notes);
-    kd = times_vertex_color(p, kd);  // the baked k_d times COLOR_0: exact
-    if (p.vertex_colors)
-      notes.push_back(mpath + ": approximate: f0 = 0.04·(1 − metallic) + base·metallic·COLOR_0 with metallic from a "
-                              "map is no image times COLOR_0 plus a number; the baked f0 leaves COLOR_0 out");
-    return;
-  }
-  const bool diffuse = kd_c[0] + kd_c[1] + kd_c[2] > 0, metal = p.metal > 0;
-  json f0_offset = p.metal < 1 ? json(0.04 * (1 - p.metal)) : json();
-  if (!p.base_map) {
-    if (diffuse) kd = times_vertex_color(p, kd_c);
-    if (metal && p.vertex_colors) {
-      f0 = times_vertex_color(p, base_m);
-      if (!f0_offset.is_null()) f0["offset"] = f0_offset;
-    }
-    return;
-  }
-  kd = p.base_map->spec;  // base · (1 − metallic): the map times a factor, exact
-  kd["colorspace"] = "srgb";
-  kd["factor"] = kd_c;
-  kd = times_vertex_color(p, kd);
-  if (!metal) return;
-  f0 = p.base_map->spec;
-  f0["colorspace"] = "srgb";
-  f0["factor"] = base_m;
-  if (!f0_offset.is_null()) f0["offset"] = f0_offset;
-  f0 = times_vertex_color(p, f0);
-}
-
 // glTF's occluded colour, lerp(1, occlusion, strength) (glTF 2.0 §3.9.3), at texel (i, j)
 // of a grid of `w`×`h`: the R channel at the texel itself when the grids are one, else
 // sampled at the grid texel's centre.
@@ -254,6 +136,10 @@ void cut_out(const tinygltf::Material& g, const Pbr& p, const std::string& mpath
                             "left out of the cut-out (approximated: facet's renderers do not cut by a vertex alpha)");
 }
 
+// The material extensions the import maps exactly (FACET_material is facet's own).
+const std::vector<std::string> kImplemented = {"KHR_materials_emissive_strength", "KHR_materials_ior",
+                                               "KHR_materials_specular", "FACET_material"};
+
 // The material's extensions facet does not implement, named in one note (the file's
 // required ones were refused before any material was read).
 void note_unimplemented_extensions(const tinygltf::Material& g, const std::string& mpath, std::vector<std::string>& notes) {
@@ -262,12 +148,92 @@ void note_unimplemented_extensions(const tinygltf::Material& g, const std::strin
   if (!ext.is_object()) return;
   std::string names;
   for (const auto& [name, value] : ext.items())
-    if (name != "KHR_materials_emissive_strength" && name != "FACET_material") names += (names.empty() ? "" : ", ") + name;
+    if (std::find(kImplemented.begin(), kImplemented.end(), name) == kImplemented.end())
+      names += (names.empty() ? "" : ", ") + name;
   if (!names.empty())
     notes.push_back(fmt::format("{}{}: {} ignored: facet does not implement {} yet; the material renders as its "
                                 "metallic–roughness core",
                                 mpath, g.name.empty() ? "" : " (\"" + one_line(g.name) + "\")", one_line(names),
                                 names.find(',') == std::string::npos ? "it" : "them"));
+}
+
+// A texture's value: `use`'s image (its sampler, coordinates and transform), channel `channel`
+// in `colorspace`, times `factor`.
+json texture_value(const TextureUse& use, const char* channel, const char* colorspace, const json& factor) {
+  json t = use.spec;
+  if (std::string(channel) != "rgb") t["channel"] = channel;
+  t["colorspace"] = colorspace;
+  t["factor"] = factor;
+  return t;
+}
+
+// A textureInfo inside a material extension (tinygltf leaves extensions as JSON): its index,
+// texCoord and own extensions (KHR_texture_transform) read as the core's are.
+TextureUse extension_texture(GltfImages& images, const json& info, const std::string& key) {
+  if (!info.is_object() || !info.contains("index") || !info["index"].is_number_integer())
+    images.fail(key + ".index", "expected a textureInfo object with a whole-number index");
+  const json tex_coord = info.value("texCoord", json(0));
+  if (!tex_coord.is_number_integer()) images.fail(key + ".texCoord", "expected a whole number");
+  return images.texture(info["index"].get<int>(), tex_coord.get<int>(),
+                        info.contains("extensions") ? info["extensions"].dump() : "", key);
+}
+
+// The number `name` of extension object `ext` (`fallback` where absent), in [lo, hi]: else
+// InputError naming `key`.name.
+double extension_number(GltfImages& images, const json& ext, const char* name, double fallback, double lo, double hi,
+                        const std::string& key) {
+  if (!ext.contains(name)) return fallback;
+  const json& v = ext[name];
+  if (!v.is_number() || !(v.get<double>() >= lo && v.get<double>() <= hi))
+    images.fail(key + "." + name, fmt::format("expected a number in [{:g}, {:g}], found {}", lo, hi, v.dump()));
+  return v.get<double>();
+}
+
+// The glTF material as the catalog's gltf_pbr lobe, every input as the file gives it: glTF 2.0
+// §3.9.2 (pbrMetallicRoughness: the base colour map's RGB in sRGB times baseColorFactor and
+// COLOR_0, the metallic–roughness map's B and G, linear, times their factors), KHR_materials_ior
+// (ior) and KHR_materials_specular (specularFactor times specularTexture's A; specularColorFactor).
+json gltf_pbr_lobe(const tinygltf::Material& g, const Pbr& p, GltfImages& images, const std::string& mpath,
+                   std::vector<std::pair<int, std::string>>& sets, std::vector<std::string>& notes) {
+  json lobe = {{"model", "gltf_pbr"}};
+  lobe["base_color"] = times_vertex_color(p, p.base_map ? texture_value(*p.base_map, "rgb", "srgb", p.base) : json(p.base));
+  lobe["metallic"] = p.mr_map ? texture_value(*p.mr_map, "b", "linear", p.metal) : json(p.metal);
+  lobe["roughness"] = p.mr_map ? texture_value(*p.mr_map, "g", "linear", p.rough) : json(p.rough);
+  const json ior = extension_of(g.extensions_json_string, "KHR_materials_ior");
+  if (ior.is_object()) {
+    // The extension's schema: 0, or at least 1 (the catalog holds up to 1e4).
+    const std::string key = mpath + ".extensions.KHR_materials_ior";
+    const double eta = extension_number(images, ior, "ior", 1.5, 0, kScalarMax, key);
+    if (eta > 0 && eta < 1) images.fail(key + ".ior", fmt::format("{:g} is neither 0 nor at least 1", eta));
+    lobe["ior"] = eta;
+  }
+  const json spec = extension_of(g.extensions_json_string, "KHR_materials_specular");
+  if (!spec.is_object()) return lobe;
+  const std::string key = mpath + ".extensions.KHR_materials_specular";
+  const double factor = extension_number(images, spec, "specularFactor", 1, 0, 1, key);
+  lobe["specular"] = factor;
+  if (spec.contains("specularTexture")) {
+    const TextureUse t = extension_texture(images, spec["specularTexture"], key + ".specularTexture");
+    sets.emplace_back(t.uv, t.key + ".texCoord");
+    lobe["specular"] = texture_value(t, "a", "linear", factor);
+  }
+  RGB tint{1, 1, 1};
+  if (spec.contains("specularColorFactor")) {
+    const json& c = spec["specularColorFactor"];
+    if (!c.is_array() || c.size() != 3)
+      images.fail(key + ".specularColorFactor", "expected three numbers, found " + c.dump());
+    for (size_t k = 0; k < 3; ++k) {
+      if (!c[k].is_number() || !(c[k].get<double>() >= 0 && c[k].get<double>() <= kColorMax))
+        images.fail(fmt::format("{}.specularColorFactor[{}]", key, k),
+                    fmt::format("expected a number in [0, {:g}], found {}", kColorMax, c[k].dump()));
+      tint[k] = c[k].get<double>();
+    }
+  }
+  lobe["specular_color"] = tint;
+  if (spec.contains("specularColorTexture"))
+    notes.push_back(key + ".specularColorTexture: not read (facet's gltf_pbr takes specular_color as a number); "
+                          "specularColorFactor alone is used");
+  return lobe;
 }
 
 }  // namespace
@@ -309,14 +275,7 @@ json pbr_material(const tinygltf::Material& g, const std::string& mpath, GltfIma
     notes.push_back(fmt::format("{}.name \"{}\" {}: made one line, a stand-in for each such character", mpath,
                                 one_line(g.name), describe(*b)));
   json m = {{"name", one_line(g.name.empty() ? mpath : g.name) + (vertex_colors ? " (COLOR_0)" : "")}};
-  json kd, f0;
-  colours(p, images, kd, f0, mpath, notes);
-  const bool diffuse = kd.is_object() || kd[0].get<double>() + kd[1].get<double>() + kd[2].get<double>() > 0;
-  if (diffuse) m["diffuse"] = {{"model", "lambert"}, {"color", kd}};
-  m["specular"] = {{"model", "ggx"},
-                   {"alpha", p.mr_map ? bake_alpha(p, images, mpath, notes) : json(std::max(p.rough * p.rough, kRoughnessMin))},
-                   {"geometry", "smith_ggx"},
-                   {"fresnel", {{"model", "schlick"}, {"f0", f0}}}};
+  m["specular"] = gltf_pbr_lobe(g, p, images, mpath, sets, notes);
   auto e = rgb3(g.emissiveFactor, 0);
   json strength = extension_of(g.extensions_json_string, "KHR_materials_emissive_strength");
   double k = strength.is_object() ? strength.value("emissiveStrength", 1.0) : 1.0;
@@ -344,8 +303,6 @@ json pbr_material(const tinygltf::Material& g, const std::string& mpath, GltfIma
   }
   note_unimplemented_extensions(g, mpath, notes);
   cut_out(g, p, mpath, m, notes);
-  if (diffuse && (p.metal < 1 || p.mr_map))
-    notes.push_back(mpath + ": approximate: glTF weights a dielectric's diffuse by (1 − F); the catalog's Lambert does not");
   return m;
 }
 

@@ -31,7 +31,14 @@ from MaterialX import PyMaterialXGenShader as mx_gen
 # reflectance at normal incidence).
 GOLD = (1.0, 0.782, 0.344)
 
-# name, facet material, MaterialX BSDF node and its inputs, what differs.
+# MaterialX's gltf_pbr: what differs from the specification's Appendix B, from its pbrlib graph.
+GLTF_NOTE = ("MaterialX's gltf_pbr (libraries/bxdf/gltf_pbr.mtlx) puts its Lambert (oren_nayar_diffuse_bsdf, "
+             "roughness 0) under a generalized_schlick_bsdf with a layer node, which weights the base by 1 − the "
+             "top's directional albedo, and its GGX lobes carry the energy-compensation factor; Appendix B mixes by "
+             "1 − max(F) per pair of directions and compensates nothing")
+SURFACE_SHADERS = {"gltf_pbr"}
+
+# name, facet material, MaterialX BSDF node (or surface shader node) and its inputs, what differs.
 CASES = [
     ("oren_nayar",
      {"diffuse": {"model": "oren_nayar", "sigma": 0.3}},
@@ -55,15 +62,38 @@ CASES = [
      {"specular": {"model": "ggx", "alpha": 0.2, "fresnel": {"model": "exact", "ior": 1.5}}},
      "dielectric_bsdf", {"ior": 1.5, "roughness": mx.Vector2(0.2, 0.2)},
      "dielectric_bsdf's exact dielectric Fresnel against facet's; G and compensation as ggx_dielectric"),
+
+    # glTF's own BRDF (issue 29): MaterialX's gltf_pbr node (its surface shader, nothing but these
+    # inputs set) against facet's gltf_pbr lobe, glTF 2.0 Appendix B with KHR_materials_ior and
+    # KHR_materials_specular.
+    ("gltf_dielectric",
+     {"specular": {"model": "gltf_pbr", "base_color": [0.8, 0.2, 0.1], "metallic": 0, "roughness": 0.5}},
+     "gltf_pbr", {"base_color": mx.Color3(0.8, 0.2, 0.1), "metallic": 0.0, "roughness": 0.5},
+     GLTF_NOTE),
+    ("gltf_metal",
+     {"specular": {"model": "gltf_pbr", "base_color": list(GOLD), "metallic": 1, "roughness": 0.4}},
+     "gltf_pbr", {"base_color": mx.Color3(*GOLD), "metallic": 1.0, "roughness": 0.4}, GLTF_NOTE),
+    ("gltf_half_metal",
+     {"specular": {"model": "gltf_pbr", "base_color": [0.9, 0.7, 0.35], "metallic": 0.5, "roughness": 0.6}},
+     "gltf_pbr", {"base_color": mx.Color3(0.9, 0.7, 0.35), "metallic": 0.5, "roughness": 0.6}, GLTF_NOTE),
+    ("gltf_specular",
+     {"specular": {"model": "gltf_pbr", "base_color": [0.2, 0.6, 0.3], "metallic": 0, "roughness": 0.45,
+                   "ior": 1.8, "specular": 0.6, "specular_color": [1.0, 0.6, 0.3]}},
+     "gltf_pbr", {"base_color": mx.Color3(0.2, 0.6, 0.3), "metallic": 0.0, "roughness": 0.45, "ior": 1.8,
+                  "specular": 0.6, "specular_color": mx.Color3(1.0, 0.6, 0.3)}, GLTF_NOTE),
 ]
 
 
 def material_document(stdlib, node, inputs):
+    """BSDF node -> surface -> surfacematerial; a surface shader node (gltf_pbr) -> surfacematerial."""
     doc = mx.createDocument()
     doc.importLibrary(stdlib)
-    bsdf = doc.addNode(node, "bsdf", "BSDF")
+    shader_node = node in SURFACE_SHADERS
+    bsdf = doc.addNode(node, "bsdf", "surfaceshader" if shader_node else "BSDF")
     for name, value in inputs.items():
         bsdf.setInputValue(name, value)
+    if shader_node:
+        return doc, doc.addMaterialNode("facet_case", bsdf)
     surface = doc.addNode("surface", "surface", "surfaceshader")
     surface.setConnectedNode("bsdf", bsdf)
     return doc, doc.addMaterialNode("facet_case", surface)

@@ -16,13 +16,14 @@ is that light's exact direct lighting.
 
 Compared over the pixels facet's reference counts as interior (`facet render --mask`: inside
 an object, not on its silhouette, no shadow ray grazing an occluder's edge). The materials are
-Principled BSDFs (Blender's glTF exporter writes no other BSDF): the floor, the scaled cube
-and the mirrored cone Metallic 1, the sphere Metallic 0. facet's glTF mapping (Lambert + GGX,
-separable Smith G, Schlick f0 = mix(0.04, base, metallic); docs/textures.md) is nearly Cycles
-4.5's Principled BSDF for a metal (Cycles' F82-tint Fresnel with a white tint is Schlick's;
-the Smith G terms differ towards grazing angles only) but not for a dielectric, whose diffuse
-Cycles weights by 1 − the specular layer's albedo (energy-conserving layering) and facet's
-Lambert does not. The differences are the material mapping's; a wrong light unit is a factor.
+Principled BSDFs (Blender's glTF exporter writes no other BSDF), distribution GGX: the floor,
+the scaled cube and the mirrored cone Metallic 1, the sphere Metallic 0. facet imports them as
+glTF's BRDF (the catalog's gltf_pbr: GGX, height-correlated Smith, the metal's Schlick Fresnel
+of the base colour; docs/textures.md), which for a metal is Cycles 4.5's Principled BSDF itself
+(its F82-tint Fresnel with a white tint is Schlick's, and its Smith G the height-correlated one),
+and for a dielectric is not: Cycles weights the diffuse by 1 − the specular layer's directional
+albedo, glTF by 1 − F per direction pair (Appendix B's fresnel_mix). The differences are the
+material's; a wrong light unit is a factor.
 The test therefore holds the lights and the materials apart:
 
   LIGHTS   per light (each alone on both sides), the least-squares brightness ratio
@@ -32,14 +33,12 @@ The test therefore holds the lights and the materials apart:
            taking W/(4π) for facet's C instead of W/(4π²)), 4π (W for W/sr), 683 (lumens for
            watts). The script shows it: the same file imported with --lumens-per-watt 683/π
            (the first of those errors) must fail this check on every light.
-  IMAGE    the whole image (all lights): on the Metallic-1 objects |Δ| ≤ METAL_TOL (1 %) ·
+  IMAGE    the whole image (all lights): on the Metallic-1 objects |Δ| ≤ METAL_TOL (1e-4) ·
            max(1, |Cycles|) on every channel of every interior pixel, and a relative RMSE
-           (RMSE / mean) ≤ 1 %: what remains is the separable vs the height-correlated Smith G,
-           G_sep / G_hc = 1 − Λ(l)Λ(v) / ((1 + Λ(l))(1 + Λ(v))), a fraction of a per cent but
-           towards grazing angles. On the dielectric facet must be the brighter (its Lambert
-           lacks the layering's 1 − E), by at most DIELECTRIC_TOL (15 %) on any pixel and in
-           RMSE: the specular layer's albedo at F0 = 0.04, a few per cent at normal incidence,
-           more towards grazing angles.
+           (RMSE / mean) ≤ 1e-4: the same BRDF in float32 on both sides (measured: 6.6e-7
+           worst). On the dielectric facet must be the brighter (glTF's diffuse weight
+           1 − max(F) lacks the layering's 1 − E), by at most DIELECTRIC_TOL (15 %) on any pixel
+           and in RMSE (measured: 4.1 % worst, 2.0 % RMSE, +0.66 % in sum).
   COVERAGE facet's objects and Cycles' alpha (film transparent) agree on all but 0.1 % of the
            pixels (the camera, the mirrored and scaled nodes, the Y-up conversion).
 
@@ -61,7 +60,7 @@ sys.path.insert(0, os.path.join(REPO, "exporters", "blender", "tests"))
 
 COVERAGE_TOL = 1e-3
 RATIO_TOL = 0.01
-METAL_TOL, METAL_RMSE = 0.01, 0.01
+METAL_TOL, METAL_RMSE = 1e-4, 1e-4
 DIELECTRIC_TOL, DIELECTRIC_RMSE = 0.15, 0.15
 WRONG_LUMENS_PER_WATT = 683.0 / 3.141592653589793     # a converter that divides watts by 4π, not 4π²
 KINDS = {"POINT": "point", "SPOT": "spot", "SUN": "directional"}

@@ -102,8 +102,8 @@ TEST(GltfVertexColours, MirroredFlatTrianglesKeepEachCornersColour) {
   }
 }
 
-// k_d = base·(1 − m)·COLOR_0 and f0 = 0.04·(1 − m) + base·m·COLOR_0: the base colour map (or
-// none) times the factor and the vertex colour, f0 with the offset; the occlusion ambient term
+// glTF 2.0 §3.7.2.1: COLOR_0 multiplies the base colour. The lobe's base_color is the base
+// colour map (or none) times the factor and the vertex colour; the occlusion ambient term
 // times COLOR_0 too. A primitive without COLOR_0 sharing the glTF material gets the material
 // without the vertex colour, under another key. Nothing is baked.
 TEST(GltfVertexColours, TheBaseColourTakesTheVertexColourWithoutABake) {
@@ -120,31 +120,26 @@ TEST(GltfVertexColours, TheBaseColourTakesTheVertexColourWithoutABake) {
   for (const char* key : {"painted", "painted_vertex_colors"}) {
     const bool vc = std::string(key) != "painted";
     const Material& m = s.materials.at(key);
-    const Value& kd = m.diffuse->at("color");
-    const Value& f0 = m.specular->at("fresnel").model->at("f0");
-    ASSERT_TRUE(kd.texture && f0.texture) << key;
-    EXPECT_TRUE(kd.texture->has_image() && f0.texture->has_image());
-    EXPECT_EQ(kd.texture->vertex_color, vc) << key;
-    EXPECT_EQ(f0.texture->vertex_color, vc) << key;
-    for (size_t c = 0; c < 3; ++c) {
-      EXPECT_DOUBLE_EQ(kd.rgb[c], base[c] * (1 - metal));
-      EXPECT_DOUBLE_EQ(f0.rgb[c], base[c] * metal);
-      EXPECT_DOUBLE_EQ(f0.texture->bias[c], 0.04 * (1 - metal));
-    }
+    const Value& color = m.specular->at("base_color");
+    ASSERT_TRUE(color.texture) << key;
+    EXPECT_TRUE(color.texture->has_image());
+    EXPECT_EQ(color.texture->vertex_color, vc) << key;
+    EXPECT_EQ(color.rgb, base) << key;
+    EXPECT_EQ(m.specular->at("metallic").number, metal) << key;
     EXPECT_EQ(compile(m).uses_vertex_color(), vc);
   }
-  // f0 at a point, on a surface of vertex colour vc: 0.04·(1 − m) + base·m·texel·vc.
-  const Value& f0 = s.materials.at("painted_vertex_colors").specular->at("fresnel").model->at("f0");
+  // The base colour at a point, on a surface of vertex colour vc: base·texel·vc.
+  const Value& color = s.materials.at("painted_vertex_colors").specular->at("base_color");
   const VertexColor vc{0.3, 0.6, 0.9, 0.5};
-  const auto texel = sample(*f0.texture->texels, f0.texture->sampler, 0.3, 0.7);
-  const auto value = texture_value(f0, Range::closed(0, 1), 0.3, 0.7, nullptr, vc);
-  for (size_t c = 0; c < 3; ++c) EXPECT_NEAR(value[c], 0.04 * (1 - metal) + base[c] * metal * texel[c] * vc[c], 1e-15);
+  const auto texel = sample(*color.texture->texels, color.texture->sampler, 0.3, 0.7);
+  const auto value = texture_value(color, Range::closed(0, 1), 0.3, 0.7, nullptr, vc);
+  for (size_t c = 0; c < 3; ++c) EXPECT_NEAR(value[c], base[c] * texel[c] * vc[c], 1e-15);
   // Without a base colour map: the vertex colour alone; the occlusion map's ambient term times it.
   const Material& plain = s.materials.at("plain_vertex_colors");
-  const Value& kd = plain.diffuse->at("color");
-  ASSERT_TRUE(kd.texture);
-  EXPECT_FALSE(kd.texture->has_image());
-  EXPECT_TRUE(kd.texture->vertex_color);
+  const Value& plain_color = plain.specular->at("base_color");
+  ASSERT_TRUE(plain_color.texture);
+  EXPECT_FALSE(plain_color.texture->has_image());
+  EXPECT_TRUE(plain_color.texture->vertex_color);
   ASSERT_TRUE(plain.ambient_texture);
   EXPECT_TRUE(plain.ambient_texture->vertex_color);
   EXPECT_EQ(plain.ambient_texture->channel, "r");

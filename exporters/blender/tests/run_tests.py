@@ -873,22 +873,24 @@ def test_convert_principled():
             p.inputs["Emission Strength"].default_value = 1.0
         links.new(p.outputs[0], out.inputs["Surface"])
     data, text = convert(node_material("Principled", build))
-    if modern:   # 4.x: dielectric f0 = ((ior-1)/(ior+1))^2 * 2 * Specular IOR Level
-        dielectric = ((1.45 - 1.0) / (1.45 + 1.0)) ** 2 * 2.0 * 0.25
-    else:        # 3.x: 0.08 * Specular
-        dielectric = 0.08 * 0.25
-    f0 = [dielectric * (1 - metallic) + b * metallic for b in base]
-    check_close(data["diffuse"], {"model": "lambert", "color": [b * (1 - metallic) for b in base]},
-                "Principled diffuse = base (1 - metallic)", 1e-5)
-    check_close(data["specular"], {"model": "ggx", "color": [1.0, 1.0, 1.0], "alpha": roughness ** 2,
-                                   "geometry": "smith_ggx", "fresnel": {"model": "schlick", "f0": f0}},
-                "Principled specular", 1e-5)
+    # glTF's BRDF as Blender's glTF exporter writes the node: the catalog's gltf_pbr lobe alone.
+    check("diffuse" not in data, f"a Principled BSDF is one gltf_pbr lobe: {data}")
+    want = {"model": "gltf_pbr", "color": [1.0, 1.0, 1.0], "base_color": list(base), "metallic": metallic,
+            "roughness": roughness}
+    if modern:   # 4.x: KHR_materials_ior and KHR_materials_specular (specularFactor = 2·Specular IOR Level)
+        want.update(ior=1.45, specular=0.5, specular_color=[1.0, 1.0, 1.0])
+    else:        # 3.x: f0 = 0.08·Specular at IOR 1.5, as specular_color 2·Specular
+        want.update(ior=1.5, specular=1.0, specular_color=[0.5, 0.5, 0.5])
+    check_close(data["specular"], want, "Principled -> gltf_pbr", 1e-5)
     check_close(data["emission"], [0.2, 0.1, 0.0], "Principled emission colour × strength", 1e-5)
     check("approximate" in text, f"Principled mapping should be reported approximate: {text}")
-    # The defaults give the textbook dielectric f0 = 0.04 in both versions.
+    # The defaults give glTF's core f0 = 0.04 in both versions.
     data, _ = convert(node_material("Default", lambda n, l, o: l.new(n.new("ShaderNodeBsdfPrincipled").outputs[0],
                                                                      o.inputs["Surface"])))
-    check_close(data["specular"]["fresnel"]["f0"], [0.04] * 3, "default Principled f0", 1e-5)
+    s = data["specular"]
+    eta = s.get("ior", 1.5)
+    f0 = [((eta - 1) / (eta + 1)) ** 2 * c * s.get("specular", 1.0) for c in s.get("specular_color", [1.0] * 3)]
+    check_close(f0, [0.04] * 3, "default Principled f0", 1e-5)
 
 
 @test()
@@ -2174,6 +2176,51 @@ def test_render_engine_renders_like_reference():
     check(mean_delta < 0.02 * mean_ref, "the anti-aliased image is not the scene")
 
 
+@test(when=lambda v: v >= (4, 0, 0), why="Coat Weight and Sheen Weight are Blender 4's Principled inputs")
+def test_render_engine_takes_a_principled_bsdf_with_layers():
+    """Issue 29, acceptance 4: F12 with the facet POV-Ray engine on a Principled BSDF without facet
+    settings using Coat, Sheen, Anisotropic and Roughness 0.02: the render succeeds, warnings name
+    what glTF's BRDF (the gltf_pbr lobe it maps to) leaves out and the roughness floor, and in
+    validation mode the Render Result equals facet's reference of the exported scene."""
+    check(scene_support(), "facet lacks scene materials/meshes")
+    check(OPTS.povray and shutil.which(OPTS.povray), "POV-Ray (povray) is not installed")
+    prefs().povray_path = shutil.which(OPTS.povray)
+
+    def build(nodes, links, out):
+        p = nodes.new("ShaderNodeBsdfPrincipled")
+        p.inputs["Base Color"].default_value = (0.8, 0.3, 0.1, 1.0)
+        for name, value in (("Roughness", 0.02), ("Coat Weight", 0.5), ("Sheen Weight", 0.5), ("Anisotropic", 0.5)):
+            p.inputs[name].default_value = value
+        links.new(p.outputs[0], out.inputs["Surface"])
+    ball = node_material("LayeredPrincipled", build)
+    floor = new_material("EngineFloor", "lambert")
+    floor.facet.diffuse_lambert.color = (0.5, 0.5, 0.5)
+    w, h = 48, 36
+    add_uv_sphere("Ball", (0.0, 0.0, 1.0), 1.0, 32, 16, True, ball)
+    add_quad("Floor", 4.0, material=floor)
+    add_camera((0.5, -6.0, 3.0), (0.0, 0.0, 0.8), 40.0)
+    add_light("POINT", (2.0, -3.0, 4.0), 600.0)
+    add_light("SUN", (0.0, 0.0, 5.0), 1.0, rotation=(0.4, 0.2, 0.0))
+    scene = bpy.context.scene
+    scene.render.resolution_x, scene.render.resolution_y, scene.render.resolution_percentage = w, h, 100
+    expect_ok("export_pov", None, filepath=work("layered.pov"), render=False, save_scene=True)
+    exported = read_json(work("layered.json"))
+    check_equal(exported["materials"]["LayeredPrincipled"]["specular"]["model"], "gltf_pbr", "the Principled lobe")
+    ref = facet_reference(None, exported, w, h, "layered")
+    brightest = max(max(px) for row in ref for px in row)
+    info(f"the reference's brightest value: {brightest:.3g} (the near-mirror highlight falls between pixel centres)")
+    check(brightest < 4.0, "the scene should stay under a Range of 4")
+    scene.facet_povray.max_radiance = 4.0
+    scene.facet_povray.validation = True
+    from facet_blender.blender import engine
+    got = engine_render("layered_exact")
+    warnings = [m for level, m in engine.LAST_REPORTS if level == "WARNING"]
+    for words in ("Coat Weight", "Sheen Weight", "Anisotropic", "below facet's floor"):
+        check(any(words in m for m in warnings), f"no warning names '{words}': {warnings}")
+    info(f"{len(warnings)} warnings, e.g. {next(m for m in warnings if 'Coat Weight' in m)}")
+    compare(got, ref, reference_ids(exported, w, h, "layered"), "F12, layered Principled BSDF vs facet reference")
+
+
 def cancelled_render(name, interrupt):
     """A render with a stand-in POV-Ray that starts a child (`sleep 60`) and waits, Esc
     pressed once it runs: `interrupt` True sends SIGINT to Blender from the first run
@@ -2300,8 +2347,8 @@ def test_export_converts_materials_without_facet_settings():
     by_operator = export_material(copy, "converted_by_operator.json")
     by_operator["name"] = plain.name
     check_close(exported["materials"]["PlainPrincipled"], by_operator, "the exported conversion", 1e-6)
-    check_equal(exported["materials"]["PlainPrincipled"]["specular"]["model"], "ggx", "the Principled specular")
-    tiles = exported["materials"]["PlainPrincipled"]["diffuse"]["color"]
+    check_equal(exported["materials"]["PlainPrincipled"]["specular"]["model"], "gltf_pbr", "the Principled lobe")
+    tiles = exported["materials"]["PlainPrincipled"]["specular"]["base_color"]
     check(isinstance(tiles, dict) and os.path.isfile(work(tiles["texture"])), f"the Base Color image: {tiles}")
     reports = expect_ok("export_scene", None, filepath=work("converted_scene.json"))
     check(any(level == "WARNING" and "material 'PlainPrincipled'" in m for level, m in reports),
@@ -2719,8 +2766,8 @@ def principled_texture_scene(w, h):
 @test()
 def test_textured_principled_exports_and_renders_like_reference():
     """Convert + Export POV-Ray of the Principled scene: the images beside the .pov under
-    relative names (the packed and generated ones written out, the roughness squared into
-    a derived image), the normal map in the material where facet has "normal_map" (else a
+    relative names (the packed and generated ones written out; the roughness map itself, which
+    the gltf_pbr lobe squares where it shades), the normal map in the material where facet has "normal_map" (else a
     warning says it is left out), and POV-Ray's render equal to facet's reference render
     of the exported scene. Cycles (OSL, 4.x) of Generate OSL on each material: equal to it
     too."""
@@ -2736,12 +2783,11 @@ def test_textured_principled_exports_and_renders_like_reference():
     exported = read_json(work("principled.json"))
     materials = exported["materials"]
     spec = materials["BallPrincipled"]["specular"]
-    check(spec["alpha"]["channel"] == "r" and spec["alpha"]["texture"] == "rough_source_square.png",
-          f"α should be the baked square of the roughness map's green: {spec['alpha']}")
-    check_equal(materials["BallPrincipled"]["diffuse"]["color"]["texture"], "principled_2.png",
-                "an image named like the render, beside the .pov")
-    names = {materials["BallPrincipled"]["diffuse"]["color"]["texture"], spec["alpha"]["texture"],
-             materials["FloorPrincipled"]["diffuse"]["color"]["texture"]}
+    check(spec["roughness"]["channel"] == "g" and spec["roughness"]["texture"] == "rough_source.png",
+          f"roughness should be the roughness map's green, not baked (gltf_pbr squares it): {spec['roughness']}")
+    check_equal(spec["base_color"]["texture"], "principled_2.png", "an image named like the render, beside the .pov")
+    names = {spec["base_color"]["texture"], spec["roughness"]["texture"],
+             materials["FloorPrincipled"]["specular"]["base_color"]["texture"]}
     if facet_has_normal_map():
         normal = materials["BallPrincipled"].get("normal_map")
         check(normal and normal["green"] == "up" and normal["strength"] == 1.0, f"normal_map: {normal}")

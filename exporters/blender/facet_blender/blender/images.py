@@ -68,14 +68,7 @@ def _produce(image, b, material, notes):
     derive = b.get("derive")
     if derive:
         width, height, pixels = _pixels(image, material)
-        second = None
-        if derive.get("op") == "metal_mix":          # k_d or f0 from the base and the metallic images
-            metal = bpy.data.images.get(derive["metal"]["image"])
-            if metal is None:
-                raise UserError(f"material '{material}': its metallic image '{derive['metal']['image']}' is gone "
-                                f"(run Convert Blender Material again)")
-            second = _pixels(metal, material) + (bool(metal.is_float),)
-        return (textures.bake(width, height, pixels, b["spec"], derive, bool(image.is_float), second), ".png",
+        return (textures.bake(width, height, pixels, b["spec"], derive, bool(image.is_float)), ".png",
                 "linear")
     found = _file_bytes(image, material)
     if found:

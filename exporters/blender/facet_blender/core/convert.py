@@ -14,13 +14,13 @@ radiance as Cycles for a point or sun light of radius 0 (see scene.py for the un
 | Glossy BSDF, Beckmann, Roughness r        | beckmann, m = r², geometry smith_ggx, fresnel none  | approximate: Cycles uses Smith G for Beckmann |
 | Glossy BSDF, Roughness 0 / Sharp          | (no specular lobe)                                  | a mirror reflects no point light |
 | Glossy BSDF, Ashikhmin–Shirley            | refused                                             | no facet model |
-| Principled BSDF                           | lambert, color = Base·(1−Metallic)·(1−Transmission) | approximate: Cycles layers the diffuse under a Fresnel-weighted specular (4.x) / uses Disney's retro-reflective diffuse (3.x) |
-|   (Diffuse Roughness d > 0, 4.3+)         | oren_nayar, sigma = d                               | approximate, as the Diffuse BSDF |
-|   + specular                              | ggx, color 1, alpha = Roughness², geometry smith_ggx, fresnel schlick f0 = mix(F0_dielectric, Base, Metallic) | approximate: height-correlated Smith, multiscatter GGX, F82-tinted metals (4.x) |
-|   F0_dielectric, 4.x                      | ((IOR−1)/(IOR+1))² · 2·Specular IOR Level · Specular Tint (IOR 1.5, level 0.5: 0.04) | |
-|   F0_dielectric, 3.x                      | 0.08 · Specular · mix(1, Base/luminance(Base), Specular Tint) (Specular 0.5: 0.04) | |
+| Principled BSDF                           | gltf_pbr (glTF's BRDF, its specular lobe alone): base_color = Base Color, metallic, roughness | as Blender's glTF exporter writes the node; approximate to Cycles, whose Principled layers an energy-compensated dielectric, multiscatter GGX and F82-tinted metals (docs/blender.md measures it) |
+|   IOR (4.x)                               | ior (KHR_materials_ior)                             | |
+|   Specular IOR Level, Specular Tint (4.x) | specular = 2·level, specular_color = Tint (KHR_materials_specular; 2·level > 1: specular 1, Tint × 2·level, as the exporter writes it) | |
+|   Specular, Specular Tint (3.x)           | specular_color = 2·Specular·mix(1, Base/luminance(Base), Tint) (f0 = 0.08·Specular·tint) | approximate: 3.x's f90 |
+|   Roughness below 0.0316                  | roughness as typed; α = roughness² is floored at 1e-3 | approximate (a warning, never an error) |
 |   Emission (× Strength)                   | emission                                            | exact |
-|   Coat, Sheen, Subsurface, Transmission, Alpha, Anisotropic | ignored, reported                   | |
+|   Coat, Sheen, Anisotropic, Transmission, Subsurface, Diffuse Roughness, Alpha | ignored, each named in a warning (Alpha: a cut-out where Blender's glTF importer wired one) | |
 | Add Shader (a, b)                         | the lobes of a and b together                       | as exact as a and b (one diffuse and one specular lobe at most) |
 | Mix Shader (Fac f, a, b)                  | a's colours × (1−f), b's colours × f               | as exact as a and b |
 | anything else                             | refused: "no Diffuse, Glossy or Principled BSDF feeds the Material Output" | |
@@ -239,142 +239,6 @@ def glossy_bsdf(node, weight, result):
     return lobe
 
 
-def _dielectric_f0(node, base, unit=False):
-    """Principled's dielectric reflectance at normal incidence, per Blender version; with
-    `unit`, per unit of Specular IOR Level (4.x) / Specular (3.x), in which it is linear."""
-    if node.has("Specular IOR Level"):            # Blender 4.x
-        ior = float(node.get("IOR", 1.5))
-        level = 1.0 if unit else float(node.get("Specular IOR Level", 0.5))
-        tint = _rgb(node.get("Specular Tint", (1.0, 1.0, 1.0))) if node.has("Specular Tint") else [1.0] * 3
-        f0 = ((ior - 1.0) / (ior + 1.0)) ** 2 * 2.0 * max(level, 0.0)
-        return [f0 * t for t in tint]
-    specular = 1.0 if unit else float(node.get("Specular", 0.5))   # Blender 2.8-3.x
-    tint = float(node.get("Specular Tint", 0.0)) if node.has("Specular Tint") else 0.0
-    lum = sum(c * k for c, k in zip(base, LUMINANCE))
-    ctint = [c / lum for c in base] if lum > 0.0 else [1.0] * 3
-    return [0.08 * specular * ((1.0 - tint) + ct * tint) for ct in ctint]
-
-
-# (3.x name, 4.x name, value meaning "off") of inputs facet cannot represent.
-_PRINCIPLED_IGNORED = (
-    (("Subsurface", "Subsurface Weight"), 0.0, "subsurface scattering"),
-    (("Sheen", "Sheen Weight"), 0.0, "sheen"),
-    (("Clearcoat", "Coat Weight"), 0.0, "coat"),
-    (("Anisotropic",), 0.0, "anisotropy"),
-    (("Alpha",), 1.0, "alpha (transparency)"),
-)
-
-
-def _specular_level_texture(node, result, base, metallic, spec_model, maps):
-    """f0 = level·F0₁·(1 − Metallic) + Base·Metallic from a Specular IOR Level (4.x) or
-    Specular (3.x) image, F0₁ the dielectric f0 per unit level: baked (affine per texel)."""
-    name = "Specular IOR Level" if node.has("Specular IOR Level") else "Specular"
-    level_tex = maps[3]
-    if not level_tex or not spec_model:
-        return
-    if maps[0] or maps[1]:
-        result.note(APPROXIMATE, f"{node.label}: {name} is an image as well as Base Color or Metallic; f0 needs "
-                                 f"their product per texel, which the add-on does not bake: the unlinked "
-                                 f"{name} is used")
-        return
-    unit = _dielectric_f0(node, base, unit=True)
-    _bind(result, ("specular", "fresnel", "f0"), spec_model, level_tex,
-          derive={"op": "affine", "scale": [u * (1.0 - metallic) for u in unit],
-                  "offset": [b * metallic for b in base], "rgb": True})
-    result.note(EXACT, f"{node.label}: f0 = {name}·F0·(1−Metallic) + Base·Metallic baked from image "
-                       f"'{level_tex['image']}'")
-
-
-def _principled_textures(node, result, weight, base, metallic, transmission, f0_dielectric, spec_model, maps):
-    """The bindings of a Principled BSDF's Base Color, Metallic and Roughness images.
-
-    k_d = Base·(1−Metallic)·(1−Transmission)·w and f0 = F0·(1−Metallic) + Base·Metallic:
-    one image and constants are exact (a factor, or an affine function baked into a
-    derived image); Base and Metallic both images would need their product: the Base
-    image is used with the unlinked Metallic, and that is reported."""
-    base_tex, metal_tex, rough_tex = maps[:3]
-    keep = (1.0 - transmission) * weight
-    vertex_color = bool(base_tex and base_tex.get("vertex_color"))
-    if vertex_color and metal_tex and "image" not in base_tex:
-        result.note(APPROXIMATE, f"{node.label}: Base Color is a Color Attribute and Metallic an image; k_d = "
-                                 f"Base·(1−Metallic) and f0 = mix(F0, Base, Metallic) need their product per "
-                                 f"vertex and texel: the vertex colour with the unlinked Metallic {metallic:.3g} "
-                                 f"is used")
-        metal_tex = None
-    if base_tex and metal_tex and _same_coordinates(base_tex, metal_tex):
-        _bake_base_and_metal(result, node, base_tex, metal_tex, keep, f0_dielectric, spec_model)
-        base_tex = metal_tex = None
-    elif base_tex and metal_tex:
-        result.note(APPROXIMATE, f"{node.label}: Base Color and Metallic are images read through different UV maps "
-                                 f"or Mapping nodes; k_d = Base·(1−Metallic) and f0 = mix(F0, Base, Metallic) need "
-                                 f"their product per texel, which the add-on bakes only on one grid: Base Color's "
-                                 f"image with the unlinked Metallic {metallic:.3g} is used")
-        metal_tex = None
-    if base_tex:
-        _bind(result, ("diffuse", "color"), "lambert", base_tex, (1.0 - metallic) * keep)
-        if "image" in base_tex:
-            _texture_exactness(result, node, "Base Color")
-        if vertex_color:
-            result.note(EXACT, f"{node.label}: Base Color times the Color Attribute -> \"vertex_color\" on k_d"
-                               + (" and f0" if spec_model and metallic > 0.0 else "")
-                               + " (glTF's COLOR_0, as Blender's importer wires it)")
-    elif metal_tex:
-        c = [b * keep for b in base]            # k_d = c·(1 − m)
-        _bind(result, ("diffuse", "color"), "lambert", metal_tex,
-              derive={"op": "affine", "scale": [-x for x in c], "offset": c, "rgb": True})
-        result.note(EXACT, f"{node.label}: k_d = Base·(1−Metallic) baked from image '{metal_tex['image']}'")
-    if spec_model:
-        d = f0_dielectric
-        if vertex_color and metallic > 0.0:      # f0 = F0·(1 − M) + Base·M·vc: facet's offset, no bake
-            _bind(result, ("specular", "fresnel", "f0"), spec_model, base_tex, factor=metallic,
-                  offset=[x * (1.0 - metallic) for x in d] if metallic < 1.0 else None)
-        elif base_tex and metallic > 0.0:
-            spec = dict(base_tex)
-            if metallic == 1.0:
-                _bind(result, ("specular", "fresnel", "f0"), spec_model, spec)
-            else:
-                _bind(result, ("specular", "fresnel", "f0"), spec_model, spec,
-                      derive={"op": "affine", "scale": [metallic] * 3, "offset": [x * (1.0 - metallic) for x in d],
-                              "rgb": True})
-            result.note(EXACT, f"{node.label}: f0 = mix(F0, Base, Metallic) from image '{spec['image']}'")
-        elif metal_tex:
-            _bind(result, ("specular", "fresnel", "f0"), spec_model, metal_tex,
-                  derive={"op": "affine", "scale": [b - x for b, x in zip(base, d)], "offset": list(d), "rgb": True})
-            result.note(EXACT, f"{node.label}: f0 = mix(F0, Base, Metallic) baked from image '{metal_tex['image']}'")
-        if rough_tex:
-            _alpha_texture(result, node, "specular", spec_model, rough_tex)
-
-
-def _same_coordinates(a, b):
-    """Whether two texture specs read the same texture coordinates (UV map and Mapping)."""
-    return a.get("uv_map", "") == b.get("uv_map", "") and a.get("transform", {}) == b.get("transform", {})
-
-
-def _bake_base_and_metal(result, node, base_tex, metal_tex, keep, f0_dielectric, spec_model):
-    """k_d = Base·(1 − M)·keep and f0 = F0·(1 − M) + Base·M baked texel by texel from a Base Color
-    image and a Metallic image (textures.bake's "metal_mix"), on the Base Color image's grid:
-    what `facet import-gltf` bakes from glTF's baseColorTexture and metallicRoughnessTexture."""
-    scale = base_tex.get("scale", 1.0)
-    base_scale = scale if isinstance(scale, list) else [scale] * 3
-    metal = {k: metal_tex.get(k) for k in ("image", "channel", "colorspace", "filter", "wrap")}
-    common = {"op": "metal_mix", "metal": metal, "metal_scale": float(metal_tex.get("scale", 1.0)), "rgb": True}
-    spec = {k: v for k, v in base_tex.items() if k != "scale"}
-    _bind(result, ("diffuse", "color"), "lambert", spec,
-          derive=dict(common, part="kd", base_scale=[c * keep for c in base_scale]))
-    if spec_model:
-        f0_spec = {k: v for k, v in spec.items() if k not in ("vertex_color", "layer")}
-        _bind(result, ("specular", "fresnel", "f0"), spec_model, f0_spec,
-              derive=dict(common, part="f0", base_scale=base_scale, dielectric=[float(x) for x in f0_dielectric]))
-        if spec.get("vertex_color"):
-            result.note(APPROXIMATE, f"{node.label}: f0 = F0·(1−Metallic) + Base·Metallic·Color Attribute with "
-                                     f"Metallic from an image is no image times the vertex colour plus a number; "
-                                     f"the baked f0 leaves the vertex colour out (k_d keeps it: exact), as facet "
-                                     f"import-gltf does")
-    result.note(EXACT, f"{node.label}: k_d = Base·(1−Metallic) and f0 = mix(F0, Base, Metallic) baked texel by texel "
-                       f"from images '{base_tex['image']}' and '{metal['image']}' (glTF's base colour and "
-                       f"metallic–roughness maps, as facet import-gltf bakes them)")
-
-
 def _cut_out(node, result):
     """A cut-out (glTF's alphaMode MASK) from the Principled BSDF's Alpha, where Blender's glTF
     importer wired its clip: Alpha = 1 − (a < c) (Math Subtract of 1 and a Math Less Than; a the
@@ -424,57 +288,95 @@ def _color_attribute_in(src):
     return None
 
 
+# (3.x name, 4.x name, value meaning "off", what it is) of inputs facet's gltf_pbr lobe has no
+# parameter for: glTF's extension for it where there is one.
+_PRINCIPLED_IGNORED = (
+    (("Subsurface", "Subsurface Weight"), 0.0, "subsurface scattering: no glTF extension says it"),
+    (("Sheen", "Sheen Weight"), 0.0, "sheen: glTF's KHR_materials_sheen, which facet's gltf_pbr does not have yet"),
+    (("Clearcoat", "Coat Weight"), 0.0, "coat: glTF's KHR_materials_clearcoat, which facet's gltf_pbr does not "
+                                        "have yet"),
+    (("Anisotropic",), 0.0, "anisotropy: glTF's KHR_materials_anisotropy, which facet's gltf_pbr does not have yet"),
+    (("Transmission", "Transmission Weight"), 0.0, "transmission: glTF's KHR_materials_transmission, which facet "
+                                                   "does not implement"),
+    (("Diffuse Roughness",), 0.0, "a rough diffuse: glTF's BRDF has a Lambert base"),
+    (("Alpha",), 1.0, "alpha (transparency): facet's materials are opaque or cut out"),
+)
+
+
+def _specular_level(node, result, lobe, level_tex):
+    """KHR_materials_specular as Blender's glTF exporter writes it from Specular IOR Level and
+    Specular Tint (glTF-Blender-IO 4.5, exp/material/extensions/specular.py; its importer reads
+    specularFactor back as Specular IOR Level = 0.5·specularFactor): specular = 2·level, and
+    where that exceeds glTF's 1, specular 1 with the tint times 2·level."""
+    if node.texture("Specular Tint", "color"):
+        result.note(IGNORED, f"{node.label}: Specular Tint is an image (glTF's specularColorTexture); facet's "
+                             f"gltf_pbr takes specular_color as a number: the unlinked "
+                             f"{_Node._fmt(node.inputs['Specular Tint'])} is used")
+    tint = _rgb(node.get("Specular Tint", (1.0, 1.0, 1.0)))
+    level = max(float(node.get("Specular IOR Level", 0.5)), 0.0)
+    factor = 2.0 * (level_tex.get("scale", 1.0) if level_tex else level)
+    lobe["specular"] = min(factor, 1.0)
+    lobe["specular_color"] = [t * max(factor, 1.0) for t in tint]
+    if level_tex:
+        spec = dict(level_tex)
+        spec.pop("scale", None)
+        _bind(result, ("specular", "specular"), "gltf_pbr", spec, min(factor, 1.0))
+        result.note(EXACT, f"{node.label}: specular = 2·Specular IOR Level from image '{level_tex['image']}' "
+                           f"({level_tex['channel']}), glTF's specularTexture")
+
+
 def principled_bsdf(node, weight, result):
-    """(diffuse lobe, specular lobe, emission) of a Principled BSDF."""
+    """(None, the gltf_pbr lobe, emission) of a Principled BSDF: glTF's material, read as Blender's
+    glTF exporter writes the node (glTF-Blender-IO 4.5) and its importer wires it back, so a
+    glTF file imported by Blender and exported by the add-on is the material `facet import-gltf`
+    reads from the file. Base Color, Metallic and Roughness are the core's factors and maps;
+    IOR is KHR_materials_ior; Specular IOR Level and Tint are KHR_materials_specular (4.x).
+    Cycles renders the Principled BSDF with its own layering, which docs/blender.md measures."""
     _cut_out(node, result)
-    maps = (node.texture("Base Color", "color"), node.texture("Metallic", "number"),
-            node.texture("Roughness", "number"),
-            node.texture("Specular IOR Level" if node.has("Specular IOR Level") else "Specular", "number"))
-    base = _rgb(node.get("Base Color", (0.8, 0.8, 0.8)))
-    metallic = min(max(float(node.get("Metallic", 0.0)), 0.0), 1.0)
-    roughness = min(max(float(node.get("Roughness", 0.5)), 0.0), 1.0)
-    if maps[2] and roughness <= 0.0:
-        roughness = 0.5               # the lobe exists; its α comes from the image
-    transmission = float(node.first(("Transmission Weight", "Transmission"), 0.0))
+    four = node.has("Specular IOR Level")          # Blender 4.x
+    maps = {"base_color": node.texture("Base Color", "color"), "metallic": node.texture("Metallic", "number"),
+            "roughness": node.texture("Roughness", "number")}
+    level_tex = node.texture("Specular IOR Level", "number") if four else None
+    lobe = {"model": "gltf_pbr", "color": [weight] * 3,
+            "base_color": [min(max(c, 0.0), 1.0) for c in _rgb(node.get("Base Color", (0.8, 0.8, 0.8)))],
+            "metallic": min(max(float(node.get("Metallic", 0.0)), 0.0), 1.0),
+            "roughness": min(max(float(node.get("Roughness", 0.5)), 0.0), 1.0)}
     for names, off, what in _PRINCIPLED_IGNORED:
         for n in names:
-            if node.has(n) and float(node.inputs[n]) != off:
-                result.note(IGNORED, f"{node.label}: {n} {float(node.inputs[n]):.3g} ({what}) has no facet "
-                                     f"equivalent and is ignored")
-    if transmission > 0.0:
-        result.note(IGNORED, f"{node.label}: Transmission {transmission:.3g} is ignored (only the diffuse colour "
-                             f"is scaled by 1 − Transmission)")
-
-    # Diffuse: what Cycles weights its diffuse closure with.
-    kd = [c * (1.0 - metallic) * (1.0 - transmission) * weight for c in base]
-    diffuse_roughness = float(node.get("Diffuse Roughness", 0.0)) if node.has("Diffuse Roughness") else 0.0
-    layered = ("Cycles layers the diffuse under the Fresnel-weighted specular" if node.has("Specular IOR Level")
-               else "Cycles' 3.x Principled diffuse is Disney's retro-reflective lobe")
-    if diffuse_roughness > 0.0:
-        diffuse = {"model": "oren_nayar", "color": kd, "sigma": diffuse_roughness}
-        result.note(APPROXIMATE, f"{node.label} -> oren_nayar color Base·(1−Metallic)·(1−Transmission), sigma = "
-                                 f"Diffuse Roughness {diffuse_roughness:.3g} ({layered}; Fujii's Oren–Nayar)")
-    else:
-        diffuse = {"model": "lambert", "color": kd}
-        result.note(APPROXIMATE, f"{node.label} -> lambert color Base·(1−Metallic)·(1−Transmission) ({layered})")
-
-    # Specular: GGX with Schlick's Fresnel from the dielectric f0 and the metal's base colour.
-    f0_dielectric = _dielectric_f0(node, base)
-    f0 = [min(max(d * (1.0 - metallic) + b * metallic, 0.0), 1.0) for d, b in zip(f0_dielectric, base)]
+            if node.has(n) and float(node.inputs[n]) != off and not (n == "Alpha" and result.alpha_cutoff is not None):
+                result.note(IGNORED, f"{node.label}: {n} {float(node.inputs[n]):.3g} is ignored ({what})")
+    if four:
+        lobe["ior"] = max(float(node.get("IOR", 1.5)), 0.0)
+        _specular_level(node, result, lobe, level_tex)
+    else:                                          # Blender 2.8-3.x: f0 = 0.08·Specular·tint at IOR 1.5
+        specular = float(node.get("Specular", 0.5))
+        tint = float(node.get("Specular Tint", 0.0)) if node.has("Specular Tint") else 0.0
+        lum = sum(c * k for c, k in zip(lobe["base_color"], LUMINANCE))
+        ctint = [c / lum for c in lobe["base_color"]] if lum > 0.0 else [1.0] * 3
+        lobe["specular_color"] = [2.0 * specular * ((1.0 - tint) + ct * tint) for ct in ctint]
+        result.note(APPROXIMATE, f"{node.label}: Blender 3.x's Specular {specular:.3g} and Specular Tint "
+                                 f"{tint:.3g} -> specular_color (f0 = 0.08·Specular·tint, f90 1; Cycles 3.x's f90 "
+                                 f"is not glTF's)")
+    for key, spec in maps.items():
+        if spec:
+            _bind(result, ("specular", key), "gltf_pbr", spec)
+            if "image" in spec:
+                _texture_exactness(result, node, {"base_color": "Base Color", "metallic": "Metallic",
+                                                  "roughness": "Roughness"}[key])
+    if maps["base_color"] and maps["base_color"].get("vertex_color"):
+        result.note(EXACT, f"{node.label}: Base Color times the Color Attribute -> \"vertex_color\" on base_color "
+                           f"(glTF's COLOR_0, as Blender's importer wires it)")
     distribution = node.desc.get("distribution", "GGX")
-    specular = _microfacet(node, result, distribution, roughness, [weight] * 3,
-                           {"model": "schlick", "f0": f0}, f"{node.label} specular")
-    if specular:
-        result.note(APPROXIMATE, f"{node.label} -> fresnel schlick f0 = mix(dielectric f0, Base, Metallic) = "
-                                 f"({', '.join(f'{x:.4g}' for x in f0)})"
-                                 + (" (Cycles' metals use the F82-tint Fresnel)" if metallic > 0.0 else ""))
-    _principled_textures(node, result, weight, base, metallic, transmission, f0_dielectric,
-                         specular["model"] if specular else None, maps)
-    _specular_level_texture(node, result, base, metallic, specular["model"] if specular else None, maps)
-    if diffuse["model"] != "lambert":
-        for b in result.textures:
-            if b["path"] == ["diffuse", "color"] and b["model"] == "lambert":
-                b["model"] = diffuse["model"]
+    result.note(APPROXIMATE, f"{node.label} -> gltf_pbr, glTF's BRDF as Blender's glTF exporter writes this node "
+                             f"(Cycles' Principled is not that BRDF: its dielectric is energy-compensated"
+                             + (", its GGX multiscatter" if distribution == "MULTI_GGX" else "")
+                             + (", its metals F82-tinted" if lobe["metallic"] > 0.0 or maps["metallic"] else "")
+                             + "; docs/blender.md measures the difference)")
+    roughness = lobe["roughness"]
+    if not maps["roughness"] and roughness * roughness < 1e-3:
+        result.note(IGNORED, f"{node.label}: Roughness {roughness:.3g} is below facet's floor: α = roughness² is "
+                             f"clamped to 1e-3 (Roughness 0.0316), as glTF's specification says to clamp a delta "
+                             f"(Appendix B); a point light's highlight is wider and dimmer than Cycles' near-mirror")
 
     # Emission: radiance, the same on both sides; an image × Strength where facet takes
     # emission maps (the export checks; elsewhere the unlinked colour is used, and said).
@@ -485,8 +387,8 @@ def principled_bsdf(node, weight, result):
             if emission_tex and emission_tex.get("vertex_color"):
                 vc = _color_attribute_in(node.sources[name])
                 result.note(IGNORED, f"material '{result.material_name}': {node.label}: '{name}' is linked to "
-                                     f"{textures.node_label(vc) if vc else 'a Color Attribute'}; the add-on maps the vertex colour into a BSDF's "
-                                     f"colour only; the unlinked value is used")
+                                     f"{textures.node_label(vc) if vc else 'a Color Attribute'}; the add-on maps the "
+                                     f"vertex colour into a BSDF's colour only; the unlinked value is used")
                 emission_tex = None
             if emission_tex:
                 _bind(result, ("emission",), None, emission_tex, strength_value * weight)
@@ -498,7 +400,7 @@ def principled_bsdf(node, weight, result):
     emission = _scale(_rgb(color), strength * weight)
     if any(emission):
         result.note(EXACT, f"{node.label}: emission colour × strength -> emission")
-    return diffuse, specular, emission
+    return None, lobe, emission
 
 
 # ----------------------------------------------------------------------------- the tree

@@ -28,6 +28,11 @@ The mappings (ρ as MODELS.md defines it, relative to Lambert; Cycles' BSDFs are
   Fresnel and IOR), a Glossy BSDF, GGX, colour × F(0).
 - blinn: D_TR(c) = π c² D_GGX(α = c), and Blinn's ρ lacks the 1/4 of a microfacet
   BRDF: Glossy BSDF, GGX, Roughness √c, colour × 4c² F(0).
+- gltf_pbr: the Principled BSDF (Blender 4.x), GGX, as Blender's glTF importer builds it
+  from the same glTF material: Base Color, Metallic, Roughness, IOR, Specular IOR Level =
+  specular/2, Specular Tint = specular_color (a colour k_s other than white is refused);
+  Blender 3.x: Specular = the dielectric f0 / 0.08. A GGX metal is glTF's exactly; a
+  dielectric is Cycles' energy-compensated layering (docs/blender.md, F).
 - emission: an Emission shader of strength 1 (radiance m_e).
 - the toon modifier, ρ' = smoothstep(c − w/2, c + w/2, ρ): Toon BSDF, which steps on an
   angle (Cycles' bsdf_toon.h): the Diffuse one on angle(n, l), the Glossy one on the angle
@@ -67,8 +72,8 @@ def _scaled(rgb, k):
     return tuple(c * k for c in rgb)
 
 
-def _number(lobe, key):
-    value = lobe.get(key)
+def _number(lobe, key, default=None):
+    value = lobe.get(key, default)
     if isinstance(value, dict):
         raise UserError(f"'{key}' from a texture has no Blender-node equivalent here")
     return float(value)
@@ -127,8 +132,30 @@ def _principled_ggx(lobe, color):
     return {"type": PRINCIPLED, "props": {"distribution": "GGX"}, "inputs": inputs}
 
 
+def _principled_gltf(lobe, color, principled):
+    """glTF's BRDF as the Principled BSDF Blender's glTF importer makes of it (glTF-Blender-IO
+    4.5: Specular IOR Level = specular/2, Specular Tint = specular_color, IOR), GGX. Blender 3.x
+    (`principled` False): Specular = the dielectric f0 / 0.08 (its f0 = 0.08·Specular), the
+    largest channel of min(F0(ior)·specular_color, 1)·specular, Specular Tint 0."""
+    if color != (1.0, 1.0, 1.0):
+        raise UserError("specular model 'gltf_pbr' with a colour other than white has no Blender-node "
+                        "equivalent (a Principled BSDF has no overall weight): set its color to 1")
+    specular_color = _rgb(lobe.get("specular_color", 1.0))
+    inputs = {"Base Color": _rgb(lobe.get("base_color", 0.8)), "Metallic": _number(lobe, "metallic", 0.0),
+              "Roughness": _number(lobe, "roughness", 0.5)}
+    eta, specular = _number(lobe, "ior", 1.5), _number(lobe, "specular", 1.0)
+    if principled:
+        inputs.update({"IOR": eta, "Specular IOR Level": 0.5 * specular, "Specular Tint": specular_color})
+    else:
+        f0 = max(min(((eta - 1.0) / (eta + 1.0)) ** 2 * c, 1.0) * specular for c in specular_color)
+        inputs.update({"Specular": f0 / 0.08, "Specular Tint": 0.0})
+    return {"type": PRINCIPLED, "props": {"distribution": "GGX"}, "inputs": inputs}
+
+
 def _specular(lobe, principled=True):
     model, color = lobe["model"], _rgb(lobe.get("color"))
+    if model == "gltf_pbr":
+        return _principled_gltf(lobe, color, principled)
     if model == "ggx" and principled:
         node = _principled_ggx(lobe, color)
         if node:

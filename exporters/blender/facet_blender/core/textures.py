@@ -42,16 +42,12 @@ Cycles puts it. Under Linear interpolation Cycles filters an sRGB image's encode
 and decodes afterwards, facet decodes each texel first (glTF): exact with Closest or a
 Non-Color image, reported as approximate otherwise.
 
-A parameter that is a function of the image rather than the image itself (GGX's
-α = Roughness², Principled's Base·(1 − Metallic) with a constant base, its f0 = mix(F0,
-Base, Metallic)) is baked: the image's texels go through the function (in linear values)
-into a 16-bit PNG written beside the export (`bake`). A Base Color image and a Metallic
-image read through the same UV map and Mapping (glTF's baseColorTexture beside its
-metallicRoughnessTexture, as Blender's glTF importer wires them) bake k_d = Base·(1 − M) and
-f0 = F0·(1 − M) + Base·M texel by texel on the Base Color image's grid (op "metal_mix"), the
-metallic image read at each texel (sampled at the texel's centre where the sizes differ),
-which is what `facet import-gltf` bakes from the same file; other products of two images are
-not baked: the mapping uses one image and says it is approximate.
+A parameter that is a function of the image rather than the image itself (a Glossy BSDF's
+GGX α = Roughness², Beckmann's m) is baked: the image's texels go through the function (in
+linear values) into a 16-bit PNG written beside the export (`bake`). A Principled BSDF's
+images need no bake: its gltf_pbr lobe takes Base Color, Metallic, Roughness and Specular IOR
+Level as the images themselves, as glTF does (`convert.principled_bsdf`), which is what
+`facet import-gltf` reads from a glTF file.
 """
 
 import array
@@ -401,20 +397,16 @@ def binding(path, model, spec, factor=None, derive=None, offset=None):
     ["specular", "fresnel", "f0"], ["normal_map"]), the lobe's model it was made for, the
     texture spec (image, uv_map and facet's keys; "vertex_color", with or without an image),
     factor, offset (facet's "offset": value = offset + factor·vc·image) and the function baked
-    into a derived image (None, {"op": "square"}, {"op": "affine", "scale": [3], "offset": [3]},
-    {"op": "metal_mix", ...}).
+    into a derived image (None or {"op": "square"}).
 
     The spec's "scale" (a constant factor between the image and the socket) goes into the
-    factor, or into the derived image's function where there is one: (s·v)² for "square",
-    offset + scale·s·v for "affine"; "metal_mix" carries its own."""
+    factor, or into the derived image's function: (s·v)² for "square"."""
     spec = dict(spec)
     scale = spec.pop("scale", None)
     if scale is not None and derive is None:
         factor = _times(1.0 if factor is None else factor, scale)
-    elif scale is not None and derive.get("op") == "square":
+    elif scale is not None:
         derive = dict(derive, scale=scale)
-    elif scale is not None and derive.get("op") == "affine":
-        derive = dict(derive, scale=_times(list(derive["scale"]), scale))
     b = {"path": list(path), "model": model, "spec": spec}
     if factor is not None:
         b["factor"] = factor
@@ -661,24 +653,17 @@ def pixels_png(width, height, pixels):
 CHANNEL_INDEX = {"r": 0, "g": 1, "b": 2, "a": 3}
 
 
-def bake(width, height, pixels, spec, derive, linear_pixels, second=None):
+def bake(width, height, pixels, spec, derive, linear_pixels):
     """A 16-bit RGB PNG of `derive` applied to the channel(s) `spec` reads, in linear values:
     sRGB texels (of `spec`'s colour space) are decoded first unless `linear_pixels`
     (Blender's float images hold linear values already).
 
-    derive {"op": "square", "scale": s (default 1)}: (s·v)²;  {"op": "affine", "scale": [3],
-    "offset": [3]}: offset + scale·v per output channel (v the channel, or the pixel's r, g, b
-    for channel "rgb"); {"op": "metal_mix", "part": "kd" | "f0", "base_scale": [3], "metal":
-    {channel, colorspace, filter, wrap}, "metal_scale": m, "dielectric": [3]}: with b the base
-    texel × base_scale and M the metallic image's channel × metal_scale at the texel (`second`:
-    (width, height, pixels, linear) of that image), k_d = b·(1 − M) or f0 = d·(1 − M) + b·M."""
+    derive {"op": "square", "scale": s (default 1, or one per channel)}: (s·v)², v the channel,
+    or the pixel's r, g, b for channel "rgb" (GGX's α = Roughness², Beckmann's m)."""
     decode = spec.get("colorspace") == "srgb" and not linear_pixels
     channel = spec.get("channel", "r")
-    op = derive.get("op")
-    if op not in ("square", "affine", "metal_mix"):
+    if derive.get("op") != "square":
         raise UserError(f"unknown derived image {derive}")
-    if op == "metal_mix":
-        return _bake_metal_mix(width, height, pixels, decode, derive, second)
     rows = []
     for row in _rows_top_first(width, height, pixels, 4):
         out = []
@@ -691,73 +676,8 @@ def bake(width, height, pixels, spec, derive, linear_pixels, second=None):
                 v = px[k]
                 v = srgb_decode(v) if decode and k < 3 else v
                 values = [v, v, v]
-            if op == "square":
-                s = derive.get("scale", 1.0)
-                out.extend((sk * v) ** 2 for v, sk in zip(values, s if isinstance(s, list) else [s] * 3))
-            else:
-                out.extend(o + s * v for v, s, o in zip(values, derive["scale"], derive["offset"]))
-        rows.append(out)
-    return png16(width, height, rows, 3)
-
-
-def _wrap(k, n, mode):
-    """glTF's wrap of texel index k in [0, n): repeat, clamp (to the edge) or mirror."""
-    if mode == "clamp":
-        return min(max(k, 0), n - 1)
-    if mode == "mirror":
-        period = k % (2 * n)
-        return period if period < n else 2 * n - 1 - period
-    return k % n
-
-
-def _texel(width, height, pixels, i, j, k, decode):
-    """Channel k of texel (i, j), j counted from the top (Blender's pixels are bottom row first)."""
-    v = pixels[4 * ((height - 1 - j) * width + i) + k]
-    return srgb_decode(v) if decode and k < 3 else v
-
-
-def sample(width, height, pixels, u, v, k, filter_, wrap, decode):
-    """Channel k of an image at glTF coordinate (u, v) (v down the picture) by glTF's rule,
-    facet's (docs/textures.md): texel centres at (i + ½)/W, nearest or bilinear on decoded
-    texels, wrap on texel indices."""
-    x, y = u * width - 0.5, v * height - 0.5
-    if filter_ == "nearest":
-        i, j = _wrap(math.floor(x + 0.5), width, wrap), _wrap(math.floor(y + 0.5), height, wrap)
-        return _texel(width, height, pixels, i, j, k, decode)
-    i0, j0 = math.floor(x), math.floor(y)
-    fx, fy = x - i0, y - j0
-    out = 0.0
-    for dj, wy in ((0, 1 - fy), (1, fy)):
-        for di, wx in ((0, 1 - fx), (1, fx)):
-            if wx * wy:
-                out += wx * wy * _texel(width, height, pixels, _wrap(i0 + di, width, wrap),
-                                        _wrap(j0 + dj, height, wrap), k, decode)
-    return out
-
-
-def _bake_metal_mix(width, height, pixels, decode, derive, second):
-    """k_d or f0 from a base colour image and a metallic image, on the base image's texels."""
-    if second is None:
-        raise UserError("a metal_mix derived image needs the metallic image's pixels")
-    mw, mh, mpixels, mlinear = second
-    metal = derive["metal"]
-    k = CHANNEL_INDEX[metal.get("channel", "b")]
-    mdecode = metal.get("colorspace") == "srgb" and not mlinear
-    wrap = metal.get("wrap", "repeat")
-    base_scale, d = derive["base_scale"], derive.get("dielectric", [0.04] * 3)
-    rows = []
-    for j in range(height):
-        out = []
-        for i in range(width):
-            if (mw, mh) == (width, height):
-                m = _texel(mw, mh, mpixels, i, j, k, mdecode)
-            else:
-                m = sample(mw, mh, mpixels, (i + 0.5) / width, (j + 0.5) / height, k, metal.get("filter", "bilinear"),
-                           wrap, mdecode)
-            m *= derive.get("metal_scale", 1.0)
-            for c in range(3):
-                b = _texel(width, height, pixels, i, j, c, decode) * base_scale[c]
-                out.append(b * (1.0 - m) if derive["part"] == "kd" else d[c] * (1.0 - m) + b * m)
+            s = derive.get("scale", 1.0)
+            out.extend((sk * v) ** 2 for v, sk in zip(values, s if isinstance(s, list) else [s] * 3))
         rows.append(out)
     return png16(width, height, rows, 3)
 

@@ -42,25 +42,53 @@ def test_mix_shader_weights_the_colours():
     assert r.specular["color"] == pytest.approx([0.25, 0.25, 0.25])
 
 
-@pytest.mark.parametrize("inputs, f0", [
-    ({"IOR": 1.5, "Specular IOR Level": 0.5}, 0.04),              # Blender 4.x defaults
-    ({"IOR": 2.0, "Specular IOR Level": 0.5}, (1 / 3) ** 2),
-    ({"Specular": 0.5, "Specular Tint": 0.0}, 0.04),              # Blender 3.x defaults
-    ({"Specular": 1.0}, 0.08)])
-def test_principled_dielectric_f0(inputs, f0):
+def _f0(lobe):
+    """KHR_materials_specular's dielectric f0 of a gltf_pbr lobe: min(F0(ior)·specular_color, 1)·specular."""
+    eta = lobe.get("ior", 1.5)
+    return [min(((eta - 1) / (eta + 1)) ** 2 * c, 1.0) * lobe.get("specular", 1.0) for c in lobe["specular_color"]]
+
+
+@pytest.mark.parametrize("inputs, f0, specular", [
+    ({"IOR": 1.5, "Specular IOR Level": 0.5}, 0.04, 1.0),         # Blender 4.x defaults: glTF's core
+    ({"IOR": 2.0, "Specular IOR Level": 0.5}, (1 / 3) ** 2, 1.0),
+    ({"IOR": 1.5, "Specular IOR Level": 0.25}, 0.02, 0.5),        # specularFactor = 2·level
+    ({"IOR": 1.5, "Specular IOR Level": 1.0}, 0.08, 1.0),         # 2·level > 1: the tint carries it
+    ({"Specular": 0.5, "Specular Tint": 0.0}, 0.04, 1.0),         # Blender 3.x defaults
+    ({"Specular": 1.0}, 0.08, 1.0)])
+def test_principled_is_gltfs_brdf_as_blenders_exporter_writes_it(inputs, f0, specular):
     node = {"type": "BSDF_PRINCIPLED", "name": "P",
             "inputs": dict({"Base Color": [0.8, 0.2, 0.1, 1], "Metallic": 0.0, "Roughness": 0.5}, **inputs)}
     r = map_surface(node)
-    assert r.specular["fresnel"] == {"model": "schlick", "f0": pytest.approx([f0] * 3)}
-    assert r.diffuse == {"model": "lambert", "color": pytest.approx([0.8, 0.2, 0.1])}
+    assert r.diffuse is None and r.specular["model"] == "gltf_pbr"
+    assert r.specular["base_color"] == pytest.approx([0.8, 0.2, 0.1])
+    assert (r.specular["metallic"], r.specular["roughness"]) == (0.0, 0.5)
+    assert _f0(r.specular) == pytest.approx([f0] * 3)
+    assert r.specular.get("specular", 1.0) == specular
+    assert not r.exact     # Cycles' Principled is not glTF's BRDF, and the notes say so
+    assert any("docs/blender.md" in m for _, m in r.notes)
 
 
-def test_principled_metal_takes_the_base_colour_as_f0_and_has_no_diffuse_colour():
+def test_principled_metal_is_the_lobe_at_metallic_1_and_unmapped_inputs_name_their_extension():
     r = map_surface({"type": "BSDF_PRINCIPLED", "name": "P", "inputs": {
-        "Base Color": [0.9, 0.6, 0.3, 1], "Metallic": 1.0, "Roughness": 0.2, "Sheen Weight": 0.5}})
-    assert r.diffuse["color"] == [0.0, 0.0, 0.0]
-    assert r.specular["fresnel"]["f0"] == pytest.approx([0.9, 0.6, 0.3])
-    assert any(level == convert.IGNORED and "Sheen" in m for level, m in r.notes)
+        "Base Color": [0.9, 0.6, 0.3, 1], "Metallic": 1.0, "Roughness": 0.2, "Sheen Weight": 0.5,
+        "Coat Weight": 0.3, "Anisotropic": 0.4}})
+    assert r.diffuse is None
+    assert (r.specular["base_color"], r.specular["metallic"]) == ([0.9, 0.6, 0.3], 1.0)
+    for name, extension in (("Sheen", "KHR_materials_sheen"), ("Coat", "KHR_materials_clearcoat"),
+                            ("Anisotropic", "KHR_materials_anisotropy")):
+        assert any(level == convert.IGNORED and name in m and extension in m for level, m in r.notes), name
+
+
+def test_a_roughness_below_the_floor_is_kept_with_a_warning_not_an_error():
+    r = map_surface({"type": "BSDF_PRINCIPLED", "name": "P", "inputs": {"Roughness": 0.02}})
+    assert r.specular["roughness"] == 0.02
+    assert any(level == convert.IGNORED and "floor" in m for level, m in r.notes)     # a warning
+
+
+def test_a_mix_shader_weights_the_gltf_lobe_by_its_colour():
+    principled = {"type": "BSDF_PRINCIPLED", "name": "P", "inputs": {"Base Color": [0.5, 0.5, 0.5, 1]}}
+    r = map_surface({"type": "MIX_SHADER", "name": "M", "inputs": {"Fac": 0.25}, "shaders": [principled, None]})
+    assert r.specular["color"] == [0.75] * 3 and r.specular["base_color"] == [0.5] * 3
 
 
 def test_a_linked_input_makes_the_mapping_approximate():

@@ -47,6 +47,22 @@ def test_roughness_mappings():
     assert native.oren_nayar_roughness(0.0) == (0.0, 1.0)
 
 
+def test_gltf_pbr_is_the_principled_bsdf_blenders_gltf_importer_builds():
+    """glTF-Blender-IO 4.5: Specular IOR Level = 0.5·specularFactor, Specular Tint = specularColorFactor."""
+    node = native.lobe_node("specular", {"model": "gltf_pbr", "base_color": [0.8, 0.2, 0.1], "metallic": 0.25,
+                                         "roughness": 0.4, "ior": 1.8, "specular": 0.6,
+                                         "specular_color": [1.0, 0.6, 0.3]})
+    assert node["type"] == native.PRINCIPLED and node["props"] == {"distribution": "GGX"}
+    assert node["inputs"] == {"Base Color": (0.8, 0.2, 0.1), "Metallic": 0.25, "Roughness": 0.4, "IOR": 1.8,
+                              "Specular IOR Level": pytest.approx(0.3), "Specular Tint": (1.0, 0.6, 0.3)}
+    defaults = native.lobe_node("specular", {"model": "gltf_pbr"})["inputs"]
+    assert (defaults["Specular IOR Level"], defaults["IOR"], defaults["Roughness"]) == (0.5, 1.5, 0.5)
+    with pytest.raises(UserError, match="'gltf_pbr' with a colour other than white"):
+        native.lobe_node("specular", {"model": "gltf_pbr", "color": 0.5})
+    old = native.lobe_node("specular", {"model": "gltf_pbr", "ior": 2.0, "specular": 0.5}, principled=False)
+    assert old["inputs"]["Specular"] == pytest.approx((1 / 3) ** 2 * 0.5 / 0.08)     # Blender 3.x: f0 = 0.08·Specular
+
+
 def test_refusals_name_the_model():
     with pytest.raises(UserError, match="'phong' has no Blender-node equivalent"):
         native.node_plan({"diffuse": {"model": "lambert"}, "specular": {"model": "phong", "n": 10}})

@@ -140,11 +140,13 @@ def test_conversion_values_set_the_lobes_found(catalog, plan):
         "Emission Strength": 2.0}})
     values = props.conversion_values(catalog, plan, result)
     assert values[props.USE_FACET] is True
-    assert (values["diffuse_model"], values["specular_model"]) == ("lambert", "ggx")
+    assert (values["diffuse_model"], values["specular_model"]) == (props.NONE, "gltf_pbr")
     assert values["emission"] == [2.0, 1.0, 0.0]
-    assert values["specular_ggx"]["alpha"] == 0.25 and values["specular_ggx"]["fresnel"]["model"] == "schlick"
+    assert values["specular_gltf_pbr"]["base_color"] == [0.5, 0.5, 0.5]
+    assert values["specular_gltf_pbr"]["roughness"] == 0.5
     data = props.material_to_json(catalog, plan, dict(props.default_values(plan), **values), "P")
-    assert data["specular"]["fresnel"]["f0"] == pytest.approx([0.04, 0.04, 0.04])
+    assert "diffuse" not in data and data["specular"]["model"] == "gltf_pbr"
+    assert (data["specular"]["ior"], data["specular"]["specular"]) == (1.5, 1.0)
     glossy_only = convert.map_surface({"type": "BSDF_GLOSSY", "name": "G", "inputs": {"Roughness": 0.3}})
     values = props.conversion_values(catalog, plan, glossy_only)
     assert values["diffuse_model"] == props.NONE and values["emission"] == [0.0, 0.0, 0.0]

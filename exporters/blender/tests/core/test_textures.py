@@ -47,19 +47,24 @@ UV = {"type": "UVMAP", "name": "UV Map", "output": "UV", "uv_map": "UVMap"}
 
 
 def checker_and_roughness():
-    return principled({
-        "Base Color": tex_image(image(), vector=UV),
-        "Roughness": separate(tex_image(image("rough", "Non-Color"), "Color", "Linear", "EXTEND"), "Green")})
+    """A Diffuse BSDF with a colour image and a GGX Glossy BSDF with a roughness image (its G)."""
+    diffuse = {"type": "BSDF_DIFFUSE", "name": "Diffuse BSDF", "inputs": {"Color": [1, 1, 1, 1], "Roughness": 0.0},
+               "linked": ["Color"], "sources": {"Color": tex_image(image(), vector=UV)}}
+    rough = separate(tex_image(image("rough", "Non-Color"), "Color", "Linear", "EXTEND"), "Green")
+    glossy = {"type": "BSDF_GLOSSY", "name": "Glossy BSDF", "distribution": "GGX",
+              "inputs": {"Color": [1, 1, 1, 1], "Roughness": 0.5}, "linked": ["Roughness"],
+              "sources": {"Roughness": rough}}
+    return {"type": "ADD_SHADER", "shaders": [diffuse, glossy]}
 
 
 # ----------------------------------------------------------------------------- mapping
 
-def test_base_color_and_roughness_map_to_bindings():
+def test_colour_and_roughness_images_map_to_bindings():
     r = map_surface(checker_and_roughness(), "Textured")
     by_path = {tuple(b["path"]): b for b in r.textures}
     assert set(by_path) == {("diffuse", "color"), ("specular", "alpha")}
     kd = by_path[("diffuse", "color")]
-    assert kd["model"] == "lambert" and kd["factor"] == pytest.approx(1.0)
+    assert kd["model"] == "lambert" and "factor" not in kd
     assert kd["spec"] == {"image": "checker", "uv_map": "UVMap", "colorspace": "srgb", "filter": "nearest",
                           "wrap": "repeat", "channel": "rgb"}
     alpha = by_path[("specular", "alpha")]
@@ -71,37 +76,33 @@ def test_base_color_and_roughness_map_to_bindings():
     assert any("Roughness² baked" in m for m in messages(r, APPROXIMATE))
 
 
-def test_metallic_factor_and_f0_of_a_textured_base():
-    r = map_surface(principled({"Base Color": tex_image(image())}, Metallic=0.25), "M")
-    by_path = {tuple(b["path"]): b for b in r.textures}
-    assert by_path[("diffuse", "color")]["factor"] == pytest.approx(0.75)          # Base·(1 − Metallic)
-    f0 = by_path[("specular", "fresnel", "f0")]
-    assert f0["derive"] == {"op": "affine", "scale": [0.25] * 3, "offset": [pytest.approx(0.03)] * 3, "rgb": True}
+def gltf_maps(base_uv=UV, mr_uv=None):
+    """glTF's baseColorTexture (× baseColorFactor) and metallicRoughnessTexture (B × metallicFactor,
+    G × roughnessFactor) as Blender's glTF importer wires them into a Principled BSDF."""
+    mr = tex_image(image("mr", "Non-Color"), "Color", "Linear", "EXTEND", vector=mr_uv)
+    return principled({"Base Color": mix(tex_image(image(), vector=base_uv), [0.5, 0.25, 1.0, 1.0], linked_side="b"),
+                       "Metallic": math_multiply(separate(mr, "Blue"), 0.5),
+                       "Roughness": math_multiply(separate(mr, "Green"), 0.7)})
 
 
-def test_base_and_metallic_images_bake_kd_and_f0_together():
-    """glTF's baseColorTexture beside its metallicRoughnessTexture, as Blender's importer wires
-    them: k_d and f0 baked from both images on the base image's grid ("metal_mix")."""
-    metal = separate(tex_image(image("mr", "Non-Color")), "Blue")
-    r = map_surface(principled({"Base Color": tex_image(image()), "Metallic": metal}, Metallic=0.5), "Both")
-    by_path = {tuple(b["path"]): b for b in r.textures}
-    kd, f0 = by_path[("diffuse", "color")], by_path[("specular", "fresnel", "f0")]
-    assert kd["spec"]["image"] == f0["spec"]["image"] == "checker"
-    assert kd["derive"]["op"] == f0["derive"]["op"] == "metal_mix"
-    assert (kd["derive"]["part"], f0["derive"]["part"]) == ("kd", "f0")
-    assert kd["derive"]["metal"]["image"] == "mr" and kd["derive"]["metal"]["channel"] == "b"
-    assert f0["derive"]["dielectric"] == [pytest.approx(0.04)] * 3
-    assert any("baked texel by texel from images 'checker' and 'mr'" in m for m in messages(r, EXACT))
-
-
-def test_two_images_on_different_uv_maps_are_reported_approximate():
+def test_principled_images_are_gltf_pbr_bindings_as_the_file_has_them():
+    """Each map is a binding of the gltf_pbr lobe: the image itself, its channel and factor,
+    nothing baked, whatever UV maps they read — what facet import-gltf reads from the file."""
     other = {"type": "UVMAP", "name": "UV Map", "output": "UV", "uv_map": "UVMap.001"}
-    r = map_surface(principled({"Base Color": tex_image(image()),
-                                "Metallic": tex_image(image("metal", "Non-Color"), vector=other)}, Metallic=0.5),
-                    "Both")
-    assert any("different UV maps" in m for m in messages(r, APPROXIMATE))
-    assert [b["path"] for b in r.textures] == [["diffuse", "color"], ["specular", "fresnel", "f0"]]
-    assert not any(b.get("derive", {}).get("op") == "metal_mix" for b in r.textures)
+    for mr_uv in (None, other):
+        r = map_surface(gltf_maps(mr_uv=mr_uv), "Textured")
+        by_path = {tuple(b["path"]): b for b in r.textures}
+        assert set(by_path) == {("specular", "base_color"), ("specular", "metallic"), ("specular", "roughness")}
+        assert all(b["model"] == "gltf_pbr" and "derive" not in b for b in r.textures)
+        base = by_path[("specular", "base_color")]
+        assert base["factor"] == pytest.approx([0.5, 0.25, 1.0])
+        assert base["spec"] == {"image": "checker", "uv_map": "UVMap", "colorspace": "srgb", "filter": "nearest",
+                                "wrap": "repeat", "channel": "rgb"}
+        metal, rough = by_path[("specular", "metallic")], by_path[("specular", "roughness")]
+        assert (metal["factor"], metal["spec"]["channel"]) == (pytest.approx(0.5), "b")
+        assert (rough["factor"], rough["spec"]["channel"]) == (pytest.approx(0.7), "g")
+        assert metal["spec"]["uv_map"] == ("UVMap.001" if mr_uv else "")
+        assert not any("unlinked value" in m or "UV map" in m for m in messages(r))
 
 
 def mix(linked, value, blend="MULTIPLY", factor=1.0, linked_side="a"):
@@ -125,21 +126,11 @@ def test_glTF_factors_between_an_image_and_the_bsdf_become_factors():
                      **{"Emission Strength": 2.0, "Emission Color": [1.0, 1.0, 1.0, 1.0]})
     r = map_surface(src, "Factors")
     by_path = {tuple(b["path"]): b for b in r.textures}
-    assert by_path[("diffuse", "color")]["factor"] == pytest.approx([0.5, 0.25, 1.0])
-    assert by_path[("specular", "alpha")]["derive"] == {"op": "square", "scale": 0.5}
+    assert by_path[("specular", "base_color")]["factor"] == pytest.approx([0.5, 0.25, 1.0])
+    assert by_path[("specular", "roughness")]["factor"] == pytest.approx(0.5)
     assert by_path[("emission",)]["factor"] == pytest.approx([0.4, 0.8, 1.2])
     assert not any("unlinked value" in m for m in messages(r))
     assert all("scale" not in b["spec"] for b in r.textures)
-
-
-def test_a_metallic_factor_scales_the_baked_affine_functions():
-    r = map_surface(principled({"Metallic": math_multiply(separate(tex_image(image("mr", "Non-Color")), "Blue"),
-                                                           0.5)}, **{"Base Color": [0.6, 0.4, 0.2, 1.0]}), "M")
-    by_path = {tuple(b["path"]): b for b in r.textures}
-    kd = by_path[("diffuse", "color")]["derive"]
-    assert kd["scale"] == pytest.approx([-0.3, -0.2, -0.1]) and kd["offset"] == pytest.approx([0.6, 0.4, 0.2])
-    f0 = by_path[("specular", "fresnel", "f0")]["derive"]
-    assert f0["scale"] == pytest.approx([0.28, 0.18, 0.08]) and f0["offset"] == pytest.approx([0.04] * 3)
 
 
 def alpha_clip(alpha_src, cutoff, constant=1.0):
@@ -385,7 +376,7 @@ def test_apply_writes_facets_texture_objects():
     data, notes = textures.apply(material, r.textures, files)
     assert not notes
     assert data["diffuse"]["color"] == {"texture": "checker.png", "channel": "rgb", "colorspace": "srgb",
-                                        "filter": "nearest", "wrap": "repeat", "uv": 0, "factor": 1.0}
+                                        "filter": "nearest", "wrap": "repeat", "uv": 0}
     # The roughness image reads the active render map (""), the second set; α is the baked image's r.
     assert data["specular"]["alpha"] == {"texture": "rough.png", "channel": "r", "colorspace": "linear",
                                          "filter": "bilinear", "wrap": "clamp", "uv": 1}
@@ -423,16 +414,15 @@ def test_mesh_texcoords_flip_v_and_split_vertices():
 def test_pixels_png_puts_blenders_bottom_row_last(tmp_path):
     # 2×2, Blender's order: bottom row first. Top-left texel red, bottom-right blue.
     bottom = [0.0, 1.0, 0.0, 1.0, 0.0, 0.0, 1.0, 1.0]
-    top = [1.0, 0.0, 0.0, 1.0, 128 / 255, 128 / 255, 128 / 255, 1.0]
+    top = [1.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0, 1.0]
     data = textures.pixels_png(2, 2, bottom + top)
-    # support.read_png reads RGB; bake an identity affine to get RGB and check the order.
-    rgb = textures.bake(2, 2, bottom + top, {"channel": "rgb", "colorspace": "linear"},
-                        {"op": "affine", "scale": [1, 1, 1], "offset": [0, 0, 0]}, False)
+    # support.read_png reads RGB; bake a square (the identity on 0 and 1) to get RGB and check the order.
+    rgb = textures.bake(2, 2, bottom + top, {"channel": "rgb", "colorspace": "linear"}, {"op": "square"}, False)
     path = tmp_path / "t.png"
     path.write_bytes(rgb)
     w, h, depth, samples = read_png(str(path))
     assert (w, h, depth) == (2, 2, 16)
-    assert samples == [65535, 0, 0, 128 * 257, 128 * 257, 128 * 257, 0, 65535, 0, 0, 0, 65535]
+    assert samples == [65535, 0, 0, 65535, 65535, 65535, 0, 65535, 0, 0, 0, 65535]
     assert data[:8] == b"\x89PNG\r\n\x1a\n" and data[25] == 6          # colour type 6: RGBA
 
 
@@ -448,40 +438,6 @@ def test_bake_square_and_srgb(tmp_path):
     png = textures.bake(1, 1, px, {"channel": "r", "colorspace": "srgb"}, {"op": "square"}, True)   # float: linear
     path.write_bytes(png)
     assert read_png(str(path))[3] == [round(0.25 * 65535)] * 3
-
-
-def test_bake_metal_mix_equals_facets_bake(tmp_path):
-    """k_d = b·(1 − M) and f0 = d·(1 − M) + b·M per texel: the base texel decoded from sRGB and
-    scaled, M the metallic image's blue channel × its factor; a metallic image of another size is
-    sampled at the base texels' centres (bilinear, glTF's rule)."""
-    base = [0.5, 0.25, 1.0, 1.0, 0.2, 0.4, 0.6, 1.0]              # 2×1, Blender's rows bottom first
-    metal = [0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 0.5, 1.0]
-    derive = {"op": "metal_mix", "part": "kd", "base_scale": [1.0, 0.5, 1.0], "metal_scale": 0.8,
-              "metal": {"channel": "b", "colorspace": "linear", "filter": "nearest", "wrap": "repeat"}}
-    png = textures.bake(2, 1, base, {"colorspace": "srgb"}, derive, False, (2, 1, metal, False))
-    path = tmp_path / "kd.png"
-    path.write_bytes(png)
-    b = [[textures.srgb_decode(c) * k for c, k in zip(base[4 * i:4 * i + 3], (1.0, 0.5, 1.0))] for i in range(2)]
-    m = [0.8, 0.4]
-    want = [round(b[i][c] * (1 - m[i]) * 65535) for i in range(2) for c in range(3)]
-    assert read_png(str(path))[3] == want
-    f0 = dict(derive, part="f0", dielectric=[0.04, 0.04, 0.04])
-    path.write_bytes(textures.bake(2, 1, base, {"colorspace": "srgb"}, f0, False, (2, 1, metal, False)))
-    want = [round((0.04 * (1 - m[i]) + b[i][c] * m[i]) * 65535) for i in range(2) for c in range(3)]
-    assert read_png(str(path))[3] == want
-    # A 1×1 metallic image: every base texel reads its only texel.
-    path.write_bytes(textures.bake(2, 1, base, {"colorspace": "srgb"}, derive, False, (1, 1, metal[:4], False)))
-    want = [round(b[i][c] * (1 - 0.8) * 65535) for i in range(2) for c in range(3)]
-    assert read_png(str(path))[3] == want
-
-
-@pytest.mark.parametrize("wrap, u, want", [("repeat", 0.0, 0.5), ("clamp", 0.0, 0.0), ("mirror", 0.0, 0.0),
-                                           ("repeat", 0.5, 0.5), ("clamp", 0.75, 1.0)])
-def test_sample_follows_glTFs_texel_centres_and_wraps(wrap, u, want):
-    """A 2×1 image of 0 and 1: texel centres at u = 0.25 and 0.75, bilinear between them."""
-    px = [0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0, 1.0]
-    assert textures.sample(2, 1, px, u, 0.5, 0, "bilinear", wrap, False) == pytest.approx(want)
-    assert textures.sample(2, 1, px, 0.3, 0.5, 0, "nearest", wrap, False) == 0.0
 
 
 def test_bake_square_with_a_factor(tmp_path):
@@ -536,6 +492,23 @@ def test_facet_reads_what_apply_writes(facet, tmp_path):
     assert proc.returncode == 0, proc.stderr
 
 
+def test_facet_generates_what_apply_writes_of_a_principled_bsdf(facet, tmp_path):
+    """The gltf_pbr lobe with its three maps (one image read for B and G) is accepted by facet."""
+    r = map_surface(gltf_maps(), "Textured")
+    px = [v for k in range(16) for v in ((k % 2) * 1.0, (k // 4) / 3.0, 0.5, 1.0)]
+    files = {}
+    for b in r.textures:
+        (tmp_path / f"{b['spec']['image']}.png").write_bytes(textures.pixels_png(4, 4, px))
+        files[textures.file_key(b)] = (f"{b['spec']['image']}.png", None)
+    data, notes = textures.apply({"name": "Textured", "specular": r.specular}, r.textures, files)
+    assert not notes and data["specular"]["metallic"]["texture"] == data["specular"]["roughness"]["texture"]
+    (tmp_path / "m.json").write_text(json.dumps(data))
+    proc = subprocess.run([facet, "generate", str(tmp_path / "m.json"), "--target", "glsl"],
+                          stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    assert proc.returncode == 0, proc.stderr
+    assert "facet_texture_specular_base_color" in proc.stdout and "facet_texture_specular_roughness" in proc.stdout
+
+
 def test_a_material_files_textures_round_trip():
     """split + binding_of_json + apply give back the file's texture objects (uv written out)."""
     tex_kd = {"texture": "textures/checker.png", "filter": "nearest", "wrap": "mirror", "factor": 0.8,
@@ -573,20 +546,28 @@ def test_mesh_tangents_go_to_world_space_and_mirroring_flips_w():
     assert "tangents" not in obj
 
 
-@pytest.mark.parametrize("inputs, unit", [({"IOR": 1.5, "Specular IOR Level": 0.5}, 0.08),     # 4.x: 2·0.04
-                                          ({"Specular": 0.5, "Specular Tint": 0.0}, 0.08)])    # 3.x: 0.08
-def test_a_specular_level_image_bakes_f0(inputs, unit):
-    name = "Specular IOR Level" if "IOR" in inputs else "Specular"
-    values = {"Base Color": [0.8, 0.4, 0.2, 1.0], "Metallic": 0.25, "Roughness": 0.5}
-    values.update(inputs)
-    node = {"type": "BSDF_PRINCIPLED", "name": "P", "distribution": "GGX", "inputs": values, "linked": [name],
-            "sources": {name: tex_image(image("spec", "Non-Color"))}}
+@pytest.mark.parametrize("specular_factor", [0.5, 1.0])
+def test_a_specular_level_image_is_gltfs_specular_texture(specular_factor):
+    """Blender's importer: Specular IOR Level = specularTexture's A × 0.5·specularFactor (a Math
+    Multiply): specular = the image's A × specularFactor."""
+    values = {"Base Color": [0.8, 0.4, 0.2, 1.0], "Metallic": 0.25, "Roughness": 0.5, "IOR": 1.5,
+              "Specular IOR Level": 0.5}
+    level = math_multiply(tex_image(image("spec", "Non-Color"), "Alpha"), 0.5 * specular_factor)
+    node = {"type": "BSDF_PRINCIPLED", "name": "P", "distribution": "GGX", "inputs": values,
+            "linked": ["Specular IOR Level"], "sources": {"Specular IOR Level": level}}
     r = map_surface(node, "Spec")
     (b,) = r.textures
-    assert b["path"] == ["specular", "fresnel", "f0"] and b["spec"]["channel"] == "r"
-    assert b["derive"]["scale"] == pytest.approx([unit * 0.75] * 3)
-    assert b["derive"]["offset"] == pytest.approx([0.2, 0.1, 0.05])
+    assert b["path"] == ["specular", "specular"] and b["spec"]["channel"] == "a" and "derive" not in b
+    assert b["factor"] == pytest.approx(specular_factor)
     assert not any("unlinked value" in m for m in messages(r))
+
+
+def test_a_specular_image_in_blender_3_is_named():
+    values = {"Base Color": [0.8, 0.4, 0.2, 1.0], "Specular": 0.5, "Specular Tint": 0.0}
+    node = {"type": "BSDF_PRINCIPLED", "name": "P", "inputs": values, "linked": ["Specular"],
+            "sources": {"Specular": tex_image(image("spec", "Non-Color"))}}
+    r = map_surface(node, "Spec")
+    assert r.textures == [] and any("'Specular'" in m and "unlinked value" in m for m in messages(r, IGNORED))
 
 
 def test_values_of_the_vertex_colour_are_named_as_unmapped():
@@ -612,23 +593,22 @@ def product(a, b):
             "a": a, "a_value": [1.0] * 4, "b": b, "b_value": [1.0] * 4}
 
 
-def test_a_color_attribute_is_the_vertex_colour_on_kd_and_f0():
+def test_a_color_attribute_is_the_vertex_colour_on_base_color():
     """COLOR_0 as Blender's glTF importer wires it without a texture (the Color Attribute through
-    the baseColorFactor's Mix): k_d = base·(1 − m)·vc and f0 = 0.04·(1 − m) + base·m·vc, facet's
-    factor and offset, exact, no image."""
+    the baseColorFactor's Mix): base_color = baseColorFactor·COLOR_0, facet's vertex colour with a
+    factor, exact, no image."""
     src = principled({"Base Color": mix(VERTEX_COLOR, [0.5, 0.25, 1.0, 1.0])}, Metallic=0.6)
     r = map_surface(src, "Tinted")
-    by_path = {tuple(b["path"]): b for b in r.textures}
-    kd, f0 = by_path[("diffuse", "color")], by_path[("specular", "fresnel", "f0")]
-    assert kd["spec"] == {"vertex_color": True, "layer": ""} and not textures.has_image(kd)
-    assert kd["factor"] == pytest.approx([0.2, 0.1, 0.4])
-    assert f0["factor"] == pytest.approx([0.3, 0.15, 0.6]) and f0["offset"] == pytest.approx([0.016] * 3)
+    (base,) = r.textures
+    assert base["path"] == ["specular", "base_color"] and base["model"] == "gltf_pbr"
+    assert base["spec"] == {"vertex_color": True, "layer": ""} and not textures.has_image(base)
+    assert base["factor"] == pytest.approx([0.5, 0.25, 1.0])
     assert textures.uv_maps(r.textures) == [] and textures.vertex_color_layers(r.textures) == [""]
-    data, notes = textures.apply({"name": "Tinted", "diffuse": r.diffuse, "specular": r.specular}, r.textures, {})
+    data, notes = textures.apply({"name": "Tinted", "specular": r.specular}, r.textures, {})
     assert not notes
-    assert data["diffuse"]["color"] == {"vertex_color": True, "factor": pytest.approx([0.2, 0.1, 0.4])}
-    assert data["specular"]["fresnel"]["f0"]["offset"] == pytest.approx([0.016] * 3)
-    assert any("Color Attribute -> \"vertex_color\" on k_d and f0" in m for m in messages(r, EXACT))
+    assert data["specular"]["base_color"] == {"vertex_color": True, "factor": pytest.approx([0.5, 0.25, 1.0])}
+    assert data["specular"]["metallic"] == pytest.approx(0.6)
+    assert any("Color Attribute -> \"vertex_color\" on base_color" in m for m in messages(r, EXACT))
     assert not any("unlinked value" in m for m in messages(r))
 
 
@@ -637,12 +617,13 @@ def test_an_image_times_a_color_attribute_keeps_both(facet, tmp_path):
     -> the texture with "vertex_color": true, which facet accepts."""
     for a, b in ((tex_image(image()), VERTEX_COLOR), (VERTEX_COLOR, tex_image(image()))):
         r = map_surface(principled({"Base Color": product(a, b)}), "Checker")
-        (kd,) = [x for x in r.textures if x["path"] == ["diffuse", "color"]]
-        assert kd["spec"]["image"] == "checker" and kd["spec"]["vertex_color"] is True
-    files = {textures.file_key(kd): ("checker.png", None)}
+        (base,) = [x for x in r.textures if x["path"] == ["specular", "base_color"]]
+        assert base["spec"]["image"] == "checker" and base["spec"]["vertex_color"] is True
+    files = {textures.file_key(base): ("checker.png", None)}
     (tmp_path / "checker.png").write_bytes(textures.pixels_png(2, 2, [1.0, 0.5, 0.25, 1.0] * 4))
-    data, _ = textures.apply({"name": "Checker", "diffuse": r.diffuse, "specular": r.specular}, r.textures, files)
-    assert data["diffuse"]["color"]["vertex_color"] is True and data["diffuse"]["color"]["texture"] == "checker.png"
+    data, _ = textures.apply({"name": "Checker", "specular": r.specular}, r.textures, files)
+    color = data["specular"]["base_color"]
+    assert color["vertex_color"] is True and color["texture"] == "checker.png"
     (tmp_path / "m.json").write_text(json.dumps(data))
     proc = subprocess.run([facet, "generate", str(tmp_path / "m.json"), "--target", "glsl"],
                           stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
