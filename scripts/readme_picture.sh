@@ -27,7 +27,9 @@ picture() {
     </style><h1>$title</h1><table>
     <tr><th></th>"
     local f m
-    for f in "$@"; do m=$(basename "$f" .json); echo "<th>${m//_/ }</th>"; done
+    for f in "$@"; do  # the file's name as words: ior_1_33 -> ior 1.33
+      m=$(basename "$f" .json | sed -E 's/([0-9])_([0-9])/\1.\2/g; s/_/ /g'); echo "<th>$m</th>"
+    done
     echo '</tr>'
     for r in reference:"C++ reference" glsl:"OpenGL (GLSL)" osl:"Cycles (OSL)" pov:"POV-Ray"; do
       local key=${r%%:*} label=${r#*:}
