@@ -64,6 +64,8 @@ std::vector<double> sweep_values(const ParamDef& p, bool coarse) {
   return out;
 }
 
+constexpr size_t kCrossed = 4;
+
 std::vector<Variant> variants(const ModelDef& def) {
   ModelSpec base = default_spec(def);
   if (def.param("fresnel")) {  // the white furnace: F = 1
@@ -90,6 +92,11 @@ std::vector<Variant> variants(const ModelDef& def) {
     }
     specs = std::move(next);
   };
+  // Up to kCrossed numbers: every combination of their sweeps. More (glTF's material with its
+  // extensions): each number swept alone, the others at their defaults, so the work grows with
+  // the parameters, not as the power of their count (3^6 = 729 variants for six).
+  const bool crossed = numbers.size() <= kCrossed;
+  std::vector<std::pair<std::string, ModelSpec>> alone;
   for (const ParamDef* p : numbers) {
     std::vector<std::pair<std::string, Value>> values;
     for (double x : sweep_values(*p, numbers.size() > 1)) {
@@ -98,8 +105,17 @@ std::vector<Variant> variants(const ModelDef& def) {
       v.number = x;
       values.push_back({fmt::format("{:g}", x), v});
     }
-    expand(*p, values);
+    if (crossed) {
+      expand(*p, values);
+      continue;
+    }
+    for (const auto& [text, value] : values) {
+      ModelSpec s = base;
+      s.values[p->name] = value;
+      alone.push_back({p->name + " " + text, s});
+    }
   }
+  if (!crossed) specs = std::move(alone);
   for (const ParamDef* p : flags) {
     Value off, on;
     off.kind = on.kind = ParamKind::Bool;
@@ -370,9 +386,12 @@ std::string physics_markdown(const std::vector<PhysicsRow>& rows, const PhysicsO
       "measured) with the light along the tangent (φ = 0°) and along the bitangent (φ = 90°). Estimates are given "
       "± one standard error.\n",
       angles);
-  s += "- *Parameters*: each numeric parameter at d/4, d/2, d, 2d and 4d of its default d (d/4, d and 4d when the "
-       "lobe has two), or at even steps over a finite range; flags both ways; the geometry term and approximations "
-       "at their defaults, as the catalog's claims are made for those.\n\n";
+  s += fmt::format(
+      "- *Parameters*: each numeric parameter at d/4, d/2, d, 2d and 4d of its default d (d/4, d and 4d when the "
+      "lobe has two), or at even steps over a finite range, every combination of them for a lobe of up to {} numbers "
+      "and each alone (the others at their defaults) beyond; flags both ways; the geometry term and approximations "
+      "at their defaults, as the catalog's claims are made for those.\n\n",
+      kCrossed);
   s += "## Summary\n\n";
   s += "| lobe | reciprocal (catalog) | worst asymmetry (measured) | energy-conserving (catalog) | maximum albedo "
        "(measured) | where | why |\n";

@@ -264,10 +264,10 @@ struct ModelDef {
   // the given values, for the metallic–roughness fallback of a glTF export
   // (roughnessFactor = √α). Null: no equivalent; the export takes α = 1.
   std::function<double(const ModelSpec& lobe)> ggx_alpha;
-  // Specular lobes: the lobe is glTF's own BRDF (Appendix B with KHR_materials_ior and
-  // KHR_materials_specular), its parameters glTF's: base_color, metallic, roughness, ior,
-  // specular, specular_color. The export writes its factors, maps and extensions as they
-  // are (the import moves to it with the Blender add-on's Principled mapping: issue 29).
+  // Specular lobes: the lobe is glTF's own BRDF (Appendix B with KHR_materials_ior,
+  // KHR_materials_specular and KHR_materials_clearcoat), its parameters glTF's: base_color,
+  // metallic, roughness, ior, specular, specular_color, clearcoat, clearcoat_roughness. The
+  // import reads them, the export writes its factors, maps and extensions as they are.
   bool gltf_brdf = false;
   // Fresnel terms: the reflectance at normal incidence F(0) as a colour, where the
   // term states it. glTF's metallic workflow takes it as a conductor's base colour:

@@ -50,6 +50,82 @@ ir::Expr microfacet(LobeContext& c, const ir::Expr& D, const ir::Expr& alpha) {
   return ir::call(terms::microfacet(f.type()), {d, g, f, c.NoV()});
 }
 
+// The GGX layer of glTF's specular_brdf(α) as ρ: π D V (n·l), Appendix B's D and height-correlated
+// V, α = roughness² floored (a constant where `roughness` is a number, else computed where it
+// shades). `prefix` names its values ("" the core's, "coat_" the clear coat's).
+ir::Expr gltf_specular_layer(LobeContext& c, const std::string& roughness, const std::string& prefix) {
+  const double r = c.spec().at(roughness).number;
+  ir::Expr alpha = c.textured(c.spec(), roughness)
+                       ? c.let(prefix + "alpha", ir::max(ir::sq(c.number(roughness)), kRoughnessMin))
+                       : ir::constant(c.lobe() + "_" + prefix + "alpha", std::max(r * r, kRoughnessMin));
+  ir::Expr D = c.let(prefix + "D", ir::call(terms::distribution_ggx(), {c.NoH(), alpha}));
+  ir::Expr V = c.let(prefix + "V", ir::call(terms::visibility_smith_ggx_correlated(), {c.NoL(), c.NoV(), alpha}));
+  return c.let(prefix + "specular_brdf", kPi * D * V * c.NoL());
+}
+
+// glTF 2.0 Appendix B, "Metal BRDF and Dielectric BRDF", with KHR_materials_specular's
+// dielectric_f0 / f90 and KHR_materials_ior's f0 ("Interaction with other extensions").
+ir::Expr gltf_core(LobeContext& c) {
+  // A grey base colour (and specular_color) keeps the lobe one number until k_s ⊗ ρ.
+  ir::Expr base = c.parameter(c.spec(), "base_color", c.lobe() + "_base_color", true);
+  ir::Expr specular = c.number("specular");
+  ir::Expr layer = gltf_specular_layer(c, "roughness", "");  // ρ of specular_brdf(α)
+  // fresnel_w takes |v·h| itself (Appendix B): v·h unclamped.
+  ir::Expr w = c.let("w", ir::call(terms::fresnel_weight(), {c.input(Input::VoH)}));
+  // metallic 0 or 1 as a number (most materials): the other side of the mix is weighted 0
+  // and left out of the code (it is finite, so (1 − t) a + t b is the one side exactly).
+  const bool textured_metal = c.textured(c.spec(), "metallic");
+  const double metallic = c.spec().at("metallic").number;
+  ir::Expr metal = 0.0, dielectric = 0.0;
+  if (textured_metal || metallic > 0)
+    metal = c.let("metal_brdf", ir::call(terms::conductor_fresnel(base.type()), {base, w, layer}));
+  if (!textured_metal && metallic == 1) return metal;
+  ir::Expr ior = c.number("ior");
+  ir::Expr f0_ior = c.let("f0_ior", ir::sq((ior - 1.0) / (ior + 1.0)));
+  // A grey specular_color (the default) keeps F one number, its own max.
+  const std::array<double, 3>& tint = c.spec().at("specular_color").rgb;
+  const bool grey = tint[0] == tint[1] && tint[1] == tint[2];
+  ir::Expr color = c.parameter(c.spec(), "specular_color", c.lobe() + "_specular_color", true);
+  ir::Expr f0 = c.let("dielectric_f0", ir::min(f0_ior * color, grey ? ir::Expr(1.0) : ir::color(1, 1, 1)) * specular);
+  ir::Expr F = c.let("dielectric_fresnel", ir::call(terms::fresnel_schlick_f90(f0.type()), {f0, specular, w}));
+  if (grey) {
+    dielectric =
+        c.let("dielectric_brdf", ir::call(terms::fresnel_mix(F.type(), base.type()), {F, layer, base * c.NoL()}));
+  } else {
+    // max(F) in closed form: F = f0 (1 − w) + f90 w with 1 − w ≥ 0 is largest where f0 is,
+    // and max(min(a c, 1)) = min(a max(c), 1) for a ≥ 0: so specular_color must be a constant.
+    ir::Expr tint_max = ir::constant(c.lobe() + "_specular_color_max", std::max({tint[0], tint[1], tint[2]}));
+    ir::Expr F_max =
+        c.let("dielectric_fresnel_max", ir::min(f0_ior * tint_max, 1.0) * specular * (1.0 - w) + specular * w);
+    dielectric =
+        c.let("dielectric_brdf",
+              ir::call(terms::fresnel_mix(F.type(), base.type()), {F, F_max, layer, base * c.NoL()}));
+  }
+  if (!textured_metal && metallic == 0) return dielectric;
+  // The two sides as one type: a grey one as a colour where the other is coloured.
+  if (dielectric.type() != metal.type()) {
+    if (dielectric.type() == ir::Type::Float) dielectric = dielectric * ir::color(1, 1, 1);
+    else metal = metal * ir::color(1, 1, 1);
+  }
+  return ir::call(terms::mix_by(metal.type()), {dielectric, metal, c.number("metallic")});
+}
+
+// KHR_materials_clearcoat, "Clearcoat" and "Implementation": the coat is specular_brdf of
+// α = clearcoatRoughness² over the whole material, mixed in by clearcoat · fresnel_coat, whose
+// Schlick Fresnel (f0 = 0.04, ior 1.5) reads |n·v|, not v·h: coated = material (1 − c Fc) +
+// c Fc clearcoat_brdf. The coat's normal is the shading normal. A number clearcoat of 0 (every
+// material without the extension) leaves the core as it is, in the code too.
+ir::Expr gltf_clearcoat(LobeContext& c, ir::Expr core) {
+  if (!c.textured(c.spec(), "clearcoat") && c.spec().at("clearcoat").number == 0) return core;
+  // Its values are named coat_…: "clearcoat_alpha" would meet OSL's name for the alpha of the
+  // clearcoat parameter's texel (<lobe>_clearcoat_alpha).
+  ir::Expr coat = gltf_specular_layer(c, "clearcoat_roughness", "coat_");
+  ir::Expr w = c.let("coat_w", ir::call(terms::fresnel_weight(), {c.NoV()}));
+  ir::Expr fc = c.let("coat_fresnel", ir::call(terms::fresnel_schlick_f90(ir::Type::Float), {0.04, 1.0, w}));
+  if (core.type() != ir::Type::Float) coat = coat * ir::color(1, 1, 1);
+  return ir::call(terms::mix_by(core.type()), {core, coat, c.number("clearcoat") * fc});
+}
+
 const char* kMicrofacetPov = "function pigment";
 
 // The glTF equivalent of a lobe whose parameter `param` is a GGX-like roughness α.
@@ -259,17 +335,20 @@ void add_specular(std::vector<ModelDef>& all) {
     m.name = "gltf_pbr";
     m.title = "glTF metallic–roughness";
     m.citation = "The Khronos Group, \"glTF 2.0 Specification\", Appendix B \"BRDF Implementation\"; "
-                 "KHR_materials_ior; KHR_materials_specular";
+                 "KHR_materials_ior; KHR_materials_specular; KHR_materials_clearcoat";
     // Short words: the add-on's panel wraps the formula at 27 characters (220 px) and keeps words whole.
     m.formula = "ρ = π f (n·l), f = (1 − metallic) dielectric + metallic metal, dielectric = F S + (1 − max F) "
                 "base_color/π, metal = S (base_color + (1 − base_color) w), S = D V (GGX, height-correlated "
                 "Smith, α = roughness²), F = f0 + (specular − f0) w, w = (1 − |v·h|)^5, f0 = min(F0(ior) "
-                "specular_color, 1) specular, F0(ior) = ((ior − 1)/(ior + 1))²";
+                "specular_color, 1) specular, F0(ior) = ((ior − 1)/(ior + 1))²; with a clear coat c: f' = f (1 − c "
+                "Fc) + c Fc S_c, S_c = D V (α = clearcoat_roughness²), Fc = 0.04 + 0.96 (1 − |n·v|)^5";
     m.doc = "The whole BRDF a glTF file's material means, diffuse included, as its specification writes it: a "
             "dielectric (a Lambert base under a GGX layer, the base weighted by 1 − max(F)) and a metal (the GGX "
             "lobe tinted by the base colour's Schlick Fresnel), mixed by metallic. ior and specular / specular_color "
             "are KHR_materials_ior and KHR_materials_specular; their defaults (1.5, 1, white) give the core "
-            "specification's f0 = 0.04. Write it as the material's specular lobe, alone.";
+            "specification's f0 = 0.04. clearcoat and clearcoat_roughness are KHR_materials_clearcoat: a GGX layer "
+            "over all of it, weighted by its Fresnel at n·v (the coat's normal is the surface's: a separate coat "
+            "normal map is not taken). Write it as the material's specular lobe, alone.";
     // Defaults: Blender's Principled BSDF's (a grey dielectric, roughness 0.5), not glTF's white
     // rough metal (1, 1, 1), which a glTF import states for a file that leaves its factors out;
     // the extensions' defaults are their READMEs'.
@@ -287,7 +366,12 @@ void add_specular(std::vector<ModelDef>& all) {
         number("specular", "KHR_materials_specular specularFactor: f90 of the dielectric, and a factor of its f0",
                Range::closed(0, 1), 1, false),
         color("specular_color", "KHR_materials_specular specularColorFactor: the dielectric f0's colour (not an image)",
-              Range::color(), {1, 1, 1})};
+              Range::color(), {1, 1, 1}),
+        number("clearcoat", "KHR_materials_clearcoat clearcoatFactor: the clear coat's weight (0: none)",
+               Range::closed(0, 1), 0, false),
+        number("clearcoat_roughness",
+               "KHR_materials_clearcoat clearcoatRoughnessFactor; the coat's α = clearcoat_roughness², at least 1e-3",
+               Range::closed(0, 1), 0, false)};
     m.cycles = approximate("principled_bsdf: its dielectric is energy-compensated, not Appendix B's fresnel_mix");
     m.pov = none(kMicrofacetPov);
     m.blender_nodes = nodes_approximate(
@@ -295,61 +379,11 @@ void add_specular(std::vector<ModelDef>& all) {
         "IOR, Specular IOR Level = specular/2, Specular Tint = specular_color; a GGX metal is glTF's exactly, a "
         "dielectric Cycles' energy-compensated layering (docs/blender.md, F)",
         0.106);
-    m.build = [](LobeContext& c) {
-      // glTF 2.0 Appendix B, "Metal BRDF and Dielectric BRDF", with KHR_materials_specular's
-      // dielectric_f0 / f90 and KHR_materials_ior's f0 ("Interaction with other extensions").
-      // A grey base colour (and specular_color) keeps the lobe one number until k_s ⊗ ρ.
-      ir::Expr base = c.parameter(c.spec(), "base_color", c.lobe() + "_base_color", true);
-      ir::Expr specular = c.number("specular");
-      // α = roughness², floored: a constant where roughness is a number, else computed where it shades.
-      const double roughness = c.spec().at("roughness").number;
-      ir::Expr alpha = c.textured(c.spec(), "roughness")
-                           ? c.let("alpha", ir::max(ir::sq(c.number("roughness")), kRoughnessMin))
-                           : ir::constant(c.lobe() + "_alpha", std::max(roughness * roughness, kRoughnessMin));
-      ir::Expr D = c.let("D", ir::call(terms::distribution_ggx(), {c.NoH(), alpha}));
-      ir::Expr V = c.let("V", ir::call(terms::visibility_smith_ggx_correlated(), {c.NoL(), c.NoV(), alpha}));
-      ir::Expr layer = c.let("specular_brdf", kPi * D * V * c.NoL());  // ρ of specular_brdf(α)
-      // fresnel_w takes |v·h| itself (Appendix B): v·h unclamped.
-      ir::Expr w = c.let("w", ir::call(terms::fresnel_weight(), {c.input(Input::VoH)}));
-      // metallic 0 or 1 as a number (most materials): the other side of the mix is weighted 0
-      // and left out of the code (it is finite, so (1 − t) a + t b is the one side exactly).
-      const bool textured_metal = c.textured(c.spec(), "metallic");
-      const double metallic = c.spec().at("metallic").number;
-      ir::Expr metal = 0.0, dielectric = 0.0;
-      if (textured_metal || metallic > 0)
-        metal = c.let("metal_brdf", ir::call(terms::conductor_fresnel(base.type()), {base, w, layer}));
-      if (!textured_metal && metallic == 1) return metal;
-      ir::Expr ior = c.number("ior");
-      ir::Expr f0_ior = c.let("f0_ior", ir::sq((ior - 1.0) / (ior + 1.0)));
-      // A grey specular_color (the default) keeps F one number, its own max.
-      const std::array<double, 3>& tint = c.spec().at("specular_color").rgb;
-      const bool grey = tint[0] == tint[1] && tint[1] == tint[2];
-      ir::Expr color = c.parameter(c.spec(), "specular_color", c.lobe() + "_specular_color", true);
-      ir::Expr f0 = c.let("dielectric_f0", ir::min(f0_ior * color, grey ? ir::Expr(1.0) : ir::color(1, 1, 1)) * specular);
-      ir::Expr F = c.let("dielectric_fresnel", ir::call(terms::fresnel_schlick_f90(f0.type()), {f0, specular, w}));
-      if (grey) {
-        dielectric =
-            c.let("dielectric_brdf", ir::call(terms::fresnel_mix(F.type(), base.type()), {F, layer, base * c.NoL()}));
-      } else {
-        // max(F) in closed form: F = f0 (1 − w) + f90 w with 1 − w ≥ 0 is largest where f0 is,
-        // and max(min(a c, 1)) = min(a max(c), 1) for a ≥ 0: so specular_color must be a constant.
-        ir::Expr tint_max = ir::constant(c.lobe() + "_specular_color_max", std::max({tint[0], tint[1], tint[2]}));
-        ir::Expr F_max =
-            c.let("dielectric_fresnel_max", ir::min(f0_ior * tint_max, 1.0) * specular * (1.0 - w) + specular * w);
-        dielectric =
-            c.let("dielectric_brdf",
-                  ir::call(terms::fresnel_mix(F.type(), base.type()), {F, F_max, layer, base * c.NoL()}));
-      }
-      if (!textured_metal && metallic == 0) return dielectric;
-      // The two sides as one type: a grey one as a colour where the other is coloured.
-      if (dielectric.type() != metal.type()) {
-        if (dielectric.type() == ir::Type::Float) dielectric = dielectric * ir::color(1, 1, 1);
-        else metal = metal * ir::color(1, 1, 1);
-      }
-      return ir::call(terms::mix_by(metal.type()), {dielectric, metal, c.number("metallic")});
-    };
-    m.reciprocal = true;
-    m.physics_note = "symmetric: D, V and F (of v·h = l·h) are, and so is the diffuse weight 1 − max(F); the "
+    m.build = [](LobeContext& c) { return gltf_clearcoat(c, gltf_core(c)); };
+    m.reciprocal = false;
+    m.physics_note = "without a clear coat symmetric: D, V and F (of v·h = l·h) are, and so is the diffuse weight "
+                     "1 − max(F); KHR_materials_clearcoat weights its layers by the Fresnel of n·v alone, which is "
+                     "not (the README: \"we compute the microfacet Fresnel term with NdotV instead of VdotH\"). The "
                      "specification says fresnel_mix is not energy conserving (Appendix B, \"Coupling Diffuse and "
                      "Specular Reflection\"), and single-scattering GGX loses energy, so no bound is claimed";
     m.gltf_brdf = true;

@@ -805,7 +805,9 @@ class Exporter {
     const Value &metal = s.at("metallic"), &rough = s.at("roughness");
     for (const std::string& why : {map(s.at("base_color"), "rgb", "srgb", "base colour"),
                                    map(metal, "b", "linear", "metallic"), map(rough, "g", "linear", "roughness"),
-                                   map(s.at("specular"), "a", "linear", "specular")})
+                                   map(s.at("specular"), "a", "linear", "specular"),
+                                   map(s.at("clearcoat"), "r", "linear", "clear coat"),
+                                   map(s.at("clearcoat_roughness"), "g", "linear", "clear coat roughness")})
       if (!why.empty()) return why;
     if (!metal.texture && !rough.texture) return "";
     // One image's B (metallic) and G (roughness): the same file, sampler, set and transform.
@@ -819,7 +821,8 @@ class Exporter {
   }
 
   // glTF's own BRDF written back as glTF: pbrMetallicRoughness's factors and maps,
-  // KHR_materials_ior and KHR_materials_specular (glTF 2.0 §3.9.2; the extensions' READMEs).
+  // KHR_materials_ior, KHR_materials_specular and KHR_materials_clearcoat (glTF 2.0 §3.9.2; the
+  // extensions' READMEs).
   // False, with a note and nothing written, where the lobe holds what glTF cannot say: the
   // fallback then.
   bool gltf_brdf(const std::string& key, const Material& m, tinygltf::Material& g) {
@@ -850,20 +853,34 @@ class Exporter {
       ext["specularFactor"] = tinygltf::Value(specular.number);
       ext["specularColorFactor"] = tinygltf::Value(tinygltf::Value::Array{
           tinygltf::Value(tint.rgb[0]), tinygltf::Value(tint.rgb[1]), tinygltf::Value(tint.rgb[2])});
-      if (specular.texture) {
-        tinygltf::TextureInfo info;
-        images_.texture_info(*specular.texture, info, used_);
-        tinygltf::Value::Object t;
-        t["index"] = tinygltf::Value(info.index);
-        t["texCoord"] = tinygltf::Value(info.texCoord);
-        if (!info.extensions.empty()) t["extensions"] = tinygltf::Value(info.extensions);
-        ext["specularTexture"] = tinygltf::Value(t);
-      }
+      if (specular.texture) ext["specularTexture"] = extension_texture_info(*specular.texture);
       g.extensions["KHR_materials_specular"] = tinygltf::Value(ext);
       used_.insert("KHR_materials_specular");
     }
+    const Value &coat = s.at("clearcoat"), &coat_roughness = s.at("clearcoat_roughness");
+    if (coat.texture || coat.number != 0) {
+      tinygltf::Value::Object ext;
+      ext["clearcoatFactor"] = tinygltf::Value(coat.number);
+      ext["clearcoatRoughnessFactor"] = tinygltf::Value(coat_roughness.number);
+      if (coat.texture) ext["clearcoatTexture"] = extension_texture_info(*coat.texture);
+      if (coat_roughness.texture) ext["clearcoatRoughnessTexture"] = extension_texture_info(*coat_roughness.texture);
+      g.extensions["KHR_materials_clearcoat"] = tinygltf::Value(ext);
+      used_.insert("KHR_materials_clearcoat");
+    }
     g.emissiveFactor = clamped_emission(m);
     return true;
+  }
+
+  // A textureInfo inside a material extension (tinygltf keeps extensions as values): the
+  // texture written as the core's are, its index, texCoord and KHR_texture_transform.
+  tinygltf::Value extension_texture_info(const TextureRef& texture) {
+    tinygltf::TextureInfo info;
+    images_.texture_info(texture, info, used_);
+    tinygltf::Value::Object t;
+    t["index"] = tinygltf::Value(info.index);
+    t["texCoord"] = tinygltf::Value(info.texCoord);
+    if (!info.extensions.empty()) t["extensions"] = tinygltf::Value(info.extensions);
+    return tinygltf::Value(t);
   }
 
   // The full facet description (FACET_material, its images as the glTF's: "images" maps

@@ -136,9 +136,10 @@ void cut_out(const tinygltf::Material& g, const Pbr& p, const std::string& mpath
                             "left out of the cut-out (approximated: facet's renderers do not cut by a vertex alpha)");
 }
 
-// The material extensions the import maps exactly (FACET_material is facet's own).
+// The material extensions the import maps (FACET_material is facet's own).
 const std::vector<std::string> kImplemented = {"KHR_materials_emissive_strength", "KHR_materials_ior",
-                                               "KHR_materials_specular", "FACET_material"};
+                                               "KHR_materials_specular", "KHR_materials_clearcoat",
+                                               "FACET_material"};
 
 // The material's extensions facet does not implement, named in one note (the file's
 // required ones were refused before any material was read).
@@ -189,6 +190,60 @@ double extension_number(GltfImages& images, const json& ext, const char* name, d
   return v.get<double>();
 }
 
+// A factor of extension `ext` times channel `channel` of its texture `texture` (linear), into
+// the lobe's `param`: the README's "factor × texture.channel" (a texture without its factor
+// is scaled by the factor's default).
+void factor_and_texture(const json& ext, const char* factor, double fallback, const char* texture, const char* channel,
+                        const char* param, json& lobe, GltfImages& images, const std::string& key,
+                        std::vector<std::pair<int, std::string>>& sets) {
+  const double f = extension_number(images, ext, factor, fallback, 0, 1, key);
+  lobe[param] = f;
+  if (!ext.contains(texture)) return;
+  const TextureUse t = extension_texture(images, ext[texture], key + "." + texture);
+  sets.emplace_back(t.uv, t.key + ".texCoord");
+  lobe[param] = texture_value(t, channel, "linear", f);
+}
+
+// KHR_materials_specular: specular = specularFactor × specularTexture's A; specular_color =
+// specularColorFactor (specularColorTexture is not read: a note says so).
+void specular_extension(const json& spec, json& lobe, GltfImages& images, const std::string& key,
+                        std::vector<std::pair<int, std::string>>& sets, std::vector<std::string>& notes) {
+  factor_and_texture(spec, "specularFactor", 1, "specularTexture", "a", "specular", lobe, images, key, sets);
+  RGB tint{1, 1, 1};
+  if (spec.contains("specularColorFactor")) {
+    const json& c = spec["specularColorFactor"];
+    if (!c.is_array() || c.size() != 3)
+      images.fail(key + ".specularColorFactor", "expected three numbers, found " + c.dump());
+    for (size_t k = 0; k < 3; ++k) {
+      if (!c[k].is_number() || !(c[k].get<double>() >= 0 && c[k].get<double>() <= kColorMax))
+        images.fail(fmt::format("{}.specularColorFactor[{}]", key, k),
+                    fmt::format("expected a number in [0, {:g}], found {}", kColorMax, c[k].dump()));
+      tint[k] = c[k].get<double>();
+    }
+  }
+  lobe["specular_color"] = tint;
+  if (spec.contains("specularColorTexture"))
+    notes.push_back(key + ".specularColorTexture: not read (facet's gltf_pbr takes specular_color as a number); "
+                          "specularColorFactor alone is used");
+}
+
+// KHR_materials_clearcoat ("Clearcoat"): clearcoat = clearcoatFactor × clearcoatTexture's R,
+// clearcoat_roughness = clearcoatRoughnessFactor × clearcoatRoughnessTexture's G. The coat takes
+// the surface's shading normal: a clearcoatNormalTexture is not read, and over a normal-mapped
+// base the coat is normal-mapped too where the README leaves it unmapped (both said in a note).
+void clearcoat_extension(const json& coat, json& lobe, bool normal_mapped, GltfImages& images, const std::string& key,
+                         std::vector<std::pair<int, std::string>>& sets, std::vector<std::string>& notes) {
+  factor_and_texture(coat, "clearcoatFactor", 0, "clearcoatTexture", "r", "clearcoat", lobe, images, key, sets);
+  factor_and_texture(coat, "clearcoatRoughnessFactor", 0, "clearcoatRoughnessTexture", "g", "clearcoat_roughness",
+                     lobe, images, key, sets);
+  if (coat.contains("clearcoatNormalTexture"))
+    notes.push_back(key + ".clearcoatNormalTexture: approximate: not read; the coat takes the surface's normal" +
+                    std::string(normal_mapped ? " (the base's normal map)" : ""));
+  else if (normal_mapped)
+    notes.push_back(key + ": approximate: the coat takes the base's normal map, where the extension leaves the coat's "
+                          "normal unmapped");
+}
+
 // The glTF material as the catalog's gltf_pbr lobe, every input as the file gives it: glTF 2.0
 // §3.9.2 (pbrMetallicRoughness: the base colour map's RGB in sRGB times baseColorFactor and
 // COLOR_0, the metallic–roughness map's B and G, linear, times their factors), KHR_materials_ior
@@ -208,31 +263,11 @@ json gltf_pbr_lobe(const tinygltf::Material& g, const Pbr& p, GltfImages& images
     lobe["ior"] = eta;
   }
   const json spec = extension_of(g.extensions_json_string, "KHR_materials_specular");
-  if (!spec.is_object()) return lobe;
-  const std::string key = mpath + ".extensions.KHR_materials_specular";
-  const double factor = extension_number(images, spec, "specularFactor", 1, 0, 1, key);
-  lobe["specular"] = factor;
-  if (spec.contains("specularTexture")) {
-    const TextureUse t = extension_texture(images, spec["specularTexture"], key + ".specularTexture");
-    sets.emplace_back(t.uv, t.key + ".texCoord");
-    lobe["specular"] = texture_value(t, "a", "linear", factor);
-  }
-  RGB tint{1, 1, 1};
-  if (spec.contains("specularColorFactor")) {
-    const json& c = spec["specularColorFactor"];
-    if (!c.is_array() || c.size() != 3)
-      images.fail(key + ".specularColorFactor", "expected three numbers, found " + c.dump());
-    for (size_t k = 0; k < 3; ++k) {
-      if (!c[k].is_number() || !(c[k].get<double>() >= 0 && c[k].get<double>() <= kColorMax))
-        images.fail(fmt::format("{}.specularColorFactor[{}]", key, k),
-                    fmt::format("expected a number in [0, {:g}], found {}", kColorMax, c[k].dump()));
-      tint[k] = c[k].get<double>();
-    }
-  }
-  lobe["specular_color"] = tint;
-  if (spec.contains("specularColorTexture"))
-    notes.push_back(key + ".specularColorTexture: not read (facet's gltf_pbr takes specular_color as a number); "
-                          "specularColorFactor alone is used");
+  if (spec.is_object()) specular_extension(spec, lobe, images, mpath + ".extensions.KHR_materials_specular", sets, notes);
+  const json coat = extension_of(g.extensions_json_string, "KHR_materials_clearcoat");
+  if (coat.is_object())
+    clearcoat_extension(coat, lobe, g.normalTexture.index >= 0, images, mpath + ".extensions.KHR_materials_clearcoat",
+                        sets, notes);
   return lobe;
 }
 
@@ -289,6 +324,10 @@ json pbr_material(const tinygltf::Material& g, const std::string& mpath, GltfIma
   } else if (emission_map) {
     notes.push_back(mpath + ".emissiveTexture: emissiveFactor is 0, so the map emits nothing (glTF multiplies them)");
   }
+  const json& coat = m["specular"].contains("clearcoat") ? m["specular"]["clearcoat"] : json(0.0);
+  if (m.contains("emission") && !(coat.is_number() && coat.get<double>() == 0))
+    notes.push_back(mpath + ": approximate: the emission is not dimmed by the clear coat (KHR_materials_clearcoat, "
+                            "\"Emission\": emission · (1 − clearcoat · Fc)); facet adds emission outside the lobe");
   if (normal_map) {  // tangent-space, linear, +Y up (glTF 2.0 §3.9.3); scale is facet's strength
     m["normal_map"] = normal_map->spec;
     m["normal_map"]["green"] = "up";

@@ -336,18 +336,21 @@ def texture_transform(doc):
              translation=[1.2, 0.6, 0.1], rotation=gb.quat_axis_angle((0, 1, 0), -30))
 
 
-@entry("materials_ior_specular.gltf", "glTF's BRDF with KHR_materials_ior (1.33, 1.8, 2.4) and KHR_materials_specular "
+@entry("materials_ior_specular.gltf", "glTF's BRDF with KHR_materials_ior (1.33, 1.8, 2.4), KHR_materials_specular "
                                       "(specularFactor, specularColorFactor, specularTexture's A through a "
-                                      "KHR_texture_transform), a metallic–roughness map at metallic 0.5, roughness 0")
+                                      "KHR_texture_transform), KHR_materials_clearcoat (factors, clearcoatTexture's "
+                                      "R), a metallic–roughness map at metallic 0.5, roughness 0")
 def materials_ior_specular(doc):
     stage(doc)
     doc.uses("KHR_materials_ior")
     doc.uses("KHR_materials_specular")
     doc.uses("KHR_texture_transform")
+    doc.uses("KHR_materials_clearcoat")
     i, j = gb.grid(16)
     spec = doc.texture(gb.rgba(0.5, 0.5, 0.5, 0.2 + 0.8 * ((i // 4 + j // 4) % 3) / 2), gb.NEAREST, gb.NEAREST,
                        name="specular")
     mr = doc.texture(gb.rgba(0.0, 0.25 + 0.5 * i / 15, 0.2 + 0.8 * j / 15), gb.NEAREST, gb.NEAREST, name="mr")
+    coat = doc.texture(gb.rgba(0.3 + 0.7 * ((i // 4 + j // 4) % 2), 0.5, 0.5), gb.NEAREST, gb.NEAREST, name="coat")
     materials = (
         ("water", (0.1, 0.3, 0.5), 0.0, 0.35, {"KHR_materials_ior": {"ior": 1.33}}),
         ("tinted", (0.7, 0.2, 0.1), 0.0, 0.4, {"KHR_materials_ior": {"ior": 1.8},
@@ -356,11 +359,13 @@ def materials_ior_specular(doc):
         ("mapped", (0.2, 0.6, 0.3), 0.0, 0.3, {"KHR_materials_ior": {"ior": 2.4}, "KHR_materials_specular": {
             "specularFactor": 0.9, "specularTexture": {"index": spec, "extensions": {"KHR_texture_transform": {
                 "offset": [0.1, 0.2], "rotation": 0.4, "scale": [1.5, 1.5]}}}}}),
-        ("glossy", (0.9, 0.9, 0.85), 0.0, 0.0, {}))
+        ("glossy", (0.9, 0.9, 0.85), 0.0, 0.0, {}),
+        ("coated", (0.6, 0.04, 0.03), 0.0, 0.6, {"KHR_materials_clearcoat": {
+            "clearcoatFactor": 0.9, "clearcoatRoughnessFactor": 0.3, "clearcoatTexture": {"index": coat}}}))
     for k, (name, base, metallic, roughness, ext) in enumerate(materials):
         m = lit_material(doc, name, base, metallic, roughness, **({"extensions": ext} if ext else {}))
         doc.node(name=name, mesh=doc.mesh(doc.primitive(gb.uv_sphere(0.5, 20, 10), m), name),
-                 translation=[-1.65 + 1.1 * k, 0.55, 0.0])
+                 translation=[-2.2 + 1.1 * k, 0.55, 0.0])
     half = lit_material(doc, "half_metal", (0.9, 0.7, 0.4), 0.5, 1.0, metallicRoughnessTexture={"index": mr})
     doc.node(name="box", mesh=doc.mesh(doc.primitive(gb.box(0.5, 0.5, 0.5), half), "box"),
              translation=[0.0, 0.5, 1.3], rotation=gb.quat_axis_angle((0, 1, 0), 25))

@@ -18,7 +18,7 @@ It fails (exit 1) when
   * the GGX metal is not Cycles' (glTF's metal is Cycles' GGX metal: the F82-tint Fresnel with a
     white tint is Schlick's, both Smith G terms height-correlated): METAL_SHARE of its pixels
     within METAL_TOL;
-  * an input glTF's BRDF lacks (Coat, Sheen, Anisotropic, Diffuse Roughness) is exported without
+  * an input glTF's BRDF lacks (Sheen, Anisotropic, Diffuse Roughness) is exported without
     a warning naming it, or a Roughness below the floor is refused;
   * facet's objects and Cycles' alpha differ on more than COVERAGE_TOL of the pixels.
 Everything else is a measurement: the table says how far each input is. --wrong-metal replaces the
@@ -67,8 +67,8 @@ VARIANTS = (
     ("specular_tint", {"Base Color": RED, "Roughness": 0.45, "Specular IOR Level": 1.0,
                        "Specular Tint": (1.0, 0.6, 0.3)}, "GGX", None,
      "Specular IOR Level 1, Tint (1, 0.6, 0.3) (specular 1, specular_color 2·Tint)"),
-    ("coat", {"Base Color": RED, "Roughness": 0.45, "Coat Weight": 0.5}, "GGX", "Coat Weight",
-     "Coat Weight 0.5 (not mapped yet)"),
+    ("coat", {"Base Color": RED, "Roughness": 0.45, "Coat Weight": 0.5, "Coat Roughness": 0.3}, "GGX", None,
+     "Coat Weight 0.5, Coat Roughness 0.3 (clearcoat)"),
     ("sheen", {"Base Color": RED, "Roughness": 0.45, "Sheen Weight": 0.5}, "GGX", "Sheen Weight",
      "Sheen Weight 0.5 (not mapped yet)"),
     ("anisotropic", {"Base Color": BRASS, "Metallic": 1.0, "Roughness": 0.4, "Anisotropic": 0.5}, "GGX",

@@ -248,7 +248,9 @@ TEST(Gltf, GltfBrdfExportsAsItsFactorsMapsAndExtensions) {
                      {"roughness", {{"texture", "textures/leaf.png"}, {"channel", "g"}, {"factor", 0.7}}},
                      {"ior", 1.8},
                      {"specular", {{"texture", "textures/leaf.png"}, {"channel", "a"}, {"factor", 0.9}}},
-                     {"specular_color", {1.0, 0.5, 0.25}}};
+                     {"specular_color", {1.0, 0.5, 0.25}},
+                     {"clearcoat", {{"texture", "textures/leaf.png"}, {"channel", "r"}, {"factor", 0.8}}},
+                     {"clearcoat_roughness", 0.3}};
   const Material m = leaf_lobe_material("gltf_brdf_export", "painted", lobe);
   const std::string out = (scratch("gltf_brdf_export") / "out.gltf").string();
   std::vector<std::string> notes;
@@ -264,7 +266,10 @@ TEST(Gltf, GltfBrdfExportsAsItsFactorsMapsAndExtensions) {
   EXPECT_EQ(g["extensions"]["KHR_materials_specular"]["specularFactor"], 0.9);
   EXPECT_EQ(g["extensions"]["KHR_materials_specular"]["specularColorFactor"], json::array({1.0, 0.5, 0.25}));
   EXPECT_TRUE(g["extensions"]["KHR_materials_specular"].contains("specularTexture"));
-  for (const char* used : {"KHR_materials_ior", "KHR_materials_specular"})
+  EXPECT_EQ(g["extensions"]["KHR_materials_clearcoat"]["clearcoatFactor"], 0.8);
+  EXPECT_EQ(g["extensions"]["KHR_materials_clearcoat"]["clearcoatRoughnessFactor"], 0.3);
+  EXPECT_TRUE(g["extensions"]["KHR_materials_clearcoat"].contains("clearcoatTexture"));
+  for (const char* used : {"KHR_materials_ior", "KHR_materials_specular", "KHR_materials_clearcoat"})
     EXPECT_NE(std::find(doc["extensionsUsed"].begin(), doc["extensionsUsed"].end(), used), doc["extensionsUsed"].end())
         << used;
   for (const auto& n : notes) EXPECT_EQ(n.find("approximate"), std::string::npos) << n;
@@ -273,7 +278,7 @@ TEST(Gltf, GltfBrdfExportsAsItsFactorsMapsAndExtensions) {
   Scene back = import_gltf(out, {}, notes);
   const ModelSpec& now = *back.materials.begin()->second.specular;
   json a = to_json(m)["specular"], b = to_json(back.materials.begin()->second)["specular"];
-  for (const char* p : {"base_color", "metallic", "roughness", "specular"}) {
+  for (const char* p : {"base_color", "metallic", "roughness", "specular", "clearcoat"}) {
     EXPECT_EQ(now.at(p).texture->texels->rgba, m.specular->at(p).texture->texels->rgba) << p;
     a[p].erase("texture");
     b[p].erase("texture");
@@ -290,7 +295,8 @@ TEST(Gltf, GltfBrdfExportsAsItsFactorsMapsAndExtensions) {
   Scene plain = import_gltf((folder / "plain.gltf").string(), o, notes, &files);
   const ModelSpec& read = *plain.materials.begin()->second.specular;
   EXPECT_EQ(read.def, m.specular->def);
-  for (const char* p : {"base_color", "metallic", "roughness", "ior", "specular", "specular_color"}) {
+  for (const char* p : {"base_color", "metallic", "roughness", "ior", "specular", "specular_color", "clearcoat",
+                        "clearcoat_roughness"}) {
     const Value &x = m.specular->at(p), &y = read.at(p);
     EXPECT_EQ(x.rgb, y.rgb) << p;
     EXPECT_EQ(x.number, y.number) << p;
@@ -723,6 +729,44 @@ TEST(GltfTextures, NormalEmissiveAndOcclusionMapsAreImported) {
   ASSERT_TRUE(q.ambient_texture);
   EXPECT_EQ(q.ambient_texture->channel, "r");
   EXPECT_EQ(q.ambient, (RGB{0.8 * 0.5, 0.2 * 0.5, 0.1 * 0.5}));
+}
+
+// KHR_materials_clearcoat ("Clearcoat"): clearcoat = clearcoatFactor × clearcoatTexture's R and
+// clearcoat_roughness = clearcoatRoughnessFactor × clearcoatRoughnessTexture's G, linear; what the
+// lobe does not take (a coat normal map, the coat's unmapped normal over a normal-mapped base,
+// the emission's dimming under the coat) is named in notes.
+TEST(GltfTextures, ClearcoatIsReadWithItsMapsAndItsLimitsSaid) {
+  json g = textured_triangle(json::array({data_uri_image(small_png())}));
+  json& gm = g["materials"][0];
+  gm["extensions"] = {{"KHR_materials_clearcoat",
+                       {{"clearcoatFactor", 0.75},
+                        {"clearcoatTexture", {{"index", 0}}},
+                        {"clearcoatRoughnessFactor", 0.25},
+                        {"clearcoatRoughnessTexture", {{"index", 0}, {"texCoord", 0}}}}}};
+  g["extensionsUsed"] = {"KHR_materials_clearcoat"};
+  std::vector<std::string> notes;
+  Scene s = import_gltf(write_gltf("clearcoat.gltf", g).string(), {}, notes);
+  const ModelSpec& lobe = *s.materials.begin()->second.specular;
+  const Value &coat = lobe.at("clearcoat"), &rough = lobe.at("clearcoat_roughness");
+  ASSERT_TRUE(coat.texture && rough.texture);
+  EXPECT_EQ(coat.texture->channel, "r");
+  EXPECT_EQ(coat.texture->colorspace, "linear");
+  EXPECT_EQ(coat.number, 0.75);
+  EXPECT_EQ(rough.texture->channel, "g");
+  EXPECT_EQ(rough.number, 0.25);
+  for (const auto& n : notes) EXPECT_EQ(n.find("approximate"), std::string::npos) << n;
+  EXPECT_EQ(s.materials.begin()->second.specular->def->name, "gltf_pbr");
+  // A coat normal map, a normal-mapped base and an emission: each said, none refused.
+  gm["extensions"]["KHR_materials_clearcoat"]["clearcoatNormalTexture"] = {{"index", 0}};
+  gm["normalTexture"] = {{"index", 0}};
+  gm["emissiveFactor"] = {0.5, 0.5, 0.5};
+  notes.clear();
+  import_gltf(write_gltf("clearcoat_limits.gltf", g).string(), {}, notes);
+  int said = 0;
+  for (const auto& n : notes)
+    said += (n.find("clearcoatNormalTexture: approximate") != std::string::npos) +
+            (n.find("not dimmed by the clear coat") != std::string::npos);
+  EXPECT_EQ(said, 2);
 }
 
 TEST(GltfTextures, UnlitFileGetsAHeadlight) {

@@ -20,7 +20,8 @@ radiance as Cycles for a point or sun light of radius 0 (see scene.py for the un
 |   Specular, Specular Tint (3.x)           | specular_color = 2·Specular·mix(1, Base/luminance(Base), Tint) (f0 = 0.08·Specular·tint) | approximate: 3.x's f90 |
 |   Roughness below 0.0316                  | roughness as typed; α = roughness² is floored at 1e-3 | approximate (a warning, never an error) |
 |   Emission (× Strength)                   | emission                                            | exact |
-|   Coat, Sheen, Anisotropic, Transmission, Subsurface, Diffuse Roughness, Alpha | ignored, each named in a warning (Alpha: a cut-out where Blender's glTF importer wired one) | |
+|   Coat Weight, Coat Roughness (4.x)       | clearcoat, clearcoat_roughness (KHR_materials_clearcoat) | Coat IOR other than 1.5, Coat Tint, Coat Normal: named in a warning |
+|   Sheen, Anisotropic, Transmission, Subsurface, Diffuse Roughness, Alpha | ignored, each named in a warning (Alpha: a cut-out where Blender's glTF importer wired one) | |
 | Add Shader (a, b)                         | the lobes of a and b together                       | as exact as a and b (one diffuse and one specular lobe at most) |
 | Mix Shader (Fac f, a, b)                  | a's colours × (1−f), b's colours × f               | as exact as a and b |
 | anything else                             | refused: "no Diffuse, Glossy or Principled BSDF feeds the Material Output" | |
@@ -293,8 +294,6 @@ def _color_attribute_in(src):
 _PRINCIPLED_IGNORED = (
     (("Subsurface", "Subsurface Weight"), 0.0, "subsurface scattering: no glTF extension says it"),
     (("Sheen", "Sheen Weight"), 0.0, "sheen: glTF's KHR_materials_sheen, which facet's gltf_pbr does not have yet"),
-    (("Clearcoat", "Coat Weight"), 0.0, "coat: glTF's KHR_materials_clearcoat, which facet's gltf_pbr does not "
-                                        "have yet"),
     (("Anisotropic",), 0.0, "anisotropy: glTF's KHR_materials_anisotropy, which facet's gltf_pbr does not have yet"),
     (("Transmission", "Transmission Weight"), 0.0, "transmission: glTF's KHR_materials_transmission, which facet "
                                                    "does not implement"),
@@ -325,6 +324,34 @@ def _specular_level(node, result, lobe, level_tex):
                            f"({level_tex['channel']}), glTF's specularTexture")
 
 
+def _coat(node, result, lobe):
+    """KHR_materials_clearcoat as Blender's glTF exporter writes it from Coat Weight and Coat
+    Roughness (its importer: Coat Weight = clearcoatFactor × clearcoatTexture's R, Coat Roughness =
+    clearcoatRoughnessFactor × clearcoatRoughnessTexture's G). glTF's coat is fixed at IOR 1.5,
+    untinted, on the surface's normal: another Coat IOR or Coat Tint, or a Coat Normal, is named."""
+    maps = {"clearcoat": node.texture("Coat Weight", "number"),
+            "clearcoat_roughness": node.texture("Coat Roughness", "number")}
+    weight = min(max(float(node.get("Coat Weight", 0.0)), 0.0), 1.0)
+    if weight == 0.0 and not maps["clearcoat"]:
+        return
+    lobe["clearcoat"] = weight
+    lobe["clearcoat_roughness"] = min(max(float(node.get("Coat Roughness", 0.03)), 0.0), 1.0)
+    for key, spec in maps.items():
+        if spec:
+            _bind(result, ("specular", key), "gltf_pbr", spec)
+    result.note(EXACT, f"{node.label}: Coat Weight and Coat Roughness -> clearcoat, clearcoat_roughness "
+                       f"(KHR_materials_clearcoat, as Blender's glTF exporter writes them)")
+    if node.has("Coat IOR") and abs(float(node.get("Coat IOR", 1.5)) - 1.5) > 1e-6:
+        result.note(IGNORED, f"{node.label}: Coat IOR {float(node.inputs['Coat IOR']):.3g} is ignored (glTF's clear "
+                             f"coat has IOR 1.5)")
+    if node.has("Coat Tint") and _rgb(node.get("Coat Tint", (1.0, 1.0, 1.0))) != [1.0, 1.0, 1.0]:
+        result.note(IGNORED, f"{node.label}: Coat Tint is ignored (glTF's clear coat is untinted)")
+    if "Coat Normal" in node.linked:
+        node.reported.add("Coat Normal")
+        result.note(IGNORED, f"{node.label}: Coat Normal is not read (glTF's clearcoatNormalTexture; facet's coat "
+                             f"takes the surface's normal)")
+
+
 def principled_bsdf(node, weight, result):
     """(None, the gltf_pbr lobe, emission) of a Principled BSDF: glTF's material, read as Blender's
     glTF exporter writes the node (glTF-Blender-IO 4.5) and its importer wires it back, so a
@@ -348,6 +375,7 @@ def principled_bsdf(node, weight, result):
     if four:
         lobe["ior"] = max(float(node.get("IOR", 1.5)), 0.0)
         _specular_level(node, result, lobe, level_tex)
+        _coat(node, result, lobe)
     else:                                          # Blender 2.8-3.x: f0 = 0.08·Specular·tint at IOR 1.5
         specular = float(node.get("Specular", 0.5))
         tint = float(node.get("Specular Tint", 0.0)) if node.has("Specular Tint") else 0.0

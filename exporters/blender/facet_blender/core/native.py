@@ -30,7 +30,8 @@ The mappings (ρ as MODELS.md defines it, relative to Lambert; Cycles' BSDFs are
   BRDF: Glossy BSDF, GGX, Roughness √c, colour × 4c² F(0).
 - gltf_pbr: the Principled BSDF (Blender 4.x), GGX, as Blender's glTF importer builds it
   from the same glTF material: Base Color, Metallic, Roughness, IOR, Specular IOR Level =
-  specular/2, Specular Tint = specular_color (a colour k_s other than white is refused);
+  specular/2, Specular Tint = specular_color, Coat Weight and Coat Roughness = clearcoat and
+  clearcoat_roughness (a colour k_s other than white is refused);
   Blender 3.x: Specular = the dielectric f0 / 0.08. A GGX metal is glTF's exactly; a
   dielectric is Cycles' energy-compensated layering (docs/blender.md, F).
 - emission: an Emission shader of strength 1 (radiance m_e).
@@ -144,11 +145,16 @@ def _principled_gltf(lobe, color, principled):
     inputs = {"Base Color": _rgb(lobe.get("base_color", 0.8)), "Metallic": _number(lobe, "metallic", 0.0),
               "Roughness": _number(lobe, "roughness", 0.5)}
     eta, specular = _number(lobe, "ior", 1.5), _number(lobe, "specular", 1.0)
+    coat = (_number(lobe, "clearcoat", 0.0), _number(lobe, "clearcoat_roughness", 0.0))
     if principled:
         inputs.update({"IOR": eta, "Specular IOR Level": 0.5 * specular, "Specular Tint": specular_color})
+        if coat[0] > 0.0:
+            inputs.update({"Coat Weight": coat[0], "Coat Roughness": coat[1], "Coat IOR": 1.5})
     else:
         f0 = max(min(((eta - 1.0) / (eta + 1.0)) ** 2 * c, 1.0) * specular for c in specular_color)
         inputs.update({"Specular": f0 / 0.08, "Specular Tint": 0.0})
+        if coat[0] > 0.0:
+            inputs.update({"Clearcoat": coat[0], "Clearcoat Roughness": coat[1]})
     return {"type": PRINCIPLED, "props": {"distribution": "GGX"}, "inputs": inputs}
 
 

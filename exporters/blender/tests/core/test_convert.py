@@ -71,12 +71,27 @@ def test_principled_is_gltfs_brdf_as_blenders_exporter_writes_it(inputs, f0, spe
 def test_principled_metal_is_the_lobe_at_metallic_1_and_unmapped_inputs_name_their_extension():
     r = map_surface({"type": "BSDF_PRINCIPLED", "name": "P", "inputs": {
         "Base Color": [0.9, 0.6, 0.3, 1], "Metallic": 1.0, "Roughness": 0.2, "Sheen Weight": 0.5,
-        "Coat Weight": 0.3, "Anisotropic": 0.4}})
+        "Anisotropic": 0.4}})
     assert r.diffuse is None
     assert (r.specular["base_color"], r.specular["metallic"]) == ([0.9, 0.6, 0.3], 1.0)
-    for name, extension in (("Sheen", "KHR_materials_sheen"), ("Coat", "KHR_materials_clearcoat"),
-                            ("Anisotropic", "KHR_materials_anisotropy")):
+    for name, extension in (("Sheen", "KHR_materials_sheen"), ("Anisotropic", "KHR_materials_anisotropy")):
         assert any(level == convert.IGNORED and name in m and extension in m for level, m in r.notes), name
+
+
+def test_coat_is_gltfs_clearcoat_and_what_gltf_cannot_say_of_it_is_named():
+    """Blender's glTF importer: Coat Weight = clearcoatFactor, Coat Roughness = clearcoatRoughnessFactor
+    (0.03, Blender's default, where the file has none); IOR 1.5, no tint, the surface's normal."""
+    inputs = {"Base Color": [0.6, 0.04, 0.03, 1], "Roughness": 0.6, "IOR": 1.5, "Specular IOR Level": 0.5,
+              "Coat Weight": 0.8, "Coat Roughness": 0.2, "Coat IOR": 1.5, "Coat Tint": [1, 1, 1, 1]}
+    r = map_surface({"type": "BSDF_PRINCIPLED", "name": "P", "inputs": inputs})
+    assert (r.specular["clearcoat"], r.specular["clearcoat_roughness"]) == (0.8, 0.2)
+    assert not any(level == convert.IGNORED for level, _ in r.notes)
+    assert "clearcoat" not in map_surface({"type": "BSDF_PRINCIPLED", "name": "P",
+                                           "inputs": dict(inputs, **{"Coat Weight": 0.0})}).specular
+    odd = map_surface({"type": "BSDF_PRINCIPLED", "name": "P", "linked": ["Coat Normal"], "sources": {},
+                       "inputs": dict(inputs, **{"Coat IOR": 1.8, "Coat Tint": [1, 0.5, 0.5, 1]})})
+    for words in ("Coat IOR 1.8", "Coat Tint", "Coat Normal"):
+        assert any(level == convert.IGNORED and words in m for level, m in odd.notes), words
 
 
 def test_a_roughness_below_the_floor_is_kept_with_a_warning_not_an_error():

@@ -55,6 +55,8 @@ def test_gltf_pbr_is_the_principled_bsdf_blenders_gltf_importer_builds():
     assert node["type"] == native.PRINCIPLED and node["props"] == {"distribution": "GGX"}
     assert node["inputs"] == {"Base Color": (0.8, 0.2, 0.1), "Metallic": 0.25, "Roughness": 0.4, "IOR": 1.8,
                               "Specular IOR Level": pytest.approx(0.3), "Specular Tint": (1.0, 0.6, 0.3)}
+    coated = native.lobe_node("specular", {"model": "gltf_pbr", "clearcoat": 0.5, "clearcoat_roughness": 0.2})
+    assert (coated["inputs"]["Coat Weight"], coated["inputs"]["Coat Roughness"]) == (0.5, 0.2)
     defaults = native.lobe_node("specular", {"model": "gltf_pbr"})["inputs"]
     assert (defaults["Specular IOR Level"], defaults["IOR"], defaults["Roughness"]) == (0.5, 1.5, 0.5)
     with pytest.raises(UserError, match="'gltf_pbr' with a colour other than white"):
