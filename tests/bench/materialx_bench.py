@@ -81,6 +81,13 @@ CASES = [
                    "ior": 1.8, "specular": 0.6, "specular_color": [1.0, 0.6, 0.3]}},
      "gltf_pbr", {"base_color": mx.Color3(0.2, 0.6, 0.3), "metallic": 0.0, "roughness": 0.45, "ior": 1.8,
                   "specular": 0.6, "specular_color": mx.Color3(1.0, 0.6, 0.3)}, GLTF_NOTE),
+    ("gltf_clearcoat",
+     {"specular": {"model": "gltf_pbr", "base_color": [0.6, 0.04, 0.03], "metallic": 0, "roughness": 0.6,
+                   "clearcoat": 1, "clearcoat_roughness": 0.3}},
+     "gltf_pbr", {"base_color": mx.Color3(0.6, 0.04, 0.03), "metallic": 0.0, "roughness": 0.6, "clearcoat": 1.0,
+                  "clearcoat_roughness": 0.3},
+     GLTF_NOTE + "; its clear coat is a dielectric_bsdf layered by its directional albedo, the README's "
+                 "fresnel_coat a mix by clearcoat · Fc(n·v)"),
 ]
 
 
