@@ -1,5 +1,6 @@
 #include "renderers/process.h"
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cstdlib>
@@ -7,6 +8,7 @@
 #include <filesystem>
 #include <mutex>
 #include <sstream>
+#include <string_view>
 
 #include <dlfcn.h>
 #include <fcntl.h>
@@ -147,11 +149,30 @@ ProcessResult run_process(const std::vector<std::string>& argv, const std::strin
     return r;
   }
   forward_fatal_signals();
-  std::vector<const char*> may_read, may_write;  // made before fork: the child only makes system calls
+  // Everything the child needs is made before fork(): between fork and exec the child of this
+  // multithreaded process may only make system calls. Another thread may hold the allocator's
+  // lock at the fork, and a child that allocates then waits for it forever (seen under ASan: a
+  // POV-Ray run's child spinning in the sanitizer's allocator, the suite stopped). So the
+  // argument vector and the environment (environ with `env`'s NAME=value in place of the same
+  // names, as putenv would set them) are built here, and the child calls execve with them.
+  std::vector<const char*> may_read, may_write;
   if (access) {
     for (const auto& p : access->read) may_read.push_back(p.c_str());
     for (const auto& p : access->read_write) may_write.push_back(p.c_str());
   }
+  std::vector<char*> args;
+  for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+  args.push_back(nullptr);
+  auto name_of = [](const char* e) {
+    const char* eq = std::strchr(e, '=');
+    return std::string_view(e, eq ? size_t(eq - e) : std::strlen(e));
+  };
+  std::vector<char*> envp;
+  for (char** e = environ; *e; ++e)
+    if (std::none_of(env.begin(), env.end(), [&](const std::string& x) { return name_of(x.c_str()) == name_of(*e); }))
+      envp.push_back(*e);
+  for (const auto& x : env) envp.push_back(const_cast<char*>(x.c_str()));
+  envp.push_back(nullptr);
   const int abi = access ? landlock_abi() : 0;
   auto start = std::chrono::steady_clock::now();
   const pid_t parent = getpid();
@@ -170,11 +191,7 @@ ProcessResult run_process(const std::vector<std::string>& argv, const std::strin
       (void)!write(2, kWhy, sizeof kWhy - 1);
       _exit(126);
     }
-    for (const auto& e : env) putenv(const_cast<char*>(e.c_str()));
-    std::vector<char*> args;
-    for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-    args.push_back(nullptr);
-    execve(exe.c_str(), args.data(), environ);
+    execve(exe.c_str(), args.data(), envp.data());
     _exit(127);
   }
   close(pipefd[1]);

@@ -1,6 +1,6 @@
 """Cycles' Principled BSDF against glTF's BRDF, input by input (issue 29): how far Cycles 4.5
 renders each Principled input from what the add-on maps it to (the catalog's gltf_pbr, glTF 2.0
-Appendix B with KHR_materials_ior and KHR_materials_specular), measured, not assumed.
+Appendix B with KHR_materials_ior, _specular and _clearcoat), measured, not assumed.
 
     python principled_cycles.py --facet FACET --work DIR [--size 240x144] [--table] [--wrong-metal]
 

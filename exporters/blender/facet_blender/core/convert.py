@@ -357,7 +357,8 @@ def principled_bsdf(node, weight, result):
     glTF exporter writes the node (glTF-Blender-IO 4.5) and its importer wires it back, so a
     glTF file imported by Blender and exported by the add-on is the material `facet import-gltf`
     reads from the file. Base Color, Metallic and Roughness are the core's factors and maps;
-    IOR is KHR_materials_ior; Specular IOR Level and Tint are KHR_materials_specular (4.x).
+    IOR is KHR_materials_ior; Specular IOR Level and Tint are KHR_materials_specular, Coat Weight
+    and Coat Roughness KHR_materials_clearcoat (4.x).
     Cycles renders the Principled BSDF with its own layering, which docs/blender.md measures."""
     _cut_out(node, result)
     four = node.has("Specular IOR Level")          # Blender 4.x
@@ -398,7 +399,8 @@ def principled_bsdf(node, weight, result):
     result.note(APPROXIMATE, f"{node.label} -> gltf_pbr, glTF's BRDF as Blender's glTF exporter writes this node "
                              f"(Cycles' Principled is not that BRDF: its dielectric is energy-compensated"
                              + (", its GGX multiscatter" if distribution == "MULTI_GGX" else "")
-                             + (", its metals F82-tinted" if lobe["metallic"] > 0.0 or maps["metallic"] else "")
+                             + (", its metals F82-tinted (Schlick's with a white Specular Tint)"
+                                if lobe["metallic"] > 0.0 or maps["metallic"] else "")
                              + "; docs/blender.md measures the difference)")
     roughness = lobe["roughness"]
     if not maps["roughness"] and roughness * roughness < 1e-3:
