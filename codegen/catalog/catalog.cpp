@@ -269,8 +269,11 @@ void mark_texturable(std::vector<ModelDef>& all) {
     for (auto& p : m.params) {
       // Toon's width 0 selects the hard step when the code is generated: it stays a number.
       if (m.name == "toon" && p.name == "width") continue;
-      // gltf_pbr needs max(specular_color) in closed form (catalog/specular.cpp).
-      if (m.name == "gltf_pbr" && p.name == "specular_color") continue;
+      // gltf_pbr needs max(specular_color) and max(sheen_color) in closed form, and folds the
+      // sheen albedo's fit for its sheen_roughness (catalog/specular.cpp).
+      if (m.name == "gltf_pbr" &&
+          (p.name == "specular_color" || p.name == "sheen_color" || p.name == "sheen_roughness"))
+        continue;
       p.texturable = p.kind == ParamKind::Number || p.kind == ParamKind::Color;
     }
   }

@@ -364,6 +364,21 @@ std::vector<const ModelDef*> section(const std::string& name);
 // The lobe `facet cost` gives every figure relative to (analysis/cost.h): Lambert's.
 const ModelDef& cost_baseline_model();
 
+// KHR_materials_sheen's directional albedo E(μ, r) as facet fits it (catalog/sheen.cpp,
+// scripts/fit_sheen_albedo.py): for μ below `mu_end` (and above the previous piece's), E =
+// clamp(exp(Σ a_k T_k(x)) − ε, 0, 1) with x = scale·m^power + offset, m = max(μ, mu_min). The
+// pieces at sheen roughness r, E itself (for tests), ε, mu_min, and the fit's worst error against
+// the integral on its check grid.
+struct SheenAlbedoPiece {
+  double mu_end = 1, power = 0.5, scale = 2, offset = -1;
+  std::vector<double> coefficients;
+};
+std::vector<SheenAlbedoPiece> sheen_albedo_pieces(double sheen_roughness);
+double sheen_albedo(double mu, double sheen_roughness);
+double sheen_albedo_epsilon();
+double sheen_albedo_mu_min();
+double sheen_albedo_worst_error();
+
 // The term functions of the catalog, one per term, each built once. Models
 // compose them; tests and the docs reach them here.
 namespace terms {
@@ -391,6 +406,11 @@ ir::FunctionPtr visibility_smith_ggx();
 ir::FunctionPtr microfacet_visibility(ir::Type F);
 // The height-correlated Smith GGX visibility of glTF 2.0 Appendix B.
 ir::FunctionPtr visibility_smith_ggx_correlated();
+// KHR_materials_sheen (catalog/sheen.cpp): the "Charlie" D and visibility, and one piece of the
+// fit of the sheen's directional albedo, log(E + ε) as a Chebyshev series (sheen_albedo_pieces()).
+ir::FunctionPtr distribution_charlie();
+ir::FunctionPtr visibility_charlie();
+ir::FunctionPtr sheen_albedo_series();
 // The layering operators (catalog section "layering"): fresnel_w = (1 − |v·h|)^5; Schlick's
 // F with a free f90; fresnel_mix, conductor_fresnel and mix as glTF 2.0 Appendix B and
 // KHR_materials_specular define them. A grey F keeps them scalar (fresnel_mix's max(F) is F).

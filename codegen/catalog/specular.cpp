@@ -110,6 +110,48 @@ ir::Expr gltf_core(LobeContext& c) {
   return ir::call(terms::mix_by(metal.type()), {dielectric, metal, c.number("metallic")});
 }
 
+// KHR_materials_sheen, "Sheen" and "Implementation Notes": sheen_material = sheenColor ⊗
+// sheen_brdf + material · min(1 − max₃(sheenColor) E(n·v), 1 − max₃(sheenColor) E(n·l)), the
+// sheen BRDF the "Charlie" D and visibility of α = sheenRoughness² (floored like the GGX α), the
+// albedo scaling the reciprocal one the README writes first, not its view-only shortcut. E is
+// the fit of catalog/sheen.cpp, its coefficients folded here for the material's roughness. A
+// sheen colour of 0 (every material without the extension) leaves the core as it is: "If
+// sheenColorFactor is zero, the whole sheen layer is disabled."
+ir::Expr gltf_sheen(LobeContext& c, ir::Expr core) {
+  const std::array<double, 3>& color = c.spec().at("sheen_color").rgb;
+  const double color_max = std::max({color[0], color[1], color[2]});
+  if (color_max == 0) return core;
+  const double r = c.spec().at("sheen_roughness").number;
+  ir::Expr alpha = ir::constant(c.lobe() + "_sheen_alpha", std::max(r * r, kRoughnessMin));
+  ir::Expr D = c.let("sheen_D", ir::call(terms::distribution_charlie(), {c.NoH(), alpha}));
+  ir::Expr V = c.let("sheen_V", ir::call(terms::visibility_charlie(), {c.NoL(), c.NoV(), alpha}));
+  ir::Expr brdf = c.let("sheen_brdf", kPi * D * V * c.NoL());
+  // E at n·v and at n·l: the fit's piece of μ chosen by select, its series' coefficients constants.
+  const std::vector<SheenAlbedoPiece> pieces = sheen_albedo_pieces(r);
+  auto albedo = [&](const ir::Expr& mu, const std::string& name) {
+    // m = max(μ, mu_min); √m, and √√m for a piece in m^¼.
+    ir::Expr u = c.let(name + "_u", ir::sqrt(ir::max(mu, sheen_albedo_mu_min())));
+    ir::Expr u4 = c.let(name + "_u4", ir::sqrt(u));
+    ir::Expr s = 0.0;
+    for (size_t p = pieces.size(); p-- > 0;) {
+      const std::string piece = c.lobe() + "_sheen_e" + std::to_string(p);
+      std::vector<ir::Expr> args{(pieces[p].power == 0.25 ? u4 : u) * ir::constant(piece + "_scale", pieces[p].scale) +
+                                 ir::constant(piece + "_offset", pieces[p].offset)};
+      for (size_t k = 0; k < pieces[p].coefficients.size(); ++k)
+        args.push_back(ir::constant(piece + "_" + std::to_string(k), pieces[p].coefficients[k]));
+      ir::Expr series = c.let(name + "_s" + std::to_string(p), ir::call(terms::sheen_albedo_series(), args));
+      s = p + 1 == pieces.size() ? series : ir::select(mu < pieces[p].mu_end, series, s);
+    }
+    return c.let(name, ir::clamp(ir::exp(s) - sheen_albedo_epsilon(), 0.0, 1.0));
+  };
+  ir::Expr e_v = albedo(c.NoV(), "sheen_E_v");
+  ir::Expr e_l = albedo(c.NoL(), "sheen_E_l");
+  ir::Expr cmax = ir::constant(c.lobe() + "_sheen_color_max", color_max);
+  ir::Expr scaling = c.let("sheen_scaling", ir::min(1.0 - cmax * e_v, 1.0 - cmax * e_l));
+  ir::Expr sheen_color = c.parameter(c.spec(), "sheen_color", c.lobe() + "_sheen_color", true);
+  return sheen_color * brdf + core * scaling;
+}
+
 // KHR_materials_clearcoat, "Clearcoat" and "Implementation": the coat is specular_brdf of
 // α = clearcoatRoughness² over the whole material, mixed in by clearcoat · fresnel_coat, whose
 // Schlick Fresnel (f0 = 0.04, ior 1.5) reads |n·v|, not v·h: coated = material (1 − c Fc) +
@@ -335,19 +377,23 @@ void add_specular(std::vector<ModelDef>& all) {
     m.name = "gltf_pbr";
     m.title = "glTF metallic–roughness";
     m.citation = "The Khronos Group, \"glTF 2.0 Specification\", Appendix B \"BRDF Implementation\"; "
-                 "KHR_materials_ior; KHR_materials_specular; KHR_materials_clearcoat";
+                 "KHR_materials_ior; KHR_materials_specular; KHR_materials_sheen; KHR_materials_clearcoat";
     // Short words: the add-on's panel wraps the formula at 27 characters (220 px) and keeps words whole.
     m.formula = "ρ = π f (n·l), f = (1 − metallic) dielectric + metallic metal, dielectric = F S + (1 − max F) "
                 "base_color/π, metal = S (base_color + (1 − base_color) w), S = D V (GGX, height-correlated "
                 "Smith, α = roughness²), F = f0 + (specular − f0) w, w = (1 − |v·h|)^5, f0 = min(F0(ior) "
-                "specular_color, 1) specular, F0(ior) = ((ior − 1)/(ior + 1))²; with a clear coat c: f' = f (1 − c "
-                "Fc) + c Fc S_c, S_c = D V (α = clearcoat_roughness²), Fc = 0.04 + 0.96 (1 − |n·v|)^5";
+                "specular_color, 1) specular, F0(ior) = ((ior − 1)/(ior + 1))²; with a sheen s: f' = s S_s + f min(1 − "
+                "max(s) E(n·v), 1 − max(s) E(n·l)), S_s = D V (Charlie, α = sheen_roughness²), E its albedo; with a "
+                "clear coat c over that: f'' = f' (1 − c Fc) + c Fc S_c, S_c = D V (α = clearcoat_roughness²), Fc = "
+                "0.04 + 0.96 (1 − |n·v|)^5";
     m.doc = "The whole BRDF a glTF file's material means, diffuse included, as its specification writes it: a "
             "dielectric (a Lambert base under a GGX layer, the base weighted by 1 − max(F)) and a metal (the GGX "
             "lobe tinted by the base colour's Schlick Fresnel), mixed by metallic. ior and specular / specular_color "
             "are KHR_materials_ior and KHR_materials_specular; their defaults (1.5, 1, white) give the core "
-            "specification's f0 = 0.04. clearcoat and clearcoat_roughness are KHR_materials_clearcoat: a GGX layer "
-            "over all of it, weighted by its Fresnel at n·v (the coat's normal is the surface's: a separate coat "
+            "specification's f0 = 0.04. sheen_color and sheen_roughness are KHR_materials_sheen: the \"Charlie\" "
+            "sheen over the rest, which is scaled by one minus the sheen's directional albedo at n·v and at n·l (a "
+            "fit, worst error stated in docs/gltf.md). clearcoat and clearcoat_roughness are KHR_materials_clearcoat: "
+            "a GGX layer over all of it, weighted by its Fresnel at n·v (the coat's normal is the surface's: a separate coat "
             "normal map is not taken). Write it as the material's specular lobe, alone.";
     // Defaults: Blender's Principled BSDF's (a grey dielectric, roughness 0.5), not glTF's white
     // rough metal (1, 1, 1), which a glTF import states for a file that leaves its factors out;
@@ -371,6 +417,12 @@ void add_specular(std::vector<ModelDef>& all) {
                Range::closed(0, 1), 0, false),
         number("clearcoat_roughness",
                "KHR_materials_clearcoat clearcoatRoughnessFactor; the coat's α = clearcoat_roughness², at least 1e-3",
+               Range::closed(0, 1), 0, false),
+        color("sheen_color", "KHR_materials_sheen sheenColorFactor: the sheen's colour (0: none; not an image)",
+              Range::closed(0, 1), {0, 0, 0}),
+        number("sheen_roughness",
+               "KHR_materials_sheen sheenRoughnessFactor; the sheen's α = sheen_roughness², at least 1e-3 (not an "
+               "image: its albedo's fit is folded for it when the code is generated)",
                Range::closed(0, 1), 0, false)};
     m.cycles = approximate("principled_bsdf: its dielectric is energy-compensated, not Appendix B's fresnel_mix");
     m.pov = none(kMicrofacetPov);
@@ -379,7 +431,7 @@ void add_specular(std::vector<ModelDef>& all) {
         "IOR, Specular IOR Level = specular/2, Specular Tint = specular_color; a GGX metal is glTF's exactly, a "
         "dielectric Cycles' energy-compensated layering (docs/blender.md, F)",
         0.106);
-    m.build = [](LobeContext& c) { return gltf_clearcoat(c, gltf_core(c)); };
+    m.build = [](LobeContext& c) { return gltf_clearcoat(c, gltf_sheen(c, gltf_core(c))); };
     m.reciprocal = false;
     m.physics_note = "without a clear coat symmetric: D, V and F (of v·h = l·h) are, and so is the diffuse weight "
                      "1 − max(F); KHR_materials_clearcoat weights its layers by the Fresnel of n·v alone, which is "

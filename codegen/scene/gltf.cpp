@@ -42,11 +42,15 @@ const char* kObjectExt = "FACET_object";
 const char* kLightExt = "FACET_light";
 const char* kSceneExt = "FACET_scene";
 const char* kLightsExt = "KHR_lights_punctual";
-// The extensions facet reads as their specifications say, so a file may require them.
+// The extensions facet reads as their specifications say, so a file may require them (what a
+// material's extension leaves out, e.g. a sheen texture, is said in that material's note).
 const std::set<std::string> kSupportedRequired = {kLightsExt,
                                                   "KHR_texture_transform",
                                                   "KHR_materials_emissive_strength",
                                                   "KHR_materials_ior",
+                                                  "KHR_materials_specular",
+                                                  "KHR_materials_sheen",
+                                                  "KHR_materials_clearcoat",
                                                   kMaterialExt,
                                                   kObjectExt,
                                                   kLightExt,
@@ -79,11 +83,6 @@ tinygltf::Value value_of(const json& j) {
   }
 }
 
-// glTF's emissiveFactor of `m`: its emission, each channel at most 1 (FACET_material keeps more).
-std::vector<double> clamped_emission(const Material& m) {
-  return {std::clamp(m.emission[0], 0.0, 1.0), std::clamp(m.emission[1], 0.0, 1.0), std::clamp(m.emission[2], 0.0, 1.0)};
-}
-
 // The nearest metallic–roughness material, from what the catalog says of the
 // lobes: the specular lobe's equivalent GGX α (roughness = √α; α = 1 where it has
 // none) and, for a material without diffuse whose Fresnel term states F(0), a
@@ -106,7 +105,6 @@ void fallback_pbr(const Material& m, tinygltf::Material& g) {
   g.pbrMetallicRoughness.baseColorFactor = {base[0], base[1], base[2], 1.0};
   g.pbrMetallicRoughness.metallicFactor = metal;
   g.pbrMetallicRoughness.roughnessFactor = std::clamp(std::sqrt(alpha), 0.0, 1.0);
-  g.emissiveFactor = clamped_emission(m);
 }
 
 // A sphere as a UV mesh (the analytic definition travels in FACET_object).
@@ -821,8 +819,8 @@ class Exporter {
   }
 
   // glTF's own BRDF written back as glTF: pbrMetallicRoughness's factors and maps,
-  // KHR_materials_ior, KHR_materials_specular and KHR_materials_clearcoat (glTF 2.0 §3.9.2; the
-  // extensions' READMEs).
+  // KHR_materials_ior, KHR_materials_specular, KHR_materials_sheen and KHR_materials_clearcoat
+  // (glTF 2.0 §3.9.2; the extensions' READMEs).
   // False, with a note and nothing written, where the lobe holds what glTF cannot say: the
   // fallback then.
   bool gltf_brdf(const std::string& key, const Material& m, tinygltf::Material& g) {
@@ -857,6 +855,15 @@ class Exporter {
       g.extensions["KHR_materials_specular"] = tinygltf::Value(ext);
       used_.insert("KHR_materials_specular");
     }
+    const RGB& sheen = s.at("sheen_color").rgb;
+    if (sheen != RGB{0, 0, 0}) {
+      tinygltf::Value::Object ext;
+      ext["sheenColorFactor"] = tinygltf::Value(
+          tinygltf::Value::Array{tinygltf::Value(sheen[0]), tinygltf::Value(sheen[1]), tinygltf::Value(sheen[2])});
+      ext["sheenRoughnessFactor"] = tinygltf::Value(s.at("sheen_roughness").number);
+      g.extensions["KHR_materials_sheen"] = tinygltf::Value(ext);
+      used_.insert("KHR_materials_sheen");
+    }
     const Value &coat = s.at("clearcoat"), &coat_roughness = s.at("clearcoat_roughness");
     if (coat.texture || coat.number != 0) {
       tinygltf::Value::Object ext;
@@ -867,7 +874,6 @@ class Exporter {
       g.extensions["KHR_materials_clearcoat"] = tinygltf::Value(ext);
       used_.insert("KHR_materials_clearcoat");
     }
-    g.emissiveFactor = clamped_emission(m);
     return true;
   }
 
@@ -919,17 +925,18 @@ class Exporter {
       }
     }
     if (m.emission_texture && m.emission_texture->has_image() && m.emission_texture->channel == "rgb" &&
-        m.emission_texture->colorspace == "srgb") {
+        m.emission_texture->colorspace == "srgb")
       images_.texture_info(*m.emission_texture, g.emissiveTexture, used_);
-      const double peak = std::max({m.emission[0], m.emission[1], m.emission[2]});
-      const double k = std::max(peak, 1.0);  // glTF's factor is at most 1: the rest is KHR_materials_emissive_strength
-      g.emissiveFactor = {m.emission[0] / k, m.emission[1] / k, m.emission[2] / k};
-      if (k > 1) {
-        tinygltf::Value::Object strength;
-        strength["emissiveStrength"] = tinygltf::Value(k);
-        g.extensions["KHR_materials_emissive_strength"] = tinygltf::Value(strength);
-        used_.insert("KHR_materials_emissive_strength");
-      }
+    // glTF's factor is at most 1: the rest is KHR_materials_emissive_strength (the emission's
+    // radiance, a map's texels times it, is then the same).
+    const double peak = std::max({m.emission[0], m.emission[1], m.emission[2]});
+    const double k = std::max(peak, 1.0);
+    g.emissiveFactor = {m.emission[0] / k, m.emission[1] / k, m.emission[2] / k};
+    if (k > 1) {
+      tinygltf::Value::Object strength;
+      strength["emissiveStrength"] = tinygltf::Value(k);
+      g.extensions["KHR_materials_emissive_strength"] = tinygltf::Value(strength);
+      used_.insert("KHR_materials_emissive_strength");
     }
     model_.materials.push_back(g);
     material_index_[key] = int(model_.materials.size() - 1);

@@ -138,8 +138,8 @@ void cut_out(const tinygltf::Material& g, const Pbr& p, const std::string& mpath
 
 // The material extensions the import maps (FACET_material is facet's own).
 const std::vector<std::string> kImplemented = {"KHR_materials_emissive_strength", "KHR_materials_ior",
-                                               "KHR_materials_specular", "KHR_materials_clearcoat",
-                                               "FACET_material"};
+                                               "KHR_materials_specular", "KHR_materials_sheen",
+                                               "KHR_materials_clearcoat", "FACET_material"};
 
 // The material's extensions facet does not implement, named in one note (the file's
 // required ones were refused before any material was read).
@@ -204,27 +204,46 @@ void factor_and_texture(const json& ext, const char* factor, double fallback, co
   lobe[param] = texture_value(t, channel, "linear", f);
 }
 
+// The colour `name` of extension object `ext` (`fallback` where absent), each number in [0, hi]:
+// else InputError naming `key`.name[k].
+RGB extension_color(GltfImages& images, const json& ext, const char* name, RGB fallback, double hi,
+                    const std::string& key) {
+  if (!ext.contains(name)) return fallback;
+  const json& c = ext[name];
+  if (!c.is_array() || c.size() != 3) images.fail(key + "." + name, "expected three numbers, found " + c.dump());
+  RGB out;
+  for (size_t k = 0; k < 3; ++k) {
+    if (!c[k].is_number() || !(c[k].get<double>() >= 0 && c[k].get<double>() <= hi))
+      images.fail(fmt::format("{}.{}[{}]", key, name, k),
+                  fmt::format("expected a number in [0, {:g}], found {}", hi, c[k].dump()));
+    out[k] = c[k].get<double>();
+  }
+  return out;
+}
+
 // KHR_materials_specular: specular = specularFactor × specularTexture's A; specular_color =
 // specularColorFactor (specularColorTexture is not read: a note says so).
 void specular_extension(const json& spec, json& lobe, GltfImages& images, const std::string& key,
                         std::vector<std::pair<int, std::string>>& sets, std::vector<std::string>& notes) {
   factor_and_texture(spec, "specularFactor", 1, "specularTexture", "a", "specular", lobe, images, key, sets);
-  RGB tint{1, 1, 1};
-  if (spec.contains("specularColorFactor")) {
-    const json& c = spec["specularColorFactor"];
-    if (!c.is_array() || c.size() != 3)
-      images.fail(key + ".specularColorFactor", "expected three numbers, found " + c.dump());
-    for (size_t k = 0; k < 3; ++k) {
-      if (!c[k].is_number() || !(c[k].get<double>() >= 0 && c[k].get<double>() <= kColorMax))
-        images.fail(fmt::format("{}.specularColorFactor[{}]", key, k),
-                    fmt::format("expected a number in [0, {:g}], found {}", kColorMax, c[k].dump()));
-      tint[k] = c[k].get<double>();
-    }
-  }
-  lobe["specular_color"] = tint;
+  lobe["specular_color"] = extension_color(images, spec, "specularColorFactor", {1, 1, 1}, kColorMax, key);
   if (spec.contains("specularColorTexture"))
     notes.push_back(key + ".specularColorTexture: not read (facet's gltf_pbr takes specular_color as a number); "
                           "specularColorFactor alone is used");
+}
+
+// KHR_materials_sheen ("Sheen"): sheen_color = sheenColorFactor, sheen_roughness =
+// sheenRoughnessFactor. The lobe takes both as numbers (max₃ of the colour and the albedo's
+// fit at the roughness are folded when the code is generated): their textures are not read,
+// a note says so.
+void sheen_extension(const json& sheen, json& lobe, GltfImages& images, const std::string& key,
+                     std::vector<std::string>& notes) {
+  lobe["sheen_color"] = extension_color(images, sheen, "sheenColorFactor", {0, 0, 0}, 1, key);
+  lobe["sheen_roughness"] = extension_number(images, sheen, "sheenRoughnessFactor", 0, 0, 1, key);
+  for (const char* texture : {"sheenColorTexture", "sheenRoughnessTexture"})
+    if (sheen.contains(texture))
+      notes.push_back(key + "." + texture + ": approximate: not read (facet's gltf_pbr takes the sheen's colour and "
+                      "roughness as numbers); the factor alone is used");
 }
 
 // KHR_materials_clearcoat ("Clearcoat"): clearcoat = clearcoatFactor × clearcoatTexture's R,
@@ -247,7 +266,8 @@ void clearcoat_extension(const json& coat, json& lobe, bool normal_mapped, GltfI
 // The glTF material as the catalog's gltf_pbr lobe, every input as the file gives it: glTF 2.0
 // §3.9.2 (pbrMetallicRoughness: the base colour map's RGB in sRGB times baseColorFactor and
 // COLOR_0, the metallic–roughness map's B and G, linear, times their factors), KHR_materials_ior
-// (ior) and KHR_materials_specular (specularFactor times specularTexture's A; specularColorFactor).
+// (ior), KHR_materials_specular (specularFactor times specularTexture's A; specularColorFactor),
+// KHR_materials_sheen (its factors) and KHR_materials_clearcoat.
 json gltf_pbr_lobe(const tinygltf::Material& g, const Pbr& p, GltfImages& images, const std::string& mpath,
                    std::vector<std::pair<int, std::string>>& sets, std::vector<std::string>& notes) {
   json lobe = {{"model", "gltf_pbr"}};
@@ -264,6 +284,8 @@ json gltf_pbr_lobe(const tinygltf::Material& g, const Pbr& p, GltfImages& images
   }
   const json spec = extension_of(g.extensions_json_string, "KHR_materials_specular");
   if (spec.is_object()) specular_extension(spec, lobe, images, mpath + ".extensions.KHR_materials_specular", sets, notes);
+  const json sheen = extension_of(g.extensions_json_string, "KHR_materials_sheen");
+  if (sheen.is_object()) sheen_extension(sheen, lobe, images, mpath + ".extensions.KHR_materials_sheen", notes);
   const json coat = extension_of(g.extensions_json_string, "KHR_materials_clearcoat");
   if (coat.is_object())
     clearcoat_extension(coat, lobe, g.normalTexture.index >= 0, images, mpath + ".extensions.KHR_materials_clearcoat",

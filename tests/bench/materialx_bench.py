@@ -88,6 +88,13 @@ CASES = [
                   "clearcoat_roughness": 0.3},
      GLTF_NOTE + "; its clear coat is a dielectric_bsdf layered by its directional albedo, the README's "
                  "fresnel_coat a mix by clearcoat · Fc(n·v)"),
+    ("gltf_sheen",
+     {"specular": {"model": "gltf_pbr", "base_color": [0.25, 0.03, 0.12], "metallic": 0, "roughness": 0.8,
+                   "sheen_color": [0.9, 0.55, 0.7], "sheen_roughness": 0.35}},
+     "gltf_pbr", {"base_color": mx.Color3(0.25, 0.03, 0.12), "metallic": 0.0, "roughness": 0.8,
+                  "sheen_color": mx.Color3(0.9, 0.55, 0.7), "sheen_roughness": 0.35},
+     GLTF_NOTE + "; its sheen is a sheen_bsdf layered over the base by the sheen's albedo at n·v alone (the "
+                 "README's view-only shortcut), where the README's first form is min over n·v and n·l"),
 ]
 
 

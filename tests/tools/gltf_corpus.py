@@ -777,6 +777,57 @@ def blender_textured_scene(folder):
     scene.world = None
 
 
+def blender_principled_scene():
+    """A third exporter-written file (issue 29, acceptance 3): Principled BSDFs using the inputs
+    glTF's material extensions carry, as Blender's exporter writes them: IOR (KHR_materials_ior),
+    Specular IOR Level and Tint (KHR_materials_specular), Sheen Weight, Tint and Roughness
+    (KHR_materials_sheen), Coat Weight and Roughness (KHR_materials_clearcoat), Emission Color and
+    a Strength above 1 (KHR_materials_emissive_strength), Anisotropic and its Rotation
+    (KHR_materials_anisotropy, which facet names in a note and draws as the core)."""
+    import bpy
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    scene = bpy.context.scene
+
+    def principled(name, base, metallic, roughness, **inputs):
+        m = blender_material(name, base, metallic, roughness)
+        bsdf = m.node_tree.nodes["Principled BSDF"]
+        for key, value in inputs.items():
+            bsdf.inputs[key].default_value = tuple(value) + (1.0,) if isinstance(value, tuple) else value
+        return m
+
+    materials = (
+        principled("velvet_coat", (0.3, 0.05, 0.15), 0.0, 0.7, **{
+            "Sheen Weight": 1.0, "Sheen Tint": (0.9, 0.6, 0.7), "Sheen Roughness": 0.4,
+            "Coat Weight": 0.6, "Coat Roughness": 0.3}),
+        principled("tinted_specular", (0.1, 0.3, 0.6), 0.0, 0.4, **{
+            "IOR": 1.7, "Specular IOR Level": 0.7, "Specular Tint": (1.0, 0.7, 0.4)}),
+        principled("emissive_metal", (0.9, 0.6, 0.3), 1.0, 0.35, **{
+            "Emission Color": (1.0, 0.4, 0.1), "Emission Strength": 2.0}),
+        principled("brushed", (0.8, 0.8, 0.85), 1.0, 0.4, **{"Anisotropic": 0.5, "Anisotropic Rotation": 0.25}))
+    floor = blender_material("floor", (0.5, 0.5, 0.5), 0.0, 0.7)
+    blender_object("floor", lambda: bpy.ops.mesh.primitive_plane_add(size=10), floor, (0, 0, 0), smooth=False)
+    for k, m in enumerate(materials):
+        blender_object(m.name, lambda: bpy.ops.mesh.primitive_uv_sphere_add(segments=24, ring_count=12, radius=0.6),
+                       m, (-2.1 + 1.4 * k, 0.0, 0.6), rotation=(0.3 * k, 0.2, 0.5 * k))
+    import mathutils
+    point = bpy.data.lights.new("Point", "POINT")
+    point.energy, point.shadow_soft_size = 1000.0, 0.0
+    obj = bpy.data.objects.new("Point", point)
+    scene.collection.objects.link(obj)
+    obj.location = (2.0, -3.5, 4.5)
+    sun = bpy.data.lights.new("Sun", "SUN")
+    sun.energy, sun.angle = 2.0, 0.0
+    obj = bpy.data.objects.new("Sun", sun)
+    scene.collection.objects.link(obj)
+    obj.rotation_euler = (0.6, -0.3, 0.2)
+    cam = bpy.data.objects.new("Camera", bpy.data.cameras.new("Camera"))
+    scene.collection.objects.link(cam)
+    cam.location = (0.0, -7.0, 3.2)
+    cam.rotation_euler = (mathutils.Vector((0.0, 0.0, 0.5)) - cam.location).to_track_quat("-Z", "Y").to_euler()
+    scene.camera = cam
+    scene.world = None
+
+
 def export_blender(path, **options):
     """Blender's exporter as a user runs it (lights in its "Standard" units, Y up, cameras); a
     .gltf is written with its buffer and images beside it, then made one file (data URIs)."""
@@ -819,6 +870,9 @@ def write_blender_files(out):
     blender_textured_scene(blend_folder)
     bpy.context.scene.name = "blender_textured"
     export_blender(os.path.join(out, "corpus", "blender_textured.gltf"))
+    blender_principled_scene()
+    bpy.context.scene.name = "blender_principled"
+    export_blender(os.path.join(out, "corpus", "blender_principled.glb"))
 
 
 CORPUS.append(("blender_lights.glb", "written by Blender's glTF exporter (Y-up conversion, applied transforms): "
@@ -828,6 +882,10 @@ CORPUS.append(("blender_lights.glb", "written by Blender's glTF exporter (Y-up c
 CORPUS.append(("blender_textured.gltf", "written by Blender's glTF exporter: an image through a Mapping node on "
                                         "a second UV map (KHR_texture_transform, TEXCOORD_1), mirrored and rotated "
                                         "objects, a point light and a sun", None))
+CORPUS.append(("blender_principled.glb", "written by Blender's glTF exporter from Principled BSDFs: IOR, Specular IOR "
+                                         "Level and Tint, Sheen, Coat, Emission Strength 2, Anisotropic (named in a "
+                                         "note): KHR_materials_ior, _specular, _sheen, _clearcoat, "
+                                         "_emissive_strength, _anisotropy", None))
 
 
 # ----------------------------------------------------------------------------- wrong twins

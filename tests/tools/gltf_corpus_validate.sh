@@ -27,7 +27,7 @@ for file in "$folder/corpus"/*.gltf "$folder/corpus"/*.glb; do
   count=$((count + 1))
 done
 [ "$count" -ge 20 ] ||
-  { echo "FAIL: only $count corpus files in $folder/corpus (gltf_corpus.py writes 27)" >&2; exit 1; }
+  { echo "FAIL: only $count corpus files in $folder/corpus (gltf_corpus.py writes 28)" >&2; exit 1; }
 "$facet" validate "$@" --renderers "reference,$renderer" --size "$size" --python "$python" --out "$work/out" |
   tee "$work/validate.log"
 grep -q "facet validate: $count of $count comparisons pass" "$work/validate.log" ||

@@ -11,17 +11,24 @@
 //  * KHR_materials_clearcoat README, "Clearcoat" and "Implementation": clearcoat_brdf =
 //    specular_brdf(α = clearcoatRoughness²), coated_material = mix(material, clearcoat_brdf,
 //    clearcoat · (0.04 + (1 − 0.04)(1 − |V·Nc|)^5)), Nc the surface's normal here.
+//  * KHR_materials_sheen README, "Sheen" and "Implementation Notes": the "Charlie" sheen
+//    distribution and visibility (α_g = sheenRoughness²), SheenBRDF = ν_s D_s, and the albedo
+//    scaling sheen_material = sheenColor sheen_brdf + material min(1 − max3(sheenColor) E(V·N),
+//    1 − max3(sheenColor) E(L·N)), the clear coat layered on top of the sheen. E is facet's fit
+//    (sheen_albedo), checked here against the integral of E's definition at its stated error.
 // Here G is written as the specification prints it (not as facet's visibility V), with the
 // explicit vectors and χ⁺; the BRDF is f, and facet's ρ is π f (n·l) (MODELS.md, "Conventions").
 // Direction sets reach n·l and n·v of 1e-3.
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <functional>
 #include <random>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "catalog/catalog.h"
 #include "catalog/material.h"
 #include "reference/interpreter.h"
 
@@ -37,6 +44,8 @@ struct Params {
   double metallic = 1, roughness = 1, ior = 1.5, specular = 1;
   RGB specular_color{1, 1, 1};
   double clearcoat = 0, clearcoat_roughness = 0;
+  RGB sheen_color{0, 0, 0};
+  double sheen_roughness = 0;
 };
 
 double chi(double x) { return x > 0 ? 1.0 : 0.0; }
@@ -54,6 +63,32 @@ double specular_brdf_of(double roughness, const Vec3& N, const Vec3& L, const Ve
                    (std::fabs(NdotV) * std::sqrt(a2 + (1 - a2) * NdotL * NdotL) +
                     std::fabs(NdotL) * std::sqrt(a2 + (1 - a2) * NdotV * NdotV));
   return G * D / (4 * std::fabs(NdotL) * std::fabs(NdotV));
+}
+
+// KHR_materials_sheen, "Sheen distribution" and "Sheen visibility", as the README's GLSL.
+double sheen_l(double x, double alpha_g) {
+  const double one_minus_alpha_sq = (1.0 - alpha_g) * (1.0 - alpha_g);
+  auto mix = [&](double a, double b) { return a + (b - a) * one_minus_alpha_sq; };
+  const double a = mix(21.5473, 25.3245), b = mix(3.82987, 3.32435), c = mix(0.19823, 0.16801),
+               d = mix(-1.97760, -1.27393), e = mix(-4.32054, -4.85967);
+  return a / (1.0 + b * std::pow(x, c)) + d * x + e;
+}
+
+double lambda_sheen(double cos_theta, double alpha_g) {
+  return std::fabs(cos_theta) < 0.5 ? std::exp(sheen_l(std::fabs(cos_theta), alpha_g))
+                                    : std::exp(2.0 * sheen_l(0.5, alpha_g) - sheen_l(1.0 - std::fabs(cos_theta), alpha_g));
+}
+
+// sheen_brdf = ν_s D_s, α_g = sheenRoughness² floored as the GGX α is (at 1e-3).
+double sheen_brdf(double sheen_roughness, const Vec3& N, const Vec3& L, const Vec3& V) {
+  const Vec3 H = normalize(L + V);
+  const double alpha_g = std::max(sheen_roughness * sheen_roughness, 1e-3);
+  const double inv_r = 1 / alpha_g, NdotH = dot(N, H), NdotV = dot(N, V), NdotL = dot(N, L);
+  const double cos2h = NdotH * NdotH, sin2h = 1 - cos2h;
+  const double sheen_distribution = (2 + inv_r) * std::pow(sin2h, inv_r * 0.5) / (2 * kPi);
+  const double sheen_visibility =
+      1.0 / ((1.0 + lambda_sheen(NdotV, alpha_g) + lambda_sheen(NdotL, alpha_g)) * (4.0 * NdotV * NdotL));
+  return sheen_visibility * sheen_distribution;
 }
 
 // The specification's BRDF f(l, v), every line from the texts cited above.
@@ -77,6 +112,14 @@ RGB gltf_brdf(const Params& p, const Vec3& N, const Vec3& L, const Vec3& V) {
     const double metal_brdf = metal_fresnel * specular_brdf;
     f[c] = (1 - p.metallic) * dielectric_brdf + p.metallic * metal_brdf;  // mix(dielectric, metal, metallic)
   }
+  // KHR_materials_sheen: "If sheenColorFactor is zero, the whole sheen layer is disabled."
+  if (max_value(p.sheen_color) > 0) {
+    const double sheen = sheen_brdf(p.sheen_roughness, N, L, V);
+    const double c = max_value(p.sheen_color);
+    const double scaling = std::min(1 - c * sheen_albedo(dot(V, N), p.sheen_roughness),
+                                    1 - c * sheen_albedo(dot(L, N), p.sheen_roughness));
+    for (int k = 0; k < 3; ++k) f[k] = p.sheen_color[k] * sheen + f[k] * scaling;
+  }
   // KHR_materials_clearcoat: fresnel_coat(normal = Nc, ior = 1.5, weight = clearcoat, base = material,
   // layer = clearcoat_brdf) = mix(base, layer, weight · fr), fr = f0 + (1 − f0)(1 − |V·Nc|)^5.
   if (p.clearcoat > 0) {
@@ -98,7 +141,9 @@ json material_json(const Params& p) {
             {"specular", p.specular},
             {"specular_color", {p.specular_color[0], p.specular_color[1], p.specular_color[2]}},
             {"clearcoat", p.clearcoat},
-            {"clearcoat_roughness", p.clearcoat_roughness}}}};
+            {"clearcoat_roughness", p.clearcoat_roughness},
+            {"sheen_color", {p.sheen_color[0], p.sheen_color[1], p.sheen_color[2]}},
+            {"sheen_roughness", p.sheen_roughness}}}};
 }
 
 // A direction at cosine `c` from `n` (a unit vector), at azimuth `phi` about it.
@@ -259,6 +304,94 @@ TEST(GltfPbr, TheSeparableGAndAnUnweightedLambertAreToldApart) {
   plastic.roughness = 0.5;
   EXPECT_LE(worst_error(plastic, gltf_brdf), kRelTol);
   EXPECT_GT(worst_error(plastic, unweighted_lambert), 1e-2) << "the Lambert not weighted by 1 − F must fail";
+}
+
+TEST(GltfPbr, KhrMaterialsSheen) {
+  // Velvet over a dielectric, satin over a metal and a half metal, the README's velvet
+  // (sheenColorFactor 0.9, roughness 0 floored), a coloured sheen, and a coat over a sheen.
+  for (double sheen_roughness : {0.0, 0.3, 0.5, 0.8, 1.0})
+    for (double metallic : {0.0, 0.5, 1.0}) {
+      Params p;
+      p.base = {0.3, 0.1, 0.6};
+      p.metallic = metallic;
+      p.roughness = 0.6;
+      p.sheen_color = {0.9, 0.9, 0.9};
+      p.sheen_roughness = sheen_roughness;
+      EXPECT_LE(worst_error(p, gltf_brdf), kRelTol) << describe(p);
+      p.sheen_color = {1.0, 0.4, 0.1};
+      EXPECT_LE(worst_error(p, gltf_brdf), kRelTol) << describe(p);
+      p.clearcoat = 0.7;
+      p.clearcoat_roughness = 0.2;
+      EXPECT_LE(worst_error(p, gltf_brdf), kRelTol) << describe(p);
+    }
+}
+
+// E(μ, r) = ∫ ν_s D_s (n·l) dω_l, the README's sheen BRDF's directional albedo, integrated here
+// on a midpoint grid in t and φ with n·l = t⁶ (dω = 6 t⁵ dt dφ: Λ's (n·l)^0.2 made smooth) and φ
+// in (0, π) (the integrand is even in φ), against facet's fit: within the error the fit states
+// (scripts/fit_sheen_albedo.py) plus this grid's own (measured below, < 5e-4).
+double albedo_integral(double mu, double sheen_roughness, int n) {
+  const Vec3 N(0, 0, 1), V(std::sqrt(1 - mu * mu), 0, mu);
+  double sum = 0;
+  for (int i = 0; i < n; ++i) {
+    const double t = (i + 0.5) / n, cos_l = std::pow(t, 6), sin_l = std::sqrt(1 - cos_l * cos_l);
+    for (int j = 0; j < 2 * n; ++j) {
+      const double phi = (j + 0.5) / (2 * n) * kPi;
+      const Vec3 L(sin_l * std::cos(phi), sin_l * std::sin(phi), cos_l);
+      sum += sheen_brdf(sheen_roughness, N, L, V) * cos_l * 6 * std::pow(t, 5);
+    }
+  }
+  return 2 * sum * (1.0 / n) * (kPi / (2 * n));
+}
+
+TEST(GltfPbr, TheSheenAlbedoFitIsWithinItsStatedErrorOfTheIntegral) {
+  double worst = 0, grid = 0;
+  // The floor (r = 0: α = 1e-3), off the table's rows and on them, down to n·v = 1e-3.
+  for (double r : {0.0, 0.058, 0.15, 0.23, 0.35, 0.5, 0.7, 0.9, 1.0})
+    for (double mu : {0.001, 0.02, 0.07, 0.2, 0.45, 0.75, 1.0}) {
+      const double e = albedo_integral(mu, r, 200);
+      grid = std::max(grid, std::fabs(std::min(e, 1.0) - std::min(albedo_integral(mu, r, 100), 1.0)));
+      worst = std::max(worst, std::fabs(sheen_albedo(mu, r) - std::min(e, 1.0)));
+    }
+  std::printf("sheen albedo fit: worst |E − min(∫, 1)| %.2e here (the fit states %.2e); the grid's own %.1e\n", worst,
+              sheen_albedo_worst_error(), grid);
+  EXPECT_LT(grid, 5e-4) << "the test's own quadrature";
+  EXPECT_LE(worst, sheen_albedo_worst_error() + grid) << "the fit states " << sheen_albedo_worst_error();
+  EXPECT_LT(sheen_albedo_worst_error(), 1e-3);
+  // What E is for: it is large at grazing angles and small at normal incidence for a smooth sheen.
+  EXPECT_GT(sheen_albedo(0.05, 0.3), 0.5);
+  EXPECT_LT(sheen_albedo(1.0, 0.3), 0.01);
+}
+
+// Sheen without the albedo scaling (the base not dimmed), and with the README's view-only
+// shortcut 1 − max3(c) E(V·N), are told apart from the specification's reciprocal scaling.
+RGB sheen_unscaled(const Params& p, const Vec3& N, const Vec3& L, const Vec3& V) {
+  Params base = p;
+  base.sheen_color = {0, 0, 0};
+  RGB f = gltf_brdf(base, N, L, V);
+  for (int k = 0; k < 3; ++k) f[k] += p.sheen_color[k] * sheen_brdf(p.sheen_roughness, N, L, V);
+  return f;
+}
+
+RGB sheen_view_only(const Params& p, const Vec3& N, const Vec3& L, const Vec3& V) {
+  Params base = p;
+  base.sheen_color = {0, 0, 0};
+  RGB f = gltf_brdf(base, N, L, V);
+  const double scaling = 1 - max_value(p.sheen_color) * sheen_albedo(dot(V, N), p.sheen_roughness);
+  for (int k = 0; k < 3; ++k) f[k] = p.sheen_color[k] * sheen_brdf(p.sheen_roughness, N, L, V) + f[k] * scaling;
+  return f;
+}
+
+TEST(GltfPbr, SheenWithoutItsAlbedoScalingIsToldApart) {
+  Params velvet;
+  velvet.base = {0.3, 0.1, 0.6};
+  velvet.metallic = 0;
+  velvet.roughness = 0.6;
+  velvet.sheen_color = {0.9, 0.9, 0.9};
+  velvet.sheen_roughness = 0.4;
+  EXPECT_LE(worst_error(velvet, gltf_brdf), kRelTol);
+  EXPECT_GT(worst_error(velvet, sheen_unscaled), 1e-2) << "sheen without albedo scaling must fail";
+  EXPECT_GT(worst_error(velvet, sheen_view_only), 1e-2) << "the view-only scaling must fail";
 }
 
 // The catalog's geometry "smith_ggx_correlated" on the ggx lobe is Appendix B's specular_brdf

@@ -250,7 +250,9 @@ TEST(Gltf, GltfBrdfExportsAsItsFactorsMapsAndExtensions) {
                      {"specular", {{"texture", "textures/leaf.png"}, {"channel", "a"}, {"factor", 0.9}}},
                      {"specular_color", {1.0, 0.5, 0.25}},
                      {"clearcoat", {{"texture", "textures/leaf.png"}, {"channel", "r"}, {"factor", 0.8}}},
-                     {"clearcoat_roughness", 0.3}};
+                     {"clearcoat_roughness", 0.3},
+                     {"sheen_color", {0.6, 0.5, 0.4}},
+                     {"sheen_roughness", 0.45}};
   const Material m = leaf_lobe_material("gltf_brdf_export", "painted", lobe);
   const std::string out = (scratch("gltf_brdf_export") / "out.gltf").string();
   std::vector<std::string> notes;
@@ -269,7 +271,9 @@ TEST(Gltf, GltfBrdfExportsAsItsFactorsMapsAndExtensions) {
   EXPECT_EQ(g["extensions"]["KHR_materials_clearcoat"]["clearcoatFactor"], 0.8);
   EXPECT_EQ(g["extensions"]["KHR_materials_clearcoat"]["clearcoatRoughnessFactor"], 0.3);
   EXPECT_TRUE(g["extensions"]["KHR_materials_clearcoat"].contains("clearcoatTexture"));
-  for (const char* used : {"KHR_materials_ior", "KHR_materials_specular", "KHR_materials_clearcoat"})
+  EXPECT_EQ(g["extensions"]["KHR_materials_sheen"]["sheenColorFactor"], json::array({0.6, 0.5, 0.4}));
+  EXPECT_EQ(g["extensions"]["KHR_materials_sheen"]["sheenRoughnessFactor"], 0.45);
+  for (const char* used : {"KHR_materials_ior", "KHR_materials_specular", "KHR_materials_sheen", "KHR_materials_clearcoat"})
     EXPECT_NE(std::find(doc["extensionsUsed"].begin(), doc["extensionsUsed"].end(), used), doc["extensionsUsed"].end())
         << used;
   for (const auto& n : notes) EXPECT_EQ(n.find("approximate"), std::string::npos) << n;
@@ -767,6 +771,40 @@ TEST(GltfTextures, ClearcoatIsReadWithItsMapsAndItsLimitsSaid) {
     said += (n.find("clearcoatNormalTexture: approximate") != std::string::npos) +
             (n.find("not dimmed by the clear coat") != std::string::npos);
   EXPECT_EQ(said, 2);
+}
+
+// KHR_materials_sheen ("Sheen"): sheen_color = sheenColorFactor, sheen_roughness =
+// sheenRoughnessFactor; the textures, which the lobe does not take, are named in a note; the
+// extension may be required (facet reads it as its README says); a colour out of [0, 1] is
+// refused naming its key.
+TEST(GltfTextures, SheenIsReadAndItsTexturesNamed) {
+  json g = textured_triangle(json::array({data_uri_image(small_png())}));
+  json& gm = g["materials"][0];
+  gm["extensions"] = {{"KHR_materials_sheen", {{"sheenColorFactor", {0.9, 0.5, 0.3}}, {"sheenRoughnessFactor", 0.4}}}};
+  g["extensionsUsed"] = {"KHR_materials_sheen"};
+  g["extensionsRequired"] = {"KHR_materials_sheen"};
+  std::vector<std::string> notes;
+  Scene s = import_gltf(write_gltf("sheen.gltf", g).string(), {}, notes);
+  const ModelSpec& lobe = *s.materials.begin()->second.specular;
+  EXPECT_EQ(lobe.at("sheen_color").rgb, (RGB{0.9, 0.5, 0.3}));
+  EXPECT_EQ(lobe.at("sheen_roughness").number, 0.4);
+  for (const auto& n : notes) EXPECT_EQ(n.find("KHR_materials_sheen"), std::string::npos) << n;
+  gm["extensions"]["KHR_materials_sheen"]["sheenColorTexture"] = {{"index", 0}};
+  gm["extensions"]["KHR_materials_sheen"]["sheenRoughnessTexture"] = {{"index", 0}};
+  notes.clear();
+  import_gltf(write_gltf("sheen_textures.gltf", g).string(), {}, notes);
+  int said = 0;
+  for (const auto& n : notes)
+    said += (n.find("sheenColorTexture: approximate") != std::string::npos) +
+            (n.find("sheenRoughnessTexture: approximate") != std::string::npos);
+  EXPECT_EQ(said, 2);
+  gm["extensions"]["KHR_materials_sheen"]["sheenColorFactor"] = {0.9, 1.5, 0.3};
+  try {
+    import_gltf(write_gltf("sheen_bad.gltf", g).string(), {}, notes);
+    ADD_FAILURE() << "a sheen colour of 1.5 was read";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("KHR_materials_sheen.sheenColorFactor[1]"), std::string::npos) << e.what();
+  }
 }
 
 TEST(GltfTextures, UnlitFileGetsAHeadlight) {

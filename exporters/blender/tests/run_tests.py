@@ -876,7 +876,8 @@ def test_convert_principled():
     # glTF's BRDF as Blender's glTF exporter writes the node: the catalog's gltf_pbr lobe alone.
     check("diffuse" not in data, f"a Principled BSDF is one gltf_pbr lobe: {data}")
     want = {"model": "gltf_pbr", "color": [1.0, 1.0, 1.0], "base_color": list(base), "metallic": metallic,
-            "roughness": roughness, "clearcoat": 0.0, "clearcoat_roughness": 0.0}
+            "roughness": roughness, "clearcoat": 0.0, "clearcoat_roughness": 0.0, "sheen_color": [0.0, 0.0, 0.0],
+            "sheen_roughness": 0.0}
     if modern:   # 4.x: KHR_materials_ior and KHR_materials_specular (specularFactor = 2·Specular IOR Level)
         want.update(ior=1.45, specular=0.5, specular_color=[1.0, 1.0, 1.0])
     else:        # 3.x: f0 = 0.08·Specular at IOR 1.5, as specular_color 2·Specular
@@ -2179,10 +2180,10 @@ def test_render_engine_renders_like_reference():
 @test(when=lambda v: v >= (4, 0, 0), why="Coat Weight and Sheen Weight are Blender 4's Principled inputs")
 def test_render_engine_takes_a_principled_bsdf_with_layers():
     """Issue 29, acceptance 4: F12 with the facet POV-Ray engine on a Principled BSDF without facet
-    settings using Coat, Sheen, Anisotropic and Roughness 0.02: the render succeeds, the coat is the
-    lobe's clear coat, warnings name what the gltf_pbr lobe leaves out (sheen, anisotropy) and the
-    roughness floor, and in validation mode the Render Result equals facet's reference of the
-    exported scene."""
+    settings using Coat, Sheen, Anisotropic and Roughness 0.02: the render succeeds, the coat and the
+    sheen are the lobe's clear coat and sheen, warnings name what the gltf_pbr lobe leaves out
+    (anisotropy), the Sheen Weight folded into its colour and the roughness floor, and in
+    validation mode the Render Result equals facet's reference of the exported scene."""
     check(scene_support(), "facet lacks scene materials/meshes")
     check(OPTS.povray and shutil.which(OPTS.povray), "POV-Ray (povray) is not installed")
     prefs().povray_path = shutil.which(OPTS.povray)
@@ -2216,10 +2217,12 @@ def test_render_engine_takes_a_principled_bsdf_with_layers():
     from facet_blender.blender import engine
     got = engine_render("layered_exact")
     warnings = [m for level, m in engine.LAST_REPORTS if level == "WARNING"]
-    for words in ("Sheen Weight", "Anisotropic", "below facet's floor"):
+    for words in ("Sheen Weight 0.5 is folded", "Anisotropic", "below facet's floor"):
         check(any(words in m for m in warnings), f"no warning names '{words}': {warnings}")
     check(not any("Coat" in m for m in warnings), f"the coat is glTF's clear coat, mapped: {warnings}")
-    check_equal(exported["materials"]["LayeredPrincipled"]["specular"]["clearcoat"], 0.5, "the clear coat")
+    lobe = exported["materials"]["LayeredPrincipled"]["specular"]
+    check_equal(lobe["clearcoat"], 0.5, "the clear coat")
+    check_equal(lobe["sheen_color"], [0.5, 0.5, 0.5], "the sheen: Weight 0.5 × the white Tint")
     info(f"{len(warnings)} warnings, e.g. {next(m for m in warnings if 'Sheen Weight' in m)}")
     compare(got, ref, reference_ids(exported, w, h, "layered"), "F12, layered Principled BSDF vs facet reference")
 

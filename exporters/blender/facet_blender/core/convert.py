@@ -21,7 +21,8 @@ radiance as Cycles for a point or sun light of radius 0 (see scene.py for the un
 |   Roughness below 0.0316                  | roughness as typed; α = roughness² is floored at 1e-3 | approximate (a warning, never an error) |
 |   Emission (× Strength)                   | emission                                            | exact |
 |   Coat Weight, Coat Roughness (4.x)       | clearcoat, clearcoat_roughness (KHR_materials_clearcoat) | Coat IOR other than 1.5, Coat Tint, Coat Normal: named in a warning |
-|   Sheen, Anisotropic, Transmission, Subsurface, Diffuse Roughness, Alpha | ignored, each named in a warning (Alpha: a cut-out where Blender's glTF importer wired one) | |
+|   Sheen Weight, Sheen Tint, Sheen Roughness (4.x) | sheen_color = Weight × Tint, sheen_roughness (KHR_materials_sheen) | images on them: named in a warning |
+|   Sheen (3.x), Anisotropic, Transmission, Subsurface, Diffuse Roughness, Alpha | ignored, each named in a warning (Alpha: a cut-out where Blender's glTF importer wired one) | |
 | Add Shader (a, b)                         | the lobes of a and b together                       | as exact as a and b (one diffuse and one specular lobe at most) |
 | Mix Shader (Fac f, a, b)                  | a's colours × (1−f), b's colours × f               | as exact as a and b |
 | anything else                             | refused: "no Diffuse, Glossy or Principled BSDF feeds the Material Output" | |
@@ -293,7 +294,7 @@ def _color_attribute_in(src):
 # parameter for: glTF's extension for it where there is one.
 _PRINCIPLED_IGNORED = (
     (("Subsurface", "Subsurface Weight"), 0.0, "subsurface scattering: no glTF extension says it"),
-    (("Sheen", "Sheen Weight"), 0.0, "sheen: glTF's KHR_materials_sheen, which facet's gltf_pbr does not have yet"),
+    (("Sheen",), 0.0, "Blender 3.x's sheen, Disney's: glTF's KHR_materials_sheen is Blender 4's Sheen Weight"),
     (("Anisotropic",), 0.0, "anisotropy: glTF's KHR_materials_anisotropy, which facet's gltf_pbr does not have yet"),
     (("Transmission", "Transmission Weight"), 0.0, "transmission: glTF's KHR_materials_transmission, which facet "
                                                    "does not implement"),
@@ -352,13 +353,34 @@ def _coat(node, result, lobe):
                              f"takes the surface's normal)")
 
 
+def _sheen(node, result, lobe):
+    """KHR_materials_sheen from Sheen Weight, Sheen Roughness and Sheen Tint (Blender 4.x):
+    sheen_color = Weight × Tint, sheen_roughness = Roughness. Blender's glTF exporter
+    (glTF-Blender-IO 4.5, exp/material/extensions/sheen.py) writes the Tint alone and its importer
+    sets Weight 1: a Weight of 1 round-trips exactly; another Weight is folded into the colour
+    (said). Images on them (sheenColorTexture, sheenRoughnessTexture) are not taken: node.get names
+    a linked input and uses its unlinked value."""
+    weight = min(max(float(node.get("Sheen Weight", 0.0)), 0.0), 1.0)
+    if weight == 0.0:
+        return
+    tint = [min(max(c, 0.0), 1.0) for c in _rgb(node.get("Sheen Tint", (1.0, 1.0, 1.0)))]
+    lobe["sheen_color"] = [weight * c for c in tint]
+    lobe["sheen_roughness"] = min(max(float(node.get("Sheen Roughness", 0.5)), 0.0), 1.0)
+    result.note(EXACT, f"{node.label}: Sheen Weight × Sheen Tint and Sheen Roughness -> sheen_color, sheen_roughness "
+                       f"(KHR_materials_sheen)")
+    if weight != 1.0:
+        # A warning: what Blender's own exporter writes for this node differs.
+        result.note(IGNORED, f"{node.label}: Sheen Weight {weight:.3g} is folded into sheen_color; Blender's glTF "
+                             f"exporter writes Sheen Tint alone (as if the Weight were 1)")
+
+
 def principled_bsdf(node, weight, result):
     """(None, the gltf_pbr lobe, emission) of a Principled BSDF: glTF's material, read as Blender's
     glTF exporter writes the node (glTF-Blender-IO 4.5) and its importer wires it back, so a
     glTF file imported by Blender and exported by the add-on is the material `facet import-gltf`
     reads from the file. Base Color, Metallic and Roughness are the core's factors and maps;
-    IOR is KHR_materials_ior; Specular IOR Level and Tint are KHR_materials_specular, Coat Weight
-    and Coat Roughness KHR_materials_clearcoat (4.x).
+    IOR is KHR_materials_ior; Specular IOR Level and Tint are KHR_materials_specular, Sheen
+    KHR_materials_sheen, Coat Weight and Coat Roughness KHR_materials_clearcoat (4.x).
     Cycles renders the Principled BSDF with its own layering, which docs/blender.md measures."""
     _cut_out(node, result)
     four = node.has("Specular IOR Level")          # Blender 4.x
@@ -376,6 +398,7 @@ def principled_bsdf(node, weight, result):
     if four:
         lobe["ior"] = max(float(node.get("IOR", 1.5)), 0.0)
         _specular_level(node, result, lobe, level_tex)
+        _sheen(node, result, lobe)
         _coat(node, result, lobe)
     else:                                          # Blender 2.8-3.x: f0 = 0.08·Specular·tint at IOR 1.5
         specular = float(node.get("Specular", 0.5))

@@ -31,7 +31,8 @@ The mappings (ρ as MODELS.md defines it, relative to Lambert; Cycles' BSDFs are
 - gltf_pbr: the Principled BSDF (Blender 4.x), GGX, as Blender's glTF importer builds it
   from the same glTF material: Base Color, Metallic, Roughness, IOR, Specular IOR Level =
   specular/2, Specular Tint = specular_color, Coat Weight and Coat Roughness = clearcoat and
-  clearcoat_roughness (a colour k_s other than white is refused);
+  clearcoat_roughness, Sheen Weight 1, Sheen Tint = sheen_color and Sheen Roughness (a colour
+  k_s other than white is refused);
   Blender 3.x: Specular = the dielectric f0 / 0.08. A GGX metal is glTF's exactly; a
   dielectric is Cycles' energy-compensated layering (docs/blender.md, F).
 - emission: an Emission shader of strength 1 (radiance m_e).
@@ -135,7 +136,8 @@ def _principled_ggx(lobe, color):
 
 def _principled_gltf(lobe, color, principled):
     """glTF's BRDF as the Principled BSDF Blender's glTF importer makes of it (glTF-Blender-IO
-    4.5: Specular IOR Level = specular/2, Specular Tint = specular_color, IOR), GGX. Blender 3.x
+    4.5: Specular IOR Level = specular/2, Specular Tint = specular_color, IOR; Sheen Weight 1,
+    Sheen Tint and Roughness; Coat Weight and Roughness), GGX. Blender 3.x
     (`principled` False): Specular = the dielectric f0 / 0.08 (its f0 = 0.08·Specular), the
     largest channel of min(F0(ior)·specular_color, 1)·specular, Specular Tint 0."""
     if color != (1.0, 1.0, 1.0):
@@ -150,6 +152,10 @@ def _principled_gltf(lobe, color, principled):
         inputs.update({"IOR": eta, "Specular IOR Level": 0.5 * specular, "Specular Tint": specular_color})
         if coat[0] > 0.0:
             inputs.update({"Coat Weight": coat[0], "Coat Roughness": coat[1], "Coat IOR": 1.5})
+        sheen = _rgb(lobe.get("sheen_color", 0.0), 0.0)
+        if any(sheen):
+            inputs.update({"Sheen Weight": 1.0, "Sheen Tint": sheen,
+                           "Sheen Roughness": _number(lobe, "sheen_roughness", 0.0)})
     else:
         f0 = max(min(((eta - 1.0) / (eta + 1.0)) ** 2 * c, 1.0) * specular for c in specular_color)
         inputs.update({"Specular": f0 / 0.08, "Specular Tint": 0.0})

@@ -70,12 +70,26 @@ def test_principled_is_gltfs_brdf_as_blenders_exporter_writes_it(inputs, f0, spe
 
 def test_principled_metal_is_the_lobe_at_metallic_1_and_unmapped_inputs_name_their_extension():
     r = map_surface({"type": "BSDF_PRINCIPLED", "name": "P", "inputs": {
-        "Base Color": [0.9, 0.6, 0.3, 1], "Metallic": 1.0, "Roughness": 0.2, "Sheen Weight": 0.5,
-        "Anisotropic": 0.4}})
+        "Base Color": [0.9, 0.6, 0.3, 1], "Metallic": 1.0, "Roughness": 0.2, "Anisotropic": 0.4}})
     assert r.diffuse is None
     assert (r.specular["base_color"], r.specular["metallic"]) == ([0.9, 0.6, 0.3], 1.0)
-    for name, extension in (("Sheen", "KHR_materials_sheen"), ("Anisotropic", "KHR_materials_anisotropy")):
-        assert any(level == convert.IGNORED and name in m and extension in m for level, m in r.notes), name
+    assert any(level == convert.IGNORED and "Anisotropic" in m and "KHR_materials_anisotropy" in m
+               for level, m in r.notes)
+
+
+def test_sheen_is_gltfs_sheen_its_weight_folded_into_the_colour():
+    """Blender's glTF exporter writes sheenColorFactor = Sheen Tint and sheenRoughnessFactor = Sheen
+    Roughness (its importer: Sheen Weight 1); a Weight other than 1 is folded into the colour, said."""
+    inputs = {"Base Color": [0.3, 0.1, 0.6, 1], "Roughness": 0.6, "IOR": 1.5, "Specular IOR Level": 0.5,
+              "Sheen Weight": 1.0, "Sheen Tint": [0.9, 0.5, 0.7, 1], "Sheen Roughness": 0.35}
+    r = map_surface({"type": "BSDF_PRINCIPLED", "name": "P", "inputs": inputs})
+    assert (r.specular["sheen_color"], r.specular["sheen_roughness"]) == ([0.9, 0.5, 0.7], 0.35)
+    assert not any(level == convert.IGNORED for level, m in r.notes)
+    half = map_surface({"type": "BSDF_PRINCIPLED", "name": "P", "inputs": dict(inputs, **{"Sheen Weight": 0.5})})
+    assert half.specular["sheen_color"] == pytest.approx([0.45, 0.25, 0.35])
+    assert any(level == convert.IGNORED and "Sheen Weight 0.5 is folded" in m for level, m in half.notes)  # a warning
+    off = map_surface({"type": "BSDF_PRINCIPLED", "name": "P", "inputs": dict(inputs, **{"Sheen Weight": 0.0})})
+    assert "sheen_color" not in off.specular
 
 
 def test_coat_is_gltfs_clearcoat_and_what_gltf_cannot_say_of_it_is_named():
