@@ -54,10 +54,12 @@ picture docs/facet.png "One material description → GLSL, OSL, POV-Ray: the sam
 
 gltf=()
 for m in plastic_rough plastic_glossy matte_ior_1_0 water_ior_1_33 diamond_ior_2_4 specular_tinted specular_clamped \
-         half_metal gold_rough gold_polished coat_red_paint coat_over_gold; do gltf+=("examples/gltf_pbr/$m.json"); done
+         half_metal gold_rough gold_polished coat_red_paint coat_over_gold sheen_velvet sheen_satin; do
+  gltf+=("examples/gltf_pbr/$m.json")
+done
 picture docs/gltf_pbr.png \
-  "glTF 2.0 metallic–roughness (Appendix B, KHR_materials_ior, _specular, _clearcoat): the same pixels" \
-  single 128x128 96 1480x560 "${gltf[@]}"
+  "glTF 2.0 metallic–roughness (Appendix B, KHR_materials_ior, _specular, _sheen, _clearcoat): the same pixels" \
+  single 128x128 96 1700x560 "${gltf[@]}"
 
 # The README's diagram: Ward's lobe in its two planes.
 build/bin/facet plot examples/materials/ward.json --light-angle 30 -o docs/plot_ward.png 2> /dev/null

@@ -378,6 +378,9 @@ double sheen_albedo(double mu, double sheen_roughness);
 double sheen_albedo_epsilon();
 double sheen_albedo_mu_min();
 double sheen_albedo_worst_error();
+// The constants of KHR_materials_sheen's visibility at α: the README's l(x) = a / (1 + b x^c) +
+// d x + e, each of a … e mixed by (1 − α)², and l(0.5): {a, b, c, d, e, l(0.5)}.
+std::array<double, 6> sheen_visibility_constants(double alpha);
 
 // The term functions of the catalog, one per term, each built once. Models
 // compose them; tests and the docs reach them here.
@@ -406,8 +409,9 @@ ir::FunctionPtr visibility_smith_ggx();
 ir::FunctionPtr microfacet_visibility(ir::Type F);
 // The height-correlated Smith GGX visibility of glTF 2.0 Appendix B.
 ir::FunctionPtr visibility_smith_ggx_correlated();
-// KHR_materials_sheen (catalog/sheen.cpp): the "Charlie" D and visibility, and one piece of the
-// fit of the sheen's directional albedo, log(E + ε) as a Chebyshev series (sheen_albedo_pieces()).
+// KHR_materials_sheen (catalog/sheen.cpp): the "Charlie" D and visibility (the latter taking
+// sheen_visibility_constants() after n·l and n·v), and the fit of the sheen's directional albedo,
+// log(E + ε) as a Chebyshev series of one piece of μ (sheen_albedo_pieces()).
 ir::FunctionPtr distribution_charlie();
 ir::FunctionPtr visibility_charlie();
 ir::FunctionPtr sheen_albedo_series();

@@ -93,6 +93,15 @@ double sheen_albedo(double mu, double sheen_roughness) {
   return std::clamp(std::exp(s) - kSheenAlbedoEpsilon, 0.0, 1.0);
 }
 
+std::array<double, 6> sheen_visibility_constants(double alpha) {
+  // The README's l(x, alpha_g): each of a … e is mix(p, q, (1 − α)²).
+  const double t = (1 - alpha) * (1 - alpha);
+  auto mix = [t](double p, double q) { return p + (q - p) * t; };
+  const double a = mix(21.5473, 25.3245), b = mix(3.82987, 3.32435), c = mix(0.19823, 0.16801),
+               d = mix(-1.97760, -1.27393), e = mix(-4.32054, -4.85967);
+  return {a, b, c, d, e, a / (1 + b * std::pow(0.5, c)) + d * 0.5 + e};
+}
+
 namespace terms {
 
 using ir::Expr;
@@ -113,49 +122,40 @@ FunctionPtr distribution_charlie() {
   return f;
 }
 
-namespace {
-// The README's l(x, α_g) = a / (1 + b x^c) + d x + e, each coefficient mix(p, q, (1 − α_g)²).
-FunctionPtr sheen_l() {
-  static const FunctionPtr f = [] {
-    FunctionBuilder fb("sheen_l",
-                       "KHR_materials_sheen, \"Sheen visibility\": l(x, α) = a / (1 + b x^c) + d x + e, "
-                       "a … e mixed by (1 − α)² (Conty & Kulla 2017's fit)",
-                       "x is a cosine, clamped into [0, 1] as a power's base.");
-    Expr x = fb.param("x"), alpha = fb.param("alpha");
-    Expr t = fb.let("t", ir::sq(1.0 - alpha));
-    auto mix = [&](double p, double q) { return p + (q - p) * t; };
-    Expr a = fb.let("a", mix(21.5473, 25.3245)), b = fb.let("b", mix(3.82987, 3.32435));
-    Expr c = fb.let("c", mix(0.19823, 0.16801)), d = fb.let("d", mix(-1.97760, -1.27393));
-    Expr e = fb.let("e", mix(-4.32054, -4.85967));
-    return fb.returns(a / (1.0 + b * ir::pow(ir::unit(x), c)) + d * x + e);
-  }();
-  return f;
-}
-
-// lambda_sheen(cos θ, α) = exp(l(|cos θ|)) below 0.5, else exp(2 l(0.5) − l(1 − |cos θ|)).
+// lambda_sheen(cos θ) = exp(l(|cos θ|)) below 0.5, else exp(2 l(0.5) − l(1 − |cos θ|)), with the
+// README's l(x) = a / (1 + b x^c) + d x + e: one l() of the argument chosen first; a … e and
+// l(0.5) depend on α alone and come in as the material's constants (sheen_visibility_constants).
 FunctionPtr sheen_lambda() {
   static const FunctionPtr f = [] {
     FunctionBuilder fb("sheen_lambda",
                        "KHR_materials_sheen, \"Sheen visibility\": lambda_sheen = exp(l(|cos θ|)) where "
-                       "|cos θ| < 0.5, else exp(2 l(0.5) − l(1 − |cos θ|))");
-    Expr c = fb.param("cos_theta"), alpha = fb.param("alpha");
-    Expr x = fb.let("x", ir::abs(c));
-    return fb.returns(ir::select(x < 0.5, ir::exp(ir::call(sheen_l(), {x, alpha})),
-                                 ir::exp(2.0 * ir::call(sheen_l(), {0.5, alpha}) -
-                                         ir::call(sheen_l(), {1.0 - x, alpha}))));
+                       "|cos θ| < 0.5, else exp(2 l(0.5) − l(1 − |cos θ|)), l(x) = a / (1 + b x^c) + d x + e",
+                       "a … e are mixed by (1 − α)² and l(0.5) computed when the code is generated; x is a cosine, "
+                       "clamped into [0, 1] as a power's base.");
+    Expr cos_theta = fb.param("cos_theta");
+    Expr a = fb.param("a"), b = fb.param("b"), c = fb.param("c"), d = fb.param("d"), e = fb.param("e");
+    Expr l_half = fb.param("l_half");
+    Expr x = fb.let("x", ir::abs(cos_theta));
+    Expr y = fb.let("y", ir::select(x < 0.5, x, 1.0 - x));
+    Expr l = fb.let("l", a / (1.0 + b * ir::pow(ir::unit(y), c)) + d * y + e);
+    return fb.returns(ir::exp(ir::select(x < 0.5, l, 2.0 * l_half - l)));
   }();
   return f;
 }
-}  // namespace
 
 FunctionPtr visibility_charlie() {
   static const FunctionPtr f = [] {
     FunctionBuilder fb("V_charlie",
                        "KHR_materials_sheen, \"Sheen visibility\": V = 1 / ((1 + Λ(n·v) + Λ(n·l)) 4 (n·v)(n·l)), "
                        "Λ = lambda_sheen (Conty & Kulla 2017); not Ashikhmin's shortcut");
-    Expr NoL = fb.param("NoL"), NoV = fb.param("NoV"), alpha = fb.param("alpha");
-    Expr lv = fb.let("lambda_v", ir::call(sheen_lambda(), {NoV, alpha}));
-    Expr ll = fb.let("lambda_l", ir::call(sheen_lambda(), {NoL, alpha}));
+    Expr NoL = fb.param("NoL"), NoV = fb.param("NoV");
+    std::vector<Expr> k;
+    for (const char* name : {"a", "b", "c", "d", "e", "l_half"}) k.push_back(fb.param(name));
+    std::vector<Expr> args_v{NoV}, args_l{NoL};
+    args_v.insert(args_v.end(), k.begin(), k.end());
+    args_l.insert(args_l.end(), k.begin(), k.end());
+    Expr lv = fb.let("lambda_v", ir::call(sheen_lambda(), args_v));
+    Expr ll = fb.let("lambda_l", ir::call(sheen_lambda(), args_l));
     return fb.returns(1.0 / ((1.0 + lv + ll) * (4.0 * NoV * NoL)));
   }();
   return f;

@@ -2,6 +2,7 @@
 // family, Blinn's Trowbridge–Reitz model and Ward's anisotropic model.
 #include <algorithm>
 #include <cmath>
+#include <functional>
 
 #include "catalog/catalog_internal.h"
 #include "core/vec.h"
@@ -122,26 +123,42 @@ ir::Expr gltf_sheen(LobeContext& c, ir::Expr core) {
   const double color_max = std::max({color[0], color[1], color[2]});
   if (color_max == 0) return core;
   const double r = c.spec().at("sheen_roughness").number;
-  ir::Expr alpha = ir::constant(c.lobe() + "_sheen_alpha", std::max(r * r, kRoughnessMin));
+  const double alpha_value = std::max(r * r, kRoughnessMin);
+  ir::Expr alpha = ir::constant(c.lobe() + "_sheen_alpha", alpha_value);
   ir::Expr D = c.let("sheen_D", ir::call(terms::distribution_charlie(), {c.NoH(), alpha}));
-  ir::Expr V = c.let("sheen_V", ir::call(terms::visibility_charlie(), {c.NoL(), c.NoV(), alpha}));
+  // The visibility's l() coefficients and l(0.5) depend on α alone: constants of the material.
+  std::vector<ir::Expr> v_args{c.NoL(), c.NoV()};
+  const std::array<double, 6> k = sheen_visibility_constants(alpha_value);
+  const char* k_names[] = {"a", "b", "c", "d", "e", "l_half"};
+  for (size_t i = 0; i < k.size(); ++i) v_args.push_back(ir::constant(c.lobe() + "_sheen_l_" + k_names[i], k[i]));
+  ir::Expr V = c.let("sheen_V", ir::call(terms::visibility_charlie(), v_args));
   ir::Expr brdf = c.let("sheen_brdf", kPi * D * V * c.NoL());
-  // E at n·v and at n·l: the fit's piece of μ chosen by select, its series' coefficients constants.
+  // E at n·v and at n·l: the piece of μ chooses its series' coefficients and argument, then one
+  // series is summed; the coefficients are constants of the material.
   const std::vector<SheenAlbedoPiece> pieces = sheen_albedo_pieces(r);
+  std::vector<std::vector<ir::Expr>> coefficient(pieces.size());
+  std::vector<ir::Expr> scale, offset;
+  for (size_t p = 0; p < pieces.size(); ++p) {
+    const std::string piece = c.lobe() + "_sheen_e" + std::to_string(p);
+    scale.push_back(ir::constant(piece + "_scale", pieces[p].scale));
+    offset.push_back(ir::constant(piece + "_offset", pieces[p].offset));
+    for (size_t i = 0; i < pieces[p].coefficients.size(); ++i)
+      coefficient[p].push_back(ir::constant(piece + "_" + std::to_string(i), pieces[p].coefficients[i]));
+  }
   auto albedo = [&](const ir::Expr& mu, const std::string& name) {
     // m = max(μ, mu_min); √m, and √√m for a piece in m^¼.
     ir::Expr u = c.let(name + "_u", ir::sqrt(ir::max(mu, sheen_albedo_mu_min())));
     ir::Expr u4 = c.let(name + "_u4", ir::sqrt(u));
-    ir::Expr s = 0.0;
-    for (size_t p = pieces.size(); p-- > 0;) {
-      const std::string piece = c.lobe() + "_sheen_e" + std::to_string(p);
-      std::vector<ir::Expr> args{(pieces[p].power == 0.25 ? u4 : u) * ir::constant(piece + "_scale", pieces[p].scale) +
-                                 ir::constant(piece + "_offset", pieces[p].offset)};
-      for (size_t k = 0; k < pieces[p].coefficients.size(); ++k)
-        args.push_back(ir::constant(piece + "_" + std::to_string(k), pieces[p].coefficients[k]));
-      ir::Expr series = c.let(name + "_s" + std::to_string(p), ir::call(terms::sheen_albedo_series(), args));
-      s = p + 1 == pieces.size() ? series : ir::select(mu < pieces[p].mu_end, series, s);
-    }
+    auto pick = [&](const std::function<ir::Expr(size_t)>& of) {
+      ir::Expr out = of(pieces.size() - 1);
+      for (size_t p = pieces.size() - 1; p-- > 0;) out = ir::select(mu < pieces[p].mu_end, of(p), out);
+      return out;
+    };
+    std::vector<ir::Expr> args{c.let(name + "_x", pick([&](size_t p) {
+      return (pieces[p].power == 0.25 ? u4 : u) * scale[p] + offset[p];
+    }))};
+    for (size_t i = 0; i < coefficient[0].size(); ++i) args.push_back(pick([&](size_t p) { return coefficient[p][i]; }));
+    ir::Expr s = c.let(name + "_s", ir::call(terms::sheen_albedo_series(), args));
     return c.let(name, ir::clamp(ir::exp(s) - sheen_albedo_epsilon(), 0.0, 1.0));
   };
   ir::Expr e_v = albedo(c.NoV(), "sheen_E_v");

@@ -91,7 +91,7 @@ def parse_args():
 
 
 def build_scene(w, h):
-    """The spheres in a 5 × 3 grid, the lights and a camera, in an empty scene with the add-on on."""
+    """The spheres in a 6 × 3 grid, the lights and a camera, in an empty scene with the add-on on."""
     import bpy
     import mathutils
     scene = bpy.context.scene
@@ -104,7 +104,7 @@ def build_scene(w, h):
         for key, value in inputs.items():
             bsdf.inputs[key].default_value = tuple(value) + (1.0,) if isinstance(value, tuple) else value
         bpy.ops.mesh.primitive_uv_sphere_add(segments=32, ring_count=16, radius=0.45,
-                                             location=(1.1 * (k % 5 - 2), 0.0, 1.1 * (1 - k // 5)))
+                                             location=(1.1 * (k % 6 - 2.5), 0.0, 1.1 * (1 - k // 6)))
         obj = bpy.context.active_object
         obj.name = name
         bpy.ops.object.shade_smooth()
@@ -126,7 +126,7 @@ def build_scene(w, h):
     cam = bpy.data.objects.new("Camera", bpy.data.cameras.new("Camera"))
     cam.data.lens = 50.0
     scene.collection.objects.link(cam)
-    cam.location = (0.0, -9.0, 0.3)
+    cam.location = (0.0, -10.0, 0.3)
     cam.rotation_euler = (mathutils.Vector((0.0, 0.0, 0.0)) - cam.location).to_track_quat("-Z", "Y").to_euler()
     scene.camera = cam
     scene.world = None
