@@ -95,6 +95,14 @@ CASES = [
                   "sheen_color": mx.Color3(0.9, 0.55, 0.7), "sheen_roughness": 0.35},
      GLTF_NOTE + "; its sheen is a sheen_bsdf layered over the base by the sheen's albedo at n·v alone (the "
                  "README's view-only shortcut), where the README's first form is min over n·v and n·l"),
+    ("gltf_all",
+     {"specular": {"model": "gltf_pbr", "base_color": [0.5, 0.2, 0.6], "metallic": 0.3, "roughness": 0.5, "ior": 1.6,
+                   "specular": 0.9, "specular_color": [1.0, 0.85, 0.7], "sheen_color": [0.6, 0.6, 0.7],
+                   "sheen_roughness": 0.5, "clearcoat": 0.5, "clearcoat_roughness": 0.3}},
+     "gltf_pbr", {"base_color": mx.Color3(0.5, 0.2, 0.6), "metallic": 0.3, "roughness": 0.5, "ior": 1.6,
+                  "specular": 0.9, "specular_color": mx.Color3(1.0, 0.85, 0.7), "sheen_color": mx.Color3(0.6, 0.6, 0.7),
+                  "sheen_roughness": 0.5, "clearcoat": 0.5, "clearcoat_roughness": 0.3},
+     GLTF_NOTE + "; all of the above at once (examples/gltf_pbr/all_together.json)"),
 ]
 
 

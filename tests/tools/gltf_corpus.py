@@ -727,6 +727,29 @@ def blender_lights_scene():
     bpy.context.view_layer.update()
 
 
+def point_sun_camera(scene, point_at, sun_energy, sun_rotation, camera_at):
+    """A 1000 W point light and a sun of `sun_energy` W/m², both of radius 0, and a camera aimed at
+    (0, 0, 0.5); no World (a glTF file has no environment)."""
+    import bpy
+    import mathutils
+    light = bpy.data.lights.new("Point", "POINT")
+    light.energy, light.shadow_soft_size = 1000.0, 0.0
+    obj = bpy.data.objects.new("Point", light)
+    scene.collection.objects.link(obj)
+    obj.location = point_at
+    sun = bpy.data.lights.new("Sun", "SUN")
+    sun.energy, sun.angle = sun_energy, 0.0
+    obj = bpy.data.objects.new("Sun", sun)
+    scene.collection.objects.link(obj)
+    obj.rotation_euler = sun_rotation
+    cam = bpy.data.objects.new("Camera", bpy.data.cameras.new("Camera"))
+    scene.collection.objects.link(cam)
+    cam.location = camera_at
+    cam.rotation_euler = (mathutils.Vector((0.0, 0.0, 0.5)) - cam.location).to_track_quat("-Z", "Y").to_euler()
+    scene.camera = cam
+    scene.world = None
+
+
 def blender_textured_scene(folder):
     """A second exporter-written file: an image through a Mapping node (KHR_texture_transform) on
     a second UV map (TEXCOORD_1), on a mirrored and a rotated object; Closest interpolation
@@ -758,23 +781,7 @@ def blender_textured_scene(folder):
         for k, loop in enumerate(second.data):
             u, v = first.data[k].uv
             loop.uv = (v * 1.3 + 0.1, 1.0 - u)
-    import mathutils
-    light = bpy.data.lights.new("Point", "POINT")
-    light.energy, light.shadow_soft_size = 1000.0, 0.0
-    obj = bpy.data.objects.new("Point", light)
-    scene.collection.objects.link(obj)
-    obj.location = (3.0, -3.0, 5.0)
-    sun = bpy.data.lights.new("Sun", "SUN")
-    sun.energy, sun.angle = 1.5, 0.0
-    obj = bpy.data.objects.new("Sun", sun)
-    scene.collection.objects.link(obj)
-    obj.rotation_euler = (0.5, -0.4, 0.3)
-    cam = bpy.data.objects.new("Camera", bpy.data.cameras.new("Camera"))
-    scene.collection.objects.link(cam)
-    cam.location = (0.3, -6.5, 3.5)
-    cam.rotation_euler = (mathutils.Vector((0.0, 0.0, 0.5)) - cam.location).to_track_quat("-Z", "Y").to_euler()
-    scene.camera = cam
-    scene.world = None
+    point_sun_camera(scene, (3.0, -3.0, 5.0), 1.5, (0.5, -0.4, 0.3), (0.3, -6.5, 3.5))
 
 
 def blender_principled_scene():
@@ -809,23 +816,7 @@ def blender_principled_scene():
     for k, m in enumerate(materials):
         blender_object(m.name, lambda: bpy.ops.mesh.primitive_uv_sphere_add(segments=24, ring_count=12, radius=0.6),
                        m, (-2.1 + 1.4 * k, 0.0, 0.6), rotation=(0.3 * k, 0.2, 0.5 * k))
-    import mathutils
-    point = bpy.data.lights.new("Point", "POINT")
-    point.energy, point.shadow_soft_size = 1000.0, 0.0
-    obj = bpy.data.objects.new("Point", point)
-    scene.collection.objects.link(obj)
-    obj.location = (2.0, -3.5, 4.5)
-    sun = bpy.data.lights.new("Sun", "SUN")
-    sun.energy, sun.angle = 2.0, 0.0
-    obj = bpy.data.objects.new("Sun", sun)
-    scene.collection.objects.link(obj)
-    obj.rotation_euler = (0.6, -0.3, 0.2)
-    cam = bpy.data.objects.new("Camera", bpy.data.cameras.new("Camera"))
-    scene.collection.objects.link(cam)
-    cam.location = (0.0, -7.0, 3.2)
-    cam.rotation_euler = (mathutils.Vector((0.0, 0.0, 0.5)) - cam.location).to_track_quat("-Z", "Y").to_euler()
-    scene.camera = cam
-    scene.world = None
+    point_sun_camera(scene, (2.0, -3.5, 4.5), 2.0, (0.6, -0.3, 0.2), (0.0, -7.0, 3.2))
 
 
 def export_blender(path, **options):
