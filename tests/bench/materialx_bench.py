@@ -93,8 +93,9 @@ CASES = [
                    "sheen_color": [0.9, 0.55, 0.7], "sheen_roughness": 0.35}},
      "gltf_pbr", {"base_color": mx.Color3(0.25, 0.03, 0.12), "metallic": 0.0, "roughness": 0.8,
                   "sheen_color": mx.Color3(0.9, 0.55, 0.7), "sheen_roughness": 0.35},
-     GLTF_NOTE + "; its sheen is a sheen_bsdf layered over the base by the sheen's albedo at n·v alone (the "
-                 "README's view-only shortcut), where the README's first form is min over n·v and n·l"),
+     GLTF_NOTE + "; its sheen (mx_imageworks_sheen_brdf) has the simpler visibility 1/(4(n·l + n·v − n·l n·v)) "
+                 "where the README's reference one has two Λ, and is layered over the base by the sheen's albedo at "
+                 "n·v alone (the README's view-only shortcut), where the README's first form is min over n·v and n·l"),
     ("gltf_all",
      {"specular": {"model": "gltf_pbr", "base_color": [0.5, 0.2, 0.6], "metallic": 0.3, "roughness": 0.5, "ior": 1.6,
                    "specular": 0.9, "specular_color": [1.0, 0.85, 0.7], "sheen_color": [0.6, 0.6, 0.7],
