@@ -46,12 +46,6 @@ std::array<double, kSheenAlbedoNodes> row_at(double r, int piece) {
   return y;
 }
 
-// x ∈ [−1, 1] of μ within its piece: μ^q mapped linearly.
-double piece_x(double mu, int piece) {
-  const double q = kSheenAlbedoPowers[piece];
-  const double lo = std::pow(kSheenAlbedoMuPieces[piece], q), hi = std::pow(kSheenAlbedoMuPieces[piece + 1], q);
-  return 2 * (std::pow(std::max(mu, kSheenAlbedoMuPieces[0]), q) - lo) / (hi - lo) - 1;
-}
 }  // namespace
 
 double sheen_albedo_worst_error() { return kSheenAlbedoWorstError; }
@@ -85,9 +79,11 @@ double sheen_albedo_mu_min() { return kSheenAlbedoMuPieces[0]; }
 
 double sheen_albedo(double mu, double sheen_roughness) {
   const auto pieces = sheen_albedo_pieces(sheen_roughness);
+  const double m = std::max(mu, kSheenAlbedoMuPieces[0]);
   int p = 0;
-  while (p + 1 < kMuPieces && std::max(mu, kSheenAlbedoMuPieces[0]) >= pieces[p].mu_end) ++p;
-  const std::vector<double> t = chebyshev(piece_x(mu, p), kSheenAlbedoNodes - 1);
+  while (p + 1 < kMuPieces && m >= pieces[p].mu_end) ++p;
+  const double x = pieces[p].scale * std::pow(m, pieces[p].power) + pieces[p].offset;  // as the lobe maps it
+  const std::vector<double> t = chebyshev(x, kSheenAlbedoNodes - 1);
   double s = 0;
   for (int k = 0; k < kSheenAlbedoNodes; ++k) s += pieces[p].coefficients[k] * t[k];
   return std::clamp(std::exp(s) - kSheenAlbedoEpsilon, 0.0, 1.0);

@@ -34,7 +34,7 @@ Command export_gltf_command(CLI::App& app) {
   ge->add_option("--material", ge_material, "A facet material for objects without one");
   ge->footer(
       "Materials carry the whole facet description (FACET_material) beside glTF's own: a gltf_pbr lobe as its\n"
-      "factors, maps, KHR_materials_ior, _specular and _clearcoat exactly, a classic model as the nearest\n"
+      "factors, maps, KHR_materials_ior, _specular, _sheen and _clearcoat exactly, a classic model as the nearest\n"
       "metallic–roughness; spheres and planes are tessellated and keep their exact definition (FACET_object). The\n"
       "materials' images are copied to OUTPUT_STEM.textures/ beside a .gltf or held in a .glb; an sRGB diffuse\n"
       "colour map is also the fallback's baseColorTexture. Example:\n"

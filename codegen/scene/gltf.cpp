@@ -34,6 +34,7 @@ using gltf_detail::Mat4;
 using gltf_detail::PrimitivePlan;
 using gltf_detail::Reader;
 using gltf_detail::extension_of;
+using gltf_detail::material_extensions_read;
 
 namespace {
 
@@ -42,19 +43,17 @@ const char* kObjectExt = "FACET_object";
 const char* kLightExt = "FACET_light";
 const char* kSceneExt = "FACET_scene";
 const char* kLightsExt = "KHR_lights_punctual";
-// The extensions facet reads as their specifications say, so a file may require them (what a
-// material's extension leaves out, e.g. a sheen texture, is said in that material's note).
-const std::set<std::string> kSupportedRequired = {kLightsExt,
-                                                  "KHR_texture_transform",
-                                                  "KHR_materials_emissive_strength",
-                                                  "KHR_materials_ior",
-                                                  "KHR_materials_specular",
-                                                  "KHR_materials_sheen",
-                                                  "KHR_materials_clearcoat",
-                                                  kMaterialExt,
-                                                  kObjectExt,
-                                                  kLightExt,
-                                                  kSceneExt};
+// The extensions facet reads as their specifications say, so a file may require them: the
+// material extensions the material import reads (what one leaves out, e.g. a sheen texture, is
+// said in that material's note), and these.
+const std::set<std::string>& supported_required() {
+  static const std::set<std::string> supported = [] {
+    std::set<std::string> s = {kLightsExt, "KHR_texture_transform", kObjectExt, kLightExt, kSceneExt};
+    s.insert(material_extensions_read().begin(), material_extensions_read().end());
+    return s;
+  }();
+  return supported;
+}
 
 std::array<double, 3> rgb3(const std::vector<double>& v, double fallback) {
   return {v.size() > 0 ? v[0] : fallback, v.size() > 1 ? v[1] : fallback, v.size() > 2 ? v[2] : fallback};
@@ -81,6 +80,11 @@ tinygltf::Value value_of(const json& j) {
     }
     default: return tinygltf::Value();
   }
+}
+
+// An RGB triple as a glTF array of three numbers.
+tinygltf::Value rgb_value(const RGB& c) {
+  return tinygltf::Value(tinygltf::Value::Array{tinygltf::Value(c[0]), tinygltf::Value(c[1]), tinygltf::Value(c[2])});
 }
 
 // The nearest metallic–roughness material, from what the catalog says of the
@@ -211,10 +215,10 @@ class Importer {
   // file then renders without it, and what facet reads instead is the core glTF.
   void check_required_extensions() const {
     std::string supported;
-    for (const auto& e : kSupportedRequired) supported += (supported.empty() ? "" : ", ") + e;
+    for (const auto& e : supported_required()) supported += (supported.empty() ? "" : ", ") + e;
     for (size_t i = 0; i < model_.extensionsRequired.size(); ++i) {
       const std::string& e = model_.extensionsRequired[i];
-      if (!kSupportedRequired.count(e))
+      if (!supported_required().count(e))
         reader_.fail(fmt::format("extensionsRequired[{}]", i),
                      fmt::format("\"{}\" is required by the file and facet does not implement it; a file may "
                                  "require: {}",
@@ -223,7 +227,7 @@ class Importer {
     std::string ignored;
     size_t count = 0;
     for (const auto& e : model_.extensionsUsed)
-      if (!kSupportedRequired.count(e)) ignored += (count++ ? ", " : "") + e;
+      if (!supported_required().count(e)) ignored += (count++ ? ", " : "") + e;
     if (count)
       notes_.push_back(fmt::format("{}: extensionsUsed {} {} not implemented by facet and ignored (the file renders "
                                    "as core glTF without {}; each material names its own)",
@@ -849,8 +853,7 @@ class Exporter {
     if (specular.texture || specular.number != 1 || tint.rgb != RGB{1, 1, 1}) {
       tinygltf::Value::Object ext;
       ext["specularFactor"] = tinygltf::Value(specular.number);
-      ext["specularColorFactor"] = tinygltf::Value(tinygltf::Value::Array{
-          tinygltf::Value(tint.rgb[0]), tinygltf::Value(tint.rgb[1]), tinygltf::Value(tint.rgb[2])});
+      ext["specularColorFactor"] = rgb_value(tint.rgb);
       if (specular.texture) ext["specularTexture"] = extension_texture_info(*specular.texture);
       g.extensions["KHR_materials_specular"] = tinygltf::Value(ext);
       used_.insert("KHR_materials_specular");
@@ -858,8 +861,7 @@ class Exporter {
     const RGB& sheen = s.at("sheen_color").rgb;
     if (sheen != RGB{0, 0, 0}) {
       tinygltf::Value::Object ext;
-      ext["sheenColorFactor"] = tinygltf::Value(
-          tinygltf::Value::Array{tinygltf::Value(sheen[0]), tinygltf::Value(sheen[1]), tinygltf::Value(sheen[2])});
+      ext["sheenColorFactor"] = rgb_value(sheen);
       ext["sheenRoughnessFactor"] = tinygltf::Value(s.at("sheen_roughness").number);
       g.extensions["KHR_materials_sheen"] = tinygltf::Value(ext);
       used_.insert("KHR_materials_sheen");

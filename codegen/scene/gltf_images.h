@@ -94,6 +94,10 @@ nlohmann::json pbr_material(const tinygltf::Material& g, const std::string& mpat
                             std::vector<std::pair<int, std::string>>& sets, std::vector<std::string>& notes,
                             bool vertex_colors = false);
 
+// The material extensions pbr_material reads (glTF's KHR_materials_* it maps, and facet's own
+// FACET_material): a file may require them, and a material's others are named in its note.
+const std::vector<std::string>& material_extensions_read();
+
 }  // namespace facet::gltf_detail
 
 namespace facet::gltf_detail {

@@ -136,11 +136,6 @@ void cut_out(const tinygltf::Material& g, const Pbr& p, const std::string& mpath
                             "left out of the cut-out (approximated: facet's renderers do not cut by a vertex alpha)");
 }
 
-// The material extensions the import maps (FACET_material is facet's own).
-const std::vector<std::string> kImplemented = {"KHR_materials_emissive_strength", "KHR_materials_ior",
-                                               "KHR_materials_specular", "KHR_materials_sheen",
-                                               "KHR_materials_clearcoat", "FACET_material"};
-
 // The material's extensions facet does not implement, named in one note (the file's
 // required ones were refused before any material was read).
 void note_unimplemented_extensions(const tinygltf::Material& g, const std::string& mpath, std::vector<std::string>& notes) {
@@ -149,7 +144,8 @@ void note_unimplemented_extensions(const tinygltf::Material& g, const std::strin
   if (!ext.is_object()) return;
   std::string names;
   for (const auto& [name, value] : ext.items())
-    if (std::find(kImplemented.begin(), kImplemented.end(), name) == kImplemented.end())
+    if (std::find(material_extensions_read().begin(), material_extensions_read().end(), name) ==
+        material_extensions_read().end())
       names += (names.empty() ? "" : ", ") + name;
   if (!names.empty())
     notes.push_back(fmt::format("{}{}: {} ignored: facet does not implement {} yet; the material renders as its "
@@ -294,6 +290,13 @@ json gltf_pbr_lobe(const tinygltf::Material& g, const Pbr& p, GltfImages& images
 }
 
 }  // namespace
+
+const std::vector<std::string>& material_extensions_read() {
+  static const std::vector<std::string> read = {"KHR_materials_emissive_strength", "KHR_materials_ior",
+                                                "KHR_materials_specular", "KHR_materials_sheen",
+                                                "KHR_materials_clearcoat", "FACET_material"};
+  return read;
+}
 
 json pbr_material(const tinygltf::Material& g, const std::string& mpath, GltfImages& images,
                   std::vector<std::pair<int, std::string>>& sets, std::vector<std::string>& notes, bool vertex_colors) {
