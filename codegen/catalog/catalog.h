@@ -409,6 +409,10 @@ ir::FunctionPtr visibility_smith_ggx();
 ir::FunctionPtr microfacet_visibility(ir::Type F);
 // The height-correlated Smith GGX visibility of glTF 2.0 Appendix B.
 ir::FunctionPtr visibility_smith_ggx_correlated();
+// KHR_materials_anisotropy: Burley's anisotropic GGX D and the anisotropic height-correlated
+// Smith visibility, of α_t along the (rotated) tangent and α_b along the bitangent.
+ir::FunctionPtr distribution_ggx_anisotropic();
+ir::FunctionPtr visibility_smith_ggx_correlated_anisotropic();
 // KHR_materials_sheen (catalog/sheen.cpp): the "Charlie" D and visibility (the latter taking
 // sheen_visibility_constants() after n·l and n·v), and the fit of the sheen's directional albedo,
 // log(E + ε) as a Chebyshev series of one piece of μ (sheen_albedo_pieces()).

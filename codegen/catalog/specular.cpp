@@ -51,14 +51,44 @@ ir::Expr microfacet(LobeContext& c, const ir::Expr& D, const ir::Expr& alpha) {
   return ir::call(terms::microfacet(f.type()), {d, g, f, c.NoV()});
 }
 
+// KHR_materials_anisotropy, "Anisotropy": the direction of increased roughness is the tangent t
+// rotated by anisotropy_rotation towards the bitangent b = n × t, t' = cos r t + sin r b, b' =
+// n × t' = cos r b − sin r t; along it α_t = mix(α, 1, strength²), across it α_b = α. D is the
+// README's (Burley's anisotropic GGX), V the anisotropic height-correlated Smith term of its
+// "Implementation" (without the sample's clamp at 1, as Appendix B's isotropic V has none).
+ir::Expr gltf_anisotropic_layer(LobeContext& c, const ir::Expr& alpha, double strength) {
+  ir::Expr at = c.let("alpha_t", alpha + (1.0 - alpha) * (strength * strength));
+  const double rotation = c.spec().at("anisotropy_rotation").number;
+  std::array<ir::Expr, 6> dots = {c.HoT(), c.HoB(), c.input(Input::LoT), c.input(Input::LoB), c.input(Input::VoT),
+                                  c.input(Input::VoB)};
+  if (rotation != 0) {
+    ir::Expr cr = ir::constant(c.lobe() + "_anisotropy_cos", std::cos(rotation));
+    ir::Expr sr = ir::constant(c.lobe() + "_anisotropy_sin", std::sin(rotation));
+    const char* names[] = {"HoT_r", "HoB_r", "LoT_r", "LoB_r", "VoT_r", "VoB_r"};
+    std::array<ir::Expr, 6> turned = dots;
+    for (int k = 0; k < 6; k += 2) {
+      turned[k] = c.let(names[k], cr * dots[k] + sr * dots[k + 1]);
+      turned[k + 1] = c.let(names[k + 1], cr * dots[k + 1] - sr * dots[k]);
+    }
+    dots = turned;
+  }
+  ir::Expr D = c.let("D", ir::call(terms::distribution_ggx_anisotropic(), {c.NoH(), dots[0], dots[1], at, alpha}));
+  ir::Expr V = c.let("V", ir::call(terms::visibility_smith_ggx_correlated_anisotropic(),
+                                   {c.NoL(), c.NoV(), dots[2], dots[3], dots[4], dots[5], at, alpha}));
+  return c.let("specular_brdf", kPi * D * V * c.NoL());
+}
+
 // The GGX layer of glTF's specular_brdf(α) as ρ: π D V (n·l), Appendix B's D and height-correlated
 // V, α = roughness² floored (a constant where `roughness` is a number, else computed where it
-// shades). `prefix` names its values ("" the core's, "coat_" the clear coat's).
+// shades). `prefix` names its values ("" the core's, "coat_" the clear coat's). The core's is
+// anisotropic where the material's anisotropy_strength is above 0 (KHR_materials_anisotropy).
 ir::Expr gltf_specular_layer(LobeContext& c, const std::string& roughness, const std::string& prefix) {
   const double r = c.spec().at(roughness).number;
   ir::Expr alpha = c.textured(c.spec(), roughness)
                        ? c.let(prefix + "alpha", ir::max(ir::sq(c.number(roughness)), kRoughnessMin))
                        : ir::constant(c.lobe() + "_" + prefix + "alpha", std::max(r * r, kRoughnessMin));
+  const double strength = prefix.empty() ? c.spec().at("anisotropy_strength").number : 0.0;
+  if (strength > 0) return gltf_anisotropic_layer(c, alpha, strength);
   ir::Expr D = c.let(prefix + "D", ir::call(terms::distribution_ggx(), {c.NoH(), alpha}));
   ir::Expr V = c.let(prefix + "V", ir::call(terms::visibility_smith_ggx_correlated(), {c.NoL(), c.NoV(), alpha}));
   return c.let(prefix + "specular_brdf", kPi * D * V * c.NoL());
@@ -394,7 +424,8 @@ void add_specular(std::vector<ModelDef>& all) {
     m.name = "gltf_pbr";
     m.title = "glTF metallic–roughness";
     m.citation = "The Khronos Group, \"glTF 2.0 Specification\", Appendix B \"BRDF Implementation\"; "
-                 "KHR_materials_ior; KHR_materials_specular; KHR_materials_sheen; KHR_materials_clearcoat";
+                 "KHR_materials_ior; KHR_materials_specular; KHR_materials_anisotropy; KHR_materials_sheen; "
+                 "KHR_materials_clearcoat";
     // Short words: the add-on's panel wraps the formula at 27 characters (220 px) and keeps words whole.
     m.formula = "ρ = π f (n·l), f = (1 − metallic) dielectric + metallic metal, dielectric = F S + (1 − max F) "
                 "base_color/π, metal = S (base_color + (1 − base_color) w), S = D V (GGX, height-correlated "
@@ -407,7 +438,9 @@ void add_specular(std::vector<ModelDef>& all) {
             "dielectric (a Lambert base under a GGX layer, the base weighted by 1 − max(F)) and a metal (the GGX "
             "lobe tinted by the base colour's Schlick Fresnel), mixed by metallic. ior and specular / specular_color "
             "are KHR_materials_ior and KHR_materials_specular; their defaults (1.5, 1, white) give the core "
-            "specification's f0 = 0.04. sheen_color and sheen_roughness are KHR_materials_sheen: the \"Charlie\" "
+            "specification's f0 = 0.04. anisotropy_strength and anisotropy_rotation are KHR_materials_anisotropy: "
+            "the GGX layer's α along the rotated tangent grows to mix(α, 1, strength²) (Burley's D, the "
+            "anisotropic height-correlated V). sheen_color and sheen_roughness are KHR_materials_sheen: the \"Charlie\" "
             "sheen over the rest, which is scaled by one minus the sheen's directional albedo at n·v and at n·l (a "
             "fit, worst error stated in docs/gltf.md). clearcoat and clearcoat_roughness are KHR_materials_clearcoat: "
             "a GGX layer over all of it, weighted by its Fresnel at n·v (the coat's normal is the surface's: a separate coat "
@@ -435,6 +468,14 @@ void add_specular(std::vector<ModelDef>& all) {
         number("clearcoat_roughness",
                "KHR_materials_clearcoat clearcoatRoughnessFactor; the coat's α = clearcoat_roughness², at least 1e-3",
                Range::closed(0, 1), 0, false),
+        number("anisotropy_strength",
+               "KHR_materials_anisotropy anisotropyStrength: α along the anisotropy's direction is mix(α, 1, "
+               "strength²) (0: isotropic; not an image)",
+               Range::closed(0, 1), 0, false),
+        number("anisotropy_rotation",
+               "KHR_materials_anisotropy anisotropyRotation: the direction of increased roughness, radians "
+               "counter-clockwise from the tangent t towards b = n × t",
+               Range::closed(-kScalarMax, kScalarMax), 0, false),
         color("sheen_color", "KHR_materials_sheen sheenColorFactor: the sheen's colour (0: none; not an image)",
               Range::closed(0, 1), {0, 0, 0}),
         number("sheen_roughness",

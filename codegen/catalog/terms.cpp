@@ -272,6 +272,40 @@ FunctionPtr visibility_smith_ggx_correlated() {
   return f;
 }
 
+FunctionPtr distribution_ggx_anisotropic() {
+  static const FunctionPtr f = [] {
+    FunctionBuilder fb("D_ggx_anisotropic",
+                       "KHR_materials_anisotropy, \"Anisotropy\" (Burley 2012): D = 1 / (π α_t α_b ((h·t)²/α_t² + "
+                       "(h·b)²/α_b² + (h·n)²)²), as the README's D_GGX_anisotropic writes it",
+                       "a2 = α_t α_b, f = (α_b h·t, α_t h·b, a2 n·h), w2 = a2 / |f|², D = a2 w2² / π: the same\n"
+                       "value, without dividing by α_t² or α_b².");
+    Expr NoH = fb.param("NoH"), HoT = fb.param("HoT"), HoB = fb.param("HoB");
+    Expr at = fb.param("alpha_t"), ab = fb.param("alpha_b");
+    Expr a2 = fb.let("a2", at * ab);
+    Expr ft = ab * HoT, fb_ = at * HoB, fn = a2 * NoH;
+    Expr w2 = fb.let("w2", a2 / max(ft * ft + fb_ * fb_ + fn * fn, kTiny));
+    return fb.returns(a2 * w2 * w2 / kPi);
+  }();
+  return f;
+}
+
+FunctionPtr visibility_smith_ggx_correlated_anisotropic() {
+  static const FunctionPtr f = [] {
+    FunctionBuilder fb("V_smith_ggx_correlated_anisotropic",
+                       "KHR_materials_anisotropy, \"Implementation\" (Heitz 2014, anisotropic height-correlated "
+                       "Smith): V = 0.5 / (n·l |(α_t v·t, α_b v·b, n·v)| + n·v |(α_t l·t, α_b l·b, n·l)|)",
+                       "The README's sample clamps V to [0, 1]; Appendix B's isotropic V, which this is at\n"
+                       "α_t = α_b, has no clamp, and neither has this one.");
+    Expr NoL = fb.param("NoL"), NoV = fb.param("NoV");
+    Expr LoT = fb.param("LoT"), LoB = fb.param("LoB"), VoT = fb.param("VoT"), VoB = fb.param("VoB");
+    Expr at = fb.param("alpha_t"), ab = fb.param("alpha_b");
+    Expr gv = fb.let("ggx_v", NoL * sqrt(sq(at * VoT) + sq(ab * VoB) + NoV * NoV));
+    Expr gl = fb.let("ggx_l", NoV * sqrt(sq(at * LoT) + sq(ab * LoB) + NoL * NoL));
+    return fb.returns(0.5 / (gv + gl));
+  }();
+  return f;
+}
+
 FunctionPtr fresnel_weight() {
   static const FunctionPtr f = [] {
     FunctionBuilder fb("fresnel_w",

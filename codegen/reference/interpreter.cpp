@@ -202,13 +202,6 @@ ShadingInputs shading_inputs(const Vec3& n, const Vec3& l, const Vec3& v, const 
   return s;
 }
 
-Vec3 tangent_rule(const Vec3& n, const Vec3& axis) {
-  Vec3 a = normalize(axis);
-  Vec3 t = cross(a, n);
-  if (length(t) < kEpsilon) t = cross(Vec3(1, 0, 0), n);
-  return normalize(t);
-}
-
 Vec3 perturb_normal(const Vec3& n, const Vec3& t, double w, const std::array<double, 3>& nt) {
   const Vec3 T = normalize(t - n * dot(n, t));
   const Vec3 B = cross(n, T) * w;

@@ -14,6 +14,7 @@
 #include "core/ir.h"
 #include "core/vec.h"
 #include "scene/scene.h"
+#include "scene/tangents.h"  // tangent_rule
 
 namespace facet {
 
@@ -49,10 +50,6 @@ struct ShadingInputs {
   static int index(const std::string& name);
 };
 ShadingInputs shading_inputs(const Vec3& n, const Vec3& l, const Vec3& v, const Vec3& t);
-
-// MODELS.md's tangent rule: t = normalize(axis × n), or normalize(x̂ × n) where
-// |axis × n| < ε.
-Vec3 tangent_rule(const Vec3& n, const Vec3& axis);
 
 // The normal map's shading normal (docs/textures.md, "Normal maps"; glTF 2.0 §3.9.3):
 // normalize(nt[0]·T + nt[1]·B + nt[2]·n), T = t Gram–Schmidt'd against n, B = w·(n × T).

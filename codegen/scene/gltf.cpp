@@ -21,6 +21,7 @@
 #include "core/vec.h"
 #define TINYGLTF_IMPLEMENTATION  // the one translation unit with tinygltf's code
 #include "scene/gltf_read.h"
+#include "scene/tangents.h"
 #include "scene/gltf_images.h"
 #include "catalog/program.h"
 #include "catalog/texture.h"
@@ -182,6 +183,7 @@ class Importer {
     if (s_.objects.empty()) reader_.fail(fmt::format("scenes[{}]", scene_index), "has no meshes");
     read_meshes();
     check_texture_coordinates();
+    note_anisotropy_frames();
     check_gathered_parts();
     if (!have_camera_) frame_camera();
     if (s_.lights.empty()) add_default_light();
@@ -596,6 +598,51 @@ class Importer {
     }
   }
 
+  // KHR_materials_anisotropy turns its direction from the mesh's tangent frame (the README's
+  // TBN: TANGENT, or the normal texture's frame; B = w·(N × T)). facet's anisotropic lobes take
+  // the tangent rule t = normalize(tangent_axis × n) and b = n × t on every object, so each
+  // anisotropic mesh's note says how far the two directions are apart at its corners (TANGENT,
+  // else MikkTSpace on TEXCOORD_0), as an angle between lines: D and V do not see their sign.
+  void note_anisotropy_frames() {
+    for (const auto& o : s_.objects) {
+      if (o.type != Object::Type::Mesh || !o.mesh) continue;
+      auto m = s_.materials.find(o.material);
+      auto mp = material_paths_.find(o.material);
+      if (m == s_.materials.end() || mp == material_paths_.end() || !m->second.specular) continue;
+      const ModelSpec& spec = *m->second.specular;
+      if (spec.def->name != "gltf_pbr" || spec.at("anisotropy_strength").number <= 0) continue;
+      const std::string key = mp->second + ".extensions.KHR_materials_anisotropy";
+      if (o.mesh->tangents.empty() && o.mesh->texcoords[0].empty()) {
+        notes_.push_back(fmt::format("{}: {} has neither TANGENT nor TEXCOORD_0, so no tangent frame of its own: "
+                                     "facet's tangent rule (tangent_axis × n) gives the direction",
+                                     key, o.name));
+        continue;
+      }
+      const auto corners = mesh_tangents(*o.mesh, 0);
+      const double r = spec.at("anisotropy_rotation").number;
+      double worst = 0;
+      size_t off = 0, count = 0;
+      for (size_t c = 0; c < corners.size(); ++c) {
+        const Vec3 n = normalize(o.mesh->normals[o.mesh->triangles[c / 3][c % 3]]);
+        const Vec3 T(corners[c][0], corners[c][1], corners[c][2]);
+        if (length(T) == 0) continue;
+        const Vec3 t = tangent_rule(n, Vec3(m->second.tangent_axis));
+        const Vec3 file = T * std::cos(r) + cross(n, T) * (corners[c][3] * std::sin(r));
+        const Vec3 rule = t * std::cos(r) + cross(n, t) * std::sin(r);
+        const double angle = std::acos(std::min(1.0, std::fabs(dot(normalize(file), rule)))) * 180 / kPi;
+        worst = std::max(worst, angle);
+        off += angle > 1;
+        ++count;
+      }
+      notes_.push_back(fmt::format(
+          "{}: {}: the direction is facet's tangent rule (tangent_axis × n, b = n × t), not the mesh's tangent "
+          "frame the extension turns from ({}); here they differ by up to {:.3g}° ({} of {} corners by more than "
+          "1°){}",
+          key, o.name, o.mesh->tangents.empty() ? "MikkTSpace on TEXCOORD_0" : "its TANGENT", worst, off, count,
+          worst <= 1 ? ": exact to that" : ": approximate"));
+    }
+  }
+
   // A glTF without lights (most sample models) would render black: facet adds a
   // headlight, a point light at the camera without falloff (facet's attenuation
   // "none"), colour 1: a white Lambert surface facing it shows 1 at any distance. A
@@ -857,6 +904,13 @@ class Exporter {
       if (specular.texture) ext["specularTexture"] = extension_texture_info(*specular.texture);
       g.extensions["KHR_materials_specular"] = tinygltf::Value(ext);
       used_.insert("KHR_materials_specular");
+    }
+    if (const double strength = s.at("anisotropy_strength").number; strength > 0) {
+      tinygltf::Value::Object ext;
+      ext["anisotropyStrength"] = tinygltf::Value(strength);
+      ext["anisotropyRotation"] = tinygltf::Value(s.at("anisotropy_rotation").number);
+      g.extensions["KHR_materials_anisotropy"] = tinygltf::Value(ext);
+      used_.insert("KHR_materials_anisotropy");
     }
     const RGB& sheen = s.at("sheen_color").rgb;
     if (sheen != RGB{0, 0, 0}) {

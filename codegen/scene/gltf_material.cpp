@@ -259,6 +259,20 @@ void clearcoat_extension(const json& coat, json& lobe, bool normal_mapped, GltfI
                           "normal unmapped");
 }
 
+// KHR_materials_anisotropy ("Anisotropy"): anisotropy_strength = anisotropyStrength,
+// anisotropy_rotation = anisotropyRotation (radians from the tangent towards the bitangent). The
+// lobe takes both as numbers: an anisotropyTexture (a direction and a strength per texel) is not
+// read, a note says so. The frame it turns from is facet's tangent rule, not the mesh's: the
+// import measures the two on each mesh (Importer::note_anisotropy_frames in gltf.cpp).
+void anisotropy_extension(const json& aniso, json& lobe, GltfImages& images, const std::string& key,
+                          std::vector<std::string>& notes) {
+  lobe["anisotropy_strength"] = extension_number(images, aniso, "anisotropyStrength", 0, 0, 1, key);
+  lobe["anisotropy_rotation"] = extension_number(images, aniso, "anisotropyRotation", 0, -kScalarMax, kScalarMax, key);
+  if (aniso.contains("anisotropyTexture"))
+    notes.push_back(key + ".anisotropyTexture: approximate: not read (facet's gltf_pbr takes the anisotropy's "
+                          "strength and rotation as numbers); the factors alone are used");
+}
+
 // The glTF material as the catalog's gltf_pbr lobe, every input as the file gives it: glTF 2.0
 // §3.9.2 (pbrMetallicRoughness: the base colour map's RGB in sRGB times baseColorFactor and
 // COLOR_0, the metallic–roughness map's B and G, linear, times their factors), KHR_materials_ior
@@ -280,6 +294,9 @@ json gltf_pbr_lobe(const tinygltf::Material& g, const Pbr& p, GltfImages& images
   }
   const json spec = extension_of(g.extensions_json_string, "KHR_materials_specular");
   if (spec.is_object()) specular_extension(spec, lobe, images, mpath + ".extensions.KHR_materials_specular", sets, notes);
+  const json aniso = extension_of(g.extensions_json_string, "KHR_materials_anisotropy");
+  if (aniso.is_object())
+    anisotropy_extension(aniso, lobe, images, mpath + ".extensions.KHR_materials_anisotropy", notes);
   const json sheen = extension_of(g.extensions_json_string, "KHR_materials_sheen");
   if (sheen.is_object()) sheen_extension(sheen, lobe, images, mpath + ".extensions.KHR_materials_sheen", notes);
   const json coat = extension_of(g.extensions_json_string, "KHR_materials_clearcoat");
@@ -294,7 +311,8 @@ json gltf_pbr_lobe(const tinygltf::Material& g, const Pbr& p, GltfImages& images
 const std::vector<std::string>& material_extensions_read() {
   static const std::vector<std::string> read = {"KHR_materials_emissive_strength", "KHR_materials_ior",
                                                 "KHR_materials_specular", "KHR_materials_sheen",
-                                                "KHR_materials_clearcoat", "FACET_material"};
+                                                "KHR_materials_clearcoat", "KHR_materials_anisotropy",
+                                                "FACET_material"};
   return read;
 }
 

@@ -86,6 +86,12 @@ std::vector<int> corner_groups(const Mesh& m, const std::vector<uint32_t>& weld,
 
 }  // namespace
 
+Vec3 tangent_rule(const Vec3& n, const Vec3& axis) {
+  Vec3 t = cross(normalize(axis), n);
+  if (length(t) < kEpsilon) t = cross(Vec3(1, 0, 0), n);
+  return normalize(t);
+}
+
 std::vector<std::array<double, 4>> mikktspace_tangents(const Mesh& m, int set) {
   const std::vector<uint32_t> welded = weld(m, set);
   std::vector<Face> faces;

@@ -22,6 +22,10 @@
 
 namespace facet {
 
+// MODELS.md's tangent rule, the anisotropic lobes' t where no texture coordinates give one:
+// t = normalize(axis × n), or normalize(x̂ × n) where |axis × n| < ε.
+Vec3 tangent_rule(const Vec3& n, const Vec3& axis);
+
 // Texture coordinate set `set`'s tangents, one per triangle corner (3·i + k for corner k
 // of triangle i): xyz unit and ⟂ the vertex normal (0 where the triangles give no
 // direction), w = ±1. The mesh must have that set.

@@ -790,7 +790,8 @@ def blender_principled_scene():
     Specular IOR Level and Tint (KHR_materials_specular), Sheen Weight, Tint and Roughness
     (KHR_materials_sheen), Coat Weight and Roughness (KHR_materials_clearcoat), Emission Color and
     a Strength above 1 (KHR_materials_emissive_strength), Anisotropic and its Rotation
-    (KHR_materials_anisotropy, which facet names in a note and draws as the core)."""
+    (KHR_materials_anisotropy; the sphere is rotated, so its UV tangents are not facet's tangent
+    rule's, and the import's note measures the difference)."""
     import bpy
     bpy.ops.wm.read_factory_settings(use_empty=True)
     scene = bpy.context.scene
@@ -874,8 +875,8 @@ CORPUS.append(("blender_textured.gltf", "written by Blender's glTF exporter: an 
                                         "a second UV map (KHR_texture_transform, TEXCOORD_1), mirrored and rotated "
                                         "objects, a point light and a sun", None))
 CORPUS.append(("blender_principled.glb", "written by Blender's glTF exporter from Principled BSDFs: IOR, Specular IOR "
-                                         "Level and Tint, Sheen, Coat, Emission Strength 2, Anisotropic (named in a "
-                                         "note): KHR_materials_ior, _specular, _sheen, _clearcoat, "
+                                         "Level and Tint, Sheen, Coat, Emission Strength 2, Anisotropic on a rotated "
+                                         "sphere: KHR_materials_ior, _specular, _sheen, _clearcoat, "
                                          "_emissive_strength, _anisotropy", None))
 
 

@@ -18,7 +18,7 @@ It fails (exit 1) when
   * the GGX metal is not Cycles' (glTF's metal is Cycles' GGX metal: the F82-tint Fresnel with a
     white tint is Schlick's, both Smith G terms height-correlated): METAL_SHARE of its pixels
     within METAL_TOL;
-  * an input glTF's BRDF lacks (Anisotropic, Diffuse Roughness; a Sheen Weight other than 1) is exported without
+  * an input glTF's BRDF lacks (Diffuse Roughness; a Sheen Weight other than 1) is exported without
     a warning naming it, or a Roughness below the floor is refused;
   * facet's objects and Cycles' alpha differ on more than COVERAGE_TOL of the pixels.
 Everything else is a measurement: the table says how far each input is. --wrong-metal replaces the
@@ -74,7 +74,7 @@ VARIANTS = (
     ("sheen_half", {"Base Color": RED, "Roughness": 0.45, "Sheen Weight": 0.5, "Sheen Roughness": 0.5}, "GGX",
      "Sheen Weight 0.5 is folded", "Sheen Weight 0.5 (sheen_color = 0.5·Tint; the glTF exporter writes Tint)"),
     ("anisotropic", {"Base Color": BRASS, "Metallic": 1.0, "Roughness": 0.4, "Anisotropic": 0.5}, "GGX",
-     "Anisotropic", "Metallic 1, Anisotropic 0.5 (not mapped yet)"),
+     None, "Metallic 1, Anisotropic 0.5 (KHR_materials_anisotropy)"),
     ("diffuse_roughness", {"Base Color": RED, "Roughness": 0.45, "Diffuse Roughness": 0.5}, "GGX",
      "Diffuse Roughness", "Diffuse Roughness 0.5 (glTF's base is Lambert)"),
 )

@@ -252,7 +252,9 @@ TEST(Gltf, GltfBrdfExportsAsItsFactorsMapsAndExtensions) {
                      {"clearcoat", {{"texture", "textures/leaf.png"}, {"channel", "r"}, {"factor", 0.8}}},
                      {"clearcoat_roughness", 0.3},
                      {"sheen_color", {0.6, 0.5, 0.4}},
-                     {"sheen_roughness", 0.45}};
+                     {"sheen_roughness", 0.45},
+                     {"anisotropy_strength", 0.5},
+                     {"anisotropy_rotation", 1.25}};
   const Material m = leaf_lobe_material("gltf_brdf_export", "painted", lobe);
   const std::string out = (scratch("gltf_brdf_export") / "out.gltf").string();
   std::vector<std::string> notes;
@@ -273,7 +275,10 @@ TEST(Gltf, GltfBrdfExportsAsItsFactorsMapsAndExtensions) {
   EXPECT_TRUE(g["extensions"]["KHR_materials_clearcoat"].contains("clearcoatTexture"));
   EXPECT_EQ(g["extensions"]["KHR_materials_sheen"]["sheenColorFactor"], json::array({0.6, 0.5, 0.4}));
   EXPECT_EQ(g["extensions"]["KHR_materials_sheen"]["sheenRoughnessFactor"], 0.45);
-  for (const char* used : {"KHR_materials_ior", "KHR_materials_specular", "KHR_materials_sheen", "KHR_materials_clearcoat"})
+  EXPECT_EQ(g["extensions"]["KHR_materials_anisotropy"]["anisotropyStrength"], 0.5);
+  EXPECT_EQ(g["extensions"]["KHR_materials_anisotropy"]["anisotropyRotation"], 1.25);
+  for (const char* used : {"KHR_materials_ior", "KHR_materials_specular", "KHR_materials_sheen", "KHR_materials_clearcoat",
+                           "KHR_materials_anisotropy"})
     EXPECT_NE(std::find(doc["extensionsUsed"].begin(), doc["extensionsUsed"].end(), used), doc["extensionsUsed"].end())
         << used;
   for (const auto& n : notes) EXPECT_EQ(n.find("approximate"), std::string::npos) << n;
@@ -805,6 +810,47 @@ TEST(GltfTextures, SheenIsReadAndItsTexturesNamed) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("KHR_materials_sheen.sheenColorFactor[1]"), std::string::npos) << e.what();
   }
+}
+
+// KHR_materials_anisotropy ("Anisotropy"): anisotropy_strength and anisotropy_rotation are the
+// factors; the texture, which the lobe does not take, and the rotation's sense on mirrored
+// tangents are named in notes; the extension may be required.
+// The triangle's texture frame: u along +x, v along +y (down the picture), so glTF's bitangent
+// B = w·(N × T) points along −y and w = −1 (a mirrored frame); facet's tangent rule on n = +z with
+// tangent_axis +y gives t = ŷ × ẑ = +x and b = n × t = +y. Unrotated the two directions are the
+// same line; turned by 1 radian they are 2 radians apart, the lines 180° − 114.6° = 65.4°.
+TEST(GltfTextures, AnisotropyIsReadAndWhatItLeavesOutNamed) {
+  json g = textured_triangle(json::array({data_uri_image(small_png())}));
+  json& gm = g["materials"][0];
+  gm["extensions"] = {{"KHR_materials_anisotropy", {{"anisotropyStrength", 0.6}}}};
+  g["extensionsUsed"] = {"KHR_materials_anisotropy"};
+  g["extensionsRequired"] = {"KHR_materials_anisotropy"};
+  auto frame_note = [](const std::vector<std::string>& notes) {
+    std::string found;
+    for (const auto& n : notes)
+      if (n.find("KHR_materials_anisotropy: ") != std::string::npos && n.find("tangent rule") != std::string::npos)
+        found += n;
+    return found;
+  };
+  std::vector<std::string> notes;
+  Scene s = import_gltf(write_gltf("anisotropy.gltf", g).string(), {}, notes);
+  const ModelSpec& lobe = *s.materials.begin()->second.specular;
+  EXPECT_EQ(lobe.at("anisotropy_strength").number, 0.6);
+  EXPECT_EQ(lobe.at("anisotropy_rotation").number, 0.0);
+  EXPECT_NE(frame_note(notes).find("differ by up to 0° (0 of 3 corners by more than 1°): exact to that"),
+            std::string::npos)
+      << frame_note(notes);
+  gm["extensions"]["KHR_materials_anisotropy"]["anisotropyRotation"] = 1.0;
+  gm["extensions"]["KHR_materials_anisotropy"]["anisotropyTexture"] = {{"index", 0}};
+  notes.clear();
+  Scene t = import_gltf(write_gltf("anisotropy_texture.gltf", g).string(), {}, notes);
+  EXPECT_EQ(t.materials.begin()->second.specular->at("anisotropy_rotation").number, 1.0);
+  EXPECT_NE(frame_note(notes).find("differ by up to 65.4° (3 of 3 corners by more than 1°): approximate"),
+            std::string::npos)
+      << frame_note(notes);
+  int said = 0;
+  for (const auto& n : notes) said += n.find("anisotropyTexture: approximate") != std::string::npos;
+  EXPECT_EQ(said, 1);
 }
 
 TEST(GltfTextures, UnlitFileGetsAHeadlight) {

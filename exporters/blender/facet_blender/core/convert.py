@@ -22,7 +22,8 @@ radiance as Cycles for a point or sun light of radius 0 (see scene.py for the un
 |   Emission (× Strength)                   | emission                                            | exact |
 |   Coat Weight, Coat Roughness (4.x)       | clearcoat, clearcoat_roughness (KHR_materials_clearcoat) | Coat IOR other than 1.5, Coat Tint, Coat Normal: named in a warning |
 |   Sheen Weight, Sheen Tint, Sheen Roughness (4.x) | sheen_color = Weight × Tint, sheen_roughness (KHR_materials_sheen) | images on them: named in a warning |
-|   Sheen (3.x), Anisotropic, Transmission, Subsurface, Diffuse Roughness, Alpha | ignored, each named in a warning (Alpha: a cut-out where Blender's glTF importer wired one) | |
+|   Anisotropic, Anisotropic Rotation (4.x)  | anisotropy_strength, anisotropy_rotation = 2π·rotation (KHR_materials_anisotropy) | Cycles' anisotropic GGX is parametrized otherwise (docs/blender.md) |
+|   Sheen (3.x), Transmission, Subsurface, Diffuse Roughness, Alpha | ignored, each named in a warning (Alpha: a cut-out where Blender's glTF importer wired one) | |
 | Add Shader (a, b)                         | the lobes of a and b together                       | as exact as a and b (one diffuse and one specular lobe at most) |
 | Mix Shader (Fac f, a, b)                  | a's colours × (1−f), b's colours × f               | as exact as a and b |
 | anything else                             | refused: "no Diffuse, Glossy or Principled BSDF feeds the Material Output" | |
@@ -32,6 +33,8 @@ Separate Color, Mapping and UV Map nodes) and a Normal Map node become textured
 parameters (`Result.textures`, see textures.py); a socket linked to anything else is
 named in a warning (material, node name and type) and its unlinked value is used.
 """
+
+import math
 
 from . import UserError, textures
 from .coords import clean_float
@@ -295,7 +298,6 @@ def _color_attribute_in(src):
 _PRINCIPLED_IGNORED = (
     (("Subsurface", "Subsurface Weight"), 0.0, "subsurface scattering: no glTF extension says it"),
     (("Sheen",), 0.0, "Blender 3.x's sheen, Disney's: glTF's KHR_materials_sheen is Blender 4's Sheen Weight"),
-    (("Anisotropic",), 0.0, "anisotropy: glTF's KHR_materials_anisotropy, which facet's gltf_pbr does not have yet"),
     (("Transmission", "Transmission Weight"), 0.0, "transmission: glTF's KHR_materials_transmission, which facet "
                                                    "does not implement"),
     (("Diffuse Roughness",), 0.0, "a rough diffuse: glTF's BRDF has a Lambert base"),
@@ -374,6 +376,25 @@ def _sheen(node, result, lobe):
                              f"exporter writes Sheen Tint alone (as if the Weight were 1)")
 
 
+def _anisotropy(node, result, lobe):
+    """KHR_materials_anisotropy as Blender's glTF exporter writes it (glTF-Blender-IO 4.5,
+    exp/material/extensions/anisotropy.py): anisotropy_strength = Anisotropic, anisotropy_rotation
+    = 2π·Anisotropic Rotation (Blender's rotation is in turns). Cycles parametrizes its anisotropic
+    GGX otherwise (docs/blender.md measures it); images on them (glTF's anisotropyTexture) are not
+    taken: node.get names a linked input and uses its unlinked value."""
+    strength = min(max(float(node.get("Anisotropic", 0.0)), 0.0), 1.0)
+    if strength == 0.0:
+        return
+    lobe["anisotropy_strength"] = strength
+    lobe["anisotropy_rotation"] = 2.0 * math.pi * float(node.get("Anisotropic Rotation", 0.0))
+    result.note(EXACT, f"{node.label}: Anisotropic and Anisotropic Rotation -> anisotropy_strength, "
+                       f"anisotropy_rotation = 2π·rotation (KHR_materials_anisotropy, as Blender's glTF exporter "
+                       f"writes them)")
+    if "Tangent" in node.linked:
+        node.reported.add("Tangent")
+        result.note(IGNORED, f"{node.label}: Tangent is not read (the anisotropy turns from the mesh's UV tangent)")
+
+
 def principled_bsdf(node, weight, result):
     """(None, the gltf_pbr lobe, emission) of a Principled BSDF: glTF's material, read as Blender's
     glTF exporter writes the node (glTF-Blender-IO 4.5) and its importer wires it back, so a
@@ -400,6 +421,7 @@ def principled_bsdf(node, weight, result):
         _specular_level(node, result, lobe, level_tex)
         _sheen(node, result, lobe)
         _coat(node, result, lobe)
+        _anisotropy(node, result, lobe)
     else:                                          # Blender 2.8-3.x: f0 = 0.08·Specular·tint at IOR 1.5
         specular = float(node.get("Specular", 0.5))
         tint = float(node.get("Specular Tint", 0.0)) if node.has("Specular Tint") else 0.0

@@ -152,6 +152,10 @@ def _principled_gltf(lobe, color, principled):
         inputs.update({"IOR": eta, "Specular IOR Level": 0.5 * specular, "Specular Tint": specular_color})
         if coat[0] > 0.0:
             inputs.update({"Coat Weight": coat[0], "Coat Roughness": coat[1], "Coat IOR": 1.5})
+        strength = _number(lobe, "anisotropy_strength", 0.0)
+        if strength > 0.0:
+            inputs.update({"Anisotropic": strength,
+                           "Anisotropic Rotation": _number(lobe, "anisotropy_rotation", 0.0) / (2.0 * math.pi)})
         sheen = _rgb(lobe.get("sheen_color", 0.0), 0.0)
         if any(sheen):
             inputs.update({"Sheen Weight": 1.0, "Sheen Tint": sheen,

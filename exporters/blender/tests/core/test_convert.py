@@ -1,5 +1,7 @@
 """core/convert.py: Blender BSDF nodes (as plain descriptions) -> facet lobes, and how exact."""
 
+import math
+
 import pytest
 
 from facet_blender.core import UserError, convert
@@ -70,11 +72,24 @@ def test_principled_is_gltfs_brdf_as_blenders_exporter_writes_it(inputs, f0, spe
 
 def test_principled_metal_is_the_lobe_at_metallic_1_and_unmapped_inputs_name_their_extension():
     r = map_surface({"type": "BSDF_PRINCIPLED", "name": "P", "inputs": {
-        "Base Color": [0.9, 0.6, 0.3, 1], "Metallic": 1.0, "Roughness": 0.2, "Anisotropic": 0.4}})
+        "Base Color": [0.9, 0.6, 0.3, 1], "Metallic": 1.0, "Roughness": 0.2, "Transmission Weight": 0.4}})
     assert r.diffuse is None
     assert (r.specular["base_color"], r.specular["metallic"]) == ([0.9, 0.6, 0.3], 1.0)
-    assert any(level == convert.IGNORED and "Anisotropic" in m and "KHR_materials_anisotropy" in m
+    assert any(level == convert.IGNORED and "Transmission" in m and "KHR_materials_transmission" in m
                for level, m in r.notes)
+
+
+def test_anisotropic_is_gltfs_anisotropy_its_rotation_in_radians():
+    """Blender's glTF exporter: anisotropyStrength = Anisotropic, anisotropyRotation = 2π·Anisotropic
+    Rotation (Blender's rotation is in turns)."""
+    inputs = {"Base Color": [0.9, 0.9, 0.9, 1], "Metallic": 1.0, "Roughness": 0.4, "IOR": 1.5,
+              "Specular IOR Level": 0.5, "Anisotropic": 0.6, "Anisotropic Rotation": 0.125}
+    r = map_surface({"type": "BSDF_PRINCIPLED", "name": "P", "inputs": inputs})
+    assert r.specular["anisotropy_strength"] == 0.6
+    assert r.specular["anisotropy_rotation"] == pytest.approx(math.pi / 4)
+    assert not any(level == convert.IGNORED for level, _ in r.notes)
+    off = map_surface({"type": "BSDF_PRINCIPLED", "name": "P", "inputs": dict(inputs, **{"Anisotropic": 0.0})})
+    assert "anisotropy_strength" not in off.specular
 
 
 def test_sheen_is_gltfs_sheen_its_weight_folded_into_the_colour():
