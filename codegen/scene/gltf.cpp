@@ -610,7 +610,7 @@ class Importer {
       auto mp = material_paths_.find(o.material);
       if (m == s_.materials.end() || mp == material_paths_.end() || !m->second.specular) continue;
       const ModelSpec& spec = *m->second.specular;
-      if (spec.def->name != "gltf_pbr" || spec.at("anisotropy_strength").number <= 0) continue;
+      if (!spec.def->gltf_brdf || spec.at("anisotropy_strength").number <= 0) continue;
       const std::string key = mp->second + ".extensions.KHR_materials_anisotropy";
       if (o.mesh->tangents.empty() && o.mesh->texcoords[0].empty()) {
         notes_.push_back(fmt::format("{}: {} has neither TANGENT nor TEXCOORD_0, so no tangent frame of its own: "
