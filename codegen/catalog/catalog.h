@@ -269,6 +269,10 @@ struct ModelDef {
   // metallic, roughness, ior, specular, specular_color, clearcoat, clearcoat_roughness. The
   // import reads them, the export writes its factors, maps and extensions as they are.
   bool gltf_brdf = false;
+  // Specular lobes with layers over the emission (KHR_materials_clearcoat, "Emission": "the
+  // clearcoat layer is on top of emission in the layering stack"): m_e's weight as a function
+  // of n·v (one parameter "NoV", a Float), for these values. Null, or returning null: m_e as it is.
+  std::function<ir::FunctionPtr(const ModelSpec& lobe)> emission_weight;
   // Fresnel terms: the reflectance at normal incidence F(0) as a colour, where the
   // term states it. glTF's metallic workflow takes it as a conductor's base colour:
   // a specular-only material whose Fresnel term has it exports as a metal.

@@ -70,12 +70,15 @@ bool MaterialProgram::uses(const std::string& input) const {
 }
 
 std::vector<ir::FunctionPtr> MaterialProgram::functions() const {
-  return ir::dependencies({terms::attenuation_inverse_square(), terms::attenuation_polynomial(),
-                           terms::attenuation_inverse_square_range(),
-                           terms::spot_cone(), reflectance});
+  std::vector<ir::FunctionPtr> roots = {terms::attenuation_inverse_square(), terms::attenuation_polynomial(),
+                                        terms::attenuation_inverse_square_range(), terms::spot_cone(), reflectance};
+  if (emission_weight) roots.push_back(emission_weight);
+  return ir::dependencies(roots);
 }
 
-std::vector<ir::NodePtr> MaterialProgram::constants() const { return ir::constants({reflectance}); }
+std::vector<ir::NodePtr> MaterialProgram::constants() const {
+  return emission_weight ? ir::constants({reflectance, emission_weight}) : ir::constants({reflectance});
+}
 
 MaterialProgram compile(const Material& m) {
   MaterialProgram p;
@@ -122,6 +125,8 @@ MaterialProgram compile(const Material& m) {
       p.textured.push_back({ambient ? kAmbientInput : kEmissionInput, ambient ? "ambient" : "emission", ir::Type::Color,
                             v, Range::color()});
   }
+  const bool emits = m.emission_texture || m.emission != RGB{0, 0, 0};
+  if (emits && m.specular && m.specular->def->emission_weight) p.emission_weight = m.specular->def->emission_weight(*m.specular);
   return p;
 }
 

@@ -215,6 +215,24 @@ ir::Expr gltf_clearcoat(LobeContext& c, ir::Expr core) {
   return ir::call(terms::mix_by(core.type()), {core, coat, c.number("clearcoat") * fc});
 }
 
+// KHR_materials_clearcoat, "Emission": coated_emission = emission (1 − clearcoat
+// clearcoat_fresnel), clearcoat_fresnel = 0.04 + 0.96 (1 − n·v)^5 the coat's Fresnel of n·v as the
+// coat lobe has it ("Layering"), n the coat's normal: the surface's own, since facet reads no
+// clearcoatNormalTexture (and "if clearcoatNormalTexture is not given, no normal mapping is applied
+// to the clear coat layer"). A clearcoat image's texel is not read here: its factor is (said by the
+// import). Null without a coat.
+ir::FunctionPtr gltf_emission_weight(const ModelSpec& s) {
+  const double clearcoat = s.at("clearcoat").number;
+  if (clearcoat == 0) return nullptr;
+  ir::FunctionBuilder fb("emission_weight",
+                         "KHR_materials_clearcoat, \"Emission\": the emission under the coat, 1 − clearcoat "
+                         "clearcoat_fresnel(n·v)");
+  ir::Expr NoV = fb.param("NoV");
+  ir::Expr w = fb.let("coat_w", ir::call(terms::fresnel_weight(), {NoV}));
+  ir::Expr fc = fb.let("coat_fresnel", ir::call(terms::fresnel_schlick_f90(ir::Type::Float), {0.04, 1.0, w}));
+  return fb.returns(1.0 - ir::constant("emission_clearcoat", clearcoat) * fc);
+}
+
 const char* kMicrofacetPov = "function pigment";
 
 // The glTF equivalent of a lobe whose parameter `param` is a GGX-like roughness α.
@@ -497,6 +515,7 @@ void add_specular(std::vector<ModelDef>& all) {
                      "specification says fresnel_mix is not energy conserving (Appendix B, \"Coupling Diffuse and "
                      "Specular Reflection\"), and single-scattering GGX loses energy, so no bound is claimed";
     m.gltf_brdf = true;
+    m.emission_weight = gltf_emission_weight;
     m.ggx_alpha = [](const ModelSpec& s) {
       const double r = s.at("roughness").number;
       return std::max(r * r, kRoughnessMin);

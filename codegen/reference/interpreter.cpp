@@ -223,6 +223,7 @@ Reference::Reference(const Material& m) : program_(compile(m)) {
   polynomial_ = interp_.prepare(terms::attenuation_polynomial());
   windowed_ = interp_.prepare(terms::attenuation_inverse_square_range());
   spot_ = interp_.prepare(terms::spot_cone());
+  if (program_.emission_weight) emission_weight_ = interp_.prepare(program_.emission_weight);
 }
 
 double Reference::light_factor(const Light& light, const Vec3& l, double d) const {
@@ -288,7 +289,7 @@ bool Reference::sample_textures(const std::array<std::array<double, 2>, 2>& uv, 
   return fragile;
 }
 
-RGB Reference::emitted(const ShadingInputs& in, const RGB& scene_ambient) const {
+RGB Reference::emitted(const ShadingInputs& in, const RGB& scene_ambient, double NoV) const {
   const Material& m = program_.material;
   RGB ambient = m.ambient, emission = m.emission;
   const auto& textured = program_.textured;
@@ -296,8 +297,13 @@ RGB Reference::emitted(const ShadingInputs& in, const RGB& scene_ambient) const 
     if (textured[i].name == kAmbientInput) ambient = in.textured[i];
     if (textured[i].name == kEmissionInput) emission = in.textured[i];
   }
+  double weight = 1;
+  if (emission_weight_ >= 0) {
+    RGB args[] = {{NoV, NoV, NoV}};
+    weight = interp_.run(emission_weight_, args)[0];
+  }
   RGB L;
-  for (size_t c = 0; c < 3; ++c) L[c] = ambient[c] * scene_ambient[c] + emission[c];
+  for (size_t c = 0; c < 3; ++c) L[c] = ambient[c] * scene_ambient[c] + emission[c] * weight;
   return L;
 }
 

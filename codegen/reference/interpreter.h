@@ -69,8 +69,9 @@ class Reference {
   // lookup lies on a texel's edge (catalog/texture.h).
   bool sample_textures(const std::array<std::array<double, 2>, 2>& uv, ShadingInputs& in,
                        const VertexColor& color0 = kWhiteVertexColor) const;
-  // m_a ⊗ A + m_e, with m_a and m_e at the point where `in`'s textures were sampled.
-  RGB emitted(const ShadingInputs& in, const RGB& scene_ambient) const;
+  // m_a ⊗ A + m_e·emission_weight(n·v), with m_a and m_e at the point where `in`'s textures
+  // were sampled and n·v of the surface's own normal (MaterialProgram::emission_weight).
+  RGB emitted(const ShadingInputs& in, const RGB& scene_ambient, double NoV) const;
   // The material's normal map (it must have one) at texture coordinates `uv`, on the frame n, t, w:
   // perturb_normal of its n_t. `fragile` as sample_textures's result.
   Vec3 mapped_normal(const std::array<std::array<double, 2>, 2>& uv, const Vec3& n, const Vec3& t, double w,
@@ -95,7 +96,7 @@ class Reference {
   MaterialProgram program_;
   Interpreter interp_;
   Prepared reflectance_, diffuse_, specular_;
-  int inverse_square_ = -1, polynomial_ = -1, windowed_ = -1, spot_ = -1;
+  int inverse_square_ = -1, polynomial_ = -1, windowed_ = -1, spot_ = -1, emission_weight_ = -1;
 };
 
 }  // namespace facet

@@ -226,7 +226,7 @@ void shade_pixel(const Scene& s, const ObjectBvh& bvh, const Cutouts& cut, const
   Vec3 p = eye + dir * h.hit.t;
   Vec3 v = -dir;
   ShadingFrame f = shading_frame(obj, ref, tangents[size_t(h.object)], p, h.hit, v);
-  RGB L = ref.emitted(f.textured, s.ambient);
+  RGB L = ref.emitted(f.textured, s.ambient, dot(f.n, v));
   bool grazing = f.grazing || h.fragile;
   uint8_t seen = dot(f.n, v) > 0 ? Render::kFacesCamera : 0;
   for (const auto& light : s.lights) {

@@ -218,6 +218,7 @@ GlslParts glsl_parts(const MaterialProgram& p, Target dialect, const std::string
                                                         {"inputs", inputs},
                                                         {"arguments", arguments}});
   std::map<std::string, std::string> lights = glsl_light::template_values();  // the light encoding's numbers
+  emitted_values(p, lights);
   const bool buffer = light_source == LightSource::Buffer;
   lights["declarations"] = buffer ? light_buffer(dialect) : light_uniforms(dialect);
   // An engine's uniform array holds FACET_MAX_LIGHTS: a larger count reads no further.

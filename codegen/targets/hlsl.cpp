@@ -179,6 +179,7 @@ HlslParts hlsl_parts(const MaterialProgram& p, const std::string& source, LightS
                                                         {"inputs", inputs},
                                                         {"arguments", arguments}});
   std::map<std::string, std::string> lights = glsl_light::template_values();  // the light encoding's numbers
+  emitted_values(p, lights);
   lights["mapping"] = p.normal_mapped() ? "    // The lobes read the normal map's normal and a tangent that follows it.\n"
                                           "    float3 ns = facet_normal_mapped(n, facet_uv_tangent, facet_uv_handedness);\n"
                                           "    t = normalize(t - ns * dot(ns, t));\n"

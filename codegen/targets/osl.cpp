@@ -240,8 +240,15 @@ std::string generate_osl(const Material& m, const GenerateOptions& o) {
 
   // Shader parameters: the images, the material constants, then the scene's ambient and lights.
   auto color_value = [&](const RGB& c) { return pr.color_literal(c); };
-  for (const auto& c : pr.free_constants(p.reflectance))
+  for (const auto& c : p.constants())
     params.add(pr.type(c->type), c->name, c->type == ir::Type::Color ? color_value(c->value) : pr.literal(c->value[0]));
+  // m_e as it leaves the surface: under the layers over it, weighted by n·v of the surface's own normal.
+  std::string emitted = kEmissionInput;
+  if (p.emission_weight) {
+    emitted += " * " + p.emission_weight->name + "(dot(Nn, V)";
+    for (const auto& c : pr.free_constants(p.emission_weight)) emitted += ", " + c->name;
+    emitted += ")";
+  }
   // m_a and m_e: parameters, or locals sampled from their images (kAmbientInput, kEmissionInput).
   if (!m.ambient_texture) params.add("color", kAmbientInput, color_value(m.ambient), "m_a");
   if (!m.emission_texture) params.add("color", kEmissionInput, color_value(m.emission), "m_e");
@@ -260,6 +267,7 @@ std::string generate_osl(const Material& m, const GenerateOptions& o) {
                                                           {"shadow_from", cutouts.any ? "    float shadow_from = 0;  // facet_blocked: the first trace() skips the shaded primitive\n" : ""},
                                                           {"cutout", cutouts.test},
                                                           {"samples", textures.samples + textures.mapping},
+                                                          {"emitted", emitted},
                                                           {"lights", lights}});
   return header + "\n" + library + shader;
 }

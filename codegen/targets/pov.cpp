@@ -242,6 +242,7 @@ PovScene::PovScene(const Scene& s, const Material* fallback, const std::string& 
     std::set<const ir::Function*> own = {sh->program.reflectance.get()};
     if (sh->program.diffuse) own.insert(sh->program.diffuse.get());
     if (sh->program.specular) own.insert(sh->program.specular.get());
+    if (sh->program.emission_weight) own.insert(sh->program.emission_weight.get());
     sh->printer = PovPrinter(sh->prefix, own);
     sh->dependent = sh->printer.channel_dependent(sh->program.reflectance);
     shadings_.push_back(std::move(sh));

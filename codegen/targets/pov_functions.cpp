@@ -244,12 +244,13 @@ ir::FunctionPtr PovScene::light_function(PovShading& sh, size_t i, const ir::Fun
 }
 
 // {P}Facet_Emission(x, y, z, n, S0, T0, S1, T1[, R0, G0, B0, A0]): m_a ⊗ A + m_e, either from
-// its image or vertex colour (the sampling function of its textured input) or its colour;
-// called like a light function.
+// its image or vertex colour (the sampling function of its textured input) or its colour, m_e
+// times emission_weight(n·v) where layers lie over it (n the surface's own normal, v towards the
+// camera: its position, or an orthographic camera's −forward); called like a light function.
 ir::FunctionPtr PovScene::emission_function(PovShading& sh) {
   ir::FunctionBuilder fb("Facet_Emission", "");
-  params(fb, "x", "y", "z");
-  params(fb, "Nx", "Ny", "Nz");
+  const Triple P = params(fb, "x", "y", "z");
+  const Triple N = params(fb, "Nx", "Ny", "Nz");
   const std::vector<Expr> uv = uv_params(fb, sh);
   auto term = [&](const char* input, const RGB& c) -> Expr {
     auto t = sh.samples.find(input);
@@ -258,7 +259,17 @@ ir::FunctionPtr PovScene::emission_function(PovShading& sh) {
   };
   const RGB& A = s_.ambient;
   Expr ambient = term(kAmbientInput, sh.material->ambient) * ir::color(A[0], A[1], A[2]);
-  ir::FunctionPtr f = fb.returns(ambient + term(kEmissionInput, sh.material->emission));
+  Expr emitted = term(kEmissionInput, sh.material->emission);
+  if (sh.program.emission_weight) {
+    const Camera& cam = s_.camera;
+    Triple V = cam.orthographic ? constant(-cam.basis().forward) : cam.position - P;
+    if (!cam.orthographic) {
+      V = lets(fb, "Vx", "Vy", "Vz", V);
+      V = V / fb.let("Vl", length3(V));
+    }
+    emitted = emitted * ir::call(sh.program.emission_weight, {dot3(N, V)});
+  }
+  ir::FunctionPtr f = fb.returns(ambient + emitted);
   sh.printer.add_own(f);
   return f;
 }
@@ -282,7 +293,7 @@ ir::FunctionPtr PovScene::kept_function(PovShading& sh) {
 // `name`: `light` (a light's, or the emission's function) on object o, which takes (x, y, z):
 // the hit point on spheres and squares, uv_mapping's point on meshes.
 ir::FunctionPtr PovScene::object_function(size_t o, const std::string& name, const ir::FunctionPtr& light,
-                                          std::optional<size_t> light_index) {
+                                          std::optional<size_t> light_index, bool own_normal) {
   const Object& obj = s_.objects[o];
   ir::FunctionBuilder fb(name, "");
   Triple P = params(fb, "x", "y", "z");
@@ -301,6 +312,7 @@ ir::FunctionPtr PovScene::object_function(size_t o, const std::string& name, con
     obj.plane_axes(a, b);
     const Triple q = P - obj.point;
     coordinates(0.5 + dot3(q, constant(a)) / (2 * obj.size), 0.5 - dot3(q, constant(b)) / (2 * obj.size));
+    if (own_normal) return fb.returns(ir::call(light, with(args({P, constant(obj.normal)}), uv)));
     const Triple n = mapped_normal(fb, shading(o), uv, constant(obj.normal), constant(a));
     if (takes_tangent(shading(o), *shading(o).program.reflectance))
       return fb.returns(ir::call(light, with(args({P, n, mapped_tangent(fb, shading(o), constant(obj.normal), n)}), uv)));
@@ -323,7 +335,7 @@ ir::FunctionPtr PovScene::object_function(size_t o, const std::string& name, con
     if (colored)
       for (const char* c : {"CR", "CG", "CB", "CA"})
         uv.push_back(!obj.mesh->colors.empty() ? fb.let(std::string(1, c[1]) + "0", ir::call(data(c), at)) : Expr(1.0));
-    if (!shading(o).normal_map[0]) return fb.returns(ir::call(light, with(args({hit, M / len}), uv)));
+    if (!shading(o).normal_map[0] || own_normal) return fb.returns(ir::call(light, with(args({hit, M / len}), uv)));
     // The blended corner tangents (docs/textures.md, "Tangent frames"), w the sign of the blended w.
     const Triple tangent = {ir::call(data("UX"), at), ir::call(data("UY"), at), ir::call(data("UZ"), at)};
     Expr w = fb.let("W", ir::select(ir::call(data("UW"), at) < 0.0, Expr(-1.0), Expr(1.0)));
@@ -344,6 +356,7 @@ ir::FunctionPtr PovScene::object_function(size_t o, const std::string& name, con
   Expr r = fb.let("R", length3(radial));
   const Triple d = radial / r;
   coordinates(0.5 + ir::atan2(d.x, d.z) / (2 * kPi), ir::acos(ir::clamp(d.y, -1.0, 1.0)) / kPi);
+  if (own_normal) return fb.returns(ir::call(light, with(args({P, d}), uv)));
   // docs/textures.md, "Tangent frames": the sphere's ∂p/∂u ∝ (d_z, 0, −d_x).
   const Triple t = shading(o).normal_map[0] ? Triple{d.z, 0.0, -d.x} / ir::sqrt(d.z * d.z + d.x * d.x) : Triple{0.0, 0.0, 0.0};
   const Triple n = mapped_normal(fb, shading(o), uv, d, t);
@@ -394,7 +407,8 @@ void PovScene::build_scaffolding() {
                               e.worst, 100 * e.share_over);
   }
   for (auto& sh : shadings_) {
-    if (sh->material->ambient_texture || sh->material->emission_texture) sh->emission_function = emission_function(*sh);
+    if (sh->material->ambient_texture || sh->material->emission_texture || sh->program.emission_weight)
+      sh->emission_function = emission_function(*sh);
     if (sh->alpha) sh->kept = kept_function(*sh);
   }
   for (size_t o = 0; o < s_.objects.size(); ++o) {
@@ -402,7 +416,7 @@ void PovScene::build_scaffolding() {
     const PovShading& sh = shading(o);
     kept_.push_back(sh.kept ? object_function(o, fmt::format("Facet_Object{}_Kept", o), sh.kept) : nullptr);
     emissions_.push_back(sh.emission_function ? object_function(o, fmt::format("Facet_Object{}_Emission", o),
-                                                                sh.emission_function)
+                                                                sh.emission_function, std::nullopt, true)
                                               : nullptr);
     if (table_[o]) continue;  // the table's leaves call Facet_Table{i}
     for (size_t i = 0; i < s_.lights.size(); ++i) {
@@ -418,8 +432,12 @@ void PovScene::build_scaffolding() {
 // whole reflectance where a slope table reads it (`objects` false: the whole one, which the
 // library and the sweep call).
 std::vector<ir::FunctionPtr> PovScene::reflect_roots(const PovShading& sh, bool objects) const {
-  if (!objects || sh.lobes.empty()) return {sh.reflect};
   std::vector<ir::FunctionPtr> roots;
+  if (sh.program.emission_weight) roots.push_back(sh.program.emission_weight);  // the emission function's
+  if (!objects || sh.lobes.empty()) {
+    roots.push_back(sh.reflect);
+    return roots;
+  }
   if (!sh.tables.empty()) roots.push_back(sh.program.reflectance);
   for (const auto& lobe : sh.lobes) roots.push_back(lobe.reflect);
   return roots;

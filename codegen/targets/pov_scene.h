@@ -121,8 +121,10 @@ class PovScene {
   ir::FunctionPtr kept_function(PovShading& sh);
   // `name`(x, y, z): `light` (a function of the point, its normal and its texture coordinates) on object o;
   // `light_index`: the scene light it is, where there is one (not the emission's function).
+  // `own_normal`: `light` takes the surface's own normal, not the normal map's, and no tangent
+  // (the emission's function).
   ir::FunctionPtr object_function(size_t o, const std::string& name, const ir::FunctionPtr& light,
-                                  std::optional<size_t> light_index = std::nullopt);
+                                  std::optional<size_t> light_index = std::nullopt, bool own_normal = false);
   // Constants, terms and frames; `objects`: those the scene's objects call (lobe by lobe
   // where PovShading::lobes), else the whole reflectance's (the library, the sweep).
   std::string functions(bool objects = false);

@@ -112,4 +112,12 @@ std::string generate(const Material& m, const GenerateOptions& o) {
   return {};
 }
 
+void emitted_values(const MaterialProgram& p, std::map<std::string, std::string>& values) {
+  values["emitted"] = p.emission_weight ? std::string(kEmissionInput) + " * " + p.emission_weight->name + "(dot(n, v))"
+                                        : std::string(kEmissionInput);
+  values["emitted_doc"] = p.emission_weight ? "m_e under the layers over it, weighted by " + p.emission_weight->name +
+                                                  "(n·v) (" + p.emission_weight->citation + ")"
+                                            : "m_e itself (nothing lies over it)";
+}
+
 }  // namespace facet

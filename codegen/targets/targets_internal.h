@@ -1,9 +1,11 @@
 // Shared by the target printers; private to codegen/src/targets.
 #pragma once
 
+#include <map>
 #include <string>
 
 #include "catalog/material.h"
+#include "catalog/program.h"
 #include "targets/targets.h"
 
 #ifndef FACET_VERSION
@@ -19,6 +21,11 @@ std::string describe_lobe(const ModelSpec& s);
 // Throws InputError naming each textured parameter of `m` (file and key) for a target
 // that does not sample images yet.
 void require_untextured(const Material& m, const std::string& target);
+
+// The lights templates' facet_emitted(n, v): "emitted", its return expression (m_e, times
+// emission_weight(n·v) where layers lie over the emission: MaterialProgram::emission_weight), and
+// "emitted_doc", what it is. The same text in GLSL, HLSL and WGSL.
+void emitted_values(const MaterialProgram& p, std::map<std::string, std::string>& values);
 
 std::string generate_glsl(const Material& m, const GenerateOptions& o);
 std::string generate_osl(const Material& m, const GenerateOptions& o);

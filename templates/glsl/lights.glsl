@@ -16,10 +16,16 @@ struct FacetLight {
 // from the G-buffer by its index.
 float facet_visibility(vec3 p, vec3 l, float d, int light);
 
+// m_e as it leaves the surface of normal n towards v: {{emitted_doc}}
+vec3 facet_emitted(vec3 n, vec3 v)
+{
+    return {{emitted}};
+}
+
 // MODELS.md: L = m_a ⊗ A + Σ att(d) · spot · C ⊗ (k_d ⊗ ρ_d + k_s ⊗ ρ_s) + m_e
 vec3 facet_shade(vec3 p, vec3 n, vec3 v, vec3 t)
 {
-    vec3 radiance = material_ambient * facet_ambient.rgb + material_emission;
+    vec3 radiance = material_ambient * facet_ambient.rgb + facet_emitted(n, v);
 {{mapping}}    for (int i = 0; i < {{count}}; ++i) {
         FacetLight light = facet_light(i);
         vec3 l;

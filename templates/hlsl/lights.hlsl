@@ -15,10 +15,16 @@ struct FacetLight {
 // the light's visibility from the G-buffer by its index.
 float facet_visibility(float3 p, float3 l, float d, int light);
 
+// m_e as it leaves the surface of normal n towards v: {{emitted_doc}}
+float3 facet_emitted(float3 n, float3 v)
+{
+    return {{emitted}};
+}
+
 // MODELS.md: L = m_a ⊗ A + Σ att(d) · spot · C ⊗ (k_d ⊗ ρ_d + k_s ⊗ ρ_s) + m_e
 float3 facet_shade(float3 p, float3 n, float3 v, float3 t)
 {
-    float3 radiance = material_ambient * facet_ambient.rgb + material_emission;
+    float3 radiance = material_ambient * facet_ambient.rgb + facet_emitted(n, v);
 {{mapping}}    for (int i = 0; i < {{count}}; ++i) {
         FacetLight light = facet_light(i);
         float3 l;

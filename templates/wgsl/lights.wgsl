@@ -8,11 +8,16 @@ struct FacetLight {
 };
 {{declarations}}
 
+// m_e as it leaves the surface of normal n towards v: {{emitted_doc}}
+fn facet_emitted(n: vec3<f32>, v: vec3<f32>) -> vec3<f32> {
+    return {{emitted}};
+}
+
 // MODELS.md: L = m_a ⊗ A + Σ att(d) · spot · C ⊗ (k_d ⊗ ρ_d + k_s ⊗ ρ_s) + m_e
 // facet_visibility(p, l, d, i): how much of light i reaches p along l over distance d
 // (1 unlit by shadows, 0 in shadow), defined by the code this is assembled with.
 fn facet_shade(p: vec3<f32>, n: vec3<f32>, v: vec3<f32>, surface_tangent: vec3<f32>) -> vec3<f32> {
-    var radiance = material_ambient * facet_scene.ambient.rgb + material_emission;
+    var radiance = material_ambient * facet_scene.ambient.rgb + facet_emitted(n, v);
     var t = surface_tangent;
 {{mapping}}    for (var i: i32 = 0; i < {{count}}; i++) {
         let light = facet_light(i);

@@ -301,6 +301,41 @@ TEST(GltfPbr, KhrMaterialsClearcoat) {
   EXPECT_GT(worst_error(varnish, coat_fresnel_of_vh), 1e-2) << "the coat's Fresnel of v·h must fail";
 }
 
+// KHR_materials_clearcoat README, "Emission": "The clearcoat layer is on top of emission in the
+// layering stack": coated_emission = emission (1 − clearcoat · clearcoat_fresnel), the coat's
+// Fresnel 0.04 + (1 − 0.04)(1 − |V·Nc|)^5 as in its layering. The emission left undimmed, or
+// dimmed by the Fresnel of normal incidence alone, must be told apart.
+TEST(GltfPbr, KhrMaterialsClearcoatDimsTheEmission) {
+  for (double clearcoat : {0.0, 0.4, 1.0}) {
+    Params p;
+    p.base = {0.05, 0.05, 0.06};
+    p.metallic = 0;
+    p.roughness = 0.5;
+    p.clearcoat = clearcoat;
+    p.clearcoat_roughness = 0.2;
+    json j = material_json(p);
+    j["emission"] = {0.9, 0.35, 0.08};
+    const Reference ref(parse_material(j, "test:emissive_under_coat"));
+    EXPECT_EQ(bool(ref.program().emission_weight), clearcoat > 0) << "no weight where nothing lies over the emission";
+    double undimmed = 0, normal_only = 0;
+    for (double NoV : {1.0, 0.7, 0.3, 0.1, 1e-3}) {
+      const RGB got = ref.emitted(ShadingInputs{}, {0, 0, 0}, NoV);
+      const double fresnel = 0.04 + (1 - 0.04) * std::pow(1 - NoV, 5);
+      for (int c = 0; c < 3; ++c) {
+        const double e = j["emission"][c].get<double>();
+        const double want = e * (1 - clearcoat * fresnel);
+        EXPECT_NEAR(got[c], want, kRelTol * want) << "clearcoat " << clearcoat << ", n·v " << NoV;
+        undimmed = std::max(undimmed, std::fabs(got[c] - e) / e);
+        normal_only = std::max(normal_only, std::fabs(got[c] - e * (1 - clearcoat * 0.04)) / e);
+      }
+    }
+    if (clearcoat > 0) {
+      EXPECT_GT(undimmed, 1e-2) << "the emission left undimmed must fail";
+      EXPECT_GT(normal_only, 1e-2) << "the dimming by normal incidence alone must fail";
+    }
+  }
+}
+
 // What a near miss looks like: the BRDF facet had before (separable Smith G, a Lambert not
 // weighted by 1 − F) is told apart from the specification's at the test's tolerance.
 RGB separable_g(const Params& p, const Vec3& N, const Vec3& L, const Vec3& V) {

@@ -743,7 +743,7 @@ TEST(GltfTextures, NormalEmissiveAndOcclusionMapsAreImported) {
 // KHR_materials_clearcoat ("Clearcoat"): clearcoat = clearcoatFactor × clearcoatTexture's R and
 // clearcoat_roughness = clearcoatRoughnessFactor × clearcoatRoughnessTexture's G, linear; what the
 // lobe does not take (a coat normal map, the coat's unmapped normal over a normal-mapped base,
-// the emission's dimming under the coat) is named in notes.
+// the coat texture's texel in the emission's dimming, which takes the factor) is named in notes.
 TEST(GltfTextures, ClearcoatIsReadWithItsMapsAndItsLimitsSaid) {
   json g = textured_triangle(json::array({data_uri_image(small_png())}));
   json& gm = g["materials"][0];
@@ -774,7 +774,8 @@ TEST(GltfTextures, ClearcoatIsReadWithItsMapsAndItsLimitsSaid) {
   int said = 0;
   for (const auto& n : notes)
     said += (n.find("clearcoatNormalTexture: approximate") != std::string::npos) +
-            (n.find("not dimmed by the clear coat") != std::string::npos);
+            (n.find("clearcoatTexture: approximate: the emission under the coat is dimmed by clearcoatFactor") !=
+             std::string::npos);
   EXPECT_EQ(said, 2);
 }
 

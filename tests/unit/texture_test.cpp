@@ -272,7 +272,7 @@ TEST(Texture, AmbientAndEmissionMapsAreSampledForTheShading) {
   const double u = 0.3, v = 0.6;
   ref.sample_textures({{{u, v}, {u, v}}}, in);
   const RGB A = {0.1, 0.2, 0.3};
-  RGB e = ref.emitted(in, A);
+  RGB e = ref.emitted(in, A, 1.0);
   for (size_t c = 0; c < 3; ++c) {
     double a = texture_value(p.textured[0].value, Range::non_negative(), u, v)[c];
     double em = texture_value(p.textured[1].value, Range::non_negative(), u, v)[c];

@@ -429,7 +429,7 @@ vec4 facet_pixel()
     vec3 n = facet_normal_at(hit, p, best);
 {{sample}}    vec3 color = facet_shade(p, n, -dir, facet_tangent(n));
     // The renderer sets the ambient colour to 0 past the first lights; the emitted term stays.
-    if (facet_light_first > 0) color -= material_emission;
+    if (facet_light_first > 0) color -= facet_emitted(n, -dir);
     return vec4(color, 1.0);
 }
 
