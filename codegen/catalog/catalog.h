@@ -271,8 +271,11 @@ struct ModelDef {
   bool gltf_brdf = false;
   // Specular lobes with layers over the emission (KHR_materials_clearcoat, "Emission": "the
   // clearcoat layer is on top of emission in the layering stack"): m_e's weight as a function
-  // of n·v (one parameter "NoV", a Float), for these values. Null, or returning null: m_e as it is.
-  std::function<ir::FunctionPtr(const ModelSpec& lobe)> emission_weight;
+  // of n·v (its first parameter "NoV", a Float), for these values; its other parameters are the
+  // lobe's textured parameters it reads, named as the reflectance's inputs (`name`_param, `name`
+  // the lobe's name in the material: "specular"), each sampled at the shading point.
+  // Null, or returning null: m_e as it is.
+  std::function<ir::FunctionPtr(const ModelSpec& lobe, const std::string& name)> emission_weight;
   // Fresnel terms: the reflectance at normal incidence F(0) as a colour, where the
   // term states it. glTF's metallic workflow takes it as a conductor's base colour:
   // a specular-only material whose Fresnel term has it exports as a metal.

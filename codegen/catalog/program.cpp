@@ -126,7 +126,8 @@ MaterialProgram compile(const Material& m) {
                             v, Range::color()});
   }
   const bool emits = m.emission_texture || m.emission != RGB{0, 0, 0};
-  if (emits && m.specular && m.specular->def->emission_weight) p.emission_weight = m.specular->def->emission_weight(*m.specular);
+  if (emits && m.specular && m.specular->def->emission_weight)
+    p.emission_weight = m.specular->def->emission_weight(*m.specular, "specular");
   return p;
 }
 

@@ -219,18 +219,19 @@ ir::Expr gltf_clearcoat(LobeContext& c, ir::Expr core) {
 // clearcoat_fresnel), clearcoat_fresnel = 0.04 + 0.96 (1 − n·v)^5 the coat's Fresnel of n·v as the
 // coat lobe has it ("Layering"), n the coat's normal: the surface's own, since facet reads no
 // clearcoatNormalTexture (and "if clearcoatNormalTexture is not given, no normal mapping is applied
-// to the clear coat layer"). A clearcoat image's texel is not read here: its factor is (said by the
-// import). Null without a coat.
-ir::FunctionPtr gltf_emission_weight(const ModelSpec& s) {
-  const double clearcoat = s.at("clearcoat").number;
-  if (clearcoat == 0) return nullptr;
+// to the clear coat layer"). A textured clearcoat is the same input the reflectance reads
+// (`lobe`_clearcoat, its texel times its factor). Null without a coat.
+ir::FunctionPtr gltf_emission_weight(const ModelSpec& s, const std::string& lobe) {
+  const Value& coat = s.at("clearcoat");
+  if (!coat.texture && coat.number == 0) return nullptr;
   ir::FunctionBuilder fb("emission_weight",
                          "KHR_materials_clearcoat, \"Emission\": the emission under the coat, 1 − clearcoat "
                          "clearcoat_fresnel(n·v)");
   ir::Expr NoV = fb.param("NoV");
+  ir::Expr clearcoat = coat.texture ? fb.param(lobe + "_clearcoat") : ir::constant("emission_clearcoat", coat.number);
   ir::Expr w = fb.let("coat_w", ir::call(terms::fresnel_weight(), {NoV}));
   ir::Expr fc = fb.let("coat_fresnel", ir::call(terms::fresnel_schlick_f90(ir::Type::Float), {0.04, 1.0, w}));
-  return fb.returns(1.0 - ir::constant("emission_clearcoat", clearcoat) * fc);
+  return fb.returns(1.0 - clearcoat * fc);
 }
 
 const char* kMicrofacetPov = "function pigment";

@@ -223,7 +223,7 @@ Reference::Reference(const Material& m) : program_(compile(m)) {
   polynomial_ = interp_.prepare(terms::attenuation_polynomial());
   windowed_ = interp_.prepare(terms::attenuation_inverse_square_range());
   spot_ = interp_.prepare(terms::spot_cone());
-  if (program_.emission_weight) emission_weight_ = interp_.prepare(program_.emission_weight);
+  if (program_.emission_weight) emission_weight_ = prepare(program_.emission_weight);
 }
 
 double Reference::light_factor(const Light& light, const Vec3& l, double d) const {
@@ -298,9 +298,10 @@ RGB Reference::emitted(const ShadingInputs& in, const RGB& scene_ambient, double
     if (textured[i].name == kEmissionInput) emission = in.textured[i];
   }
   double weight = 1;
-  if (emission_weight_ >= 0) {
-    RGB args[] = {{NoV, NoV, NoV}};
-    weight = interp_.run(emission_weight_, args)[0];
+  if (program_.emission_weight) {  // NoV, then the textured parameters it reads, sampled into `in`
+    ShadingInputs at = in;
+    at.NoV = NoV;
+    weight = call(emission_weight_, at)[0];
   }
   RGB L;
   for (size_t c = 0; c < 3; ++c) L[c] = ambient[c] * scene_ambient[c] + emission[c] * weight;

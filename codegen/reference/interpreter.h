@@ -95,8 +95,8 @@ class Reference {
   RGB call(const Prepared& f, const ShadingInputs& in) const;
   MaterialProgram program_;
   Interpreter interp_;
-  Prepared reflectance_, diffuse_, specular_;
-  int inverse_square_ = -1, polynomial_ = -1, windowed_ = -1, spot_ = -1, emission_weight_ = -1;
+  Prepared reflectance_, diffuse_, specular_, emission_weight_;
+  int inverse_square_ = -1, polynomial_ = -1, windowed_ = -1, spot_ = -1;
 };
 
 }  // namespace facet

@@ -367,13 +367,8 @@ json pbr_material(const tinygltf::Material& g, const std::string& mpath, GltfIma
   } else if (emission_map) {
     notes.push_back(mpath + ".emissiveTexture: emissiveFactor is 0, so the map emits nothing (glTF multiplies them)");
   }
-  const json& coat = m["specular"].contains("clearcoat") ? m["specular"]["clearcoat"] : json(0.0);
   // KHR_materials_clearcoat, "Emission": gltf_pbr dims the emission by 1 − clearcoat · Fc(n·v)
-  // (ModelDef::emission_weight), with clearcoat its factor: the texel is not read there.
-  if (m.contains("emission") && coat.is_object())
-    notes.push_back(mpath + ".extensions.KHR_materials_clearcoat.clearcoatTexture: approximate: the emission under "
-                            "the coat is dimmed by clearcoatFactor (emission · (1 − clearcoat · Fc)), not by the "
-                            "texture's R");
+  // itself (ModelDef::emission_weight), clearcoat the texel times the factor where it is textured.
   if (normal_map) {  // tangent-space, linear, +Y up (glTF 2.0 §3.9.3); scale is facet's strength
     m["normal_map"] = normal_map->spec;
     m["normal_map"]["green"] = "up";

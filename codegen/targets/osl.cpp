@@ -245,9 +245,9 @@ std::string generate_osl(const Material& m, const GenerateOptions& o) {
   // m_e as it leaves the surface: under the layers over it, weighted by n·v of the surface's own normal.
   std::string emitted = kEmissionInput;
   if (p.emission_weight) {
-    emitted += " * " + p.emission_weight->name + "(dot(Nn, V)";
-    for (const auto& c : pr.free_constants(p.emission_weight)) emitted += ", " + c->name;
-    emitted += ")";
+    std::vector<std::string> constants;
+    for (const auto& c : pr.free_constants(p.emission_weight)) constants.push_back(c->name);
+    emitted += " * " + emission_weight_call(p, "dot(Nn, V)", constants);
   }
   // m_a and m_e: parameters, or locals sampled from their images (kAmbientInput, kEmissionInput).
   if (!m.ambient_texture) params.add("color", kAmbientInput, color_value(m.ambient), "m_a");

@@ -245,8 +245,9 @@ ir::FunctionPtr PovScene::light_function(PovShading& sh, size_t i, const ir::Fun
 
 // {P}Facet_Emission(x, y, z, n, S0, T0, S1, T1[, R0, G0, B0, A0]): m_a ⊗ A + m_e, either from
 // its image or vertex colour (the sampling function of its textured input) or its colour, m_e
-// times emission_weight(n·v) where layers lie over it (n the surface's own normal, v towards the
-// camera: its position, or an orthographic camera's −forward); called like a light function.
+// times emission_weight(n·v[, its textured parameters]) where layers lie over it (n the surface's
+// own normal, v towards the camera: its position, or an orthographic camera's −forward); called
+// like a light function.
 ir::FunctionPtr PovScene::emission_function(PovShading& sh) {
   ir::FunctionBuilder fb("Facet_Emission", "");
   const Triple P = params(fb, "x", "y", "z");
@@ -267,7 +268,10 @@ ir::FunctionPtr PovScene::emission_function(PovShading& sh) {
       V = lets(fb, "Vx", "Vy", "Vz", V);
       V = V / fb.let("Vl", length3(V));
     }
-    emitted = emitted * ir::call(sh.program.emission_weight, {dot3(N, V)});
+    std::vector<Expr> args = {dot3(N, V)};  // then the textured parameters it reads, sampled here
+    for (size_t i = 1; i < sh.program.emission_weight->params.size(); ++i)
+      args.push_back(sample_call(sh.samples.at(sh.program.emission_weight->params[i].name), uv));
+    emitted = emitted * ir::call(sh.program.emission_weight, args);
   }
   ir::FunctionPtr f = fb.returns(ambient + emitted);
   sh.printer.add_own(f);

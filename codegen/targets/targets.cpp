@@ -112,8 +112,15 @@ std::string generate(const Material& m, const GenerateOptions& o) {
   return {};
 }
 
+std::string emission_weight_call(const MaterialProgram& p, const std::string& NoV, const std::vector<std::string>& after) {
+  std::string call = p.emission_weight->name + "(" + NoV;
+  for (size_t i = 1; i < p.emission_weight->params.size(); ++i) call += ", " + p.emission_weight->params[i].name;
+  for (const auto& a : after) call += ", " + a;
+  return call + ")";
+}
+
 void emitted_values(const MaterialProgram& p, std::map<std::string, std::string>& values) {
-  values["emitted"] = p.emission_weight ? std::string(kEmissionInput) + " * " + p.emission_weight->name + "(dot(n, v))"
+  values["emitted"] = p.emission_weight ? std::string(kEmissionInput) + " * " + emission_weight_call(p, "dot(n, v)")
                                         : std::string(kEmissionInput);
   values["emitted_doc"] = p.emission_weight ? "m_e under the layers over it, weighted by " + p.emission_weight->name +
                                                   "(n·v) (" + p.emission_weight->citation + ")"

@@ -3,6 +3,7 @@
 
 #include <map>
 #include <string>
+#include <vector>
 
 #include "catalog/material.h"
 #include "catalog/program.h"
@@ -22,6 +23,11 @@ std::string describe_lobe(const ModelSpec& s);
 // that does not sample images yet.
 void require_untextured(const Material& m, const std::string& target);
 
+// The call of MaterialProgram::emission_weight (it must have one) at n·v written `NoV`: its
+// textured parameters are the globals or locals of the same names the shading sampled; `after`
+// follow them (OSL's free constants).
+std::string emission_weight_call(const MaterialProgram& p, const std::string& NoV,
+                                 const std::vector<std::string>& after = {});
 // The lights templates' facet_emitted(n, v): "emitted", its return expression (m_e, times
 // emission_weight(n·v) where layers lie over the emission: MaterialProgram::emission_weight), and
 // "emitted_doc", what it is. The same text in GLSL, HLSL and WGSL.

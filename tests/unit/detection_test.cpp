@@ -715,42 +715,52 @@ TEST(SweepDetection, PovFaultAtTheHorizonIsCounted) {
   EXPECT_EQ(c.nan, horizon_cells(kSweepGrid));  // POV-Ray counts every bad channel as NaN
 }
 
+// A fault injected into generated code, `from` → `to` (once, or everywhere: see check_wrongs).
+struct Wrong {
+  const char* what;
+  std::string from, to;
+};
+
+// Example `example` of examples/`folder` on `scene` through `renderer`: the generated code
+// `good` passes and each of `wrongs`, made by `make` from it, fails.
+void check_wrongs(const std::string& example, const std::string& folder, const std::string& scene,
+                  const std::string& renderer, const std::string& good, const std::vector<Wrong>& wrongs,
+                  const std::function<std::string(const std::string&, const Wrong&)>& make) {
+  Fixture f = fixture(example, renderer, folder, scene);
+  std::vector<RenderJob> jobs = {f.job};
+  jobs[0].code_override = good;
+  for (const auto& w : wrongs) {
+    jobs.push_back(f.job);
+    jobs.back().code_override = make(good, w);
+  }
+  // One batch (one Blender process) where jobs have their own names; POV-Ray's code reads
+  // images named after its job, so there each job is rendered alone under the same name.
+  std::vector<RenderOutcome> r;
+  if (renderer == "pov") {
+    for (const auto& j : jobs) r.push_back(render_one(renderer, j));
+  } else {
+    for (size_t k = 1; k < jobs.size(); ++k) jobs[k].material->name = fmt::format("{}_wrong_{}", example, k);
+    r = make_renderer(renderer)->render(jobs);
+  }
+  ASSERT_EQ(r.size(), jobs.size());
+  for (size_t k = 0; k < r.size(); ++k) {
+    ComparisonRow row = judged(f, r[k]);
+    const char* what = k == 0 ? "right" : wrongs[k - 1].what;
+    std::cout << renderer << ", " << what << ": " << row.metrics.over << " pixels over, worst "
+              << row.metrics.max_excess << "\n";
+    if (k == 0) EXPECT_TRUE(row.pass) << renderer << ": " << row.metrics.max_excess;
+    else EXPECT_FALSE(row.pass) << renderer << ", " << what << ": " << row.metrics.max_excess;
+  }
+}
+
 // Ambient and emission maps (docs/textures.md): each image dropped — its factor taken for
 // the colour — fails on every renderer, while the generated code passes. One material,
 // examples/textured/textured_emission.json, on the shadows scene.
 TEST(Detection, EmissionAndAmbientMapsFailWhenDropped) {
   const std::string example = "textured_emission";
-  struct Wrong {
-    const char* what;
-    std::string from, to;
-  };
   auto check = [&](const std::string& renderer, const std::string& good, const std::vector<Wrong>& wrongs,
                    const std::function<std::string(const std::string&, const Wrong&)>& make) {
-    Fixture f = fixture(example, renderer, "textured", "shadows");
-    std::vector<RenderJob> jobs = {f.job};
-    jobs[0].code_override = good;
-    for (const auto& w : wrongs) {
-      jobs.push_back(f.job);
-      jobs.back().code_override = make(good, w);
-    }
-    // One batch (one Blender process) where jobs have their own names; POV-Ray's code reads
-    // images named after its job, so there each job is rendered alone under the same name.
-    std::vector<RenderOutcome> r;
-    if (renderer == "pov") {
-      for (const auto& j : jobs) r.push_back(render_one(renderer, j));
-    } else {
-      for (size_t k = 1; k < jobs.size(); ++k) jobs[k].material->name = fmt::format("{}_wrong_{}", example, k);
-      r = make_renderer(renderer)->render(jobs);
-    }
-    ASSERT_EQ(r.size(), jobs.size());
-    for (size_t k = 0; k < r.size(); ++k) {
-      ComparisonRow row = judged(f, r[k]);
-      const char* what = k == 0 ? "right" : wrongs[k - 1].what;
-      std::cout << renderer << ", " << what << ": " << row.metrics.over << " pixels over, worst "
-                << row.metrics.max_excess << "\n";
-      if (k == 0) EXPECT_TRUE(row.pass) << renderer << ": " << row.metrics.max_excess;
-      else EXPECT_FALSE(row.pass) << renderer << ", " << what << ": " << row.metrics.max_excess;
-    }
+    check_wrongs(example, "textured", "shadows", renderer, good, wrongs, make);
   };
   auto once = [](const std::string& code, const Wrong& w) { return inject(code, w.from, w.to); };
   auto all = [](const std::string& code, const Wrong& w) { return inject_all(code, w.from, w.to); };
@@ -773,6 +783,36 @@ TEST(Detection, EmissionAndAmbientMapsFailWhenDropped) {
         {{"emission map dropped", "+ Facet_Sample_material_emission_R(S0, T0)", "+ 0.6"},
          {"ambient map dropped", "Facet_Sample_material_ambient(S0, T0)*", "4*"}},
         all);
+}
+
+// The emission under the clear coat (KHR_materials_clearcoat, "Emission": emission ·
+// (1 − clearcoat · Fc(n·v))): left undimmed, or dimmed by the textured coat's factor alone (its
+// texel not read), it fails on the GLSL, OSL and POV-Ray routes, while the generated code passes.
+// examples/textured/textured_emissive_coat.json (a checker emission under a coat from an image,
+// over a normal map) on the single scene.
+TEST(Detection, EmissionUnderTheCoatFailsUndimmedOrWithoutItsTexel) {
+  const std::string example = "textured_emissive_coat";
+  auto once = [](const std::string& code, const Wrong& w) { return inject(code, w.from, w.to); };
+  auto all = [](const std::string& code, const Wrong& w) { return inject_all(code, w.from, w.to); };
+  Fixture f = fixture(example, "glsl", "textured", "single");
+  check_wrongs(example, "textured", "single", "glsl", GlRenderer::fragment_source(f.material),
+               {{"undimmed", "material_emission * emission_weight(", "material_emission + 0.0 * emission_weight("},
+                {"the coat's factor alone", "emission_weight(dot(n, v), specular_clearcoat)",
+                 "emission_weight(dot(n, v), 0.9)"}},
+               once);
+  GenerateOptions o;
+  o.target = Target::Osl;
+  o.scene = f.scene;
+  check_wrongs(example, "textured", "single", "osl", generate(f.material, o),
+               {{"undimmed", "material_emission * emission_weight(", "material_emission + 0 * emission_weight("},
+                {"the coat's factor alone", "emission_weight(dot(Nn, V), specular_clearcoat", "emission_weight(dot(Nn, V), 0.9"}},
+               once);
+  Fixture p = fixture(example, "pov", "textured", "single");
+  PovOutput pov = generate_pov_files(p.scene, &p.material, example, PovRoute::Auto, job_name(p.job));
+  check_wrongs(example, "textured", "single", "pov", pov.code,
+               {{"undimmed", "*Emission_weight(", " + 0*Emission_weight("},
+                {"the coat's factor alone", "{ Emission_weight__1(Specular_clearcoat,", "{ Emission_weight__1(0.9,"}},
+               all);  // the emission function calls the weight once for each channel; it is declared once
 }
 
 // Normal maps (docs/textures.md, "Normal maps"): the example's map with its green channel

@@ -1,9 +1,11 @@
 // docs/textures.md: the sampling rule, written out once more by hand on small images
 // whose texels are known, and every way a texture can be given wrong.
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <utility>
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
@@ -284,6 +286,37 @@ TEST(Texture, AmbientAndEmissionMapsAreSampledForTheShading) {
   EXPECT_TRUE(fs::equivalent(back.emission_texture->path, m.emission_texture->path));
   EXPECT_EQ(back.emission, m.emission);
   EXPECT_EQ(back.ambient, m.ambient);
+}
+
+// KHR_materials_clearcoat, "Emission": under a coat from an image, m_e(u, v) · (1 − clearcoat(u, v) ·
+// Fc(n·v)), clearcoat(u, v) the texel times the factor: the input the reflectance reads, sampled once.
+TEST(Texture, EmissionUnderATexturedCoatTakesTheCoatsTexel) {
+  Material m = load_material((kSource / "examples/textured/textured_emissive_coat.json").string());
+  MaterialProgram p = compile(m);
+  ASSERT_TRUE(p.emission_weight);
+  ASSERT_EQ(p.emission_weight->params.size(), 2u);
+  EXPECT_EQ(p.emission_weight->params[1].name, "specular_clearcoat");
+  const auto coat = std::find_if(p.textured.begin(), p.textured.end(),
+                                 [](const TexturedInput& t) { return t.name == "specular_clearcoat"; });
+  const auto emission = std::find_if(p.textured.begin(), p.textured.end(),
+                                     [](const TexturedInput& t) { return t.name == kEmissionInput; });
+  ASSERT_TRUE(coat != p.textured.end() && emission != p.textured.end());
+  Reference ref(m);
+  double lo = 1, hi = 0;  // the coat's values must differ across the samples, or the test proves nothing
+  for (const auto& [u, v] : {std::pair{0.1, 0.2}, {0.4, 0.7}, {0.8, 0.35}, {0.55, 0.9}}) {
+    ShadingInputs in;
+    ref.sample_textures({{{u, v}, {u, v}}}, in);
+    const double c = texture_value(coat->value, coat->range, u, v)[0];
+    const RGB e = texture_value(emission->value, Range::non_negative(), u, v);
+    lo = std::min(lo, c);
+    hi = std::max(hi, c);
+    for (double NoV : {1.0, 0.4, 0.05}) {
+      const RGB got = ref.emitted(in, {0, 0, 0}, NoV);
+      const double fc = 0.04 + 0.96 * std::pow(1 - NoV, 5);
+      for (size_t k = 0; k < 3; ++k) EXPECT_NEAR(got[k], e[k] * (1 - c * fc), 1e-15) << u << ", " << v << ", n·v " << NoV;
+    }
+  }
+  EXPECT_GT(hi - lo, 0.05);
 }
 
 TEST(NormalMap, BadNormalMapsNameTheFileAndKey) {
