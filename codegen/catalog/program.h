@@ -25,9 +25,10 @@ struct MaterialProgram {
   // lobe that reads it) whose value the target samples at the shading point.
   // m_a and m_e, where they come from images, come last (kAmbientInput, kEmissionInput).
   std::vector<TexturedInput> textured;
-  // m_e's weight under the layers over it, emission_weight(NoV) with n·v of the surface's own
-  // (unmapped) normal, or null where nothing lies over the emission (ModelDef::emission_weight;
-  // set only where the material emits). Every target multiplies m_e by it.
+  // m_e's weight under the layers over it, emission_weight(NoV[, the textured inputs it reads,
+  // by name]) with n·v of the surface's own (unmapped) normal, or null where nothing lies over
+  // the emission (ModelDef::emission_weight; set only where the material emits). Every target
+  // multiplies m_e by it.
   ir::FunctionPtr emission_weight;
 
   bool uses(const std::string& input) const;
