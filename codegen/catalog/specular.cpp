@@ -199,13 +199,20 @@ ir::Expr gltf_sheen(LobeContext& c, ir::Expr core) {
   return sheen_color * brdf + core * scaling;
 }
 
+// Whether gltf_pbr has a coat: a clearcoat from an image, or a number other than 0 (every
+// material without the extension has 0). Both the coat's layer and the emission under it ask.
+bool has_clearcoat(const ModelSpec& s) {
+  const Value& coat = s.at("clearcoat");
+  return coat.texture || coat.number != 0;
+}
+
 // KHR_materials_clearcoat, "Clearcoat" and "Implementation": the coat is specular_brdf of
 // α = clearcoatRoughness² over the whole material, mixed in by clearcoat · fresnel_coat, whose
 // Schlick Fresnel (f0 = 0.04, ior 1.5) reads |n·v|, not v·h: coated = material (1 − c Fc) +
 // c Fc clearcoat_brdf. The coat's normal is the shading normal. A number clearcoat of 0 (every
 // material without the extension) leaves the core as it is, in the code too.
 ir::Expr gltf_clearcoat(LobeContext& c, ir::Expr core) {
-  if (!c.textured(c.spec(), "clearcoat") && c.spec().at("clearcoat").number == 0) return core;
+  if (!has_clearcoat(c.spec())) return core;
   // Its values are named coat_…: "clearcoat_alpha" would meet OSL's name for the alpha of the
   // clearcoat parameter's texel (<lobe>_clearcoat_alpha).
   ir::Expr coat = gltf_specular_layer(c, "clearcoat_roughness", "coat_");
@@ -222,8 +229,8 @@ ir::Expr gltf_clearcoat(LobeContext& c, ir::Expr core) {
 // to the clear coat layer"). A textured clearcoat is the same input the reflectance reads
 // (`lobe`_clearcoat, its texel times its factor). Null without a coat.
 ir::FunctionPtr gltf_emission_weight(const ModelSpec& s, const std::string& lobe) {
+  if (!has_clearcoat(s)) return nullptr;
   const Value& coat = s.at("clearcoat");
-  if (!coat.texture && coat.number == 0) return nullptr;
   ir::FunctionBuilder fb("emission_weight",
                          "KHR_materials_clearcoat, \"Emission\": the emission under the coat, 1 − clearcoat "
                          "clearcoat_fresnel(n·v)");

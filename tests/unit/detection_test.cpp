@@ -721,6 +721,10 @@ struct Wrong {
   std::string from, to;
 };
 
+// `w` made in `code` at its first place (once) or at every place (all).
+std::string once(const std::string& code, const Wrong& w) { return inject(code, w.from, w.to); }
+std::string all(const std::string& code, const Wrong& w) { return inject_all(code, w.from, w.to); }
+
 // Example `example` of examples/`folder` on `scene` through `renderer`: the generated code
 // `good` passes and each of `wrongs`, made by `make` from it, fails.
 void check_wrongs(const std::string& example, const std::string& folder, const std::string& scene,
@@ -762,8 +766,6 @@ TEST(Detection, EmissionAndAmbientMapsFailWhenDropped) {
                    const std::function<std::string(const std::string&, const Wrong&)>& make) {
     check_wrongs(example, "textured", "shadows", renderer, good, wrongs, make);
   };
-  auto once = [](const std::string& code, const Wrong& w) { return inject(code, w.from, w.to); };
-  auto all = [](const std::string& code, const Wrong& w) { return inject_all(code, w.from, w.to); };
   Fixture f = fixture(example, "glsl", "textured", "shadows");
   check("glsl", GlRenderer::fragment_source(f.material),
         {{"emission map dropped", "    material_emission = ", "    material_emission = vec3(0.6, 0.4, 0.3) + 0.0 * "},
@@ -792,8 +794,6 @@ TEST(Detection, EmissionAndAmbientMapsFailWhenDropped) {
 // over a normal map) on the single scene.
 TEST(Detection, EmissionUnderTheCoatFailsUndimmedOrWithoutItsTexel) {
   const std::string example = "textured_emissive_coat";
-  auto once = [](const std::string& code, const Wrong& w) { return inject(code, w.from, w.to); };
-  auto all = [](const std::string& code, const Wrong& w) { return inject_all(code, w.from, w.to); };
   Fixture f = fixture(example, "glsl", "textured", "single");
   check_wrongs(example, "textured", "single", "glsl", GlRenderer::fragment_source(f.material),
                {{"undimmed", "material_emission * emission_weight(", "material_emission + 0.0 * emission_weight("},
