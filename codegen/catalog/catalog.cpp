@@ -141,20 +141,23 @@ const char* input_name(Input i) {
     case Input::VoH: return "VoH";
     case Input::HoT: return "HoT";
     case Input::HoB: return "HoB";
+    case Input::CoL: return "CoL";
+    case Input::CoV: return "CoV";
+    case Input::CoH: return "CoH";
   }
   return "?";
 }
 
 const std::vector<std::string>& input_order() {
   static const std::vector<std::string> order = {"NoL", "NoV", "LoV", "LoT", "VoT", "LoB", "VoB",
-                                                  "NoH", "VoH", "HoT", "HoB"};
+                                                  "NoH", "VoH", "HoT", "HoB", "CoL", "CoV", "CoH"};
   return order;
 }
 
 // ---------------------------------------------------------------- LobeContext
 
-LobeContext::LobeContext(const ModelSpec& spec, std::string lobe, ir::FunctionBuilder& fb)
-    : spec_(spec), lobe_(std::move(lobe)), fb_(fb) {}
+LobeContext::LobeContext(const ModelSpec& spec, std::string lobe, ir::FunctionBuilder& fb, bool coat_normal)
+    : spec_(spec), lobe_(std::move(lobe)), fb_(fb), coat_normal_(coat_normal) {}
 
 ir::Expr LobeContext::input(Input i) { return fb_.param(input_name(i)); }
 

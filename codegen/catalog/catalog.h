@@ -276,6 +276,9 @@ struct ModelDef {
   // the lobe's name in the material: "specular"), each sampled at the shading point.
   // Null, or returning null: m_e as it is.
   std::function<ir::FunctionPtr(const ModelSpec& lobe, const std::string& name)> emission_weight;
+  // Specular lobes: whether these values have a layer with a normal of its own (a clear coat),
+  // which a material may map apart from the base (Material::coat_normal_map). Null: none.
+  std::function<bool(const ModelSpec& lobe)> coated;
   // Fresnel terms: the reflectance at normal incidence F(0) as a colour, where the
   // term states it. glTF's metallic workflow takes it as a conductor's base colour:
   // a specular-only material whose Fresnel term has it exports as a metal.
@@ -299,7 +302,11 @@ struct ModelSpec {
 // SPIR-V is two instructions where deriving n·h, v·h, h·t and h·b from l·v and the
 // other dots took ten; the lobes read the half-vector inputs through LobeContext,
 // which adds the clamps rounding needs.
-enum class Input { NoL, NoV, LoV, LoT, VoT, LoB, VoB, NoH, VoH, HoT, HoB };
+// c is the clear coat's own normal (KHR_materials_clearcoat, "Clearcoat": "`normal` … affects
+// the top layer, but not the base"): the surface's own, unmapped normal, or the coat's normal
+// map's. A lobe reads c·l, c·v and c·h only where c can differ from n (LobeContext::coat_normal),
+// and a target computes them only for a material whose lobe reads them.
+enum class Input { NoL, NoV, LoV, LoT, VoT, LoB, VoB, NoH, VoH, HoT, HoB, CoL, CoV, CoH };
 const char* input_name(Input i);
 const std::vector<std::string>& input_order();
 
@@ -319,7 +326,9 @@ struct TexturedInput {
 // lobe function being built.
 class LobeContext {
  public:
-  LobeContext(const ModelSpec& spec, std::string lobe, ir::FunctionBuilder& fb);
+  // `coat_normal`: the material gives its layers' own normal c apart from the lobes' n (a
+  // normal map under the coat, or the coat's own normal map: Material::coat_normal_differs).
+  LobeContext(const ModelSpec& spec, std::string lobe, ir::FunctionBuilder& fb, bool coat_normal = false);
 
   ir::Expr input(Input i);
   ir::Expr NoL() { return input(Input::NoL); }
@@ -351,11 +360,15 @@ class LobeContext {
   const std::string& lobe() const { return lobe_; }
   // The material's values, for constants derived from them in closed form.
   const ModelSpec& spec() const { return spec_; }
+  // Whether a layer with its own normal (a clear coat) reads c·l, c·v, c·h (Input::CoL …)
+  // rather than n's: c differs from n.
+  bool coat_normal() const { return coat_normal_; }
 
  private:
   const ModelSpec& spec_;
   std::string lobe_;
   ir::FunctionBuilder& fb_;
+  bool coat_normal_ = false;
   std::vector<TexturedInput> textured_;
 };
 

@@ -28,10 +28,10 @@ std::string describe(const ModelSpec& s) {
 namespace {
 
 // rho_<lobe>(inputs…): the model's formula, then the toon modifier.
-ir::FunctionPtr build_lobe(const ModelSpec& spec, const std::string& lobe, const std::string& material,
+ir::FunctionPtr build_lobe(const ModelSpec& spec, const std::string& lobe, const Material& material,
                            std::vector<TexturedInput>& textured) {
-  ir::FunctionBuilder fb("rho_" + lobe, fmt::format("The {} lobe of \"{}\": {}", lobe, material, describe(spec)));
-  LobeContext ctx(spec, lobe, fb);
+  ir::FunctionBuilder fb("rho_" + lobe, fmt::format("The {} lobe of \"{}\": {}", lobe, material.name, describe(spec)));
+  LobeContext ctx(spec, lobe, fb, material.coat_normal_differs());
   ir::Expr rho = spec.def->build(ctx);
   auto toon = spec.values.find("toon");
   if (toon != spec.values.end() && toon->second.model) {
@@ -83,8 +83,8 @@ std::vector<ir::NodePtr> MaterialProgram::constants() const {
 MaterialProgram compile(const Material& m) {
   MaterialProgram p;
   p.material = m;
-  if (m.diffuse) p.diffuse = build_lobe(*m.diffuse, "diffuse", m.name, p.textured);
-  if (m.specular) p.specular = build_lobe(*m.specular, "specular", m.name, p.textured);
+  if (m.diffuse) p.diffuse = build_lobe(*m.diffuse, "diffuse", m, p.textured);
+  if (m.specular) p.specular = build_lobe(*m.specular, "specular", m, p.textured);
 
   ir::FunctionBuilder fb("reflectance",
                          "MODELS.md: k_d ⊗ ρ_d(l, v) + k_s ⊗ ρ_s(l, v) for a light of unit colour",

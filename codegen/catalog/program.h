@@ -44,7 +44,13 @@ struct MaterialProgram {
     return uses("LoT") || uses("VoT") || uses("LoB") || uses("VoB") || uses("HoT") || uses("HoB");
   }
   bool uses_bitangent() const { return uses("LoB") || uses("VoB") || uses("HoB"); }
-  bool uses_half_vector() const { return uses("NoH") || uses("VoH") || uses("HoT") || uses("HoB"); }
+  bool uses_half_vector() const {
+    return uses("NoH") || uses("VoH") || uses("HoT") || uses("HoB") || uses("CoH");
+  }
+  // Whether the reflectance reads the clear coat's own normal c (catalog.h, Input::CoL …):
+  // every target's facet_reflect then takes c after t, the surface's own normal where the
+  // lobes read a normal map's (Material::coat_normal_differs).
+  bool uses_coat_normal() const { return uses("CoL") || uses("CoV") || uses("CoH"); }
   // Every function to print, callees first (the light functions included).
   std::vector<ir::FunctionPtr> functions() const;
   std::vector<ir::NodePtr> constants() const;

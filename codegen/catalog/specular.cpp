@@ -78,20 +78,29 @@ ir::Expr gltf_anisotropic_layer(LobeContext& c, const ir::Expr& alpha, double st
   return c.let("specular_brdf", kPi * D * V * c.NoL());
 }
 
+// The cosines a GGX layer reads of its normal: n·l, n·v and min(n·h, 1) (the lobes' n), or
+// c·l, c·v and min(c·h, 1) (the coat's own normal c: Input::CoL …).
+struct LayerCosines {
+  ir::Expr l, v, h;
+};
+LayerCosines lobe_cosines(LobeContext& c) { return {c.NoL(), c.NoV(), c.NoH()}; }
+
 // The GGX layer of glTF's specular_brdf(α) as ρ: π D V (n·l), Appendix B's D and height-correlated
 // V, α = roughness² floored (a constant where `roughness` is a number, else computed where it
-// shades). `prefix` names its values ("" the core's, "coat_" the clear coat's). The core's is
-// anisotropic where the material's anisotropy_strength is above 0 (KHR_materials_anisotropy).
-ir::Expr gltf_specular_layer(LobeContext& c, const std::string& roughness, const std::string& prefix) {
+// shades), of the cosines `at`. `prefix` names its values ("" the core's, "coat_" the clear
+// coat's). The core's is anisotropic where the material's anisotropy_strength is above 0
+// (KHR_materials_anisotropy).
+ir::Expr gltf_specular_layer(LobeContext& c, const std::string& roughness, const std::string& prefix,
+                             const LayerCosines& at) {
   const double r = c.spec().at(roughness).number;
   ir::Expr alpha = c.textured(c.spec(), roughness)
                        ? c.let(prefix + "alpha", ir::max(ir::sq(c.number(roughness)), kRoughnessMin))
                        : ir::constant(c.lobe() + "_" + prefix + "alpha", std::max(r * r, kRoughnessMin));
   const double strength = prefix.empty() ? c.spec().at("anisotropy_strength").number : 0.0;
   if (strength > 0) return gltf_anisotropic_layer(c, alpha, strength);
-  ir::Expr D = c.let(prefix + "D", ir::call(terms::distribution_ggx(), {c.NoH(), alpha}));
-  ir::Expr V = c.let(prefix + "V", ir::call(terms::visibility_smith_ggx_correlated(), {c.NoL(), c.NoV(), alpha}));
-  return c.let(prefix + "specular_brdf", kPi * D * V * c.NoL());
+  ir::Expr D = c.let(prefix + "D", ir::call(terms::distribution_ggx(), {at.h, alpha}));
+  ir::Expr V = c.let(prefix + "V", ir::call(terms::visibility_smith_ggx_correlated(), {at.l, at.v, alpha}));
+  return c.let(prefix + "specular_brdf", kPi * D * V * at.l);
 }
 
 // glTF 2.0 Appendix B, "Metal BRDF and Dielectric BRDF", with KHR_materials_specular's
@@ -100,7 +109,7 @@ ir::Expr gltf_core(LobeContext& c) {
   // A grey base colour (and specular_color) keeps the lobe one number until k_s ⊗ ρ.
   ir::Expr base = c.parameter(c.spec(), "base_color", c.lobe() + "_base_color", true);
   ir::Expr specular = c.number("specular");
-  ir::Expr layer = gltf_specular_layer(c, "roughness", "");  // ρ of specular_brdf(α)
+  ir::Expr layer = gltf_specular_layer(c, "roughness", "", lobe_cosines(c));  // ρ of specular_brdf(α)
   // fresnel_w takes |v·h| itself (Appendix B): v·h unclamped.
   ir::Expr w = c.let("w", ir::call(terms::fresnel_weight(), {c.input(Input::VoH)}));
   // metallic 0 or 1 as a number (most materials): the other side of the mix is weighted 0
@@ -208,15 +217,24 @@ bool has_clearcoat(const ModelSpec& s) {
 
 // KHR_materials_clearcoat, "Clearcoat" and "Implementation": the coat is specular_brdf of
 // α = clearcoatRoughness² over the whole material, mixed in by clearcoat · fresnel_coat, whose
-// Schlick Fresnel (f0 = 0.04, ior 1.5) reads |n·v|, not v·h: coated = material (1 − c Fc) +
-// c Fc clearcoat_brdf. The coat's normal is the shading normal. A number clearcoat of 0 (every
-// material without the extension) leaves the core as it is, in the code too.
+// Schlick Fresnel (f0 = 0.04, ior 1.5) reads |c·v|, not v·h: coated = material (1 − c Fc) +
+// c Fc clearcoat_brdf, all of it on the coat's normal c ("`normal` is a float3 vector that affects
+// the top layer, but not the base"). Where c is n (no normal map under the coat) the lobe reads
+// n's cosines; else c's (Input::CoL, CoV, CoH), and the coat's ρ takes c·l as its cosine, as the
+// Khronos glTF Sample Viewer's getPunctualRadianceClearCoat does (punctual.glsl: NdotL of the
+// clearcoat normal times BRDF_specularGGX), 0 where c·l or c·v is not above 0 (its clampedDot).
+// A number clearcoat of 0 (every material without the extension) leaves the core as it is, in
+// the code too.
 ir::Expr gltf_clearcoat(LobeContext& c, ir::Expr core) {
   if (!has_clearcoat(c.spec())) return core;
+  LayerCosines at = lobe_cosines(c);
+  if (c.coat_normal())
+    at = {c.input(Input::CoL), c.input(Input::CoV), c.let("CoH_1", ir::min(c.input(Input::CoH), 1.0))};
   // Its values are named coat_…: "clearcoat_alpha" would meet OSL's name for the alpha of the
   // clearcoat parameter's texel (<lobe>_clearcoat_alpha).
-  ir::Expr coat = gltf_specular_layer(c, "clearcoat_roughness", "coat_");
-  ir::Expr w = c.let("coat_w", ir::call(terms::fresnel_weight(), {c.NoV()}));
+  ir::Expr coat = gltf_specular_layer(c, "clearcoat_roughness", "coat_", at);
+  if (c.coat_normal()) coat = c.let("coat_lit", ir::select(ir::min(at.l, at.v) <= 0.0, ir::Expr(0.0), coat));
+  ir::Expr w = c.let("coat_w", ir::call(terms::fresnel_weight(), {at.v}));
   ir::Expr fc = c.let("coat_fresnel", ir::call(terms::fresnel_schlick_f90(ir::Type::Float), {0.04, 1.0, w}));
   if (core.type() != ir::Type::Float) coat = coat * ir::color(1, 1, 1);
   return ir::call(terms::mix_by(core.type()), {core, coat, c.number("clearcoat") * fc});
@@ -524,6 +542,7 @@ void add_specular(std::vector<ModelDef>& all) {
                      "Specular Reflection\"), and single-scattering GGX loses energy, so no bound is claimed";
     m.gltf_brdf = true;
     m.emission_weight = gltf_emission_weight;
+    m.coated = has_clearcoat;
     m.ggx_alpha = [](const ModelSpec& s) {
       const double r = s.at("roughness").number;
       return std::max(r * r, kRoughnessMin);

@@ -171,12 +171,12 @@ int ShadingInputs::index(const std::string& name) {
 }
 
 namespace {
-// Every shading input (catalog.h: Input, whose last is HoB), the size of an argument list.
-constexpr size_t kInputCount = size_t(Input::HoB) + 1;
+// Every shading input (catalog.h: Input, whose last is CoH), the size of an argument list.
+constexpr size_t kInputCount = size_t(Input::CoH) + 1;
 }
 
 double ShadingInputs::get(int i) const {
-  const double v[] = {NoL, NoV, LoV, LoT, VoT, LoB, VoB, NoH, VoH, HoT, HoB};
+  const double v[] = {NoL, NoV, LoV, LoT, VoT, LoB, VoB, NoH, VoH, HoT, HoB, CoL, CoV, CoH};
   static_assert(sizeof v / sizeof v[0] == kInputCount, "one value per Input");
   return v[i];
 }
@@ -184,6 +184,10 @@ double ShadingInputs::get(int i) const {
 double ShadingInputs::get(const std::string& name) const { return get(index(name)); }
 
 ShadingInputs shading_inputs(const Vec3& n, const Vec3& l, const Vec3& v, const Vec3& t) {
+  return shading_inputs(n, l, v, t, n);
+}
+
+ShadingInputs shading_inputs(const Vec3& n, const Vec3& l, const Vec3& v, const Vec3& t, const Vec3& c) {
   Vec3 b = cross(n, t);
   ShadingInputs s;
   s.NoL = dot(n, l);
@@ -199,6 +203,9 @@ ShadingInputs shading_inputs(const Vec3& n, const Vec3& l, const Vec3& v, const 
   s.VoH = dot(v, h);
   s.HoT = dot(h, t);
   s.HoB = dot(h, b);
+  s.CoL = dot(c, l);
+  s.CoV = dot(c, v);
+  s.CoH = dot(c, h);
   return s;
 }
 

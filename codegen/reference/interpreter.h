@@ -44,12 +44,15 @@ inline constexpr size_t kMaxTexturedInputs = 16;
 struct ShadingInputs {
   double NoL = 0, NoV = 0, LoV = 0, LoT = 0, VoT = 0, LoB = 0, VoB = 0;
   double NoH = 0, VoH = 0, HoT = 0, HoB = 0;  // h = (l + v) / max(|l + v|, ε)
+  double CoL = 0, CoV = 0, CoH = 0;           // c the coat's own normal (catalog.h, Input)
   std::array<RGB, kMaxTexturedInputs> textured{};
   double get(const std::string& name) const;
   double get(int index) const;           // in input_order()
   static int index(const std::string& name);
 };
 ShadingInputs shading_inputs(const Vec3& n, const Vec3& l, const Vec3& v, const Vec3& t);
+// With the coat's own normal c (Material::coat_normal_differs); without, c = n.
+ShadingInputs shading_inputs(const Vec3& n, const Vec3& l, const Vec3& v, const Vec3& t, const Vec3& c);
 
 // The normal map's shading normal (docs/textures.md, "Normal maps"; glTF 2.0 §3.9.3):
 // normalize(nt[0]·T + nt[1]·B + nt[2]·n), T = t Gram–Schmidt'd against n, B = w·(n × T).

@@ -171,9 +171,10 @@ double scene_scale(const Scene& s) {
 
 // The frame a pixel is shaded in: the normal that decides which lights are above the
 // surface (the object's own), the normal and tangent the lobes read (a normal map's), the
-// textured parameters' values, and whether the pixel is fragile (grazing).
+// textured parameters' values, the coat's own normal, and whether the pixel is fragile (grazing).
 struct ShadingFrame {
   Vec3 n, shading_n, t;
+  Vec3 coat_n;  // the clear coat's normal (Material::coat_normal_differs): the object's own
   ShadingInputs textured;
   bool grazing = false;
 };
@@ -185,7 +186,7 @@ ShadingFrame shading_frame(const Object& obj, const Reference& ref, const Corner
                            const Hit& hit, const Vec3& v) {
   const Material& m = ref.material();
   ShadingFrame f;
-  f.n = f.shading_n = obj.normal_at(p, hit);
+  f.n = f.shading_n = f.coat_n = obj.normal_at(p, hit);
   f.t = tangent_rule(f.n, Vec3(m.tangent_axis));
   if (!ref.program().has_textures()) return f;
   // A texel's edge under nearest filtering, or where a sphere's mapping is not continuous
@@ -205,6 +206,8 @@ ShadingFrame shading_frame(const Object& obj, const Reference& ref, const Corner
     f.t = follow_normal(f.t, f.shading_n);
     // The horizon rule jumps where the mapped normal turns from the eye.
     f.grazing = f.grazing || std::fabs(dot(f.shading_n, v)) < kNormalMapHorizon;
+    // The coat's horizon (its ρ is 0 where c·v ≤ 0) jumps where the own normal turns from the eye.
+    if (m.coat_normal_differs()) f.grazing = f.grazing || std::fabs(dot(f.coat_n, v)) < kNormalMapHorizon;
   }
   return f;
 }
@@ -243,7 +246,7 @@ void shade_pixel(const Scene& s, const ObjectBvh& bvh, const Cutouts& cut, const
     if (m.normal_map && dot(f.n, l) < kNormalMapHorizon && dot(f.shading_n, l) > 0) grazing = true;
     if (blocked(s, bvh, cut, h.object, h.hit.triangle, p, l, d, offset, close, grazing)) continue;
     seen |= Render::kReceivesLight;
-    ShadingInputs in = shading_inputs(f.shading_n, l, v, f.t);
+    ShadingInputs in = shading_inputs(f.shading_n, l, v, f.t, f.coat_n);
     in.textured = f.textured.textured;
     RGB rho = ref.reflectance(in);
     for (int c = 0; c < 3; ++c) L[c] += factor * light.color[c] * rho[c];

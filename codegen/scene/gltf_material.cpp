@@ -244,19 +244,16 @@ void sheen_extension(const json& sheen, json& lobe, GltfImages& images, const st
 
 // KHR_materials_clearcoat ("Clearcoat"): clearcoat = clearcoatFactor × clearcoatTexture's R,
 // clearcoat_roughness = clearcoatRoughnessFactor × clearcoatRoughnessTexture's G. The coat takes
-// the surface's shading normal: a clearcoatNormalTexture is not read, and over a normal-mapped
-// base the coat is normal-mapped too where the README leaves it unmapped (both said in a note).
-void clearcoat_extension(const json& coat, json& lobe, bool normal_mapped, GltfImages& images, const std::string& key,
+// the surface's own normal, unmapped over a normal-mapped base as the README says (the material's
+// coat_normal_differs): a clearcoatNormalTexture is not read (a note says so).
+void clearcoat_extension(const json& coat, json& lobe, GltfImages& images, const std::string& key,
                          std::vector<std::pair<int, std::string>>& sets, std::vector<std::string>& notes) {
   factor_and_texture(coat, "clearcoatFactor", 0, "clearcoatTexture", "r", "clearcoat", lobe, images, key, sets);
   factor_and_texture(coat, "clearcoatRoughnessFactor", 0, "clearcoatRoughnessTexture", "g", "clearcoat_roughness",
                      lobe, images, key, sets);
   if (coat.contains("clearcoatNormalTexture"))
-    notes.push_back(key + ".clearcoatNormalTexture: approximate: not read; the coat takes the surface's normal" +
-                    std::string(normal_mapped ? " (the base's normal map)" : ""));
-  else if (normal_mapped)
-    notes.push_back(key + ": approximate: the coat takes the base's normal map, where the extension leaves the coat's "
-                          "normal unmapped");
+    notes.push_back(key + ".clearcoatNormalTexture: approximate: not read; the coat takes the surface's own, "
+                          "unmapped normal");
 }
 
 // KHR_materials_anisotropy ("Anisotropy"): anisotropy_strength = anisotropyStrength,
@@ -301,8 +298,7 @@ json gltf_pbr_lobe(const tinygltf::Material& g, const Pbr& p, GltfImages& images
   if (sheen.is_object()) sheen_extension(sheen, lobe, images, mpath + ".extensions.KHR_materials_sheen", notes);
   const json coat = extension_of(g.extensions_json_string, "KHR_materials_clearcoat");
   if (coat.is_object())
-    clearcoat_extension(coat, lobe, g.normalTexture.index >= 0, images, mpath + ".extensions.KHR_materials_clearcoat",
-                        sets, notes);
+    clearcoat_extension(coat, lobe, images, mpath + ".extensions.KHR_materials_clearcoat", sets, notes);
   return lobe;
 }
 

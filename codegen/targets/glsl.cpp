@@ -212,11 +212,13 @@ GlslParts glsl_parts(const MaterialProgram& p, Target dialect, const std::string
                                                        {"version", FACET_VERSION},
                                                        {"source", source},
                                                        {"description", describe_material(m, "//")}});
-  parts.library = render_template("glsl/library.glsl", {{"constants", constants},
-                                                        {"textures", glsl_textures(p, dialect)},
-                                                        {"functions", functions},
-                                                        {"inputs", inputs},
-                                                        {"arguments", arguments}});
+  std::map<std::string, std::string> library = {{"constants", constants},
+                                                 {"textures", glsl_textures(p, dialect)},
+                                                 {"functions", functions},
+                                                 {"inputs", inputs},
+                                                 {"arguments", arguments}};
+  coat_normal_values(p, "vec3 c", library);
+  parts.library = render_template("glsl/library.glsl", library);
   std::map<std::string, std::string> lights = glsl_light::template_values();  // the light encoding's numbers
   emitted_values(p, lights);
   const bool buffer = light_source == LightSource::Buffer;
@@ -227,6 +229,7 @@ GlslParts glsl_parts(const MaterialProgram& p, Target dialect, const std::string
                                           "    vec3 ns = facet_normal_mapped(n, facet_uv_tangent, facet_uv_handedness);\n"
                                           "    t = normalize(t - ns * dot(ns, t));\n"
                                         : "    vec3 ns = n;\n";
+  lights["coat_arg"] = coat_normal_arg(p, "n");  // the coat's normal: the surface's own
   parts.lights = render_template("glsl/lights.glsl", lights);
   std::string main_in = main_inputs(dialect), sample;
   if (p.has_textures()) {
@@ -288,7 +291,8 @@ std::string glsl_gbuffer_shading_source(const Material& m, Target dialect) {
 }
 
 std::string glsl_sweep_source(const Material& m, Target dialect) {
-  GlslParts parts = glsl_parts(compile(m), dialect, m.source);
+  const MaterialProgram p = compile(m);
+  GlslParts parts = glsl_parts(p, dialect, m.source);
   targets::CPrinter printer({});
   std::string grid;
   for (const auto& f : ir::dependencies(sweep_grid())) grid += printer.function(f) + "\n";
@@ -298,7 +302,7 @@ std::string glsl_sweep_source(const Material& m, Target dialect) {
                                    "layout(location = 0) out vec4 facet_color;\n"
                                  : "uniform vec2 facet_resolution;\nout vec4 facet_color;\n";
   return version_line(dialect) + parts.header + parts.library + "\n" + grid +
-         render_template("glsl/sweep.glsl", {{"declarations", declarations}});
+         render_template("glsl/sweep.glsl", {{"declarations", declarations}, {"coat_arg", coat_normal_arg(p, "n")}});
 }
 
 std::string generate_glsl(const Material& m, const GenerateOptions& o) {

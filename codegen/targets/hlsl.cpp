@@ -173,11 +173,13 @@ HlslParts hlsl_parts(const MaterialProgram& p, const std::string& source, LightS
   parts.header = hlsl_header(p.material, "HLSL pixel shader (Shader Model 5)", source);
   // `static const`: a plain HLSL global is a uniform.
   const std::string constants = targets::material_constants(p, printer, "static const");
-  parts.library = render_template("hlsl/library.hlsl", {{"constants", constants},
-                                                        {"textures", hlsl_textures(p)},
-                                                        {"functions", functions},
-                                                        {"inputs", inputs},
-                                                        {"arguments", arguments}});
+  std::map<std::string, std::string> library = {{"constants", constants},
+                                                 {"textures", hlsl_textures(p)},
+                                                 {"functions", functions},
+                                                 {"inputs", inputs},
+                                                 {"arguments", arguments}};
+  coat_normal_values(p, "float3 c", library);
+  parts.library = render_template("hlsl/library.hlsl", library);
   std::map<std::string, std::string> lights = glsl_light::template_values();  // the light encoding's numbers
   emitted_values(p, lights);
   lights["mapping"] = p.normal_mapped() ? "    // The lobes read the normal map's normal and a tangent that follows it.\n"
@@ -187,6 +189,7 @@ HlslParts hlsl_parts(const MaterialProgram& p, const std::string& source, LightS
   lights["declarations"] = hlsl_light_declarations(light_source);
   // An engine's cbuffer holds FACET_MAX_LIGHTS: a larger count reads no further.
   lights["count"] = light_source == LightSource::Buffer ? "facet_light_count" : "min(facet_light_count, FACET_MAX_LIGHTS)";
+  lights["coat_arg"] = coat_normal_arg(p, "n");  // the coat's normal: the surface's own
   parts.lights = render_template("hlsl/lights.hlsl", lights);
   auto [main_in, sample] = hlsl_main_inputs(p);
   parts.main = render_template("hlsl/main.hlsl", {{"inputs", main_in}, {"sample", sample}});
@@ -194,11 +197,13 @@ HlslParts hlsl_parts(const MaterialProgram& p, const std::string& source, LightS
 }
 
 std::string hlsl_sweep_source(const Material& m) {
-  HlslParts parts = hlsl_parts(compile(m), m.source);
+  const MaterialProgram p = compile(m);
+  HlslParts parts = hlsl_parts(p, m.source);
   targets::CPrinter printer(hlsl_dialect());
   std::string grid;
   for (const auto& f : ir::dependencies(sweep_grid())) grid += printer.function(f) + "\n";
-  return parts.header + parts.library + "\n" + grid + render_template("hlsl/sweep.hlsl", {});
+  return parts.header + parts.library + "\n" + grid +
+         render_template("hlsl/sweep.hlsl", {{"coat_arg", coat_normal_arg(p, "n")}});
 }
 
 std::string generate_hlsl(const Material& m, const GenerateOptions& o) {

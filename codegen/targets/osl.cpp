@@ -181,7 +181,7 @@ std::string osl_sweep_source(const Material& m) {
   targets::CPrinter pr(osl_dialect());
   std::string grid;
   for (const auto& f : ir::dependencies(sweep_grid())) grid += pr.function(f) + "\n";
-  std::string params, args;
+  std::string params, args = coat_normal_arg(p, "Nn");  // the coat's normal: the sweep's n
   for (const auto& c : pr.free_constants(p.reflectance)) {
     params += fmt::format("    {} {} = {},\n", pr.type(c->type), c->name,
                           c->type == ir::Type::Color ? pr.color_literal(c->value) : pr.literal(c->value[0]));
@@ -215,10 +215,13 @@ std::string generate_osl(const Material& m, const GenerateOptions& o) {
   for (const auto& in : p.inputs) {
     arguments += (arguments.empty() ? "" : ", ") + in;
     if (p.is_textured(in)) continue;  // a parameter of facet_reflect, sampled by the shader
-    auto vec = [](char c) -> std::string { return c == 'N' ? "Nn" : std::string(1, c); };
+    auto vec = [](char c) -> std::string { return c == 'N' ? "Nn" : c == 'C' ? "Nc" : std::string(1, c); };
     inputs += fmt::format("    float {} = dot({}, {});\n", in, vec(in[0]), vec(in[2]));
   }
   arguments += constant_args;
+  // facet_reflect(Nn, L, V, T[, Nc], constants…): Nc the coat's own normal where the lobes read it.
+  constant_params = coat_normal_arg(p, "vector Nc") + constant_params;
+  constant_args = coat_normal_arg(p, "Nn") + constant_args;
   ShaderParams params;
   const Scene& scene = o.scene ? *o.scene : default_scene();
   const targets::OslCutouts cutouts = targets::osl_cutouts(pr, m, scene, o.fallback ? *o.fallback : m, o);

@@ -80,11 +80,16 @@ std::vector<Expr> with(std::vector<Expr> a, const std::vector<Expr>& b) {
   return a;
 }
 
+// Whether the lights' functions of `sh` take the coat's own normal E after n (and t): the
+// surface's own, where the lobes read a normal map's (MaterialProgram::uses_coat_normal).
+bool takes_coat(const PovShading& sh) { return sh.program.uses_coat_normal(); }
+
 ir::FunctionPtr frame_function(const ir::FunctionPtr& reflectance, const std::string& name, bool tangent,
                                const PovShading& sh) {
   ir::FunctionBuilder fb(name, "");
   Triple N = params(fb, "Nx", "Ny", "Nz"), L = params(fb, "Lx", "Ly", "Lz"), V = params(fb, "Vx", "Vy", "Vz");
   Triple T = tangent ? params(fb, "Tx", "Ty", "Tz") : Triple{0.0, 0.0, 0.0};
+  Triple E = takes_coat(sh) ? params(fb, "Ex", "Ey", "Ez") : Triple{0.0, 0.0, 0.0};
   const std::vector<Expr> uv = uv_params(fb, sh);
   Triple H = L + V, B = cross3(N, T);
   Expr Hl = reads(*reflectance, {"NoH", "VoH", "HoT", "HoB"}) ? fb.let("Hl", ir::max(length3(H), kEpsilon)) : Expr(1.0);
@@ -101,6 +106,9 @@ ir::FunctionPtr frame_function(const ir::FunctionPtr& reflectance, const std::st
     if (in == "VoH") return dot3(V, H) / Hl;
     if (in == "HoT") return dot3(H, T) / Hl;
     if (in == "HoB") return dot3(H, B) / Hl;
+    if (in == "CoL") return dot3(E, L);
+    if (in == "CoV") return dot3(E, V);
+    if (in == "CoH") return dot3(E, H) / Hl;
     throw std::logic_error("facet: POV-Ray has no input " + in);
   };
   std::vector<Expr> inputs;
@@ -166,6 +174,9 @@ Triple mapped_tangent(ir::FunctionBuilder& fb, const PovShading& sh, const Tripl
 // reads t: t = normalize(axis × n), or x̂ × n = (0, −nz, ny) where |axis × n| < ε.
 ir::FunctionPtr PovScene::reflect_function(PovShading& sh, const ir::FunctionPtr& reflectance,
                                            const std::string& suffix) {
+  // A coat's own normal comes with a normal map, under which the tangent is a parameter too.
+  if (takes_coat(sh) && reads_tangent(*reflectance) && !takes_tangent(sh, *reflectance))
+    throw std::logic_error("facet: POV-Ray's tangent rule takes no coat normal");
   if (!reads_tangent(*reflectance) || takes_tangent(sh, *reflectance)) {  // the tangent, if any, as a parameter
     ir::FunctionPtr f = frame_function(reflectance, "Facet_Reflect" + suffix, takes_tangent(sh, *reflectance), sh);
     sh.printer.add_own(f);
@@ -207,8 +218,13 @@ ir::FunctionPtr PovScene::light_function(PovShading& sh, size_t i, const ir::Fun
   Triple P = params(fb, "x", "y", "z"), N = params(fb, "Nx", "Ny", "Nz");
   const bool tangent = takes_tangent(sh, *sh.program.reflectance);
   const Triple T = tangent ? params(fb, "Tx", "Ty", "Tz") : Triple{0.0, 0.0, 0.0};
+  const std::optional<Triple> E = takes_coat(sh) ? std::optional<Triple>(params(fb, "Ex", "Ey", "Ez")) : std::nullopt;
   const std::vector<Expr> uv = uv_params(fb, sh);
-  auto frame = [&](const Triple& L, const Triple& V) { return with(tangent ? args({N, L, V, T}) : args({N, L, V}), uv); };
+  auto frame = [&](const Triple& L, const Triple& V) {
+    std::vector<Expr> a = tangent ? args({N, L, V, T}) : args({N, L, V});
+    if (E) append(a, *E);
+    return with(a, uv);
+  };
   // v: towards the eye, or (orthographic) the one direction against the view.
   const Camera& c = s_.camera;
   if (l.type == Light::Type::Directional) {
@@ -286,6 +302,7 @@ ir::FunctionPtr PovScene::kept_function(PovShading& sh) {
   params(fb, "x", "y", "z");
   params(fb, "Nx", "Ny", "Nz");
   if (takes_tangent(sh, *sh.program.reflectance)) params(fb, "Tx", "Ty", "Tz");
+  if (takes_coat(sh)) params(fb, "Ex", "Ey", "Ez");
   const std::vector<Expr> uv = uv_params(fb, sh);
   const size_t set = size_t(sh.alpha_uv);
   Expr alpha = ir::call(sh.alpha, {uv[2 * set], uv[2 * set + 1]});
@@ -311,6 +328,15 @@ ir::FunctionPtr PovScene::object_function(size_t o, const std::string& name, con
     uv = {s0, t0, s0, t0};
     if (colored) uv.insert(uv.end(), 4, Expr(1.0));
   };
+  // A light's arguments at point `at`: the lobes' normal n (a normal map's, of the object's own
+  // normal `own`), the tangent that follows it where the light takes one, `own` as the coat's
+  // normal where it takes that (takes_coat), then the coordinates.
+  auto shaded = [&](const Triple& at, const Triple& own, const Triple& n) {
+    std::vector<Expr> a = args({at, n});
+    if (takes_tangent(shading(o), *shading(o).program.reflectance)) append(a, mapped_tangent(fb, shading(o), own, n));
+    if (takes_coat(shading(o))) append(a, own);
+    return with(a, uv);
+  };
   if (obj.type == Object::Type::Plane) {
     Vec3 a, b;
     obj.plane_axes(a, b);
@@ -318,9 +344,7 @@ ir::FunctionPtr PovScene::object_function(size_t o, const std::string& name, con
     coordinates(0.5 + dot3(q, constant(a)) / (2 * obj.size), 0.5 - dot3(q, constant(b)) / (2 * obj.size));
     if (own_normal) return fb.returns(ir::call(light, with(args({P, constant(obj.normal)}), uv)));
     const Triple n = mapped_normal(fb, shading(o), uv, constant(obj.normal), constant(a));
-    if (takes_tangent(shading(o), *shading(o).program.reflectance))
-      return fb.returns(ir::call(light, with(args({P, n, mapped_tangent(fb, shading(o), constant(obj.normal), n)}), uv)));
-    return fb.returns(ir::call(light, with(args({P, n}), uv)));
+    return fb.returns(ir::call(light, shaded(P, constant(obj.normal), n)));
   }
   if (obj.type == Object::Type::Mesh) {
     // (x, y) is uv_mapping's: where in the data image the hit point's block
@@ -344,9 +368,7 @@ ir::FunctionPtr PovScene::object_function(size_t o, const std::string& name, con
     const Triple tangent = {ir::call(data("UX"), at), ir::call(data("UY"), at), ir::call(data("UZ"), at)};
     Expr w = fb.let("W", ir::select(ir::call(data("UW"), at) < 0.0, Expr(-1.0), Expr(1.0)));
     const Triple n = mapped_normal(fb, shading(o), uv, M / len, tangent, w);
-    Expr lit = takes_tangent(shading(o), *shading(o).program.reflectance)
-                   ? ir::call(light, with(args({hit, n, mapped_tangent(fb, shading(o), M / len, n)}), uv))
-                   : ir::call(light, with(args({hit, n}), uv));
+    Expr lit = ir::call(light, shaded(hit, M / len, n));
     if (!light_index) return fb.returns(lit);
     // The smooth normal decides whether the light is above the surface (the reference's rule,
     // docs/textures.md "Normal maps"); POV-Ray's own lit side is the flat triangle's, which
@@ -364,9 +386,7 @@ ir::FunctionPtr PovScene::object_function(size_t o, const std::string& name, con
   // docs/textures.md, "Tangent frames": the sphere's ∂p/∂u ∝ (d_z, 0, −d_x).
   const Triple t = shading(o).normal_map[0] ? Triple{d.z, 0.0, -d.x} / ir::sqrt(d.z * d.z + d.x * d.x) : Triple{0.0, 0.0, 0.0};
   const Triple n = mapped_normal(fb, shading(o), uv, d, t);
-  if (takes_tangent(shading(o), *shading(o).program.reflectance))
-    return fb.returns(ir::call(light, with(args({P, n, mapped_tangent(fb, shading(o), d, n)}), uv)));
-  return fb.returns(ir::call(light, with(args({P, n}), uv)));
+  return fb.returns(ir::call(light, shaded(P, d, n)));
 }
 
 namespace {

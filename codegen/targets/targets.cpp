@@ -127,4 +127,16 @@ void emitted_values(const MaterialProgram& p, std::map<std::string, std::string>
                                             : "m_e itself (nothing lies over it)";
 }
 
+void coat_normal_values(const MaterialProgram& p, const std::string& declaration,
+                        std::map<std::string, std::string>& values) {
+  values["coat_param"] = p.uses_coat_normal() ? ", " + declaration : "";
+  values["coat_doc"] = p.uses_coat_normal() ? "; c, unit, the clear coat's own normal (the surface's own, unmapped, "
+                                              "where n is a normal map's: KHR_materials_clearcoat)"
+                                            : "";
+}
+
+std::string coat_normal_arg(const MaterialProgram& p, const std::string& normal) {
+  return p.uses_coat_normal() ? ", " + normal : "";
+}
+
 }  // namespace facet

@@ -32,6 +32,14 @@ std::string emission_weight_call(const MaterialProgram& p, const std::string& No
 // emission_weight(n·v) where layers lie over the emission: MaterialProgram::emission_weight), and
 // "emitted_doc", what it is. The same text in GLSL, HLSL and WGSL.
 void emitted_values(const MaterialProgram& p, std::map<std::string, std::string>& values);
+// The library templates' facet_reflect(n, l, v, t[, c]) where the reflectance reads the coat's own
+// normal (MaterialProgram::uses_coat_normal): "coat_param", c's declaration after t (`declaration`,
+// in the target's spelling), and "coat_doc", what c is; empty otherwise.
+void coat_normal_values(const MaterialProgram& p, const std::string& declaration,
+                        std::map<std::string, std::string>& values);
+// The argument a caller of facet_reflect passes after t: ", `normal`" (the coat's normal) where it
+// takes one, else "".
+std::string coat_normal_arg(const MaterialProgram& p, const std::string& normal);
 
 std::string generate_glsl(const Material& m, const GenerateOptions& o);
 std::string generate_osl(const Material& m, const GenerateOptions& o);

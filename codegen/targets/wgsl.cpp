@@ -284,11 +284,13 @@ WgslParts wgsl_parts(const MaterialProgram& p, const std::string& source, LightS
   for (const auto& f : p.functions()) functions += pr.function(f) + "\n";
   auto [inputs, arguments] = reflect_inputs(p, pr);
   parts.header = header(p.material, "WGSL fragment shader (WebGPU)", source);
-  parts.library = render_template("wgsl/library.wgsl", {{"constants", wgsl_constants(p, pr)},
-                                                        {"textures", wgsl_textures(p)},
-                                                        {"functions", functions},
-                                                        {"inputs", inputs},
-                                                        {"arguments", arguments}});
+  std::map<std::string, std::string> library = {{"constants", wgsl_constants(p, pr)},
+                                                 {"textures", wgsl_textures(p)},
+                                                 {"functions", functions},
+                                                 {"inputs", inputs},
+                                                 {"arguments", arguments}};
+  coat_normal_values(p, "c: vec3<f32>", library);
+  parts.library = render_template("wgsl/library.wgsl", library);
   std::map<std::string, std::string> lights = glsl_light::template_values();  // the light encoding's numbers
   emitted_values(p, lights);
   lights["mapping"] = p.normal_mapped() ? "    // The lobes read the normal map's normal and a tangent that follows it.\n"
@@ -299,6 +301,7 @@ WgslParts wgsl_parts(const MaterialProgram& p, const std::string& source, LightS
   // An engine's uniform buffer holds FACET_MAX_LIGHTS: a larger count reads no further.
   lights["count"] = light_source == LightSource::Buffer ? "facet_scene.light_count"
                                                         : "min(facet_scene.light_count, FACET_MAX_LIGHTS)";
+  lights["coat_arg"] = coat_normal_arg(p, "n");  // the coat's normal: the surface's own
   parts.lights = render_template("wgsl/lights.wgsl", lights);
   std::string in = "    @location(0) position: vec3<f32>,  // world space\n"
                    "    @location(1) normal: vec3<f32>,    // world space\n";
@@ -335,11 +338,13 @@ std::string wgsl_gbuffer_shading_source(const Material& m) {
 }
 
 std::string wgsl_sweep_source(const Material& m) {
-  WgslParts parts = wgsl_parts(compile(m), m.source);
+  const MaterialProgram p = compile(m);
+  WgslParts parts = wgsl_parts(p, m.source);
   WgslPrinter pr;
   std::string grid;
   for (const auto& f : ir::dependencies(sweep_grid())) grid += pr.function(f) + "\n";
-  return parts.header + "\n" + parts.library + "\n" + grid + render_template("wgsl/sweep.wgsl", {});
+  return parts.header + "\n" + parts.library + "\n" + grid +
+         render_template("wgsl/sweep.wgsl", {{"coat_arg", coat_normal_arg(p, "n")}});
 }
 
 std::string generate_wgsl(const Material& m, const GenerateOptions& o) {

@@ -16,8 +16,8 @@ vec3 facet_tangent(vec3 n)
 }
 
 // Radiance reflected towards v from a light of unit colour arriving from l.
-// n, l, v and t are unit vectors, t ⟂ n.
-vec3 facet_reflect(vec3 n, vec3 l, vec3 v, vec3 t)
+// n, l, v and t are unit vectors, t ⟂ n{{coat_doc}}.
+vec3 facet_reflect(vec3 n, vec3 l, vec3 v, vec3 t{{coat_param}})
 {
 {{inputs}}    return reflectance({{arguments}});
 }

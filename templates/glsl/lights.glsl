@@ -49,7 +49,7 @@ vec3 facet_shade(vec3 p, vec3 n, vec3 v, vec3 t)
         // Below the horizon reflectance() is 0: skip the visibility query there. The surface's
         // own normal n says which lights are above it; the lobes read ns.
         if (factor > 0.0 && dot(n, l) > 0.0)
-            radiance += factor * facet_visibility(p, l, d, i) * light.color.rgb * facet_reflect(ns, l, v, t);
+            radiance += factor * facet_visibility(p, l, d, i) * light.color.rgb * facet_reflect(ns, l, v, t{{coat_arg}});
     }
     return radiance;
 }

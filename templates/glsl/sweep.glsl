@@ -8,5 +8,5 @@ void main()
     vec3 n = vec3(sweep_n_x(st.x, st.y), sweep_n_y(st.x, st.y), sweep_n_z(st.x, st.y));
     vec3 l = vec3(sweep_l_x(st.x, st.y), sweep_l_y(st.x, st.y), sweep_l_z(st.x, st.y));
     vec3 v = vec3(sweep_v_x(st.x, st.y), sweep_v_y(st.x, st.y), sweep_v_z(st.x, st.y));
-    facet_color = vec4(facet_reflect(n, l, v, facet_tangent(n)), 1.0);
+    facet_color = vec4(facet_reflect(n, l, v, facet_tangent(n){{coat_arg}}), 1.0);
 }

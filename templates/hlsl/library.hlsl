@@ -16,8 +16,8 @@ float3 facet_tangent(float3 n)
 }
 
 // Radiance reflected towards v from a light of unit colour arriving from l.
-// n, l, v and t are unit vectors, t ⟂ n.
-float3 facet_reflect(float3 n, float3 l, float3 v, float3 t)
+// n, l, v and t are unit vectors, t ⟂ n{{coat_doc}}.
+float3 facet_reflect(float3 n, float3 l, float3 v, float3 t{{coat_param}})
 {
 {{inputs}}    return reflectance({{arguments}});
 }

@@ -48,7 +48,7 @@ float3 facet_shade(float3 p, float3 n, float3 v, float3 t)
         // Below the horizon reflectance() is 0: skip the visibility query there. The surface's
         // own normal n says which lights are above it; the lobes read ns.
         if (factor > 0.0 && dot(n, l) > 0.0)
-            radiance += factor * facet_visibility(p, l, d, i) * light.color.rgb * facet_reflect(ns, l, v, t);
+            radiance += factor * facet_visibility(p, l, d, i) * light.color.rgb * facet_reflect(ns, l, v, t{{coat_arg}});
     }
     return radiance;
 }

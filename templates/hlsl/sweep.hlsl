@@ -14,5 +14,5 @@ float4 main(float4 facet_frag_coord : SV_Position) : SV_Target
     float3 n = float3(sweep_n_x(st.x, st.y), sweep_n_y(st.x, st.y), sweep_n_z(st.x, st.y));
     float3 l = float3(sweep_l_x(st.x, st.y), sweep_l_y(st.x, st.y), sweep_l_z(st.x, st.y));
     float3 v = float3(sweep_v_x(st.x, st.y), sweep_v_y(st.x, st.y), sweep_v_z(st.x, st.y));
-    return float4(facet_reflect(n, l, v, facet_tangent(n)), 1.0);
+    return float4(facet_reflect(n, l, v, facet_tangent(n){{coat_arg}}), 1.0);
 }

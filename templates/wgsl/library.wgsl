@@ -15,7 +15,7 @@ fn facet_tangent(n: vec3<f32>) -> vec3<f32> {
 }
 
 // Radiance reflected towards v from a light of unit colour arriving from l.
-// n, l, v and t are unit vectors, t ⟂ n.
-fn facet_reflect(n: vec3<f32>, l: vec3<f32>, v: vec3<f32>, t: vec3<f32>) -> vec3<f32> {
+// n, l, v and t are unit vectors, t ⟂ n{{coat_doc}}.
+fn facet_reflect(n: vec3<f32>, l: vec3<f32>, v: vec3<f32>, t: vec3<f32>{{coat_param}}) -> vec3<f32> {
 {{inputs}}    return reflectance({{arguments}});
 }

@@ -44,7 +44,7 @@ fn facet_shade(p: vec3<f32>, n: vec3<f32>, v: vec3<f32>, surface_tangent: vec3<f
         // Below the horizon reflectance() is 0: skip the visibility query there. The surface's
         // own normal n says which lights are above it; the lobes read ns.
         if (factor > 0.0 && dot(n, l) > 0.0) {
-            radiance += factor * facet_visibility(p, l, d, i) * light.color.rgb * facet_reflect(ns, l, v, t);
+            radiance += factor * facet_visibility(p, l, d, i) * light.color.rgb * facet_reflect(ns, l, v, t{{coat_arg}});
         }
     }
     return radiance;

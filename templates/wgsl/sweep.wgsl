@@ -17,5 +17,5 @@ fn facet_sweep(@builtin(position) pixel: vec4<f32>) -> @location(0) vec4<f32> {
     let n = vec3<f32>(sweep_n_x(st.x, st.y), sweep_n_y(st.x, st.y), sweep_n_z(st.x, st.y));
     let l = vec3<f32>(sweep_l_x(st.x, st.y), sweep_l_y(st.x, st.y), sweep_l_z(st.x, st.y));
     let v = vec3<f32>(sweep_v_x(st.x, st.y), sweep_v_y(st.x, st.y), sweep_v_z(st.x, st.y));
-    return vec4<f32>(facet_reflect(n, l, v, facet_tangent(n)), 1.0);
+    return vec4<f32>(facet_reflect(n, l, v, facet_tangent(n){{coat_arg}}), 1.0);
 }

@@ -815,6 +815,31 @@ TEST(Detection, EmissionUnderTheCoatFailsUndimmedOrWithoutItsTexel) {
                all);  // the emission function calls the weight once for each channel; it is declared once
 }
 
+// The clear coat over a normal-mapped base (KHR_materials_clearcoat: "no normal mapping is
+// applied to the clear coat layer, even if normal mapping is applied to the base material"): the
+// coat shaded on the base's mapped normal (facet before the coat's own normal) fails on the
+// GLSL, OSL and POV-Ray routes, while the generated code passes. The same example, whose coat
+// lies over a normal map.
+TEST(Detection, CoatOnTheBasesNormalMapFails) {
+  const std::string example = "textured_emissive_coat";
+  Fixture f = fixture(example, "glsl", "textured", "single");
+  check_wrongs(example, "textured", "single", "glsl", GlRenderer::fragment_source(f.material),
+               {{"the coat on the mapped normal", "facet_reflect(ns, l, v, t, n)", "facet_reflect(ns, l, v, t, ns)"}},
+               once);
+  GenerateOptions o;
+  o.target = Target::Osl;
+  o.scene = f.scene;
+  check_wrongs(example, "textured", "single", "osl", generate(f.material, o),
+               {{"the coat on the mapped normal", "facet_reflect(Ns, L, V, T, Nn", "facet_reflect(Ns, L, V, T, Ns"}},
+               all);
+  Fixture p = fixture(example, "pov", "textured", "single");
+  PovOutput pov = generate_pov_files(p.scene, &p.material, example, PovRoute::Auto, job_name(p.job));
+  // The sphere's light functions take the mapped normal Q/Ql, then the coat's: its own, (x, y, z)/R.
+  check_wrongs(example, "textured", "single", "pov", pov.code,
+               {{"the coat on the mapped normal", "Qz/Ql, x/R, y/R, z/R, S0", "Qz/Ql, Qx/Ql, Qy/Ql, Qz/Ql, S0"}},
+               all);
+}
+
 // Normal maps (docs/textures.md, "Normal maps"): the example's map with its green channel
 // flipped (DirectX's convention taken for OpenGL's), the map ignored (the lobes on the
 // object's own normal) and the tangent reversed each fail on the sphere and the square of

@@ -10,7 +10,10 @@
 //  * KHR_materials_ior README: f0 = ((ior − outside_ior)/(ior + outside_ior))², outside_ior = 1.
 //  * KHR_materials_clearcoat README, "Clearcoat" and "Implementation": clearcoat_brdf =
 //    specular_brdf(α = clearcoatRoughness²), coated_material = mix(material, clearcoat_brdf,
-//    clearcoat · (0.04 + (1 − 0.04)(1 − |V·Nc|)^5)), Nc the surface's normal here.
+//    clearcoat · (0.04 + (1 − 0.04)(1 − |V·Nc|)^5)), Nc the surface's normal, or a normal of the
+//    coat's own ("`normal` is a float3 vector that affects the top layer, but not the base"), the
+//    coat's cosine then Nc·L and the coat 0 below Nc's horizon, as the Khronos glTF Sample
+//    Viewer's getPunctualRadianceClearCoat has it (punctual.glsl).
 //  * KHR_materials_sheen README, "Sheen" and "Implementation Notes": the "Charlie" sheen
 //    distribution and visibility (α_g = sheenRoughness²), SheenBRDF = ν_s D_s, and the albedo
 //    scaling sheen_material = sheenColor sheen_brdf + material min(1 − max3(sheenColor) E(V·N),
@@ -29,6 +32,8 @@
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
+
+#include <filesystem>
 
 #include "catalog/catalog.h"
 #include "catalog/material.h"
@@ -299,6 +304,72 @@ TEST(GltfPbr, KhrMaterialsClearcoat) {
   varnish.clearcoat = 1;
   varnish.clearcoat_roughness = 0.1;
   EXPECT_GT(worst_error(varnish, coat_fresnel_of_vh), 1e-2) << "the coat's Fresnel of v·h must fail";
+}
+
+// KHR_materials_clearcoat README, "Clearcoat": the coat on a normal Nc of its own ("`normal` is a
+// float3 vector that affects the top layer, but not the base"): with a normal map the base shades
+// with the mapped N while the coat keeps Nc ("no normal mapping is applied to the clear coat
+// layer, even if normal mapping is applied to the base material"). ρ = π [f_base (1 − c fr) (N·L)
+// + c fr clearcoat_brdf(Nc) (Nc·L)], fr of |V·Nc|, the coat 0 where Nc·L or Nc·V is not above 0
+// (getPunctualRadianceClearCoat's clampedDot). facet's reference given N and Nc apart
+// (shading_inputs' c), at direction sets down to Nc·L, Nc·V = 1e-3, and where Nc·L < 0 < N·L.
+TEST(GltfPbr, KhrMaterialsClearcoatOnItsOwnNormal) {
+  Params p;
+  p.base = {0.8, 0.3, 0.1};
+  p.metallic = 0.3;
+  p.roughness = 0.5;
+  p.clearcoat = 0.8;
+  p.clearcoat_roughness = 0.2;
+  json doc = material_json(p);
+  // A normal map makes the coat's normal the surface's own, apart from the lobes' (its image is
+  // not read here: the reference is handed both normals).
+  doc["normal_map"] = {{"texture", "normals.png"}};
+  const std::filesystem::path textures = std::filesystem::path(FACET_SOURCE_DIR) / "examples/textured/textures";
+  Material m = parse_material(doc, (textures / "coat.json").string(), textures.string());
+  ASSERT_TRUE(m.coat_normal_differs());
+  Reference ref(m);
+  ASSERT_TRUE(ref.program().uses_coat_normal());
+  Params core = p;
+  core.clearcoat = 0;
+  std::mt19937_64 rng(11);
+  std::normal_distribution<double> g;
+  double worst = 0;
+  int below = 0, checked = 0;
+  for (const auto& d : direction_sets(13, 3000)) {  // l, v about Nc = d.n
+    const Vec3 Nc = d.n;
+    // The base's normal: Nc tipped by up to about 35°, kept where N·L and N·V are above 1e-3.
+    const Vec3 N = normalize(Nc + Vec3(g(rng), g(rng), g(rng)) * 0.35);
+    if (dot(N, d.l) <= 1e-3 || dot(N, d.v) <= 1e-3) continue;
+    const RGB base = gltf_brdf(core, N, d.l, d.v);
+    const double fr = 0.04 + (1 - 0.04) * std::pow(1 - std::fabs(dot(d.v, Nc)), 5);
+    const double coat = specular_brdf_of(p.clearcoat_roughness, Nc, d.l, d.v) * dot(Nc, d.l);
+    const RGB got = ref.reflectance(shading_inputs(N, d.l, d.v, tangent_of(N), Nc));
+    for (int c = 0; c < 3; ++c) {
+      const double rho = kPi * (base[c] * (1 - p.clearcoat * fr) * dot(N, d.l) + p.clearcoat * fr * coat);
+      worst = std::max(worst, std::fabs(got[c] - rho) / rho);
+    }
+    ++checked;
+    // The same l mirrored below Nc's horizon while it stays above N's: the coat gives nothing.
+    const Vec3 l_below = d.l - Nc * (2 * dot(d.l, Nc));
+    if (dot(N, l_below) > 1e-3) {
+      const RGB under = ref.reflectance(shading_inputs(N, l_below, d.v, tangent_of(N), Nc));
+      const RGB base_below = gltf_brdf(core, N, l_below, d.v);
+      for (int c = 0; c < 3; ++c) {
+        const double rho = kPi * base_below[c] * (1 - p.clearcoat * fr) * dot(N, l_below);
+        worst = std::max(worst, std::fabs(under[c] - rho) / rho);
+      }
+      ++below;
+    }
+  }
+  std::printf("%d direction sets, %d with l below the coat's horizon: worst %.3g\n", checked, below, worst);
+  EXPECT_GT(checked, 1000);
+  EXPECT_GT(below, 100);
+  EXPECT_LE(worst, kRelTol);
+  // On one normal (N = Nc) it is the coat of KhrMaterialsClearcoat: the usual BRDF.
+  const Directions d = direction_sets(5, 1)[0];
+  const RGB one = ref.reflectance(shading_inputs(d.n, d.l, d.v, tangent_of(d.n), d.n));
+  const RGB want = gltf_brdf(p, d.n, d.l, d.v);
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(one[c], kPi * want[c] * dot(d.n, d.l), kRelTol * one[c]);
 }
 
 // KHR_materials_clearcoat README, "Emission": "The clearcoat layer is on top of emission in the

@@ -742,7 +742,7 @@ TEST(GltfTextures, NormalEmissiveAndOcclusionMapsAreImported) {
 
 // KHR_materials_clearcoat ("Clearcoat"): clearcoat = clearcoatFactor × clearcoatTexture's R and
 // clearcoat_roughness = clearcoatRoughnessFactor × clearcoatRoughnessTexture's G, linear; what the
-// lobe does not take (a coat normal map, the coat's unmapped normal over a normal-mapped base)
+// lobe does not take (a coat normal map)
 // is named in notes; the emission's dimming under a textured coat is exact, so no note names it.
 TEST(GltfTextures, ClearcoatIsReadWithItsMapsAndItsLimitsSaid) {
   json g = textured_triangle(json::array({data_uri_image(small_png())}));
