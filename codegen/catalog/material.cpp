@@ -46,8 +46,9 @@ ParamDef tangent_axis_param() {
   return p;
 }
 
-const std::vector<std::string> kMaterialKeys = {"$schema",  "name",         "ambient",    "emission", "diffuse",
-                                                "specular", "tangent_axis", "normal_map", "alpha",    "alpha_cutoff"};
+const std::vector<std::string> kMaterialKeys = {"$schema",      "name",       "ambient",         "emission",
+                                                "diffuse",      "specular",   "tangent_axis",    "normal_map",
+                                                "coat_normal_map", "alpha",  "alpha_cutoff"};
 
 ParamDef alpha_cutoff_param() {
   ParamDef p;
@@ -126,6 +127,8 @@ Material parse_material(const json& doc, const std::string& file, const std::str
       if (v) m.tangent_axis = *v;
     } else if (key == "normal_map") {
       m.normal_map = parse_normal_map(val, key, sink);
+    } else if (key == "coat_normal_map") {
+      m.coat_normal_map = parse_normal_map(val, key, sink);
     } else if (key == "alpha" || key == "alpha_cutoff") {
       parse_alpha(key, val, m, check, sink);
     } else if (key == "diffuse" || key == "specular") {
@@ -139,6 +142,19 @@ Material parse_material(const json& doc, const std::string& file, const std::str
   }
   if (!doc.contains("diffuse") && !doc.contains("specular"))
     sink.error("", "a material needs a \"diffuse\" or a \"specular\" lobe (or both)");
+  if (m.coat_normal_map) {
+    // The coat's map needs a coat, and shares the lobes' map's tangent frame (KHR_materials_clearcoat:
+    // "these textures SHOULD use the same texture coordinates because they operate in the same
+    // tangent space").
+    if (!(m.specular && m.specular->def->coated && m.specular->def->coated(*m.specular)))
+      sink.error("coat_normal_map", "the material has no layer with a normal of its own: a coat normal map needs a "
+                                    "clear coat (specular: gltf_pbr with clearcoat above 0, or from an image)");
+    if (m.normal_map && m.normal_map->texture().uv != m.coat_normal_map->texture().uv)
+      sink.error("coat_normal_map.uv",
+                 fmt::format("{} differs from normal_map.uv ({}): both maps turn on one tangent frame, of one texture "
+                             "coordinate set",
+                             m.coat_normal_map->texture().uv, m.normal_map->texture().uv));
+  }
   if (auto b = line_break(m.name))  // printed into every target's comments (core/text.h)
     sink.error(doc.is_object() && doc.contains("name") ? "name" : "(file name)",
                fmt::format("\"{}\" {}; a material's name is one line of text (it is printed into the generated "
@@ -243,6 +259,7 @@ json to_json(const Material& m) {
   if (m.specular) j["specular"] = spec_json(*m.specular, true);
   j["tangent_axis"] = m.tangent_axis;
   if (m.normal_map) j["normal_map"] = normal_map_json(*m.normal_map);
+  if (m.coat_normal_map) j["coat_normal_map"] = normal_map_json(*m.coat_normal_map);
   if (m.alpha.texture || m.alpha.number != 1) j["alpha"] = value_json(m.alpha);
   if (m.alpha_cutoff) j["alpha_cutoff"] = *m.alpha_cutoff;
   return j;
@@ -384,6 +401,7 @@ json material_schema() {
                 {"specular", lobes["specular"]},
                 {"tangent_axis", param_schema(tangent_axis_param())},
                 {"normal_map", normal_map_schema()},
+                {"coat_normal_map", coat_normal_map_schema()},
                 {"alpha", param_schema(alpha_param())},
                 {"alpha_cutoff", param_schema(alpha_cutoff_param())}};
   return {{"$schema", "https://json-schema.org/draft/2020-12/schema"},

@@ -31,11 +31,21 @@ struct Material {
   // A tangent-space normal map (catalog/texture.h, docs/textures.md): both lobes shade
   // with the mapped normal.
   std::optional<NormalMap> normal_map;
-  // Whether the layers with a normal of their own (a clear coat: ModelDef::coated) shade with
-  // another normal than the lobes': the surface's own where the lobes' is mapped
-  // (KHR_materials_clearcoat: "no normal mapping is applied to the clear coat layer, even if
-  // normal mapping is applied to the base material").
-  bool coat_normal_differs() const { return normal_map.has_value(); }
+  // The normal map of the layers with a normal of their own (a clear coat: ModelDef::coated;
+  // KHR_materials_clearcoat's clearcoatNormalTexture), on the same tangent frame as normal_map
+  // (the same texture coordinate set). Without it those layers take the surface's own, unmapped
+  // normal.
+  std::optional<NormalMap> coat_normal_map;
+  // Whether the layers with a normal of their own shade with another normal than the lobes':
+  // their own map's, or the surface's own where the lobes' is mapped (KHR_materials_clearcoat:
+  // "no normal mapping is applied to the clear coat layer, even if normal mapping is applied to
+  // the base material").
+  bool coat_normal_differs() const { return normal_map || coat_normal_map; }
+  // The map whose texture coordinates give the tangent frame (normal_map's, else
+  // coat_normal_map's; both read the same set), or null without either.
+  const NormalMap* frame_map() const {
+    return normal_map ? &*normal_map : coat_normal_map ? &*coat_normal_map : nullptr;
+  }
   // glTF's alphaMode MASK (glTF 2.0 §3.9.4): where `alpha_cutoff` is set the surface is there
   // only where alpha ≥ alpha_cutoff, and camera and shadow rays pass where it is not. `alpha`
   // is a number in [0, 1] or an image's channel times a factor (catalog/texture.h), read only

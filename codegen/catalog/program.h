@@ -33,8 +33,14 @@ struct MaterialProgram {
 
   bool uses(const std::string& input) const;
   // Whether the material samples images: textured parameters or a normal map.
-  bool has_textures() const { return !textured.empty() || normal_mapped(); }
+  bool has_textures() const { return !textured.empty() || has_uv_frame(); }
+  // Whether the lobes read a normal map's normal.
   bool normal_mapped() const { return material.normal_map.has_value(); }
+  // Whether the coat reads its own normal map's normal (Material::coat_normal_map).
+  bool coat_normal_mapped() const { return material.coat_normal_map.has_value(); }
+  // Whether the shading reads the tangent frame of a texture coordinate set: a normal map, the
+  // lobes' or the coat's (Material::frame_map).
+  bool has_uv_frame() const { return material.frame_map() != nullptr; }
   // Whether a textured input reads the surface's vertex colour (catalog/texture.h): every
   // target then takes the vertex colour as an input of its sampling (facet_color0).
   bool uses_vertex_color() const;

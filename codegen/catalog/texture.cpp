@@ -470,6 +470,15 @@ json normal_map_schema() {
   return s;
 }
 
+json coat_normal_map_schema() {
+  json s = normal_map_schema();
+  s["description"] = "the clear coat's own tangent-space normal map (KHR_materials_clearcoat's clearcoatNormalTexture), "
+                     "read as normal_map is, on the same tangent frame (the same uv set); it needs a clear coat "
+                     "(gltf_pbr's clearcoat). Without it the coat takes the surface's own, unmapped normal";
+  s["properties"]["strength"]["description"] = "glTF's clearcoatNormalTexture.scale";
+  return s;
+}
+
 std::array<double, 3> normal_map_rgb(const NormalMap& m, double u, double v, bool* fragile) {
   static const Range unit = normal_map_param().range;
   return texture_value(m.value, unit, u, v, fragile);

@@ -108,6 +108,9 @@ struct NormalMap {
 std::optional<NormalMap> parse_normal_map(const nlohmann::json& j, const std::string& path, DiagnosticSink& sink);
 nlohmann::json normal_map_json(const NormalMap& m);
 nlohmann::json normal_map_schema();
+// The same object as a material's "coat_normal_map": the clear coat's own (glTF's
+// clearcoatNormalTexture), on normal_map's tangent frame.
+nlohmann::json coat_normal_map_schema();
 // The raw filtered rgb of the map at (u, v) (the set it names, before its transform):
 // what every target samples; `fragile` as texture_value's.
 std::array<double, 3> normal_map_rgb(const NormalMap& m, double u, double v, bool* fragile = nullptr);

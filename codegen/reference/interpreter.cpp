@@ -316,8 +316,8 @@ RGB Reference::emitted(const ShadingInputs& in, const RGB& scene_ambient, double
 }
 
 Vec3 Reference::mapped_normal(const std::array<std::array<double, 2>, 2>& uv, const Vec3& n, const Vec3& t, double w,
-                              bool& fragile) const {
-  const NormalMap& m = *material().normal_map;
+                              bool& fragile, bool coat) const {
+  const NormalMap& m = coat ? *material().coat_normal_map : *material().normal_map;
   const auto& st = uv[size_t(m.texture().uv)];
   const auto rgb = normal_map_rgb(m, st[0], st[1], &fragile);
   return perturb_normal(n, t, w, normal_map_tangent_normal(m, rgb));

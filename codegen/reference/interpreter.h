@@ -73,12 +73,14 @@ class Reference {
   bool sample_textures(const std::array<std::array<double, 2>, 2>& uv, ShadingInputs& in,
                        const VertexColor& color0 = kWhiteVertexColor) const;
   // m_a ⊗ A + m_e·emission_weight(n·v), with m_a and m_e at the point where `in`'s textures
-  // were sampled and n·v of the surface's own normal (MaterialProgram::emission_weight).
+  // were sampled and n·v of the coat's normal (MaterialProgram::emission_weight): the surface's
+  // own, or the coat's own normal map's.
   RGB emitted(const ShadingInputs& in, const RGB& scene_ambient, double NoV) const;
   // The material's normal map (it must have one) at texture coordinates `uv`, on the frame n, t, w:
-  // perturb_normal of its n_t. `fragile` as sample_textures's result.
+  // perturb_normal of its n_t; `coat`: its coat's own normal map's (Material::coat_normal_map).
+  // `fragile` as sample_textures's result.
   Vec3 mapped_normal(const std::array<std::array<double, 2>, 2>& uv, const Vec3& n, const Vec3& t, double w,
-                     bool& fragile) const;
+                     bool& fragile, bool coat = false) const;
   // k_d ⊗ ρ_d + k_s ⊗ ρ_s, zero below the horizon. Unit vectors; t ⟂ n.
   RGB reflectance(const Vec3& n, const Vec3& l, const Vec3& v, const Vec3& t) const;
   RGB reflectance(const Vec3& n, const Vec3& l, const Vec3& v) const;  // tangent rule

@@ -206,9 +206,11 @@ ShadingFrame shading_frame(const Object& obj, const Reference& ref, const Corner
     f.t = follow_normal(f.t, f.shading_n);
     // The horizon rule jumps where the mapped normal turns from the eye.
     f.grazing = f.grazing || std::fabs(dot(f.shading_n, v)) < kNormalMapHorizon;
-    // The coat's horizon (its ρ is 0 where c·v ≤ 0) jumps where the own normal turns from the eye.
-    if (m.coat_normal_differs()) f.grazing = f.grazing || std::fabs(dot(f.coat_n, v)) < kNormalMapHorizon;
   }
+  if (m.coat_normal_map && framed) f.coat_n = ref.mapped_normal(uv, f.n, tangent, w, f.grazing, true);
+  // The coat's horizon (its ρ is 0 where c·v ≤ 0) jumps where its normal turns from the eye.
+  if (m.coat_normal_differs() && framed)
+    f.grazing = f.grazing || std::fabs(dot(f.coat_n, v)) < kNormalMapHorizon;
   return f;
 }
 
@@ -229,7 +231,7 @@ void shade_pixel(const Scene& s, const ObjectBvh& bvh, const Cutouts& cut, const
   Vec3 p = eye + dir * h.hit.t;
   Vec3 v = -dir;
   ShadingFrame f = shading_frame(obj, ref, tangents[size_t(h.object)], p, h.hit, v);
-  RGB L = ref.emitted(f.textured, s.ambient, dot(f.n, v));
+  RGB L = ref.emitted(f.textured, s.ambient, dot(f.coat_n, v));  // the coat's normal: the emission lies under it
   bool grazing = f.grazing || h.fragile;
   uint8_t seen = dot(f.n, v) > 0 ? Render::kFacesCamera : 0;
   for (const auto& light : s.lights) {
@@ -277,7 +279,7 @@ Render render(const Material* fallback, const Scene& s, int width, int height, i
   // The normal-mapped meshes' tangents, once per render.
   std::vector<CornerTangents> tangents(s.objects.size());
   for (size_t i = 0; i < s.objects.size(); ++i)
-    if (const auto& nm = shading[i]->material().normal_map; nm && s.objects[i].type == Object::Type::Mesh)
+    if (const NormalMap* nm = shading[i]->material().frame_map(); nm && s.objects[i].type == Object::Type::Mesh)
       tangents[i] = mesh_tangents(*s.objects[i].mesh, nm->texture().uv);
   Render r;
   r.image = Image(width, height);

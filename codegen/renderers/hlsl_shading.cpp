@@ -17,7 +17,7 @@ std::string hlsl_shading_source(const Material& m) {
   if (p.has_textures())
     sample = p.uses_vertex_color() ? "    facet_sample_textures(uvs.xy, uvs.zw, facet_gbuffer_color0.Load(texel));\n"
                                    : "    facet_sample_textures(uvs.xy, uvs.zw);\n";
-  if (p.normal_mapped()) sample += "    facet_uv_tangent = frame.xyz;\n    facet_uv_handedness = frame.w;\n";
+  if (p.has_uv_frame()) sample += "    facet_uv_tangent = frame.xyz;\n    facet_uv_handedness = frame.w;\n";
   std::map<std::string, std::string> values = glsl_light::visibility_values();
   values["sample"] = sample;
   return parts.header + parts.library + parts.lights + render_harness("gbuffer_shade.hlsl", values);

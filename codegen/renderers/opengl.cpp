@@ -268,7 +268,7 @@ std::string GlRenderer::fragment_source(const Material& m, bool gbuffer) {
     sample = p.uses_vertex_color()
                  ? "    facet_sample_textures(facet_uv(hit, p, best, 0), facet_uv(hit, p, best, 1), facet_color0_at(hit, best));\n"
                  : "    facet_sample_textures(facet_uv(hit, p, best, 0), facet_uv(hit, p, best, 1));\n";
-  if (p.normal_mapped())
+  if (p.has_uv_frame())
     sample += "    vec4 frame = facet_uv_tangent_at(hit, p, best);\n"
               "    facet_uv_tangent = frame.xyz;\n    facet_uv_handedness = frame.w;\n";
   std::map<std::string, std::string> values = glsl_light::visibility_values();
@@ -307,7 +307,7 @@ MeshBuffers mesh_buffers(const Scene& s, const Material* fallback) {
     if (o.type != Object::Type::Mesh) continue;
     const Mesh& m = *o.mesh;
     // A normal-mapped mesh's corner tangents (scene/tangents.h), 3 texels a triangle; 0 elsewhere.
-    const auto& nm = s.material_of(i, fallback).normal_map;
+    const NormalMap* nm = s.material_of(i, fallback).frame_map();
     const std::vector<std::array<double, 4>> corners = nm ? mesh_tangents(m, nm->texture().uv)
                                                           : std::vector<std::array<double, 4>>{};
     int node0 = int(b.nodes.size() / 8), tri0 = int(b.triangles.size() / 24);

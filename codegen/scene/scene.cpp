@@ -464,13 +464,14 @@ void check_texture_sets(const Scene& s, const Material* fallback) {
     if (o.type != Object::Type::Mesh) continue;
     if (o.material.empty() && !fallback) continue;  // reported where the material is needed
     const Material& m = s.material_of(i, fallback);
-    if (m.normal_map && o.mesh->texcoords[size_t(m.normal_map->texture().uv)].empty()) {
-      const size_t set = size_t(m.normal_map->texture().uv);
+    if (const NormalMap* frame = m.frame_map(); frame && o.mesh->texcoords[size_t(frame->texture().uv)].empty()) {
+      const size_t set = size_t(frame->texture().uv);
+      const char* key = m.normal_map ? "normal_map" : "coat_normal_map";
       problems.push_back({s.source, index_path("objects", i),
                           fmt::format("mesh \"{}\" has no texture coordinates set {} ({}), which material \"{}\"'s "
-                                      "normal map reads at normal_map.uv (its tangents come from them)",
+                                      "normal map reads at {}.uv (its tangents come from them)",
                                       o.name, set, set == 0 ? "texcoords, glTF's TEXCOORD_0" : "texcoords1, glTF's TEXCOORD_1",
-                                      m.name)});
+                                      m.name, key)});
     }
     for (const auto& t : compile(m).textured) {
       if (!t.value.texture->has_image()) continue;  // the vertex colour alone reads no coordinates

@@ -162,19 +162,17 @@ std::string glsl_textures(const MaterialProgram& p, Target dialect) {
                             c.texels->width, c.texels->height);
   }
   std::vector<TextureCall> calls = texture_calls(p);
-  if (auto n = normal_map_call(p)) calls.push_back(*n);
+  for (const auto& n : normal_map_calls(p)) calls.push_back(n);
   for (const auto& c : calls) {
     globals += fmt::format("{} {};\n", c.color ? "vec3" : "float", c.name);
     samples += glsl_sample(pr, c);
   }
-  std::string mapping;
-  if (const auto& nm = p.material.normal_map) {
-    // catalog/texture.h, NormalMap: n_t from the sampled rgb, then the mapped normal.
+  // catalog/texture.h, NormalMap: n_t from the sampled rgb, then the mapped normal.
+  if (p.has_uv_frame())
     globals += "// The normal map's frame at the shading point: t the unit ∂p/∂u, w = ±1 (B = w·(n × t)).\n"
                "vec3 facet_uv_tangent;\nfloat facet_uv_handedness = 1.0;\n";
-    mapping = render_template("glsl/normal_map.glsl", {{"strength", pr.literal(nm->strength)},
-                                                       {"green", nm->green_down ? "-" : ""}});
-  }
+  const std::string mapping =
+      normal_map_functions(p, "glsl/normal_map.glsl", [&](double x) { return pr.literal(x); });
   std::map<std::string, std::string> values = sampling_doc(p);
   values.insert({{"uniforms", uniforms}, {"globals", globals}, {"samples", samples},
                  {"params", p.uses_vertex_color() ? "vec2 uv0, vec2 uv1, vec4 color0" : "vec2 uv0, vec2 uv1"}});
@@ -225,11 +223,7 @@ GlslParts glsl_parts(const MaterialProgram& p, Target dialect, const std::string
   lights["declarations"] = buffer ? light_buffer(dialect) : light_uniforms(dialect);
   // An engine's uniform array holds FACET_MAX_LIGHTS: a larger count reads no further.
   lights["count"] = buffer ? "facet_light_count" : "min(facet_light_count, FACET_MAX_LIGHTS)";
-  lights["mapping"] = p.normal_mapped() ? "    // The lobes read the normal map's normal and a tangent that follows it.\n"
-                                          "    vec3 ns = facet_normal_mapped(n, facet_uv_tangent, facet_uv_handedness);\n"
-                                          "    t = normalize(t - ns * dot(ns, t));\n"
-                                        : "    vec3 ns = n;\n";
-  lights["coat_arg"] = coat_normal_arg(p, "n");  // the coat's normal: the surface's own
+  normal_mapping_values(p, "vec3", lights);
   parts.lights = render_template("glsl/lights.glsl", lights);
   std::string main_in = main_inputs(dialect), sample;
   if (p.has_textures()) {
@@ -244,7 +238,7 @@ GlslParts glsl_parts(const MaterialProgram& p, Target dialect, const std::string
                                           : "in vec4 facet_color0;  // glTF's COLOR_0: linear RGBA; give white (1) where a mesh has none\n";
     sample = "    facet_sample_textures(facet_texcoord0, facet_texcoord1, facet_color0);\n";
   }
-  if (p.normal_mapped()) {
+  if (p.has_uv_frame()) {
     main_in += dialect == Target::Glsl450 ? "layout(location = 5) in vec4 facet_texture_tangent;\n"
                                           : "in vec4 facet_texture_tangent;  // xyz: ∂p/∂u, w: ±1 (glTF's TANGENT)\n";
     sample += "    facet_uv_tangent = facet_texture_tangent.xyz;\n"
@@ -279,7 +273,7 @@ std::string glsl_gbuffer_shading_source(const Material& m, Target dialect) {
   if (p.has_textures())
     sample = p.uses_vertex_color() ? "    facet_sample_textures(uvs.xy, uvs.zw, texelFetch(facet_gbuffer_color0, facet_gbuffer_texel, 0));\n"
                                    : "    facet_sample_textures(uvs.xy, uvs.zw);\n";
-  if (p.normal_mapped()) sample += "    facet_uv_tangent = frame.xyz;\n    facet_uv_handedness = frame.w;\n";
+  if (p.has_uv_frame()) sample += "    facet_uv_tangent = frame.xyz;\n    facet_uv_handedness = frame.w;\n";
   // Vulkan's gl_FragCoord has y down: the G-buffer's row is counted from the bottom.
   std::string texel = dialect == Target::Glsl450
                           ? "ivec2(int(gl_FragCoord.x), textureSize(facet_gbuffer_position, 0).y - 1 - int(gl_FragCoord.y))"

@@ -61,19 +61,17 @@ std::string hlsl_textures(const MaterialProgram& p) {
     uniforms += fmt::format("Texture2D<float4> facet_texture_{} : register(t{});  // \"{}\", {}×{}\n", c.name,
                             binding++, c.file, c.texels->width, c.texels->height);
   std::vector<TextureCall> calls = texture_calls(p);
-  if (auto n = normal_map_call(p)) calls.push_back(*n);
+  for (const auto& n : normal_map_calls(p)) calls.push_back(n);
   for (const auto& c : calls) {
     globals += fmt::format("static {} {};\n", c.color ? "float3" : "float", c.name);
     samples += hlsl_sample(pr, c);
   }
-  std::string mapping;
-  if (const auto& nm = p.material.normal_map) {
-    // catalog/texture.h, NormalMap: n_t from the sampled rgb, then the mapped normal.
+  // catalog/texture.h, NormalMap: n_t from the sampled rgb, then the mapped normal.
+  if (p.has_uv_frame())
     globals += "// The normal map's frame at the shading point: t the unit ∂p/∂u, w = ±1 (B = w·(n × t)).\n"
                "static float3 facet_uv_tangent;\nstatic float facet_uv_handedness = 1.0;\n";
-    mapping = render_template("hlsl/normal_map.hlsl", {{"strength", pr.literal(nm->strength)},
-                                                       {"green", nm->green_down ? "-" : ""}});
-  }
+  const std::string mapping =
+      normal_map_functions(p, "hlsl/normal_map.hlsl", [&](double x) { return pr.literal(x); });
   std::map<std::string, std::string> values = sampling_doc(p);
   values.insert({{"uniforms", uniforms}, {"globals", globals}, {"samples", samples},
                  {"params", p.uses_vertex_color() ? "float2 uv0, float2 uv1, float4 color0" : "float2 uv0, float2 uv1"}});
@@ -119,7 +117,7 @@ std::pair<std::string, std::string> hlsl_main_inputs(const MaterialProgram& p) {
     in += "            , FACET_LOCATION(6) float4 facet_color0 : COLOR0  // glTF's COLOR_0: linear RGBA; white (1) where a mesh has none\n";
     sample = "    facet_sample_textures(facet_texcoord0, facet_texcoord1, facet_color0);\n";
   }
-  if (p.normal_mapped()) {
+  if (p.has_uv_frame()) {
     in += "            , FACET_LOCATION(5) float4 facet_texture_tangent : TEXCOORD5  // xyz: ∂p/∂u, w: ±1 (glTF's TANGENT)\n";
     sample += "    facet_uv_tangent = facet_texture_tangent.xyz;\n"
               "    facet_uv_handedness = facet_texture_tangent.w;\n";
@@ -182,14 +180,10 @@ HlslParts hlsl_parts(const MaterialProgram& p, const std::string& source, LightS
   parts.library = render_template("hlsl/library.hlsl", library);
   std::map<std::string, std::string> lights = glsl_light::template_values();  // the light encoding's numbers
   emitted_values(p, lights);
-  lights["mapping"] = p.normal_mapped() ? "    // The lobes read the normal map's normal and a tangent that follows it.\n"
-                                          "    float3 ns = facet_normal_mapped(n, facet_uv_tangent, facet_uv_handedness);\n"
-                                          "    t = normalize(t - ns * dot(ns, t));\n"
-                                        : "    float3 ns = n;\n";
+  normal_mapping_values(p, "float3", lights);
   lights["declarations"] = hlsl_light_declarations(light_source);
   // An engine's cbuffer holds FACET_MAX_LIGHTS: a larger count reads no further.
   lights["count"] = light_source == LightSource::Buffer ? "facet_light_count" : "min(facet_light_count, FACET_MAX_LIGHTS)";
-  lights["coat_arg"] = coat_normal_arg(p, "n");  // the coat's normal: the surface's own
   parts.lights = render_template("hlsl/lights.hlsl", lights);
   auto [main_in, sample] = hlsl_main_inputs(p);
   parts.main = render_template("hlsl/main.hlsl", {{"inputs", main_in}, {"sample", sample}});

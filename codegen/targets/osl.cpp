@@ -97,20 +97,29 @@ struct OslTextures {
   std::string params, samples, reflect_params, reflect_args, mapping;
 };
 
-// The normal map's statements (catalog/texture.h, NormalMap; glTF 2.0 §3.9.3): Ns, the lobes'
-// normal, from the sampled rgb and the frame facet_uv_tangent, facet_uv_handedness; T follows it.
-std::string osl_normal_mapping(const targets::CPrinter& pr, const NormalMap& m) {
-  return fmt::format(
-      "    // The normal map: n_t = normalize((2·rgb − 1) ⊗ (s, s, 1)){2}; the lobes read\n"
-      "    // Ns = normalize(n_t.x·Tu + n_t.y·Bu + n_t.z·Nn), Tu = ∂p/∂u made ⟂ Nn, Bu = w·(Nn × Tu)\n"
+// The normal maps' statements (catalog/texture.h, NormalMap; glTF 2.0 §3.9.3): Ns, the lobes'
+// normal, from the sampled rgb and the frame facet_uv_tangent, facet_uv_handedness (T follows
+// it), and Nc, the coat's own (Material::coat_normal_map), from its map on the same frame.
+std::string osl_normal_mapping(const targets::CPrinter& pr, const Material& m) {
+  std::string out =
+      "    // The normal maps: n_t = normalize((2·rgb − 1) ⊗ (s, s, 1)) (y negated for a green-down map),\n"
+      "    // the normal normalize(n_t.x·Tu + n_t.y·Bu + n_t.z·Nn), Tu = ∂p/∂u made ⟂ Nn, Bu = w·(Nn × Tu)\n"
       "    // (uv_tangent and w = uv_handedness: facet_uv_tangent, facet_uv_handedness).\n"
-      "    color nm_c = 2 * normal_map - 1;\n"
-      "    vector nm_t = normalize(vector({0} * nm_c[0], {1}{0} * nm_c[1], nm_c[2]));\n"
       "    vector Tu = normalize(uv_tangent - Nn * dot(Nn, uv_tangent));\n"
-      "    vector Bu = uv_handedness * cross(Nn, Tu);\n"
-      "    vector Ns = normalize(nm_t[0] * Tu + nm_t[1] * Bu + nm_t[2] * Nn);\n"
-      "    T = normalize(T - Ns * dot(Ns, T));  // the anisotropic tangent follows the mapped normal\n",
-      pr.literal(m.strength), m.green_down ? "-" : "", m.green_down ? ", y negated (green down)" : "");
+      "    vector Bu = uv_handedness * cross(Nn, Tu);\n";
+  auto mapped = [&](const NormalMap& map, const char* texel, const char* tag, const char* normal, const char* whose) {
+    out += fmt::format(
+        "    color {2}_c = 2 * {3} - 1;\n"
+        "    vector {2}_t = normalize(vector({0} * {2}_c[0], {1}{0} * {2}_c[1], {2}_c[2]));\n"
+        "    vector {4} = normalize({2}_t[0] * Tu + {2}_t[1] * Bu + {2}_t[2] * Nn);  // {5}\n",
+        pr.literal(map.strength), map.green_down ? "-" : "", tag, texel, normal, whose);
+  };
+  if (m.normal_map) {
+    mapped(*m.normal_map, "normal_map", "nm", "Ns", "the lobes' normal");
+    out += "    T = normalize(T - Ns * dot(Ns, T));  // the anisotropic tangent follows the mapped normal\n";
+  }
+  if (m.coat_normal_map) mapped(*m.coat_normal_map, "coat_normal_map", "cm", "Nc", "the clear coat's own normal");
+  return out;
 }
 
 // The statements that set s0, t0, s1, t1 (glTF's coordinates) and the tangent frame at the
@@ -123,7 +132,7 @@ std::string osl_coordinates(const MaterialProgram& p, bool uv, bool cut) {
           "    float s1 = facet_uv1[0], t1 = 1 - facet_uv1[1];\n";
   else if (cut)
     out = "    float s0 = 0, t0 = 0, s1 = 0, t1 = 0;  // read by no image\n";
-  if (p.material.normal_map)
+  if (p.has_uv_frame())
     out += "    vector uv_tangent = facet_uv_tangent;\n    float uv_handedness = facet_uv_handedness;\n";
   else if (cut)
     out += "    vector uv_tangent = 0;  // read by no normal map\n    float uv_handedness = 1;\n";
@@ -139,7 +148,7 @@ OslTextures osl_textures(const targets::CPrinter& pr, const MaterialProgram& p, 
   if (!p.has_textures()) return out;
   out.samples = "    // Textured parameters.\n";
   std::vector<TextureCall> calls = texture_calls(p);
-  if (auto n = normal_map_call(p)) calls.push_back(*n);
+  for (const auto& n : normal_map_calls(p)) calls.push_back(n);
   for (const auto& c : calls) {
     std::string file = "facet_texture_" + c.name;
     if (c.image) {
@@ -151,7 +160,7 @@ OslTextures osl_textures(const targets::CPrinter& pr, const MaterialProgram& p, 
     const targets::OslSample sample = targets::osl_sample(pr, c, file);
     const std::string type = c.color ? "color" : "float";
     out.samples += sample.statements + fmt::format("    {} {} = {};\n", type, c.name, sample.value);
-    if (c.name == "normal_map") continue;  // read by the mapping below, not by the lobes
+    if (c.name == "normal_map" || c.name == "coat_normal_map") continue;  // read by the mapping below
     if (!p.uses(c.name)) continue;  // m_a or m_e: read by the shader, not by facet_reflect
     out.reflect_params += ", " + type + " " + c.name;
     out.reflect_args += ", " + c.name;
@@ -159,12 +168,12 @@ OslTextures osl_textures(const targets::CPrinter& pr, const MaterialProgram& p, 
   if (p.uses_vertex_color())
     out.params += "    color facet_color0 = 1,  // the vertex colour (glTF's COLOR_0, linear): link an Attribute node's Color\n"
                   "    float facet_alpha0 = 1,  // … and its Alpha; unlinked, white\n";
-  if (p.material.normal_map) {
+  if (const NormalMap* frame = p.material.frame_map()) {
     out.params += "    vector facet_uv_tangent = 0,  // the normal map's ∂p/∂u, world space (docs/textures.md, Tangent frames)\n"
                   "    float facet_uv_handedness = 1,  // w: B = w·(N × T)\n" +
-                  fmt::format("    int facet_normal_map_uv = {},  // the coordinate set the normal map reads (its tangents')\n",
-                              p.material.normal_map->texture().uv);
-    out.mapping = osl_normal_mapping(pr, *p.material.normal_map);
+                  fmt::format("    int facet_normal_map_uv = {},  // the coordinate set the normal maps read (their tangents')\n",
+                              frame->texture().uv);
+    out.mapping = osl_normal_mapping(pr, p.material);
   }
   return out;
 }
@@ -221,7 +230,7 @@ std::string generate_osl(const Material& m, const GenerateOptions& o) {
   arguments += constant_args;
   // facet_reflect(Nn, L, V, T[, Nc], constants…): Nc the coat's own normal where the lobes read it.
   constant_params = coat_normal_arg(p, "vector Nc") + constant_params;
-  constant_args = coat_normal_arg(p, "Nn") + constant_args;
+  constant_args = coat_normal_arg(p, p.coat_normal_mapped() ? "Nc" : "Nn") + constant_args;
   ShaderParams params;
   const Scene& scene = o.scene ? *o.scene : default_scene();
   const targets::OslCutouts cutouts = targets::osl_cutouts(pr, m, scene, o.fallback ? *o.fallback : m, o);
@@ -250,7 +259,7 @@ std::string generate_osl(const Material& m, const GenerateOptions& o) {
   if (p.emission_weight) {
     std::vector<std::string> constants;
     for (const auto& c : pr.free_constants(p.emission_weight)) constants.push_back(c->name);
-    emitted += " * " + emission_weight_call(p, "dot(Nn, V)", constants);
+    emitted += " * " + emission_weight_call(p, p.coat_normal_mapped() ? "dot(Nc, V)" : "dot(Nn, V)", constants);
   }
   // m_a and m_e: parameters, or locals sampled from their images (kAmbientInput, kEmissionInput).
   if (!m.ambient_texture) params.add("color", kAmbientInput, color_value(m.ambient), "m_a");
@@ -261,7 +270,7 @@ std::string generate_osl(const Material& m, const GenerateOptions& o) {
   std::string lights;
   for (size_t i = 0; i < scene.lights.size(); ++i)
     lights += light_block(pr, scene.lights[i], i, params, constant_args + textures.reflect_args,
-                          textures.mapping.empty() ? "Nn" : "Ns", cutouts.any);
+                          p.normal_mapped() ? "Ns" : "Nn", cutouts.any);
   std::string shader = render_template("osl/shader.osl", {{"scene", scene.name},
                                                           {"shader", "facet_" + identifier(m.name)},
                                                           {"parameters", params.text + textures.params},

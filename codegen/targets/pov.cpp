@@ -280,7 +280,7 @@ void PovScene::register_mesh_files() {
     const bool textured = shading(o).textured();
     // A normal map's corner tangents (scene/tangents.h): three more planes.
     std::shared_ptr<const std::vector<std::array<double, 4>>> tangents;
-    if (const auto& nm = shading(o).material->normal_map)
+    if (const NormalMap* nm = shading(o).material->frame_map())
       tangents = std::make_shared<const std::vector<std::array<double, 4>>>(mesh_tangents(*mesh, nm->texture().uv));
     // The vertex colours where the material reads them (object_function() reads the same planes).
     const bool colors = shading(o).program.uses_vertex_color() && !mesh->colors.empty();
@@ -300,7 +300,7 @@ void PovScene::register_mesh_files() {
 void PovScene::register_textures() {
   for (auto& sh : shadings_) {
     std::vector<TextureCall> calls = texture_calls(sh->program);
-    if (auto n = normal_map_call(sh->program)) calls.push_back(*n);
+    for (const auto& n : normal_map_calls(sh->program)) calls.push_back(n);
     if (auto a = alpha_call(*sh->material)) calls.push_back(*a);
     for (const auto& c : calls) {
       PovTexture t;
@@ -316,14 +316,15 @@ void PovScene::register_textures() {
           files_.push_back({t.alpha, [texels](std::ostream& out) { write_pov_texture_image(out, *texels, true); }});
         textures_.push_back(t);
       }
-      if (c.name == "normal_map") {  // its three channels as numbers, which the object functions combine
+      if (c.name == "normal_map" || c.name == "coat_normal_map") {  // three channels as numbers, which the object functions combine
+        auto& rgb = c.name == "normal_map" ? sh->normal_map : sh->coat_normal_map;
         for (int k = 0; k < 3; ++k) {
           PovTexture lane = t;
           lane.call.channel = k;
           lane.call.color = false;
-          lane.call.name = std::string("normal_map_") + "rgb"[k];
-          sh->normal_map[size_t(k)] = pov_sample_function(lane);
-          sh->printer.add_own(sh->normal_map[size_t(k)]);
+          lane.call.name = c.name + "_" + "rgb"[k];
+          rgb[size_t(k)] = pov_sample_function(lane);
+          sh->printer.add_own(rgb[size_t(k)]);
         }
         sh->normal_map_uv = c.uv;
         continue;
@@ -396,8 +397,8 @@ std::string PovScene::library() {
   const PovShading& sh = *shadings_.front();
   const Material& m = *sh.material;
   const std::string name = capital(identifier(m.name));
-  if (m.normal_map)  // its pigment macro takes the user's normal and no tangent frame
-    throw InputError({{m.source.empty() ? m.name : m.source, "normal_map",
+  if (m.frame_map())  // its pigment macro takes the user's normal and no tangent frame
+    throw InputError({{m.source.empty() ? m.name : m.source, m.normal_map ? "normal_map" : "coat_normal_map",
                        "POV-Ray's --library does not apply normal maps yet (a scene does: docs/textures.md)"}});
   if (m.masked())  // its pigment macro holds the radiance, which has no transmit
     throw InputError({{m.source.empty() ? m.name : m.source, "alpha_cutoff",

@@ -119,31 +119,37 @@ ir::FunctionPtr frame_function(const ir::FunctionPtr& reflectance, const std::st
 // Where `sh` has a normal map, the lobes' normal (catalog/texture.h, NormalMap; glTF 2.0
 // §3.9.3) from the object's unit normal n and unit tangent t ⟂ n (w = +1: the shapes'):
 // n_t = normalize((2·rgb − 1) ⊗ (s, ±s, 1)), normalize(n_t.x·t + n_t.y·(n × t) + n_t.z·n).
-// Else n itself.
+// Else n itself. `coat`: the same of the coat's own normal map (Material::coat_normal_map), on
+// the same frame, its values named apart (Z…) so that both can be in one function.
 Triple mapped_normal(ir::FunctionBuilder& fb, const PovShading& sh, const std::vector<Expr>& uv, const Triple& n,
-                     const Triple& t, const std::optional<Expr>& w = std::nullopt) {
-  if (!sh.normal_map[0]) return n;
-  const NormalMap& m = *sh.material->normal_map;
+                     const Triple& t, const std::optional<Expr>& w = std::nullopt, bool coat = false) {
+  const std::array<ir::FunctionPtr, 3>& rgb = coat ? sh.coat_normal_map : sh.normal_map;
+  if (!rgb[0]) return n;
+  const NormalMap& m = coat ? *sh.material->coat_normal_map : *sh.material->normal_map;
   const size_t set = size_t(sh.normal_map_uv);
-  auto lane = [&](size_t k) { return ir::call(sh.normal_map[k], {uv[2 * set], uv[2 * set + 1]}); };
+  auto lane = [&](size_t k) { return ir::call(rgb[k], {uv[2 * set], uv[2 * set + 1]}); };
+  const std::string tag = coat ? "Z" : "";
+  auto named = [&](ir::FunctionBuilder& b, const char* stem, const Triple& v) {
+    return Triple{b.let(tag + stem + "x", v.x), b.let(tag + stem + "y", v.y), b.let(tag + stem + "z", v.z)};
+  };
   const double s = m.strength;
-  Triple c = lets(fb, "Cx", "Cy", "Cz",
-                  {s * (2.0 * lane(0) - 1.0), (m.green_down ? -s : s) * (2.0 * lane(1) - 1.0), 2.0 * lane(2) - 1.0});
-  Expr len = fb.let("Cl", length3(c));
-  const Triple N = lets(fb, "Gx", "Gy", "Gz", n);
-  Triple T = lets(fb, "Ux", "Uy", "Uz", t);
+  Triple c = named(fb, "C", {s * (2.0 * lane(0) - 1.0), (m.green_down ? -s : s) * (2.0 * lane(1) - 1.0),
+                             2.0 * lane(2) - 1.0});
+  Expr len = fb.let(tag + "Cl", length3(c));
+  const Triple N = named(fb, "G", n);
+  Triple T = named(fb, "U", t);
   Triple B = cross3(N, T);
   if (w) {  // a mesh's blended tangent: made ⟂ n (Gram–Schmidt), B = w·(n × T)
-    Expr along = fb.let("Ud", dot3(N, T));
-    const Triple g = lets(fb, "Vx", "Vy", "Vz", {T.x - N.x * along, T.y - N.y * along, T.z - N.z * along});
-    Expr gl = fb.let("Vl", length3(g));
-    T = lets(fb, "Kx", "Ky", "Kz", g / gl);
+    Expr along = fb.let(tag + "Ud", dot3(N, T));
+    const Triple g = named(fb, "V", {T.x - N.x * along, T.y - N.y * along, T.z - N.z * along});
+    Expr gl = fb.let(tag + "Vl", length3(g));
+    T = named(fb, "K", g / gl);
     const Triple c = cross3(N, T);
     B = {c.x * *w, c.y * *w, c.z * *w};
   }
   auto times = [](const Triple& v, const Expr& k) { return Triple{v.x * k, v.y * k, v.z * k}; };
-  const Triple mapped = lets(fb, "Qx", "Qy", "Qz", times(T, c.x / len) + times(B, c.y / len) + times(N, c.z / len));
-  Expr ml = fb.let("Ql", length3(mapped));
+  const Triple mapped = named(fb, "Q", times(T, c.x / len) + times(B, c.y / len) + times(N, c.z / len));
+  Expr ml = fb.let(tag + "Ql", length3(mapped));
   return mapped / ml;
 }
 
@@ -261,9 +267,9 @@ ir::FunctionPtr PovScene::light_function(PovShading& sh, size_t i, const ir::Fun
 
 // {P}Facet_Emission(x, y, z, n, S0, T0, S1, T1[, R0, G0, B0, A0]): m_a ⊗ A + m_e, either from
 // its image or vertex colour (the sampling function of its textured input) or its colour, m_e
-// times emission_weight(n·v[, its textured parameters]) where layers lie over it (n the surface's
-// own normal, v towards the camera: its position, or an orthographic camera's −forward); called
-// like a light function.
+// times emission_weight(n·v[, its textured parameters]) where layers lie over it (n the coat's
+// normal: the surface's own, or the coat's own normal map's; v towards the camera: its position,
+// or an orthographic camera's −forward); called like a light function.
 ir::FunctionPtr PovScene::emission_function(PovShading& sh) {
   ir::FunctionBuilder fb("Facet_Emission", "");
   const Triple P = params(fb, "x", "y", "z");
@@ -328,23 +334,27 @@ ir::FunctionPtr PovScene::object_function(size_t o, const std::string& name, con
     uv = {s0, t0, s0, t0};
     if (colored) uv.insert(uv.end(), 4, Expr(1.0));
   };
-  // A light's arguments at point `at`: the lobes' normal n (a normal map's, of the object's own
-  // normal `own`), the tangent that follows it where the light takes one, `own` as the coat's
-  // normal where it takes that (takes_coat), then the coordinates.
-  auto shaded = [&](const Triple& at, const Triple& own, const Triple& n) {
+  // The call of `light` at point `at` of own normal `own` and frame t, w (w: a mesh's; the
+  // shapes' is +1): its arguments the lobes' normal n (the normal map's), the tangent that follows
+  // it where the light takes one, the coat's normal where it takes that (takes_coat: the coat's
+  // own map's, else `own`), then the coordinates. Where `own_normal` (the emission's function) the
+  // point and the coat's normal alone, which the emission's weight reads.
+  const PovShading& sh = shading(o);
+  auto shaded = [&](const Triple& at, const Triple& own, const Triple& t, const std::optional<Expr>& w) {
+    const Triple coat = mapped_normal(fb, sh, uv, own, t, w, true);
+    if (own_normal) return ir::call(light, with(args({at, coat}), uv));
+    const Triple n = mapped_normal(fb, sh, uv, own, t, w);
     std::vector<Expr> a = args({at, n});
-    if (takes_tangent(shading(o), *shading(o).program.reflectance)) append(a, mapped_tangent(fb, shading(o), own, n));
-    if (takes_coat(shading(o))) append(a, own);
-    return with(a, uv);
+    if (takes_tangent(sh, *sh.program.reflectance)) append(a, mapped_tangent(fb, sh, own, n));
+    if (takes_coat(sh)) append(a, coat);
+    return ir::call(light, with(a, uv));
   };
   if (obj.type == Object::Type::Plane) {
     Vec3 a, b;
     obj.plane_axes(a, b);
     const Triple q = P - obj.point;
     coordinates(0.5 + dot3(q, constant(a)) / (2 * obj.size), 0.5 - dot3(q, constant(b)) / (2 * obj.size));
-    if (own_normal) return fb.returns(ir::call(light, with(args({P, constant(obj.normal)}), uv)));
-    const Triple n = mapped_normal(fb, shading(o), uv, constant(obj.normal), constant(a));
-    return fb.returns(ir::call(light, shaded(P, constant(obj.normal), n)));
+    return fb.returns(shaded(P, constant(obj.normal), constant(a), std::nullopt));
   }
   if (obj.type == Object::Type::Mesh) {
     // (x, y) is uv_mapping's: where in the data image the hit point's block
@@ -363,13 +373,14 @@ ir::FunctionPtr PovScene::object_function(size_t o, const std::string& name, con
     if (colored)
       for (const char* c : {"CR", "CG", "CB", "CA"})
         uv.push_back(!obj.mesh->colors.empty() ? fb.let(std::string(1, c[1]) + "0", ir::call(data(c), at)) : Expr(1.0));
-    if (!shading(o).normal_map[0] || own_normal) return fb.returns(ir::call(light, with(args({hit, M / len}), uv)));
+    // Without a map the frame is not read.
+    if (!sh.framed() || (own_normal && !sh.coat_normal_map[0]))
+      return fb.returns(ir::call(light, with(args({hit, M / len}), uv)));
     // The blended corner tangents (docs/textures.md, "Tangent frames"), w the sign of the blended w.
     const Triple tangent = {ir::call(data("UX"), at), ir::call(data("UY"), at), ir::call(data("UZ"), at)};
     Expr w = fb.let("W", ir::select(ir::call(data("UW"), at) < 0.0, Expr(-1.0), Expr(1.0)));
-    const Triple n = mapped_normal(fb, shading(o), uv, M / len, tangent, w);
-    Expr lit = ir::call(light, shaded(hit, M / len, n));
-    if (!light_index) return fb.returns(lit);
+    Expr lit = shaded(hit, M / len, tangent, w);
+    if (!light_index || own_normal) return fb.returns(lit);
     // The smooth normal decides whether the light is above the surface (the reference's rule,
     // docs/textures.md "Normal maps"); POV-Ray's own lit side is the flat triangle's, which
     // faces the light a little past the smooth normal's terminator, where n′ may still.
@@ -382,11 +393,9 @@ ir::FunctionPtr PovScene::object_function(size_t o, const std::string& name, con
   Expr r = fb.let("R", length3(radial));
   const Triple d = radial / r;
   coordinates(0.5 + ir::atan2(d.x, d.z) / (2 * kPi), ir::acos(ir::clamp(d.y, -1.0, 1.0)) / kPi);
-  if (own_normal) return fb.returns(ir::call(light, with(args({P, d}), uv)));
   // docs/textures.md, "Tangent frames": the sphere's ∂p/∂u ∝ (d_z, 0, −d_x).
-  const Triple t = shading(o).normal_map[0] ? Triple{d.z, 0.0, -d.x} / ir::sqrt(d.z * d.z + d.x * d.x) : Triple{0.0, 0.0, 0.0};
-  const Triple n = mapped_normal(fb, shading(o), uv, d, t);
-  return fb.returns(ir::call(light, shaded(P, d, n)));
+  const Triple t = sh.framed() ? Triple{d.z, 0.0, -d.x} / ir::sqrt(d.z * d.z + d.x * d.x) : Triple{0.0, 0.0, 0.0};
+  return fb.returns(shaded(P, d, t, std::nullopt));
 }
 
 namespace {
@@ -493,8 +502,10 @@ std::string PovScene::functions(bool objects) {
     if (objects && sh->kept) roots.push_back(sh->kept);
     for (const auto& f : ir::dependencies(roots))
       if (is_scaffold(*f) && !is_declared(*f)) frames += sh->printer.function(f);
-    if (objects && sh->normal_map[0])  // the object functions read the normal map
-      for (const auto& f : sh->normal_map) frames += sh->printer.function(f);
+    if (objects)  // the object functions read the normal maps
+      for (const auto* map : {&sh->normal_map, &sh->coat_normal_map})
+        if ((*map)[0])
+          for (const auto& f : *map) frames += sh->printer.function(f);
   }
   return render_template("pov/functions.pov", {{"constants", constants}, {"terms", terms},
                                                {"frames", texture_declarations() + frames}});

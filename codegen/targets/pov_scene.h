@@ -56,14 +56,17 @@ struct PovShading {
   ir::FunctionPtr emission_function;
   // A normal map's raw r, g, b at (S, T) of its set (Facet_Sample_normal_map_r, _g, _b), or null.
   std::array<ir::FunctionPtr, 3> normal_map{};
-  int normal_map_uv = 0;
+  // The coat's own normal map's (Facet_Sample_coat_normal_map_r, …; Material::coat_normal_map), or null.
+  std::array<ir::FunctionPtr, 3> coat_normal_map{};
+  int normal_map_uv = 0;  // the set both maps read
+  bool framed() const { return normal_map[0] || coat_normal_map[0]; }  // a map turns on the tangent frame
   // A cut-out's alpha from an image (glTF's alphaMode MASK): Facet_Sample_alpha(S, T) of its
   // set, and {P}Facet_Kept(x, y, z, n, …), 1 where alpha ≥ the cutoff, 0 where the surface is
   // cut out, called like a light's function by each object's Facet_Object{o}_Kept. Null where
   // the material has no cut-out or its alpha is a number (PovScene::absent).
   ir::FunctionPtr alpha, kept;
   int alpha_uv = 0;
-  bool textured() const { return !samples.empty() || normal_map[0] || alpha; }
+  bool textured() const { return !samples.empty() || framed() || alpha; }
   int channels() const { return dependent ? 3 : 1; }
   std::string suffix(int ch) const;
   RGB emission(const Scene& s) const;  // m_a ⊗ A + m_e
@@ -121,8 +124,8 @@ class PovScene {
   ir::FunctionPtr kept_function(PovShading& sh);
   // `name`(x, y, z): `light` (a function of the point, its normal and its texture coordinates) on object o;
   // `light_index`: the scene light it is, where there is one (not the emission's function).
-  // `own_normal`: `light` takes the surface's own normal, not the normal map's, and no tangent
-  // (the emission's function).
+  // `own_normal`: `light` takes the coat's normal (the surface's own, or the coat's own normal
+  // map's), not the normal map's, and no tangent (the emission's function, whose weight reads it).
   ir::FunctionPtr object_function(size_t o, const std::string& name, const ir::FunctionPtr& light,
                                   std::optional<size_t> light_index = std::nullopt, bool own_normal = false);
   // Constants, terms and frames; `objects`: those the scene's objects call (lobe by lobe

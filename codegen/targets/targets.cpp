@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include "targets/targets_internal.h"
+#include "targets/templates.h"
 
 namespace facet {
 
@@ -133,6 +134,40 @@ void coat_normal_values(const MaterialProgram& p, const std::string& declaration
   values["coat_doc"] = p.uses_coat_normal() ? "; c, unit, the clear coat's own normal (the surface's own, unmapped, "
                                               "where n is a normal map's: KHR_materials_clearcoat)"
                                             : "";
+}
+
+std::string normal_map_functions(const MaterialProgram& p, const std::string& template_path,
+                                 const std::function<std::string(double)>& literal) {
+  std::string out;
+  auto add = [&](const NormalMap& m, const char* what, const char* whose, const char* function, const char* map) {
+    out += render_template(template_path, {{"what", what},
+                                           {"whose", whose},
+                                           {"function", function},
+                                           {"map", map},
+                                           {"strength", literal(m.strength)},
+                                           {"green", m.green_down ? "-" : ""}});
+  };
+  if (const auto& m = p.material.normal_map) add(*m, "The normal map", "the lobes'", "facet_normal_mapped", "normal_map");
+  if (const auto& m = p.material.coat_normal_map)
+    add(*m, "The clear coat's own normal map (KHR_materials_clearcoat's clearcoatNormalTexture)", "the coat's",
+        "facet_coat_normal_mapped", "coat_normal_map");
+  return out;
+}
+
+void normal_mapping_values(const MaterialProgram& p, const std::string& let, std::map<std::string, std::string>& values) {
+  std::string mapping;
+  if (p.normal_mapped())
+    mapping = "    // The lobes read the normal map's normal and a tangent that follows it.\n"
+              "    " + let + " ns = facet_normal_mapped(n, facet_uv_tangent, facet_uv_handedness);\n"
+              "    t = normalize(t - ns * dot(ns, t));\n";
+  else
+    mapping = "    " + let + " ns = n;\n";
+  // The coat's normal: its own map's, else the surface's own (KHR_materials_clearcoat).
+  if (p.coat_normal_mapped())
+    mapping += "    " + let + " nc = facet_coat_normal_mapped(n, facet_uv_tangent, facet_uv_handedness);\n";
+  values["mapping"] = mapping;
+  values["coat_arg"] = coat_normal_arg(p, p.coat_normal_mapped() ? "nc" : "n");
+  values["emitted_normal"] = p.coat_normal_mapped() ? "nc" : "n";
 }
 
 std::string coat_normal_arg(const MaterialProgram& p, const std::string& normal) {

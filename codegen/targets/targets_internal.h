@@ -1,6 +1,7 @@
 // Shared by the target printers; private to codegen/src/targets.
 #pragma once
 
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -37,6 +38,16 @@ void emitted_values(const MaterialProgram& p, std::map<std::string, std::string>
 // in the target's spelling), and "coat_doc", what c is; empty otherwise.
 void coat_normal_values(const MaterialProgram& p, const std::string& declaration,
                         std::map<std::string, std::string>& values);
+// The normal maps' mapping functions of a C-family target, rendered from `template_path`
+// (glsl/normal_map.glsl, …) with `literal` the target's number: facet_normal_mapped(n, t, w) for
+// the lobes' map, facet_coat_normal_mapped(n, t, w) for the coat's (Material::coat_normal_map),
+// each reading its sampled global (normal_map, coat_normal_map). Empty without either.
+std::string normal_map_functions(const MaterialProgram& p, const std::string& template_path,
+                                 const std::function<std::string(double)>& literal);
+// The light templates' "mapping" (the lobes' normal ns and the tangent that follows it; the
+// coat's nc where the coat has its own map), and "coat_arg", what facet_reflect takes after t, in
+// a C-family target whose local declaration is `let` ("vec3", "float3", "let").
+void normal_mapping_values(const MaterialProgram& p, const std::string& let, std::map<std::string, std::string>& values);
 // The argument a caller of facet_reflect passes after t: ", `normal`" (the coat's normal) where it
 // takes one, else "".
 std::string coat_normal_arg(const MaterialProgram& p, const std::string& normal);

@@ -49,9 +49,14 @@ std::vector<TextureCall> texture_calls(const MaterialProgram& p) {
   return out;
 }
 
-std::optional<TextureCall> normal_map_call(const MaterialProgram& p) {
-  if (!p.material.normal_map) return std::nullopt;
-  return call_of({"normal_map", "normal_map", ir::Type::Color, p.material.normal_map->value, Range::closed(0, 1)});
+std::vector<TextureCall> normal_map_calls(const MaterialProgram& p) {
+  std::vector<TextureCall> out;
+  const Material& m = p.material;
+  if (m.normal_map) out.push_back(call_of({"normal_map", "normal_map", ir::Type::Color, m.normal_map->value, Range::closed(0, 1)}));
+  if (m.coat_normal_map)
+    out.push_back(call_of({"coat_normal_map", "coat_normal_map", ir::Type::Color, m.coat_normal_map->value,
+                           Range::closed(0, 1)}));
+  return out;
 }
 
 std::optional<TextureCall> alpha_call(const Material& m) {
@@ -63,7 +68,7 @@ std::vector<TextureCall> image_calls(const MaterialProgram& p) {
   std::vector<TextureCall> out;
   for (const auto& c : texture_calls(p))
     if (c.image) out.push_back(c);
-  if (auto n = normal_map_call(p)) out.push_back(*n);
+  for (const auto& n : normal_map_calls(p)) out.push_back(n);
   return out;
 }
 

@@ -38,10 +38,11 @@ struct TextureCall {
 // The textured parameters' calls (MaterialProgram::textured's order), those of the vertex
 // colour alone included: every target's facet_sample_textures() sets each.
 std::vector<TextureCall> texture_calls(const MaterialProgram& p);
-// The normal map's call, named "normal_map": its raw rgb (linear, factor 1, range [0, 1]),
-// which the target turns into n_t itself (catalog/texture.h, NormalMap). Empty without one.
-std::optional<TextureCall> normal_map_call(const MaterialProgram& p);
-// Every image the material samples: texture_calls(p) that have one, then the normal map's.
+// The normal maps' calls, named "normal_map" and "coat_normal_map" (Material::coat_normal_map),
+// those the material has, in that order: their raw rgb (linear, factor 1, range [0, 1]), which
+// the target turns into n_t itself (catalog/texture.h, NormalMap).
+std::vector<TextureCall> normal_map_calls(const MaterialProgram& p);
+// Every image the material samples: texture_calls(p) that have one, then the normal maps'.
 // What the renderers upload and bind, and the targets declare: a value of the vertex colour
 // alone has no image.
 std::vector<TextureCall> image_calls(const MaterialProgram& p);

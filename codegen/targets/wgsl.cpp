@@ -178,19 +178,17 @@ std::string wgsl_textures(const MaterialProgram& p) {
     uniforms += fmt::format("@group(0) @binding({}) var facet_texture_{}: texture_2d<f32>;  // \"{}\", {}×{}\n",
                             binding++, c.name, c.file, c.texels->width, c.texels->height);
   std::vector<TextureCall> calls = texture_calls(p);
-  if (auto n = normal_map_call(p)) calls.push_back(*n);
+  for (const auto& n : normal_map_calls(p)) calls.push_back(n);
   for (const auto& c : calls) {
     globals += fmt::format("var<private> {}: {};\n", c.name, c.color ? "vec3<f32>" : "f32");
     samples += sample_statement(pr, c);
   }
-  std::string mapping;
-  if (const auto& nm = p.material.normal_map) {
-    // catalog/texture.h, NormalMap: n_t from the sampled rgb, then the mapped normal.
+  // catalog/texture.h, NormalMap: n_t from the sampled rgb, then the mapped normal.
+  if (p.has_uv_frame())
     globals += "// The normal map's frame at the shading point: t the unit ∂p/∂u, w = ±1 (B = w·(n × t)).\n"
                "var<private> facet_uv_tangent: vec3<f32>;\nvar<private> facet_uv_handedness: f32 = 1.0;\n";
-    mapping = render_template("wgsl/normal_map.wgsl", {{"strength", pr.literal(nm->strength)},
-                                                       {"green", nm->green_down ? "-" : ""}});
-  }
+  const std::string mapping =
+      normal_map_functions(p, "wgsl/normal_map.wgsl", [&](double x) { return pr.literal(x); });
   std::map<std::string, std::string> values = sampling_doc(p);
   values.insert({{"uniforms", uniforms}, {"globals", globals}, {"samples", samples},
                  {"params", p.uses_vertex_color() ? "uv0: vec2<f32>, uv1: vec2<f32>, color0: vec4<f32>"
@@ -293,15 +291,11 @@ WgslParts wgsl_parts(const MaterialProgram& p, const std::string& source, LightS
   parts.library = render_template("wgsl/library.wgsl", library);
   std::map<std::string, std::string> lights = glsl_light::template_values();  // the light encoding's numbers
   emitted_values(p, lights);
-  lights["mapping"] = p.normal_mapped() ? "    // The lobes read the normal map's normal and a tangent that follows it.\n"
-                                          "    let ns = facet_normal_mapped(n, facet_uv_tangent, facet_uv_handedness);\n"
-                                          "    t = normalize(t - ns * dot(ns, t));\n"
-                                        : "    let ns = n;\n";
+  normal_mapping_values(p, "let", lights);
   lights["declarations"] = wgsl_light_declarations(light_source);
   // An engine's uniform buffer holds FACET_MAX_LIGHTS: a larger count reads no further.
   lights["count"] = light_source == LightSource::Buffer ? "facet_scene.light_count"
                                                         : "min(facet_scene.light_count, FACET_MAX_LIGHTS)";
-  lights["coat_arg"] = coat_normal_arg(p, "n");  // the coat's normal: the surface's own
   parts.lights = render_template("wgsl/lights.wgsl", lights);
   std::string in = "    @location(0) position: vec3<f32>,  // world space\n"
                    "    @location(1) normal: vec3<f32>,    // world space\n";
@@ -315,7 +309,7 @@ WgslParts wgsl_parts(const MaterialProgram& p, const std::string& source, LightS
     in += "    @location(6) color0: vec4<f32>,  // glTF's COLOR_0: linear RGBA; white (1) where a mesh has none\n";
     sample = "    facet_sample_textures(fragment.texcoord0, fragment.texcoord1, fragment.color0);\n";
   }
-  if (p.normal_mapped()) {
+  if (p.has_uv_frame()) {
     in += "    @location(5) texture_tangent: vec4<f32>,  // xyz: ∂p/∂u, w: ±1 (glTF's TANGENT)\n";
     sample += "    facet_uv_tangent = fragment.texture_tangent.xyz;\n"
               "    facet_uv_handedness = fragment.texture_tangent.w;\n";
@@ -331,7 +325,7 @@ std::string wgsl_gbuffer_shading_source(const Material& m) {
   if (p.has_textures())
     sample = p.uses_vertex_color() ? "    facet_sample_textures(uv.xy, uv.zw, textureLoad(facet_gbuffer_color0, texel, 0));\n"
                                    : "    facet_sample_textures(uv.xy, uv.zw);\n";
-  if (p.normal_mapped()) sample += "    facet_uv_tangent = frame.xyz;\n    facet_uv_handedness = frame.w;\n";
+  if (p.has_uv_frame()) sample += "    facet_uv_tangent = frame.xyz;\n    facet_uv_handedness = frame.w;\n";
   std::map<std::string, std::string> values = glsl_light::visibility_values();
   values["sample"] = sample;
   return parts.header + "\n" + parts.library + "\n" + parts.lights + render_template("wgsl/gbuffer_shade.wgsl", values);

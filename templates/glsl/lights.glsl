@@ -25,8 +25,8 @@ vec3 facet_emitted(vec3 n, vec3 v)
 // MODELS.md: L = m_a ⊗ A + Σ att(d) · spot · C ⊗ (k_d ⊗ ρ_d + k_s ⊗ ρ_s) + m_e
 vec3 facet_shade(vec3 p, vec3 n, vec3 v, vec3 t)
 {
-    vec3 radiance = material_ambient * facet_ambient.rgb + facet_emitted(n, v);
-{{mapping}}    for (int i = 0; i < {{count}}; ++i) {
+{{mapping}}    vec3 radiance = material_ambient * facet_ambient.rgb + facet_emitted({{emitted_normal}}, v);
+    for (int i = 0; i < {{count}}; ++i) {
         FacetLight light = facet_light(i);
         vec3 l;
         float d = 1e30;  // directional lights have no distance

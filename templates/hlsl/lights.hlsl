@@ -24,8 +24,8 @@ float3 facet_emitted(float3 n, float3 v)
 // MODELS.md: L = m_a ⊗ A + Σ att(d) · spot · C ⊗ (k_d ⊗ ρ_d + k_s ⊗ ρ_s) + m_e
 float3 facet_shade(float3 p, float3 n, float3 v, float3 t)
 {
-    float3 radiance = material_ambient * facet_ambient.rgb + facet_emitted(n, v);
-{{mapping}}    for (int i = 0; i < {{count}}; ++i) {
+{{mapping}}    float3 radiance = material_ambient * facet_ambient.rgb + facet_emitted({{emitted_normal}}, v);
+    for (int i = 0; i < {{count}}; ++i) {
         FacetLight light = facet_light(i);
         float3 l;
         float d = 1e30;  // directional lights have no distance

@@ -17,9 +17,9 @@ fn facet_emitted(n: vec3<f32>, v: vec3<f32>) -> vec3<f32> {
 // facet_visibility(p, l, d, i): how much of light i reaches p along l over distance d
 // (1 unlit by shadows, 0 in shadow), defined by the code this is assembled with.
 fn facet_shade(p: vec3<f32>, n: vec3<f32>, v: vec3<f32>, surface_tangent: vec3<f32>) -> vec3<f32> {
-    var radiance = material_ambient * facet_scene.ambient.rgb + facet_emitted(n, v);
     var t = surface_tangent;
-{{mapping}}    for (var i: i32 = 0; i < {{count}}; i++) {
+{{mapping}}    var radiance = material_ambient * facet_scene.ambient.rgb + facet_emitted({{emitted_normal}}, v);
+    for (var i: i32 = 0; i < {{count}}; i++) {
         let light = facet_light(i);
         var l: vec3<f32>;
         var d: f32 = 1e30;  // directional lights have no distance

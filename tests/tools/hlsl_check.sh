@@ -3,7 +3,7 @@
 # glslang's HLSL front end on each (glslangValidator -D -V -S frag -e main: HLSL to
 # SPIR-V, validated); the library under a small pixel-shader main that calls
 # facet_reflect (and facet_sample_textures, for a textured material, with the vertex colour
-# where it reads one); the pixel shader
+# where it reads one; the coat's normal after t, where it takes one); the pixel shader
 # also with -DFACET_SPIRV -DFACET_VERTEX_TANGENT. glslang accepts
 # GLSL's one-number float3(x), which fxc and dxc refuse: a grep refuses it here.
 #   hlsl_check.sh FACET MATERIAL OUTDIR [SED]
@@ -39,7 +39,11 @@ glslangValidator -D -V -S frag -e main -DFACET_SPIRV -DFACET_VERTEX_TANGENT "$ou
     echo "    facet_sample_textures(uv.xy, uv.zw);"
   fi
   echo "    float3 nn = normalize(n);"
-  echo "    return float4(facet_reflect(nn, normalize(l), normalize(v), facet_tangent(nn)), 1.0);"
+  coat=""
+  if grep -q "float3 facet_reflect(float3 n, float3 l, float3 v, float3 t, float3 c)" "$out/$name.lib.hlsl"; then
+    coat=", nn"  # the clear coat's own normal: here the surface's
+  fi
+  echo "    return float4(facet_reflect(nn, normalize(l), normalize(v), facet_tangent(nn)$coat), 1.0);"
   echo "}"
 } > "$out/$name.lib.main.hlsl"
 check "$out/$name.lib.main.hlsl"

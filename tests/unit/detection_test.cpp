@@ -840,6 +840,35 @@ TEST(Detection, CoatOnTheBasesNormalMapFails) {
                all);
 }
 
+// The clear coat's own normal map (KHR_materials_clearcoat's clearcoatNormalTexture; facet's
+// coat_normal_map): ignored (the coat on the surface's own normal) or with its green channel
+// flipped, it fails on the GLSL, OSL and POV-Ray routes, while the generated code passes.
+// examples/textured/textured_coat_normal.json (a coat normal map over an unmapped base).
+TEST(Detection, CoatNormalMapFailsIgnoredOrFlipped) {
+  const std::string example = "textured_coat_normal";
+  Fixture f = fixture(example, "glsl", "textured", "single");
+  check_wrongs(example, "textured", "single", "glsl", GlRenderer::fragment_source(f.material),
+               {{"the coat's map ignored", "vec3 nc = facet_coat_normal_mapped(n, facet_uv_tangent, facet_uv_handedness);",
+                 "vec3 nc = n;"},
+                {"the coat's green flipped", "0.6 * c.y", "-0.6 * c.y"}},
+               once);
+  GenerateOptions o;
+  o.target = Target::Osl;
+  o.scene = f.scene;
+  check_wrongs(example, "textured", "single", "osl", generate(f.material, o),
+               {{"the coat's map ignored", "vector Nc = normalize(cm_t[0] * Tu + cm_t[1] * Bu + cm_t[2] * Nn);",
+                 "vector Nc = Nn;"},
+                {"the coat's green flipped", "0.6 * cm_c[1]", "-0.6 * cm_c[1]"}},
+               once);
+  Fixture p = fixture(example, "pov", "textured", "single");
+  PovOutput pov = generate_pov_files(p.scene, &p.material, example, PovRoute::Auto, job_name(p.job));
+  // The sphere's light functions take its own normal (x, y, z)/R, then the coat's mapped one ZQ/ZQl.
+  check_wrongs(example, "textured", "single", "pov", pov.code,
+               {{"the coat's map ignored", "z/R, ZQx/ZQl, ZQy/ZQl, ZQz/ZQl, S0", "z/R, x/R, y/R, z/R, S0"},
+                {"the coat's green flipped", "0.6*(2*Facet_Sample_coat_normal_map_g", "-0.6*(2*Facet_Sample_coat_normal_map_g"}},
+               all);
+}
+
 // Normal maps (docs/textures.md, "Normal maps"): the example's map with its green channel
 // flipped (DirectX's convention taken for OpenGL's), the map ignored (the lobes on the
 // object's own normal) and the tangent reversed each fail on the sphere and the square of
