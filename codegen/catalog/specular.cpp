@@ -242,9 +242,10 @@ ir::Expr gltf_clearcoat(LobeContext& c, ir::Expr core) {
 
 // KHR_materials_clearcoat, "Emission": coated_emission = emission (1 − clearcoat
 // clearcoat_fresnel), clearcoat_fresnel = 0.04 + 0.96 (1 − n·v)^5 the coat's Fresnel of n·v as the
-// coat lobe has it ("Layering"), n the coat's normal: the surface's own, since facet reads no
-// clearcoatNormalTexture (and "if clearcoatNormalTexture is not given, no normal mapping is applied
-// to the clear coat layer"). A textured clearcoat is the same input the reflectance reads
+// coat lobe has it ("Layering"), n the coat's normal Nc: its own normal map's (the material's
+// coat_normal_map, glTF's clearcoatNormalTexture), else the surface's own ("if
+// clearcoatNormalTexture is not given, no normal mapping is applied to the clear coat layer"); every
+// target passes n·v of that normal. A textured clearcoat is the same input the reflectance reads
 // (`lobe`_clearcoat, its texel times its factor). Null without a coat.
 ir::FunctionPtr gltf_emission_weight(const ModelSpec& s, const std::string& lobe) {
   if (!has_clearcoat(s)) return nullptr;
@@ -476,8 +477,8 @@ void add_specular(std::vector<ModelDef>& all) {
                 "Smith, α = roughness²), F = f0 + (specular − f0) w, w = (1 − |v·h|)^5, f0 = min(F0(ior) "
                 "specular_color, 1) specular, F0(ior) = ((ior − 1)/(ior + 1))²; with a sheen s: f' = s S_s + f min(1 − "
                 "max(s) E(n·v), 1 − max(s) E(n·l)), S_s = D V (Charlie, α = sheen_roughness²), E its albedo; with a "
-                "clear coat c over that: f'' = f' (1 − c Fc) + c Fc S_c, S_c = D V (α = clearcoat_roughness²), Fc = "
-                "0.04 + 0.96 (1 − |n·v|)^5";
+                "clear coat c over that: f'' = f' (1 − c Fc) + c Fc S_c, S_c = D V (α = clearcoat_roughness², on the "
+                "coat's normal n_c), Fc = 0.04 + 0.96 (1 − |n_c·v|)^5";
     m.doc = "The whole BRDF a glTF file's material means, diffuse included, as its specification writes it: a "
             "dielectric (a Lambert base under a GGX layer, the base weighted by 1 − max(F)) and a metal (the GGX "
             "lobe tinted by the base colour's Schlick Fresnel), mixed by metallic. ior and specular / specular_color "
@@ -487,8 +488,9 @@ void add_specular(std::vector<ModelDef>& all) {
             "anisotropic height-correlated V). sheen_color and sheen_roughness are KHR_materials_sheen: the \"Charlie\" "
             "sheen over the rest, which is scaled by one minus the sheen's directional albedo at n·v and at n·l (a "
             "fit, worst error stated in docs/gltf.md). clearcoat and clearcoat_roughness are KHR_materials_clearcoat: "
-            "a GGX layer over all of it, weighted by its Fresnel at n·v (the coat's normal is the surface's: a separate coat "
-            "normal map is not taken). Write it as the material's specular lobe, alone.";
+            "a GGX layer over all of it, weighted by its Fresnel at n·v, on a normal of its own: the material's "
+            "coat_normal_map (glTF's clearcoatNormalTexture), else the surface's own, unmapped where the base has a "
+            "normal_map. Write it as the material's specular lobe, alone.";
     // Defaults: Blender's Principled BSDF's (a grey dielectric, roughness 0.5), not glTF's white
     // rough metal (1, 1, 1), which a glTF import states for a file that leaves its factors out;
     // the extensions' defaults are their READMEs'.

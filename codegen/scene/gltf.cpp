@@ -927,6 +927,16 @@ class Exporter {
       ext["clearcoatRoughnessFactor"] = tinygltf::Value(coat_roughness.number);
       if (coat.texture) ext["clearcoatTexture"] = extension_texture_info(*coat.texture);
       if (coat_roughness.texture) ext["clearcoatRoughnessTexture"] = extension_texture_info(*coat_roughness.texture);
+      // The coat's own normal map: a normalTextureInfo, its scale the map's strength (glTF's is green up).
+      if (const auto& map = m.coat_normal_map; map && map->green_down) {
+        notes_.push_back(fmt::format("materials.{}: its coat normal map's green points down (DirectX); glTF's "
+                                     "clearcoatNormalTexture is left out (FACET_material carries it)",
+                                     key));
+      } else if (map) {
+        tinygltf::Value::Object info = extension_texture_info(map->texture()).Get<tinygltf::Value::Object>();
+        info["scale"] = tinygltf::Value(map->strength);
+        ext["clearcoatNormalTexture"] = tinygltf::Value(info);
+      }
       g.extensions["KHR_materials_clearcoat"] = tinygltf::Value(ext);
       used_.insert("KHR_materials_clearcoat");
     }

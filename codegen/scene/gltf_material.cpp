@@ -243,17 +243,44 @@ void sheen_extension(const json& sheen, json& lobe, GltfImages& images, const st
 }
 
 // KHR_materials_clearcoat ("Clearcoat"): clearcoat = clearcoatFactor × clearcoatTexture's R,
-// clearcoat_roughness = clearcoatRoughnessFactor × clearcoatRoughnessTexture's G. The coat takes
-// the surface's own normal, unmapped over a normal-mapped base as the README says (the material's
-// coat_normal_differs): a clearcoatNormalTexture is not read (a note says so).
+// clearcoat_roughness = clearcoatRoughnessFactor × clearcoatRoughnessTexture's G. The coat's
+// normal is the material's (coat_normal_map: pbr_material reads clearcoatNormalTexture).
 void clearcoat_extension(const json& coat, json& lobe, GltfImages& images, const std::string& key,
-                         std::vector<std::pair<int, std::string>>& sets, std::vector<std::string>& notes) {
+                         std::vector<std::pair<int, std::string>>& sets) {
   factor_and_texture(coat, "clearcoatFactor", 0, "clearcoatTexture", "r", "clearcoat", lobe, images, key, sets);
   factor_and_texture(coat, "clearcoatRoughnessFactor", 0, "clearcoatRoughnessTexture", "g", "clearcoat_roughness",
                      lobe, images, key, sets);
-  if (coat.contains("clearcoatNormalTexture"))
-    notes.push_back(key + ".clearcoatNormalTexture: approximate: not read; the coat takes the surface's own, "
-                          "unmapped normal");
+}
+
+// KHR_materials_clearcoat's clearcoatNormalTexture (a normalTextureInfo: its scale is the map's
+// strength) as the material's "coat_normal_map", on the base's tangent frame: "If
+// clearcoatNormalTexture is not given, no normal mapping is applied to the clear coat layer"
+// (the coat then takes the surface's own normal, which gltf_pbr does without a key). Not read,
+// with a note, where the coat is disabled (clearcoatFactor 0) or where it reads other texture
+// coordinates than normalTexture (the README: "these textures SHOULD use the same texture
+// coordinates because they operate in the same tangent space"; facet turns both on one frame).
+void coat_normal_map(const json& coat, const std::optional<TextureUse>& normal_map, json& m, GltfImages& images,
+                     const std::string& key, std::vector<std::pair<int, std::string>>& sets,
+                     std::vector<std::string>& notes) {
+  if (!coat.contains("clearcoatNormalTexture")) return;
+  const std::string at = key + ".clearcoatNormalTexture";
+  const TextureUse t = extension_texture(images, coat["clearcoatNormalTexture"], at);
+  const double scale = extension_number(images, coat["clearcoatNormalTexture"], "scale", 1, -kScalarMax, kScalarMax, at);
+  if (extension_number(images, coat, "clearcoatFactor", 0, 0, 1, key) == 0) {
+    notes.push_back(at + ": not read: the clear coat is disabled (clearcoatFactor 0)");
+    return;
+  }
+  if (normal_map && normal_map->uv != t.uv) {
+    notes.push_back(fmt::format("{}: approximate: not read: it reads TEXCOORD_{} where normalTexture reads TEXCOORD_{}, "
+                                "and facet turns both maps on one tangent frame; the coat takes the surface's own "
+                                "normal",
+                                at, t.uv, normal_map->uv));
+    return;
+  }
+  sets.emplace_back(t.uv, t.key + ".texCoord");
+  m["coat_normal_map"] = t.spec;  // tangent-space, linear, +Y up (glTF 2.0 §3.9.3)
+  m["coat_normal_map"]["green"] = "up";
+  m["coat_normal_map"]["strength"] = scale;
 }
 
 // KHR_materials_anisotropy ("Anisotropy"): anisotropy_strength = anisotropyStrength,
@@ -298,7 +325,7 @@ json gltf_pbr_lobe(const tinygltf::Material& g, const Pbr& p, GltfImages& images
   if (sheen.is_object()) sheen_extension(sheen, lobe, images, mpath + ".extensions.KHR_materials_sheen", notes);
   const json coat = extension_of(g.extensions_json_string, "KHR_materials_clearcoat");
   if (coat.is_object())
-    clearcoat_extension(coat, lobe, images, mpath + ".extensions.KHR_materials_clearcoat", sets, notes);
+    clearcoat_extension(coat, lobe, images, mpath + ".extensions.KHR_materials_clearcoat", sets);
   return lobe;
 }
 
@@ -370,6 +397,8 @@ json pbr_material(const tinygltf::Material& g, const std::string& mpath, GltfIma
     m["normal_map"]["green"] = "up";
     m["normal_map"]["strength"] = g.normalTexture.scale;
   }
+  if (const json coat = extension_of(g.extensions_json_string, "KHR_materials_clearcoat"); coat.is_object())
+    coat_normal_map(coat, normal_map, m, images, mpath + ".extensions.KHR_materials_clearcoat", sets, notes);
   if (p.occlusion_map) {
     const RGB kd_c = {p.base[0] * (1 - p.metal), p.base[1] * (1 - p.metal), p.base[2] * (1 - p.metal)};
     if (p.base_map || (p.mr_map && p.metal > 0) || kd_c[0] + kd_c[1] + kd_c[2] > 0)

@@ -784,11 +784,12 @@ def blender_textured_scene(folder):
     point_sun_camera(scene, (3.0, -3.0, 5.0), 1.5, (0.5, -0.4, 0.3), (0.3, -6.5, 3.5))
 
 
-def blender_principled_scene():
+def blender_principled_scene(folder):
     """A third exporter-written file (issue 29, acceptance 3): Principled BSDFs using the inputs
     glTF's material extensions carry, as Blender's exporter writes them: IOR (KHR_materials_ior),
     Specular IOR Level and Tint (KHR_materials_specular), Sheen Weight, Tint and Roughness
-    (KHR_materials_sheen), Coat Weight and Roughness (KHR_materials_clearcoat), Emission Color and
+    (KHR_materials_sheen), Coat Weight and Roughness and a Coat Normal through a Normal Map node
+    (KHR_materials_clearcoat with its clearcoatNormalTexture), Emission Color and
     a Strength above 1 (KHR_materials_emissive_strength), Anisotropic and its Rotation
     (KHR_materials_anisotropy; the sphere is rotated, so its UV tangents are not facet's tangent
     rule's, and the import's note measures the difference)."""
@@ -812,6 +813,21 @@ def blender_principled_scene():
         principled("emissive_metal", (0.9, 0.6, 0.3), 1.0, 0.35, **{
             "Emission Color": (1.0, 0.4, 0.1), "Emission Strength": 2.0}),
         principled("brushed", (0.8, 0.8, 0.85), 1.0, 0.4, **{"Anisotropic": 0.5, "Anisotropic Rotation": 0.25}))
+    # The coat's own normal map (Non-Color image → Normal Map node, strength 0.8 → Coat Normal),
+    # which Blender's exporter writes as clearcoatNormalTexture with scale 0.8.
+    bumps = bpy.data.images.new("coat_bumps", 32, 32, alpha=True)
+    bumps.pixels.foreach_set((gb.normal_bumps(32)[::-1].astype(np.float32) / 255.0).ravel())
+    bumps.filepath_raw = os.path.join(folder, "coat_bumps.png")
+    bumps.file_format = "PNG"
+    bumps.save()
+    bumps.colorspace_settings.name = "Non-Color"
+    tree = materials[0].node_tree
+    tex = tree.nodes.new("ShaderNodeTexImage")
+    tex.image, tex.interpolation = bumps, "Linear"
+    normal_map = tree.nodes.new("ShaderNodeNormalMap")
+    normal_map.inputs["Strength"].default_value = 0.8
+    tree.links.new(tex.outputs["Color"], normal_map.inputs["Color"])
+    tree.links.new(normal_map.outputs["Normal"], tree.nodes["Principled BSDF"].inputs["Coat Normal"])
     floor = blender_material("floor", (0.5, 0.5, 0.5), 0.0, 0.7)
     blender_object("floor", lambda: bpy.ops.mesh.primitive_plane_add(size=10), floor, (0, 0, 0), smooth=False)
     for k, m in enumerate(materials):
@@ -862,7 +878,7 @@ def write_blender_files(out):
     blender_textured_scene(blend_folder)
     bpy.context.scene.name = "blender_textured"
     export_blender(os.path.join(out, "corpus", "blender_textured.gltf"))
-    blender_principled_scene()
+    blender_principled_scene(blend_folder)
     bpy.context.scene.name = "blender_principled"
     export_blender(os.path.join(out, "corpus", "blender_principled.glb"))
 
@@ -875,9 +891,9 @@ CORPUS.append(("blender_textured.gltf", "written by Blender's glTF exporter: an 
                                         "a second UV map (KHR_texture_transform, TEXCOORD_1), mirrored and rotated "
                                         "objects, a point light and a sun", None))
 CORPUS.append(("blender_principled.glb", "written by Blender's glTF exporter from Principled BSDFs: IOR, Specular IOR "
-                                         "Level and Tint, Sheen, Coat, Emission Strength 2, Anisotropic on a rotated "
-                                         "sphere: KHR_materials_ior, _specular, _sheen, _clearcoat, "
-                                         "_emissive_strength, _anisotropy", None))
+                                         "Level and Tint, Sheen, Coat with its own Coat Normal map, Emission Strength "
+                                         "2, Anisotropic on a rotated sphere: KHR_materials_ior, _specular, _sheen, "
+                                         "_clearcoat (clearcoatNormalTexture), _emissive_strength, _anisotropy", None))
 
 
 # ----------------------------------------------------------------------------- wrong twins

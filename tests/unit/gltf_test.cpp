@@ -230,17 +230,22 @@ TEST(Gltf, MetallicRoughnessIsTheGltfBrdfExactly) {
 }
 
 // A material of one gltf_pbr lobe `lobe` (its maps read textures/leaf.png), in a folder of its own.
-Material leaf_lobe_material(const std::string& folder_name, const std::string& name, const json& lobe) {
+Material leaf_lobe_material(const std::string& folder_name, const std::string& name, const json& lobe,
+                            const json& more = json::object()) {
   const fs::path folder = scratch(folder_name);
   fs::remove_all(folder);
   fs::create_directories(folder / "textures");
   fs::copy_file(kSource / "examples/textured/textures/leaf.png", folder / "textures/leaf.png");
-  write_file_atomic((folder / "m.json").string(), json{{"name", name}, {"specular", lobe}}.dump());
+  json doc = {{"name", name}, {"specular", lobe}};
+  doc.update(more);
+  write_file_atomic((folder / "m.json").string(), doc.dump());
   return load_material((folder / "m.json").string());
 }
 
 // glTF's own BRDF goes out as glTF says it: the factors, the metallic–roughness map (one
-// image's B and G), KHR_materials_ior and KHR_materials_specular (with specularTexture's A).
+// image's B and G), KHR_materials_ior and KHR_materials_specular (with specularTexture's A),
+// KHR_materials_clearcoat with the coat's own normal map (clearcoatNormalTexture, its scale and
+// KHR_texture_transform).
 TEST(Gltf, GltfBrdfExportsAsItsFactorsMapsAndExtensions) {
   const json lobe = {{"model", "gltf_pbr"},
                      {"base_color", {{"texture", "textures/leaf.png"}, {"colorspace", "srgb"}, {"factor", {0.9, 0.8, 0.7}}}},
@@ -255,7 +260,8 @@ TEST(Gltf, GltfBrdfExportsAsItsFactorsMapsAndExtensions) {
                      {"sheen_roughness", 0.45},
                      {"anisotropy_strength", 0.5},
                      {"anisotropy_rotation", 1.25}};
-  const Material m = leaf_lobe_material("gltf_brdf_export", "painted", lobe);
+  const json coat_map = {{"texture", "textures/leaf.png"}, {"transform", {{"rotation", 0.5}}}, {"strength", 0.7}};
+  const Material m = leaf_lobe_material("gltf_brdf_export", "painted", lobe, {{"coat_normal_map", coat_map}});
   const std::string out = (scratch("gltf_brdf_export") / "out.gltf").string();
   std::vector<std::string> notes;
   export_gltf(load_scene("single"), &m, out, notes);
@@ -273,6 +279,9 @@ TEST(Gltf, GltfBrdfExportsAsItsFactorsMapsAndExtensions) {
   EXPECT_EQ(g["extensions"]["KHR_materials_clearcoat"]["clearcoatFactor"], 0.8);
   EXPECT_EQ(g["extensions"]["KHR_materials_clearcoat"]["clearcoatRoughnessFactor"], 0.3);
   EXPECT_TRUE(g["extensions"]["KHR_materials_clearcoat"].contains("clearcoatTexture"));
+  const json& coat_normal = g["extensions"]["KHR_materials_clearcoat"]["clearcoatNormalTexture"];
+  EXPECT_EQ(coat_normal["scale"], 0.7) << coat_normal.dump();
+  EXPECT_EQ(coat_normal["extensions"]["KHR_texture_transform"]["rotation"], 0.5) << coat_normal.dump();
   EXPECT_EQ(g["extensions"]["KHR_materials_sheen"]["sheenColorFactor"], json::array({0.6, 0.5, 0.4}));
   EXPECT_EQ(g["extensions"]["KHR_materials_sheen"]["sheenRoughnessFactor"], 0.45);
   EXPECT_EQ(g["extensions"]["KHR_materials_anisotropy"]["anisotropyStrength"], 0.5);
@@ -315,6 +324,11 @@ TEST(Gltf, GltfBrdfExportsAsItsFactorsMapsAndExtensions) {
     EXPECT_EQ(x.texture->colorspace, y.texture->colorspace) << p;
     EXPECT_EQ(x.texture->texels->rgba, y.texture->texels->rgba) << p;
   }
+  const Material& plain_material = plain.materials.begin()->second;
+  ASSERT_TRUE(plain_material.coat_normal_map) << "clearcoatNormalTexture read back";
+  EXPECT_EQ(plain_material.coat_normal_map->strength, 0.7);
+  EXPECT_EQ(plain_material.coat_normal_map->texture().rotation, 0.5);
+  EXPECT_EQ(plain_material.coat_normal_map->texture().texels->rgba, m.coat_normal_map->texture().texels->rgba);
 }
 
 // What glTF cannot say (here a metallic map without its roughness half) is decided before
@@ -742,8 +756,9 @@ TEST(GltfTextures, NormalEmissiveAndOcclusionMapsAreImported) {
 
 // KHR_materials_clearcoat ("Clearcoat"): clearcoat = clearcoatFactor × clearcoatTexture's R and
 // clearcoat_roughness = clearcoatRoughnessFactor × clearcoatRoughnessTexture's G, linear; what the
-// lobe does not take (a coat normal map)
-// is named in notes; the emission's dimming under a textured coat is exact, so no note names it.
+// the coat's own normal map (clearcoatNormalTexture) is the material's coat_normal_map, its scale the
+// map's strength, left out with a note where it reads other coordinates than the normalTexture
+// or the coat is disabled; the emission's dimming under a textured coat is exact, so no note names it.
 TEST(GltfTextures, ClearcoatIsReadWithItsMapsAndItsLimitsSaid) {
   json g = textured_triangle(json::array({data_uri_image(small_png())}));
   json& gm = g["materials"][0];
@@ -765,19 +780,38 @@ TEST(GltfTextures, ClearcoatIsReadWithItsMapsAndItsLimitsSaid) {
   EXPECT_EQ(rough.number, 0.25);
   for (const auto& n : notes) EXPECT_EQ(n.find("approximate"), std::string::npos) << n;
   EXPECT_EQ(s.materials.begin()->second.specular->def->name, "gltf_pbr");
-  // A coat normal map, a normal-mapped base and an emission: each said, none refused.
-  gm["extensions"]["KHR_materials_clearcoat"]["clearcoatNormalTexture"] = {{"index", 0}};
+  // A coat normal map over a normal-mapped base, with an emission: read, nothing approximate.
+  gm["extensions"]["KHR_materials_clearcoat"]["clearcoatNormalTexture"] = {{"index", 0}, {"scale", 0.4}};
   gm["normalTexture"] = {{"index", 0}};
   gm["emissiveFactor"] = {0.5, 0.5, 0.5};
   notes.clear();
-  import_gltf(write_gltf("clearcoat_limits.gltf", g).string(), {}, notes);
+  Scene both = import_gltf(write_gltf("clearcoat_normal.gltf", g).string(), {}, notes);
+  const Material& mb = both.materials.begin()->second;
+  ASSERT_TRUE(mb.normal_map && mb.coat_normal_map);
+  EXPECT_EQ(mb.coat_normal_map->strength, 0.4);
+  EXPECT_FALSE(mb.coat_normal_map->green_down);
+  for (const auto& n : notes) EXPECT_EQ(n.find("approximate"), std::string::npos) << n;
+  // On other coordinates than the base's map: not read, said; the coat on the surface's own normal.
+  gm["extensions"]["KHR_materials_clearcoat"]["clearcoatNormalTexture"]["texCoord"] = 1;
+  g["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_1"] = 1;
+  notes.clear();
+  Scene apart = import_gltf(write_gltf("clearcoat_normal_apart.gltf", g).string(), {}, notes);
+  EXPECT_FALSE(apart.materials.begin()->second.coat_normal_map);
   int coat_normal = 0, emission = 0;
   for (const auto& n : notes) {
-    coat_normal += n.find("clearcoatNormalTexture: approximate") != std::string::npos;
+    coat_normal += n.find("clearcoatNormalTexture: approximate: not read") != std::string::npos;
     emission += n.find("emission") != std::string::npos;
   }
   EXPECT_EQ(coat_normal, 1);
   EXPECT_EQ(emission, 0) << "the emission under the coat is exact: no note";
+  // A disabled coat (clearcoatFactor 0): its normal map is not read, said.
+  gm["extensions"]["KHR_materials_clearcoat"] = {{"clearcoatFactor", 0}, {"clearcoatNormalTexture", {{"index", 0}}}};
+  notes.clear();
+  Scene off = import_gltf(write_gltf("clearcoat_normal_off.gltf", g).string(), {}, notes);
+  EXPECT_FALSE(off.materials.begin()->second.coat_normal_map);
+  EXPECT_EQ(std::count_if(notes.begin(), notes.end(),
+                          [](const std::string& n) { return n.find("the clear coat is disabled") != std::string::npos; }),
+            1);
 }
 
 // KHR_materials_sheen ("Sheen"): sheen_color = sheenColorFactor, sheen_roughness =

@@ -337,6 +337,31 @@ TEST(NormalMap, BadNormalMapsNameTheFileAndKey) {
   expect_error(with(R"({"texture": "a.png", "uv": 3})"), "normal_map.uv", "0 or 1");
 }
 
+// The coat's own normal map (coat_normal_map, glTF's clearcoatNormalTexture) needs a coat and
+// the base map's texture coordinates (one tangent frame); the example writes back the same and
+// compiles to a reflectance that reads the coat's normal.
+TEST(NormalMap, CoatNormalMapsNeedACoatAndTheBasesCoordinates) {
+  const fs::path dir = test::scratch("texture", "");
+  fs::copy_file(kSource / "examples/textured/textures/normals.png", dir / "a.png", fs::copy_options::overwrite_existing);
+  expect_error(R"({"specular": {"model": "gltf_pbr"}, "coat_normal_map": {"texture": "a.png"}})", "coat_normal_map",
+               "needs a clear coat");
+  expect_error(R"({"diffuse": {"model": "lambert"}, "coat_normal_map": {"texture": "a.png"}})", "coat_normal_map",
+               "needs a clear coat");
+  expect_error(R"({"specular": {"model": "gltf_pbr", "clearcoat": 0.5}, "normal_map": {"texture": "a.png"},
+                   "coat_normal_map": {"texture": "a.png", "uv": 1}})",
+               "coat_normal_map.uv", "one tangent frame");
+  expect_error(R"({"specular": {"model": "gltf_pbr", "clearcoat": 0.5}, "coat_normal_map": {"texture": "a.png",
+                   "green": "sideways"}})",
+               "coat_normal_map.green", "DirectX");
+  const Material m = load_material((kSource / "examples/textured/textured_coat_normal.json").string());
+  ASSERT_TRUE(m.coat_normal_map && !m.normal_map);
+  EXPECT_DOUBLE_EQ(m.coat_normal_map->strength, 0.6);
+  const nlohmann::json j = to_json(m);
+  EXPECT_EQ(to_json(parse_material(j, m.source)), j);
+  const MaterialProgram p = compile(m);
+  EXPECT_TRUE(p.uses_coat_normal() && p.has_uv_frame() && p.coat_normal_mapped() && !p.normal_mapped());
+}
+
 TEST(NormalMap, ExampleParsesAndWritesBackTheSame) {
   const Material m = load_material((kSource / "examples/textured/textured_normal_cook_torrance.json").string());
   ASSERT_TRUE(m.normal_map);

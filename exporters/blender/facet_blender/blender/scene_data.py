@@ -188,7 +188,8 @@ def _corner_tangents(mesh, obj_name, loops, slot_materials, material_keys, bindi
     per_uv, out = {}, []
     for t, material in enumerate(slot_materials):
         bindings = textures.exported(bindings_of(material), material_keys)
-        normal = next((b for b in bindings if b["path"] == ["normal_map"]), None)
+        # The tangent frame's map: the lobes' normal map, else the coat's (both on one UV map).
+        normal = next((b for b in bindings if b["path"] in (["normal_map"], ["coat_normal_map"])), None)
         if normal is None:
             out.append(None)
             continue

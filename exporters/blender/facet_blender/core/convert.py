@@ -143,12 +143,13 @@ class _Node:
             self.textured.add(name)
         return spec
 
-    def normal_map(self):
-        """The normal_map binding spec of the node's Normal input, or None."""
-        if "Normal" not in self.sources:
+    def normal_map(self, name="Normal", key="normal_map"):
+        """The `key` binding spec of the node's normal input `name` (Normal, or Principled's Coat
+        Normal for coat_normal_map), or None."""
+        if name not in self.sources:
             return None
-        ctx = textures.Context(self.result.material_name, f"{self.label}: Normal", self.result.note)
-        return textures.normal_map_of(self.sources["Normal"], ctx)
+        ctx = textures.Context(self.result.material_name, f"{self.label}: {name}", self.result.note)
+        return textures.normal_map_of(self.sources[name], ctx, key)
 
     def first(self, names, default=None):
         """The value of the first input of `names` the node has (3.x vs 4.x names)."""
@@ -331,7 +332,8 @@ def _coat(node, result, lobe):
     """KHR_materials_clearcoat as Blender's glTF exporter writes it from Coat Weight and Coat
     Roughness (its importer: Coat Weight = clearcoatFactor × clearcoatTexture's R, Coat Roughness =
     clearcoatRoughnessFactor × clearcoatRoughnessTexture's G). glTF's coat is fixed at IOR 1.5,
-    untinted, on the surface's normal: another Coat IOR or Coat Tint, or a Coat Normal, is named."""
+    untinted: another Coat IOR or Coat Tint is named. Its Coat Normal (a Normal Map node) is the
+    material's coat_normal_map (_normal_map), as glTF's clearcoatNormalTexture."""
     maps = {"clearcoat": node.texture("Coat Weight", "number"),
             "clearcoat_roughness": node.texture("Coat Roughness", "number")}
     weight = min(max(float(node.get("Coat Weight", 0.0)), 0.0), 1.0)
@@ -349,10 +351,6 @@ def _coat(node, result, lobe):
                              f"coat has IOR 1.5)")
     if node.has("Coat Tint") and _rgb(node.get("Coat Tint", (1.0, 1.0, 1.0))) != [1.0, 1.0, 1.0]:
         result.note(IGNORED, f"{node.label}: Coat Tint is ignored (glTF's clear coat is untinted)")
-    if "Coat Normal" in node.linked:
-        node.reported.add("Coat Normal")
-        result.note(IGNORED, f"{node.label}: Coat Normal is not read (glTF's clearcoatNormalTexture; facet's coat "
-                             f"takes the surface's normal)")
 
 
 def _sheen(node, result, lobe):
@@ -481,16 +479,32 @@ def principled_bsdf(node, weight, result):
 # ----------------------------------------------------------------------------- the tree
 
 def _normal_map(node, result):
-    spec = node.normal_map()
-    node.textured.add("Normal")
-    if spec is None:
-        return
-    if any(b["path"] == ["normal_map"] for b in result.textures):
-        if not any(b["path"] == ["normal_map"] and b["spec"] == spec for b in result.textures):
-            result.note(APPROXIMATE, f"material '{result.material_name}': {node.label}: a second, different normal map; "
-                                     f"facet's material has one: the first is used")
-        return
-    _bind(result, ("normal_map",), None, spec)
+    """The node's Normal as the material's normal_map, and a Principled BSDF's Coat Normal as its
+    coat_normal_map (KHR_materials_clearcoat's clearcoatNormalTexture: the coat's own normal, on
+    the same tangent frame), where the material has a coat to map."""
+    for name, key in (("Normal", "normal_map"), ("Coat Normal", "coat_normal_map")):
+        if name not in node.linked and name != "Normal":
+            continue
+        if key == "coat_normal_map" and "clearcoat" not in (result.specular or {}):
+            node.reported.add(name)
+            result.note(IGNORED, f"{node.label}: Coat Normal is not read: the material has no coat (Coat Weight 0)")
+            continue
+        spec = node.normal_map(name, key)
+        node.textured.add(name)
+        if spec is None:
+            continue
+        if any(b["path"] == [key] for b in result.textures):
+            if not any(b["path"] == [key] and b["spec"] == spec for b in result.textures):
+                result.note(APPROXIMATE, f"material '{result.material_name}': {node.label}: a second, different "
+                                         f"{name} map; facet's material has one: the first is used")
+            continue
+        base = next((b for b in result.textures if b["path"] == ["normal_map"]), None)
+        if key == "coat_normal_map" and base and base["spec"].get("uv_map", "") != spec.get("uv_map", ""):
+            result.note(APPROXIMATE, f"{node.label}: Coat Normal reads UV map '{spec.get('uv_map')}' where Normal "
+                                     f"reads '{base['spec'].get('uv_map')}'; facet turns both on one tangent frame: "
+                                     f"the coat takes the surface's own normal")
+            continue
+        _bind(result, (key,), None, spec)
 
 
 def _unmapped_inputs(node, result):

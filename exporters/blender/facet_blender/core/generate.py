@@ -33,7 +33,7 @@ def supports_normal_map(exe):
 
 
 def texturable_material_keys(exe, meshes=True):
-    """The material-level keys (normal_map, emission, ambient, alpha) this facet takes a
+    """The material-level keys (normal_map, coat_normal_map, emission, ambient, alpha) this facet takes a
     texture on: normal_map where `supports_normal_map` (or, for a material file alone, `meshes`
     False, where the material schema has the key), the others where the material schema
     lets them be a texture object."""
@@ -43,6 +43,8 @@ def texturable_material_keys(exe, meshes=True):
     keys = {k for k in ("emission", "ambient", "alpha") if "texture" in json_mod.dumps(props.get(k, {}))}
     if supports_normal_map(exe) if meshes else "normal_map" in props:
         keys.add("normal_map")
+        if "coat_normal_map" in props:   # the coat's own normal map, on the same tangents
+            keys.add("coat_normal_map")
     return keys
 
 

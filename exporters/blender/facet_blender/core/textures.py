@@ -33,6 +33,7 @@ How each setting maps (Cycles' Image Texture node, measured in /work/texconv/FIN
 | Separate Color / Separate RGB (RGB mode) Red/Green/Blue | channel "r" / "g" / "b" |
 | Image Texture Alpha output | channel "a" |
 | Normal Map node (tangent space, Strength 1) | "normal_map" {texture, uv, filter, wrap, transform, green "up", strength} |
+| … into a Principled BSDF's Coat Normal | "coat_normal_map" {…the same} (glTF's clearcoatNormalTexture) |
 | Mix (Multiply, factor 1) of an image and a colour; Math Multiply of a channel and a number | the image's factor × that colour or number ("scale" of the spec; Blender's glTF importer makes these for baseColorFactor, emissiveFactor, metallicFactor and roughnessFactor beside a texture) |
 | Color Attribute's Color into a colour input, alone or through a Mix (Multiply, factor 1) with an image | "vertex_color": true (glTF's COLOR_0; Blender's glTF importer's wiring), with or without the image; the mesh's colour attribute goes out as "colors" (`blender/scene_data.py`) |
 
@@ -344,8 +345,12 @@ def texture_of(src, want, ctx):
     return spec
 
 
-def normal_map_of(src, ctx):
-    """The normal_map binding of the source feeding a BSDF's Normal input, or None."""
+NORMAL_KEYS = ("normal_map", "coat_normal_map")   # material-level normal maps: the lobes', the coat's
+
+
+def normal_map_of(src, ctx, key="normal_map"):
+    """The `key` binding (normal_map; coat_normal_map from a Coat Normal) of the source feeding
+    a BSDF's Normal input, or None."""
     if src.get("type") != "NORMAL_MAP":
         what = "Bump nodes (height maps)" if src.get("type") == "BUMP" else UNMAPPABLE_HINT
         ctx.note("ignored", f"{ctx.where(src)}: facet maps Normal Map nodes only, not {what}; "
@@ -382,7 +387,7 @@ def normal_map_of(src, ctx):
                                 f"x and y and blends z towards 1, facet (glTF's normalTexture.scale) scales x and "
                                 f"y only; equal only at Strength 1")
     else:
-        ctx.note("exact", f"{ctx.where(src)}: tangent-space normal map, Strength 1 -> normal_map")
+        ctx.note("exact", f"{ctx.where(src)}: tangent-space normal map, Strength 1 -> {key}")
     spec.pop("colorspace", None)
     spec.pop("channel", None)
     spec["green"] = "up"          # Blender's tangent-space normal maps are OpenGL's (+Y up)
@@ -451,7 +456,7 @@ def split(material_json):
         for key, value in node.items():
             if isinstance(value, dict) and "texture" in value:
                 found.append((path + [key], value))
-                if "factor" in value and key != "normal_map":
+                if "factor" in value and key not in NORMAL_KEYS:
                     out[key] = value["factor"]
             elif isinstance(value, dict):
                 out[key] = walk(value, path + [key])
@@ -504,7 +509,7 @@ def uv_maps(bindings, material=""):
     return names
 
 
-MATERIAL_KEYS = ("normal_map", "emission", "ambient", "alpha")   # material-level keys a texture may fill
+MATERIAL_KEYS = ("normal_map", "coat_normal_map", "emission", "ambient", "alpha")   # material-level keys a texture may fill
 
 
 def exported(bindings, material_keys=None):
@@ -533,12 +538,13 @@ def apply(material_json, bindings, files, material_keys=None):
         path = b["path"]
         section = path[0]
         if len(path) == 1 and material_keys is not None and section not in material_keys:
-            what = {"normal_map": "its normal map", "emission": "an emission map"}.get(section, f"a {section} map")
-            needs = ("the material key 'normal_map' or mesh 'tangents'" if section == "normal_map"
+            what = {"normal_map": "its normal map", "coat_normal_map": "its coat's normal map",
+                    "emission": "an emission map"}.get(section, f"a {section} map")
+            needs = (f"the material key '{section}' or mesh 'tangents'" if section in NORMAL_KEYS
                      else f"a texture on '{section}'")
             notes.append(f"material '{data.get('name')}': this facet cannot take {what} (image "
                          f"'{b['spec']['image']}'): its schemas lack {needs}; it is not exported"
-                         + ("" if section == "normal_map" else ", the unlinked value is"))
+                         + ("" if section in NORMAL_KEYS else ", the unlinked value is"))
             continue
         if len(path) > 1 and (section not in data or data[section].get("model") != b.get("model")):
             notes.append(f"material '{data.get('name')}': the texture of {'.'.join(path)} was made for the "
@@ -556,9 +562,9 @@ def apply(material_json, bindings, files, material_keys=None):
         name, space = files[file_key(b)]
         tex = {"texture": name}
         for key in ("channel", "colorspace"):
-            if section != "normal_map" and spec.get(key) is not None:
+            if section not in NORMAL_KEYS and spec.get(key) is not None:
                 tex[key] = spec[key]
-        if space and section != "normal_map":
+        if space and section not in NORMAL_KEYS:
             tex["colorspace"] = space
         if b.get("derive"):
             tex["channel"] = "rgb" if spec.get("channel") == "rgb" or b["derive"].get("rgb") else "r"
@@ -570,7 +576,7 @@ def apply(material_json, bindings, files, material_keys=None):
         if spec.get("transform"):
             tex["transform"] = spec["transform"]
         for key in ("green", "strength"):
-            if section == "normal_map" and spec.get(key) is not None:
+            if section in NORMAL_KEYS and spec.get(key) is not None:
                 tex[key] = spec[key]
         for key in ("factor", "offset"):     # Blender's float32 values written as typed
             f = b.get(key)

@@ -117,7 +117,9 @@ def test_coat_is_gltfs_clearcoat_and_what_gltf_cannot_say_of_it_is_named():
     assert not any(level == convert.IGNORED for level, _ in r.notes)
     assert "clearcoat" not in map_surface({"type": "BSDF_PRINCIPLED", "name": "P",
                                            "inputs": dict(inputs, **{"Coat Weight": 0.0})}).specular
-    odd = map_surface({"type": "BSDF_PRINCIPLED", "name": "P", "linked": ["Coat Normal"], "sources": {},
+    # A Coat Normal from a Bump node (no Normal Map node) is named, as the Normal's would be.
+    odd = map_surface({"type": "BSDF_PRINCIPLED", "name": "P", "linked": ["Coat Normal"],
+                       "sources": {"Coat Normal": {"type": "BUMP", "name": "Bump", "output": "Normal"}},
                        "inputs": dict(inputs, **{"Coat IOR": 1.8, "Coat Tint": [1, 0.5, 0.5, 1]})})
     for words in ("Coat IOR 1.8", "Coat Tint", "Coat Normal"):
         assert any(level == convert.IGNORED and words in m for level, m in odd.notes), words

@@ -350,6 +350,27 @@ def test_normal_map_other_strengths_spaces_and_bump_are_reported():
     assert any("should be Non-Color" in m for m in messages(r, APPROXIMATE))
 
 
+def test_coat_normal_is_the_coats_own_normal_map():
+    """A Coat Normal through a Normal Map node is the material's coat_normal_map (glTF's
+    clearcoatNormalTexture), written as normal_map is; without a coat (Coat Weight 0) it is not
+    read, said; on another UV map than the Normal's it is left out, said."""
+    r = map_surface(principled({"Coat Normal": normal_map()}, **{"Coat Weight": 0.7}), "Coated")
+    (b,) = [b for b in r.textures if b["path"] == ["coat_normal_map"]]
+    assert b["spec"]["green"] == "up" and b["spec"]["strength"] == 1.0
+    assert any("Strength 1 -> coat_normal_map" in m for m in messages(r, EXACT))
+    data, notes = textures.apply({"name": "Coated", "specular": r.specular}, r.textures,
+                                 {textures.file_key(b): ("bumps.png", None)})
+    assert data["coat_normal_map"] == {"texture": "bumps.png", "filter": "bilinear", "wrap": "repeat", "uv": 0,
+                                       "green": "up", "strength": 1.0} and not notes
+    r = map_surface(principled({"Coat Normal": normal_map()}), "Uncoated")
+    assert not r.textures and any("no coat" in m for m in messages(r, IGNORED))
+    other = dict(normal_map(), links={"Color": tex_image(image("bumps", "Non-Color"), interpolation="Linear",
+                                                         vector=UV)})
+    r = map_surface(principled({"Normal": normal_map(), "Coat Normal": other}, **{"Coat Weight": 0.7}), "Apart")
+    assert [b["path"] for b in r.textures] == [["normal_map"]]
+    assert any("one tangent frame" in m for m in messages(r, APPROXIMATE))
+
+
 def test_material_level_maps_left_out_for_a_facet_without_them():
     emission = tex_image(image("glow"))
     r = map_surface(principled({"Normal": normal_map(), "Emission Color": emission},
