@@ -757,34 +757,43 @@ void check_wrongs(const std::string& example, const std::string& folder, const s
   }
 }
 
+// One route's wrongs and how they are made (once, or all).
+struct RouteWrongs {
+  std::vector<Wrong> wrongs;
+  std::function<std::string(const std::string&, const Wrong&)> make;
+};
+
+// Example `example` of examples/textured on `scene` through the GLSL, OSL and POV-Ray routes:
+// each route's generated code passes and each of its wrongs fails (check_wrongs). POV-Ray's
+// code is generated under the job's file names: the renderer reads the images beside it.
+void check_routes(const std::string& example, const std::string& scene, const RouteWrongs& glsl,
+                  const RouteWrongs& osl, const RouteWrongs& pov) {
+  Fixture f = fixture(example, "glsl", "textured", scene);
+  check_wrongs(example, "textured", scene, "glsl", GlRenderer::fragment_source(f.material), glsl.wrongs, glsl.make);
+  GenerateOptions o;
+  o.target = Target::Osl;
+  o.scene = f.scene;
+  check_wrongs(example, "textured", scene, "osl", generate(f.material, o), osl.wrongs, osl.make);
+  Fixture p = fixture(example, "pov", "textured", scene);
+  PovOutput code = generate_pov_files(p.scene, &p.material, example, PovRoute::Auto, job_name(p.job));
+  check_wrongs(example, "textured", scene, "pov", code.code, pov.wrongs, pov.make);
+}
+
 // Ambient and emission maps (docs/textures.md): each image dropped — its factor taken for
 // the colour — fails on every renderer, while the generated code passes. One material,
 // examples/textured/textured_emission.json, on the shadows scene.
 TEST(Detection, EmissionAndAmbientMapsFailWhenDropped) {
-  const std::string example = "textured_emission";
-  auto check = [&](const std::string& renderer, const std::string& good, const std::vector<Wrong>& wrongs,
-                   const std::function<std::string(const std::string&, const Wrong&)>& make) {
-    check_wrongs(example, "textured", "shadows", renderer, good, wrongs, make);
-  };
-  Fixture f = fixture(example, "glsl", "textured", "shadows");
-  check("glsl", GlRenderer::fragment_source(f.material),
-        {{"emission map dropped", "    material_emission = ", "    material_emission = vec3(0.6, 0.4, 0.3) + 0.0 * "},
-         {"ambient map dropped", "    material_ambient = ", "    material_ambient = vec3(4.0) + 0.0 * "}},
-        once);
-  GenerateOptions o;
-  o.target = Target::Osl;
-  o.scene = f.scene;
-  check("osl", generate(f.material, o),
-        {{"emission map dropped", "color material_emission = ", "color material_emission = color(0.6, 0.4, 0.3) + 0 * "},
-         {"ambient map dropped", "color material_ambient = ", "color material_ambient = color(4.0) + 0 * "}},
-        once);
-  // POV-Ray: the renderer reads the images beside the code it wrote, so the code is generated under its file names.
-  Fixture p = fixture(example, "pov", "textured", "shadows");
-  PovOutput pov = generate_pov_files(p.scene, &p.material, example, PovRoute::Auto, job_name(p.job));
-  check("pov", pov.code,
-        {{"emission map dropped", "+ Facet_Sample_material_emission_R(S0, T0)", "+ 0.6"},
-         {"ambient map dropped", "Facet_Sample_material_ambient(S0, T0)*", "4*"}},
-        all);
+  const char *emission = "emission map dropped", *ambient = "ambient map dropped";
+  check_routes("textured_emission", "shadows",
+               {{{emission, "    material_emission = ", "    material_emission = vec3(0.6, 0.4, 0.3) + 0.0 * "},
+                 {ambient, "    material_ambient = ", "    material_ambient = vec3(4.0) + 0.0 * "}},
+                once},
+               {{{emission, "color material_emission = ", "color material_emission = color(0.6, 0.4, 0.3) + 0 * "},
+                 {ambient, "color material_ambient = ", "color material_ambient = color(4.0) + 0 * "}},
+                once},
+               {{{emission, "+ Facet_Sample_material_emission_R(S0, T0)", "+ 0.6"},
+                 {ambient, "Facet_Sample_material_ambient(S0, T0)*", "4*"}},
+                all});
 }
 
 // The emission under the clear coat (KHR_materials_clearcoat, "Emission": emission ·
@@ -793,26 +802,19 @@ TEST(Detection, EmissionAndAmbientMapsFailWhenDropped) {
 // examples/textured/textured_emissive_coat.json (a checker emission under a coat from an image,
 // over a normal map) on the single scene.
 TEST(Detection, EmissionUnderTheCoatFailsUndimmedOrWithoutItsTexel) {
-  const std::string example = "textured_emissive_coat";
-  Fixture f = fixture(example, "glsl", "textured", "single");
-  check_wrongs(example, "textured", "single", "glsl", GlRenderer::fragment_source(f.material),
-               {{"undimmed", "material_emission * emission_weight(", "material_emission + 0.0 * emission_weight("},
-                {"the coat's factor alone", "emission_weight(dot(n, v), specular_clearcoat)",
-                 "emission_weight(dot(n, v), 0.9)"}},
-               once);
-  GenerateOptions o;
-  o.target = Target::Osl;
-  o.scene = f.scene;
-  check_wrongs(example, "textured", "single", "osl", generate(f.material, o),
-               {{"undimmed", "material_emission * emission_weight(", "material_emission + 0 * emission_weight("},
-                {"the coat's factor alone", "emission_weight(dot(Nn, V), specular_clearcoat", "emission_weight(dot(Nn, V), 0.9"}},
-               once);
-  Fixture p = fixture(example, "pov", "textured", "single");
-  PovOutput pov = generate_pov_files(p.scene, &p.material, example, PovRoute::Auto, job_name(p.job));
-  check_wrongs(example, "textured", "single", "pov", pov.code,
-               {{"undimmed", "*Emission_weight(", " + 0*Emission_weight("},
-                {"the coat's factor alone", "{ Emission_weight__1(Specular_clearcoat,", "{ Emission_weight__1(0.9,"}},
-               all);  // the emission function calls the weight once for each channel; it is declared once
+  check_routes("textured_emissive_coat", "single",
+               {{{"undimmed", "material_emission * emission_weight(", "material_emission + 0.0 * emission_weight("},
+                 {"the coat's factor alone", "emission_weight(dot(n, v), specular_clearcoat)",
+                  "emission_weight(dot(n, v), 0.9)"}},
+                once},
+               {{{"undimmed", "material_emission * emission_weight(", "material_emission + 0 * emission_weight("},
+                 {"the coat's factor alone", "emission_weight(dot(Nn, V), specular_clearcoat",
+                  "emission_weight(dot(Nn, V), 0.9"}},
+                once},
+               // The emission function calls the weight once for each channel; it is declared once.
+               {{{"undimmed", "*Emission_weight(", " + 0*Emission_weight("},
+                 {"the coat's factor alone", "{ Emission_weight__1(Specular_clearcoat,", "{ Emission_weight__1(0.9,"}},
+                all});
 }
 
 // The clear coat over a normal-mapped base (KHR_materials_clearcoat: "no normal mapping is
@@ -821,23 +823,12 @@ TEST(Detection, EmissionUnderTheCoatFailsUndimmedOrWithoutItsTexel) {
 // GLSL, OSL and POV-Ray routes, while the generated code passes. The same example, whose coat
 // lies over a normal map.
 TEST(Detection, CoatOnTheBasesNormalMapFails) {
-  const std::string example = "textured_emissive_coat";
-  Fixture f = fixture(example, "glsl", "textured", "single");
-  check_wrongs(example, "textured", "single", "glsl", GlRenderer::fragment_source(f.material),
-               {{"the coat on the mapped normal", "facet_reflect(ns, l, v, t, n)", "facet_reflect(ns, l, v, t, ns)"}},
-               once);
-  GenerateOptions o;
-  o.target = Target::Osl;
-  o.scene = f.scene;
-  check_wrongs(example, "textured", "single", "osl", generate(f.material, o),
-               {{"the coat on the mapped normal", "facet_reflect(Ns, L, V, T, Nn", "facet_reflect(Ns, L, V, T, Ns"}},
-               all);
-  Fixture p = fixture(example, "pov", "textured", "single");
-  PovOutput pov = generate_pov_files(p.scene, &p.material, example, PovRoute::Auto, job_name(p.job));
-  // The sphere's light functions take the mapped normal Q/Ql, then the coat's: its own, (x, y, z)/R.
-  check_wrongs(example, "textured", "single", "pov", pov.code,
-               {{"the coat on the mapped normal", "Qz/Ql, x/R, y/R, z/R, S0", "Qz/Ql, Qx/Ql, Qy/Ql, Qz/Ql, S0"}},
-               all);
+  const char* what = "the coat on the mapped normal";
+  check_routes("textured_emissive_coat", "single",
+               {{{what, "facet_reflect(ns, l, v, t, n)", "facet_reflect(ns, l, v, t, ns)"}}, once},
+               {{{what, "facet_reflect(Ns, L, V, T, Nn", "facet_reflect(Ns, L, V, T, Ns"}}, all},
+               // The sphere's light functions take the mapped normal Q/Ql, then the coat's: its own, (x, y, z)/R.
+               {{{what, "Qz/Ql, x/R, y/R, z/R, S0", "Qz/Ql, Qx/Ql, Qy/Ql, Qz/Ql, S0"}}, all});
 }
 
 // The clear coat's own normal map (KHR_materials_clearcoat's clearcoatNormalTexture; facet's
@@ -845,28 +836,18 @@ TEST(Detection, CoatOnTheBasesNormalMapFails) {
 // flipped, it fails on the GLSL, OSL and POV-Ray routes, while the generated code passes.
 // examples/textured/textured_coat_normal.json (a coat normal map over an unmapped base).
 TEST(Detection, CoatNormalMapFailsIgnoredOrFlipped) {
-  const std::string example = "textured_coat_normal";
-  Fixture f = fixture(example, "glsl", "textured", "single");
-  check_wrongs(example, "textured", "single", "glsl", GlRenderer::fragment_source(f.material),
-               {{"the coat's map ignored", "vec3 nc = facet_coat_normal_mapped(n, facet_uv_tangent, facet_uv_handedness);",
-                 "vec3 nc = n;"},
-                {"the coat's green flipped", "0.6 * c.y", "-0.6 * c.y"}},
-               once);
-  GenerateOptions o;
-  o.target = Target::Osl;
-  o.scene = f.scene;
-  check_wrongs(example, "textured", "single", "osl", generate(f.material, o),
-               {{"the coat's map ignored", "vector Nc = normalize(cm_t[0] * Tu + cm_t[1] * Bu + cm_t[2] * Nn);",
-                 "vector Nc = Nn;"},
-                {"the coat's green flipped", "0.6 * cm_c[1]", "-0.6 * cm_c[1]"}},
-               once);
-  Fixture p = fixture(example, "pov", "textured", "single");
-  PovOutput pov = generate_pov_files(p.scene, &p.material, example, PovRoute::Auto, job_name(p.job));
-  // The sphere's light functions take its own normal (x, y, z)/R, then the coat's mapped one ZQ/ZQl.
-  check_wrongs(example, "textured", "single", "pov", pov.code,
-               {{"the coat's map ignored", "z/R, ZQx/ZQl, ZQy/ZQl, ZQz/ZQl, S0", "z/R, x/R, y/R, z/R, S0"},
-                {"the coat's green flipped", "0.6*(2*Facet_Sample_coat_normal_map_g", "-0.6*(2*Facet_Sample_coat_normal_map_g"}},
-               all);
+  const char *ignored = "the coat's map ignored", *flipped = "the coat's green flipped";
+  check_routes("textured_coat_normal", "single",
+               {{{ignored, "vec3 nc = facet_coat_normal_mapped(n, facet_uv_tangent, facet_uv_handedness);", "vec3 nc = n;"},
+                 {flipped, "0.6 * c.y", "-0.6 * c.y"}},
+                once},
+               {{{ignored, "vector Nc = normalize(cm_t[0] * Tu + cm_t[1] * Bu + cm_t[2] * Nn);", "vector Nc = Nn;"},
+                 {flipped, "0.6 * cm_c[1]", "-0.6 * cm_c[1]"}},
+                once},
+               // The sphere's light functions take its own normal (x, y, z)/R, then the coat's mapped one ZQ/ZQl.
+               {{{ignored, "z/R, ZQx/ZQl, ZQy/ZQl, ZQz/ZQl, S0", "z/R, x/R, y/R, z/R, S0"},
+                 {flipped, "0.6*(2*Facet_Sample_coat_normal_map_g", "-0.6*(2*Facet_Sample_coat_normal_map_g"}},
+                all});
 }
 
 // Normal maps (docs/textures.md, "Normal maps"): the example's map with its green channel
