@@ -20,6 +20,11 @@ const char* const kNormalMapDoc =
     "\"green\": \"up\" (OpenGL, glTF; default) | \"down\" (DirectX), \"strength\": s (glTF's normalTexture.scale, default 1)}: "
     "a tangent-space normal map, rgb and linear; n_t = normalize((2·rgb − 1) ⊗ (s, s, 1)), both lobes shade with "
     "normalize(n_t.x·T + n_t.y·B + n_t.z·N), B = w·(N × T) (glTF 2.0 §3.9.3; docs/textures.md)";
+const char* const kCoatNormalMapDoc =
+    "a material's \"coat_normal_map\": the same object, the clear coat's own normal map (KHR_materials_clearcoat's "
+    "clearcoatNormalTexture, its scale the strength), on normal_map's tangent frame (the same uv); it needs a coat "
+    "(gltf_pbr's clearcoat), which without it takes the surface's own, unmapped normal (docs/textures.md, "
+    "\"Coat normal maps\")";
 
 json catalog_json() {
   json sections = json::object();
@@ -60,7 +65,7 @@ json catalog_json() {
     sections[m.section].push_back(mj);
   }
   // A material's top-level keys besides its lobes (docs/textures.md).
-  json material = {{"normal_map", {{"doc", kNormalMapDoc}}}};
+  json material = {{"normal_map", {{"doc", kNormalMapDoc}}}, {"coat_normal_map", {{"doc", kCoatNormalMapDoc}}}};
   return {{"facet", FACET_VERSION}, {"epsilon", kEpsilon}, {"sections", sections}, {"material", material}};
 }
 
@@ -88,7 +93,7 @@ int run_models(bool as_json) {
     if (!m.forms.empty()) fmt::print("  {:<18}   written as {}\n", "", m.forms_text());
   }
   fmt::print("\nEvery diffuse and specular lobe also takes \"color\" (k_d or k_s, default 1) and \"toon\".\n");
-  fmt::print("A material may also take {}.\n", kNormalMapDoc);
+  fmt::print("A material may also take {};\nand {}.\n", kNormalMapDoc, kCoatNormalMapDoc);
   return 0;
 }
 
