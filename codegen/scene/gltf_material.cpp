@@ -252,6 +252,15 @@ void clearcoat_extension(const json& coat, json& lobe, GltfImages& images, const
                      lobe, images, key, sets);
 }
 
+// A normalTextureInfo's texture `t` as facet's normal map object: tangent-space, linear, +Y up
+// (glTF 2.0 §3.9.3), its scale facet's strength.
+json normal_map_of(const TextureUse& t, double scale) {
+  json j = t.spec;
+  j["green"] = "up";
+  j["strength"] = scale;
+  return j;
+}
+
 // KHR_materials_clearcoat's clearcoatNormalTexture (a normalTextureInfo: its scale is the map's
 // strength) as the material's "coat_normal_map", on the base's tangent frame: "If
 // clearcoatNormalTexture is not given, no normal mapping is applied to the clear coat layer"
@@ -278,9 +287,7 @@ void coat_normal_map(const json& coat, const std::optional<TextureUse>& normal_m
     return;
   }
   sets.emplace_back(t.uv, t.key + ".texCoord");
-  m["coat_normal_map"] = t.spec;  // tangent-space, linear, +Y up (glTF 2.0 §3.9.3)
-  m["coat_normal_map"]["green"] = "up";
-  m["coat_normal_map"]["strength"] = scale;
+  m["coat_normal_map"] = normal_map_of(t, scale);
 }
 
 // KHR_materials_anisotropy ("Anisotropy"): anisotropy_strength = anisotropyStrength,
@@ -392,11 +399,7 @@ json pbr_material(const tinygltf::Material& g, const std::string& mpath, GltfIma
   }
   // KHR_materials_clearcoat, "Emission": gltf_pbr dims the emission by 1 − clearcoat · Fc(n·v)
   // itself (ModelDef::emission_weight), clearcoat the texel times the factor where it is textured.
-  if (normal_map) {  // tangent-space, linear, +Y up (glTF 2.0 §3.9.3); scale is facet's strength
-    m["normal_map"] = normal_map->spec;
-    m["normal_map"]["green"] = "up";
-    m["normal_map"]["strength"] = g.normalTexture.scale;
-  }
+  if (normal_map) m["normal_map"] = normal_map_of(*normal_map, g.normalTexture.scale);
   if (const json coat = extension_of(g.extensions_json_string, "KHR_materials_clearcoat"); coat.is_object())
     coat_normal_map(coat, normal_map, m, images, mpath + ".extensions.KHR_materials_clearcoat", sets, notes);
   if (p.occlusion_map) {

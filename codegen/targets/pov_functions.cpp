@@ -116,42 +116,70 @@ ir::FunctionPtr frame_function(const ir::FunctionPtr& reflectance, const std::st
   return fb.returns(ir::call(reflectance, inputs));
 }
 
-// Where `sh` has a normal map, the lobes' normal (catalog/texture.h, NormalMap; glTF 2.0
-// §3.9.3) from the object's unit normal n and unit tangent t ⟂ n (w = +1: the shapes'):
-// n_t = normalize((2·rgb − 1) ⊗ (s, ±s, 1)), normalize(n_t.x·t + n_t.y·(n × t) + n_t.z·n).
-// Else n itself. `coat`: the same of the coat's own normal map (Material::coat_normal_map), on
-// the same frame, its values named apart (Z…) so that both can be in one function.
-Triple mapped_normal(ir::FunctionBuilder& fb, const PovShading& sh, const std::vector<Expr>& uv, const Triple& n,
-                     const Triple& t, const std::optional<Expr>& w = std::nullopt, bool coat = false) {
+// The normal maps' frame at a point (docs/textures.md, "Tangent frames"): the object's unit
+// normal N and unit tangent T ⟂ N with B = N × T (the shapes': w = +1), or a mesh's blended
+// tangent t made ⟂ n (Gram–Schmidt) with B = w·(n × T). Built once for both maps.
+struct MapFrame {
+  Triple N, T, B;
+};
+MapFrame map_frame(ir::FunctionBuilder& fb, const Triple& n, const Triple& t, const std::optional<Expr>& w) {
+  MapFrame f{lets(fb, "Gx", "Gy", "Gz", n), lets(fb, "Ux", "Uy", "Uz", t), {0.0, 0.0, 0.0}};
+  f.B = cross3(f.N, f.T);
+  if (w) {
+    Expr along = fb.let("Ud", dot3(f.N, f.T));
+    const Triple g = lets(fb, "Vx", "Vy", "Vz", {f.T.x - f.N.x * along, f.T.y - f.N.y * along, f.T.z - f.N.z * along});
+    Expr gl = fb.let("Vl", length3(g));
+    f.T = lets(fb, "Kx", "Ky", "Kz", g / gl);
+    const Triple c = cross3(f.N, f.T);
+    f.B = {c.x * *w, c.y * *w, c.z * *w};
+  }
+  return f;
+}
+
+// A normal map's normal (catalog/texture.h, NormalMap; glTF 2.0 §3.9.3) on frame `f`: n_t =
+// normalize((2·rgb − 1) ⊗ (s, ±s, 1)), normalize(n_t.x·T + n_t.y·B + n_t.z·N): the lobes' map, or
+// with `coat` the coat's own (Material::coat_normal_map), its values named apart (Z…) so that
+// both can be in one function. `sh` has that map. `frame` gives the frame, built where the first
+// map asks for it (after its texel's lets, so that a lone map's chain carries no more values).
+Triple mapped_normal(ir::FunctionBuilder& fb, const PovShading& sh, const std::vector<Expr>& uv,
+                     const std::function<const MapFrame&()>& frame, bool coat = false) {
   const std::array<ir::FunctionPtr, 3>& rgb = coat ? sh.coat_normal_map : sh.normal_map;
-  if (!rgb[0]) return n;
   const NormalMap& m = coat ? *sh.material->coat_normal_map : *sh.material->normal_map;
   const size_t set = size_t(sh.normal_map_uv);
   auto lane = [&](size_t k) { return ir::call(rgb[k], {uv[2 * set], uv[2 * set + 1]}); };
   const std::string tag = coat ? "Z" : "";
-  auto named = [&](ir::FunctionBuilder& b, const char* stem, const Triple& v) {
-    return Triple{b.let(tag + stem + "x", v.x), b.let(tag + stem + "y", v.y), b.let(tag + stem + "z", v.z)};
+  auto named = [&](const char* stem, const Triple& v) {
+    return Triple{fb.let(tag + stem + "x", v.x), fb.let(tag + stem + "y", v.y), fb.let(tag + stem + "z", v.z)};
   };
   const double s = m.strength;
-  Triple c = named(fb, "C", {s * (2.0 * lane(0) - 1.0), (m.green_down ? -s : s) * (2.0 * lane(1) - 1.0),
-                             2.0 * lane(2) - 1.0});
+  Triple c = named("C", {s * (2.0 * lane(0) - 1.0), (m.green_down ? -s : s) * (2.0 * lane(1) - 1.0), 2.0 * lane(2) - 1.0});
   Expr len = fb.let(tag + "Cl", length3(c));
-  const Triple N = named(fb, "G", n);
-  Triple T = named(fb, "U", t);
-  Triple B = cross3(N, T);
-  if (w) {  // a mesh's blended tangent: made ⟂ n (Gram–Schmidt), B = w·(n × T)
-    Expr along = fb.let(tag + "Ud", dot3(N, T));
-    const Triple g = named(fb, "V", {T.x - N.x * along, T.y - N.y * along, T.z - N.z * along});
-    Expr gl = fb.let(tag + "Vl", length3(g));
-    T = named(fb, "K", g / gl);
-    const Triple c = cross3(N, T);
-    B = {c.x * *w, c.y * *w, c.z * *w};
-  }
+  const MapFrame& f = frame();
   auto times = [](const Triple& v, const Expr& k) { return Triple{v.x * k, v.y * k, v.z * k}; };
-  const Triple mapped = named(fb, "Q", times(T, c.x / len) + times(B, c.y / len) + times(N, c.z / len));
+  const Triple mapped = named("Q", times(f.T, c.x / len) + times(f.B, c.y / len) + times(f.N, c.z / len));
   Expr ml = fb.let(tag + "Ql", length3(mapped));
   return mapped / ml;
 }
+
+// The normal maps' normals at a point of own normal `own` and frame t, w (w: a mesh's): the
+// lobes' map's, or with `coat` the coat's own map's; `own` where the material has no such map.
+// The frame is built where the first map asks for it, and shared.
+struct PointNormals {
+  ir::FunctionBuilder& fb;
+  const PovShading& sh;
+  const std::vector<Expr>& uv;
+  Triple own, t;
+  std::optional<Expr> w;
+  std::optional<MapFrame> frame{};
+  Triple mapped(bool coat) {
+    if (!(coat ? sh.coat_normal_map : sh.normal_map)[0]) return own;
+    auto shared = [this]() -> const MapFrame& {
+      if (!frame) frame = map_frame(fb, own, t, w);
+      return *frame;
+    };
+    return mapped_normal(fb, sh, uv, shared, coat);
+  }
+};
 
 // Whether the lights' functions of `sh` take the tangent: a normal map under a lobe that reads
 // it, whose tangent follows the mapped normal (mapped_tangent) instead of the tangent rule on it.
@@ -341,9 +369,10 @@ ir::FunctionPtr PovScene::object_function(size_t o, const std::string& name, con
   // point and the coat's normal alone, which the emission's weight reads.
   const PovShading& sh = shading(o);
   auto shaded = [&](const Triple& at, const Triple& own, const Triple& t, const std::optional<Expr>& w) {
-    const Triple coat = mapped_normal(fb, sh, uv, own, t, w, true);
+    PointNormals normals{fb, sh, uv, own, t, w};
+    const Triple coat = normals.mapped(true);
     if (own_normal) return ir::call(light, with(args({at, coat}), uv));
-    const Triple n = mapped_normal(fb, sh, uv, own, t, w);
+    const Triple n = normals.mapped(false);
     std::vector<Expr> a = args({at, n});
     if (takes_tangent(sh, *sh.program.reflectance)) append(a, mapped_tangent(fb, sh, own, n));
     if (takes_coat(sh)) append(a, coat);

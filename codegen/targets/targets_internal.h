@@ -45,8 +45,9 @@ void coat_normal_values(const MaterialProgram& p, const std::string& declaration
 std::string normal_map_functions(const MaterialProgram& p, const std::string& template_path,
                                  const std::function<std::string(double)>& literal);
 // The light templates' "mapping" (the lobes' normal ns and the tangent that follows it; the
-// coat's nc where the coat has its own map), and "coat_arg", what facet_reflect takes after t, in
-// a C-family target whose local declaration is `let` ("vec3", "float3", "let").
+// coat's nc where the coat has its own map), "coat_arg", what facet_reflect takes after t, and
+// "emitted_normal", the normal facet_emitted reads (the coat's), in a C-family target whose local
+// declaration is `let` ("vec3", "float3", "let").
 void normal_mapping_values(const MaterialProgram& p, const std::string& let, std::map<std::string, std::string>& values);
 // The argument a caller of facet_reflect passes after t: ", `normal`" (the coat's normal) where it
 // takes one, else "".
