@@ -273,11 +273,10 @@ void mark_texturable(std::vector<ModelDef>& all) {
       // Toon's width 0 selects the hard step when the code is generated: it stays a number.
       if (m.name == "toon" && p.name == "width") continue;
       // gltf_pbr needs max(specular_color) and max(sheen_color) in closed form, folds the sheen
-      // albedo's fit for its sheen_roughness, and chooses its anisotropic layer by the strength
-      // (catalog/specular.cpp); the anisotropy's direction map is not taken.
-      if (m.name == "gltf_pbr" &&
-          (p.name == "specular_color" || p.name == "sheen_color" || p.name == "sheen_roughness" ||
-           p.name == "anisotropy_strength" || p.name == "anisotropy_rotation"))
+      // albedo's fit for its sheen_roughness and the anisotropy's rotation into constants
+      // (catalog/specular.cpp); the anisotropy's strength and direction take its texture.
+      if (m.name == "gltf_pbr" && (p.name == "specular_color" || p.name == "sheen_color" ||
+                                   p.name == "sheen_roughness" || p.name == "anisotropy_rotation"))
         continue;
       p.texturable = p.kind == ParamKind::Number || p.kind == ParamKind::Color;
     }

@@ -279,6 +279,12 @@ struct ModelDef {
   // Specular lobes: whether these values have a layer with a normal of its own (a clear coat),
   // which a material may map apart from the base (Material::coat_normal_map). Null: none.
   std::function<bool(const ModelSpec& lobe)> coated;
+  // Specular lobes whose tangent is the surface's texture-coordinate frame (the mesh's tangent:
+  // KHR_materials_anisotropy's TBN) rather than the tangent rule on tangent_axis, for these
+  // values: the coordinate set whose frame they read where no normal map names one, or nullopt
+  // (the tangent rule). Every target then takes t = that frame's T made ⟂ n and b = w·(n × t).
+  // Null: the tangent rule.
+  std::function<std::optional<int>(const ModelSpec& lobe)> uv_tangent;
   // Fresnel terms: the reflectance at normal incidence F(0) as a colour, where the
   // term states it. glTF's metallic workflow takes it as a conductor's base colour:
   // a specular-only material whose Fresnel term has it exports as a metal.

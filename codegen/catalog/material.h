@@ -41,10 +41,20 @@ struct Material {
   // "no normal mapping is applied to the clear coat layer, even if normal mapping is applied to
   // the base material").
   bool coat_normal_differs() const { return normal_map || coat_normal_map; }
-  // The map whose texture coordinates give the tangent frame (normal_map's, else
-  // coat_normal_map's; both read the same set), or null without either.
-  const NormalMap* frame_map() const {
-    return normal_map ? &*normal_map : coat_normal_map ? &*coat_normal_map : nullptr;
+  // Whether the lobes' tangent is the texture-coordinate frame's (ModelDef::uv_tangent: glTF's
+  // anisotropy turns from the mesh's tangent) rather than the tangent rule on tangent_axis.
+  bool lobes_uv_tangent() const { return uv_tangent_set().has_value(); }
+  // The texture coordinate set whose tangent frame the material reads (docs/textures.md,
+  // "Tangent frames"): normal_map's, else coat_normal_map's (both read the same set), else the
+  // one the lobes' uv_tangent names; nullopt where nothing reads a frame.
+  std::optional<int> frame_uv() const {
+    if (normal_map) return normal_map->texture().uv;
+    if (coat_normal_map) return coat_normal_map->texture().uv;
+    return uv_tangent_set();
+  }
+  // The key that asks for that frame, for messages: "normal_map", "coat_normal_map" or the lobe's.
+  std::string frame_key() const {
+    return normal_map ? "normal_map" : coat_normal_map ? "coat_normal_map" : "specular.anisotropy_strength";
   }
   // glTF's alphaMode MASK (glTF 2.0 §3.9.4): where `alpha_cutoff` is set the surface is there
   // only where alpha ≥ alpha_cutoff, and camera and shadow rays pass where it is not. `alpha`
@@ -53,6 +63,10 @@ struct Material {
   Value alpha = opaque_alpha();
   std::optional<double> alpha_cutoff;
   bool masked() const { return alpha_cutoff.has_value(); }
+  // The lobes' own frame set (ModelDef::uv_tangent), nullopt with the tangent rule.
+  std::optional<int> uv_tangent_set() const {
+    return specular && specular->def->uv_tangent ? specular->def->uv_tangent(*specular) : std::nullopt;
+  }
   static Value opaque_alpha() {
     Value v;
     v.kind = ParamKind::Number;

@@ -39,8 +39,11 @@ struct MaterialProgram {
   // Whether the coat reads its own normal map's normal (Material::coat_normal_map).
   bool coat_normal_mapped() const { return material.coat_normal_map.has_value(); }
   // Whether the shading reads the tangent frame of a texture coordinate set: a normal map, the
-  // lobes' or the coat's (Material::frame_map).
-  bool has_uv_frame() const { return material.frame_map() != nullptr; }
+  // lobes' or the coat's, or lobes whose tangent is that frame's (Material::frame_uv).
+  bool has_uv_frame() const { return material.frame_uv().has_value(); }
+  // Whether the lobes read the frame's tangent as t (and b = w·(n × t), w its handedness) in
+  // place of the tangent rule (Material::lobes_uv_tangent; KHR_materials_anisotropy).
+  bool uv_tangent() const { return material.lobes_uv_tangent() && uses_tangent(); }
   // Whether a textured input reads the surface's vertex colour (catalog/texture.h): every
   // target then takes the vertex colour as an input of its sampling (facet_color0).
   bool uses_vertex_color() const;

@@ -5,6 +5,7 @@
 #include <functional>
 
 #include "catalog/catalog_internal.h"
+#include "catalog/texture.h"
 #include "core/vec.h"
 
 namespace facet::catalog_detail {
@@ -51,19 +52,48 @@ ir::Expr microfacet(LobeContext& c, const ir::Expr& D, const ir::Expr& alpha) {
   return ir::call(terms::microfacet(f.type()), {d, g, f, c.NoV()});
 }
 
-// KHR_materials_anisotropy, "Anisotropy": the direction of increased roughness is the tangent t
-// rotated by anisotropy_rotation towards the bitangent b = n × t, t' = cos r t + sin r b, b' =
-// n × t' = cos r b − sin r t; along it α_t = mix(α, 1, strength²), across it α_b = α. D is the
-// README's (Burley's anisotropic GGX), V the anisotropic height-correlated Smith term of its
-// "Implementation" (without the sample's clamp at 1, as Appendix B's isotropic V has none).
-ir::Expr gltf_anisotropic_layer(LobeContext& c, const ir::Expr& alpha, double strength) {
-  ir::Expr at = c.let("alpha_t", alpha + (1.0 - alpha) * (strength * strength));
-  const double rotation = c.spec().at("anisotropy_rotation").number;
+// KHR_materials_anisotropy, "Anisotropy": the direction of increased roughness is d = (x, y) in
+// the tangent frame (t, b) — the mesh's tangent t (ModelDef::uv_tangent) and b = w·(n × t) —
+// made unit and turned by anisotropy_rotation r counter-clockwise: d' = R(r) d (the README's
+// "Implementation": mat2(cos r, sin r, −sin r, cos r) · normalize(direction)), so t' = d'_x t +
+// d'_y b and b' = n × t' = d'_x b − d'_y t (up to the sign w, which D and V square away). d is
+// 2·(anisotropy_direction_x, _y) − 1: anisotropyTexture's red and green as the README maps them,
+// (1, 0) with the defaults (1, 0.5), the README's default texel. Along t' α_t = mix(α, 1, strength²) (strength times the
+// texture's blue), across it α_b = α. D is the README's (Burley's anisotropic GGX), V the
+// anisotropic height-correlated Smith term of its "Implementation" (without the sample's clamp
+// at 1, as Appendix B's isotropic V has none).
+ir::Expr gltf_anisotropic_layer(LobeContext& c, const ir::Expr& alpha) {
+  const ModelSpec& s = c.spec();
+  ir::Expr strength = c.number("anisotropy_strength");
+  ir::Expr at = c.let("alpha_t", alpha + (1.0 - alpha) * ir::sq(strength));
+  const double rotation = s.at("anisotropy_rotation").number;
   std::array<ir::Expr, 6> dots = {c.HoT(), c.HoB(), c.input(Input::LoT), c.input(Input::LoB), c.input(Input::VoT),
                                   c.input(Input::VoB)};
-  if (rotation != 0) {
-    ir::Expr cr = ir::constant(c.lobe() + "_anisotropy_cos", std::cos(rotation));
-    ir::Expr sr = ir::constant(c.lobe() + "_anisotropy_sin", std::sin(rotation));
+  std::optional<std::array<ir::Expr, 2>> turn;  // d', where it is not (1, 0)
+  if (c.textured(s, "anisotropy_direction_x") || c.textured(s, "anisotropy_direction_y")) {
+    // "red [0, 1] to X [−1, 1], green [0, 1] to Y [−1, 1]".
+    ir::Expr x = c.let("direction_x", 2.0 * c.number("anisotropy_direction_x") - 1.0);
+    ir::Expr y = c.let("direction_y", 2.0 * c.number("anisotropy_direction_y") - 1.0);
+    // A zero direction (which normalize leaves undefined) is divided by ε instead: α_t and α_b still apply.
+    ir::Expr len = c.let("direction_length", ir::max(ir::sqrt(x * x + y * y), kEpsilon));
+    ir::Expr dx = c.let("direction_unit_x", x / len), dy = c.let("direction_unit_y", y / len);
+    if (rotation != 0) {
+      ir::Expr cr = ir::constant(c.lobe() + "_anisotropy_cos", std::cos(rotation));
+      ir::Expr sr = ir::constant(c.lobe() + "_anisotropy_sin", std::sin(rotation));
+      turn = {{c.let("direction_turned_x", cr * dx - sr * dy), c.let("direction_turned_y", sr * dx + cr * dy)}};
+    } else {
+      turn = {{dx, dy}};
+    }
+  } else {
+    // A constant direction: decode, normalize and turn it here.
+    const double x = 2 * s.at("anisotropy_direction_x").number - 1, y = 2 * s.at("anisotropy_direction_y").number - 1;
+    const double angle = rotation + (x == 0 && y == 0 ? 0.0 : std::atan2(y, x));
+    if (angle != 0)
+      turn = {{ir::constant(c.lobe() + "_anisotropy_cos", std::cos(angle)),
+               ir::constant(c.lobe() + "_anisotropy_sin", std::sin(angle))}};
+  }
+  if (turn) {
+    const auto& [cr, sr] = *turn;
     const char* names[] = {"HoT_r", "HoB_r", "LoT_r", "LoB_r", "VoT_r", "VoB_r"};
     std::array<ir::Expr, 6> turned = dots;
     for (int k = 0; k < 6; k += 2) {
@@ -76,6 +106,12 @@ ir::Expr gltf_anisotropic_layer(LobeContext& c, const ir::Expr& alpha, double st
   ir::Expr V = c.let("V", ir::call(terms::visibility_smith_ggx_correlated_anisotropic(),
                                    {c.NoL(), c.NoV(), dots[2], dots[3], dots[4], dots[5], at, alpha}));
   return c.let("specular_brdf", kPi * D * V * c.NoL());
+}
+
+// Whether glTF's GGX core is anisotropic: anisotropy_strength above 0, or from an image.
+bool gltf_anisotropic(const ModelSpec& s) {
+  const Value& strength = s.at("anisotropy_strength");
+  return strength.texture || strength.number > 0;
 }
 
 // The cosines a GGX layer reads of its normal: n·l, n·v and min(n·h, 1) (the lobes' n), or
@@ -96,8 +132,7 @@ ir::Expr gltf_specular_layer(LobeContext& c, const std::string& roughness, const
   ir::Expr alpha = c.textured(c.spec(), roughness)
                        ? c.let(prefix + "alpha", ir::max(ir::sq(c.number(roughness)), kRoughnessMin))
                        : ir::constant(c.lobe() + "_" + prefix + "alpha", std::max(r * r, kRoughnessMin));
-  const double strength = prefix.empty() ? c.spec().at("anisotropy_strength").number : 0.0;
-  if (strength > 0) return gltf_anisotropic_layer(c, alpha, strength);
+  if (prefix.empty() && gltf_anisotropic(c.spec())) return gltf_anisotropic_layer(c, alpha);
   ir::Expr D = c.let(prefix + "D", ir::call(terms::distribution_ggx(), {at.h, alpha}));
   ir::Expr V = c.let(prefix + "V", ir::call(terms::visibility_smith_ggx_correlated(), {at.l, at.v, alpha}));
   return c.let(prefix + "specular_brdf", kPi * D * V * at.l);
@@ -516,12 +551,23 @@ void add_specular(std::vector<ModelDef>& all) {
                Range::closed(0, 1), 0, false),
         number("anisotropy_strength",
                "KHR_materials_anisotropy anisotropyStrength: α along the anisotropy's direction is mix(α, 1, "
-               "strength²) (0: isotropic; not an image)",
+               "strength²) (0: isotropic); an image's: anisotropyTexture's blue times anisotropyStrength. Where it "
+               "is above 0 the direction turns from the surface's tangent frame (a mesh's TANGENT or MikkTSpace "
+               "tangents of the normal map's coordinates, else of this image's, else of TEXCOORD_0), not tangent_axis",
                Range::closed(0, 1), 0, false),
         number("anisotropy_rotation",
                "KHR_materials_anisotropy anisotropyRotation: the direction of increased roughness, radians "
-               "counter-clockwise from the tangent t towards b = n × t",
+               "counter-clockwise from the tangent t towards the bitangent b = w·(n × t)",
                Range::closed(-kScalarMax, kScalarMax), 0, false),
+        number("anisotropy_direction_x",
+               "KHR_materials_anisotropy anisotropyTexture's red: the direction's x in the tangent frame before the "
+               "rotation, stored as the texture stores it, x = 2·value − 1 (1: x = 1), made unit with "
+               "anisotropy_direction_y",
+               Range::closed(0, 1), 1, false),
+        number("anisotropy_direction_y",
+               "KHR_materials_anisotropy anisotropyTexture's green: the direction's y (along b), y = 2·value − 1 "
+               "(0.5: y = 0; the defaults give the README's (1, 0), the tangent)",
+               Range::closed(0, 1), 0.5, false),
         color("sheen_color", "KHR_materials_sheen sheenColorFactor: the sheen's colour (0: none; not an image)",
               Range::closed(0, 1), {0, 0, 0}),
         number("sheen_roughness",
@@ -536,6 +582,15 @@ void add_specular(std::vector<ModelDef>& all) {
         "dielectric Cycles' energy-compensated layering (docs/blender.md, F)",
         0.106);
     m.build = [](LobeContext& c) { return gltf_clearcoat(c, gltf_sheen(c, gltf_core(c))); };
+    // KHR_materials_anisotropy, "Anisotropy": the direction turns from the mesh's tangent frame
+    // (TANGENT, else computed as the core specification says: MikkTSpace on the normal texture's
+    // coordinates; facet takes the anisotropy texture's set where there is no normal texture, and
+    // TEXCOORD_0 without either).
+    m.uv_tangent = [](const ModelSpec& s) -> std::optional<int> {
+      if (!gltf_anisotropic(s)) return std::nullopt;
+      const Value& strength = s.at("anisotropy_strength");
+      return strength.texture ? strength.texture->uv : 0;
+    };
     m.reciprocal = false;
     m.physics_note = "without a clear coat symmetric: D, V and F (of v·h = l·h) are, and so is the diffuse weight "
                      "1 − max(F); KHR_materials_clearcoat weights its layers by the Fresnel of n·v alone, which is "

@@ -187,8 +187,8 @@ ShadingInputs shading_inputs(const Vec3& n, const Vec3& l, const Vec3& v, const 
   return shading_inputs(n, l, v, t, n);
 }
 
-ShadingInputs shading_inputs(const Vec3& n, const Vec3& l, const Vec3& v, const Vec3& t, const Vec3& c) {
-  Vec3 b = cross(n, t);
+ShadingInputs shading_inputs(const Vec3& n, const Vec3& l, const Vec3& v, const Vec3& t, const Vec3& c, double w) {
+  Vec3 b = cross(n, t) * w;
   ShadingInputs s;
   s.NoL = dot(n, l);
   s.NoV = dot(n, v);

@@ -51,8 +51,9 @@ struct ShadingInputs {
   static int index(const std::string& name);
 };
 ShadingInputs shading_inputs(const Vec3& n, const Vec3& l, const Vec3& v, const Vec3& t);
-// With the coat's own normal c (Material::coat_normal_differs); without, c = n.
-ShadingInputs shading_inputs(const Vec3& n, const Vec3& l, const Vec3& v, const Vec3& t, const Vec3& c);
+// With the coat's own normal c (Material::coat_normal_differs); without, c = n. b = w·(n × t):
+// w the texture frame's handedness where the lobes' t is that frame's (MaterialProgram::uv_tangent).
+ShadingInputs shading_inputs(const Vec3& n, const Vec3& l, const Vec3& v, const Vec3& t, const Vec3& c, double w = 1);
 
 // The normal map's shading normal (docs/textures.md, "Normal maps"; glTF 2.0 §3.9.3):
 // normalize(nt[0]·T + nt[1]·B + nt[2]·n), T = t Gram–Schmidt'd against n, B = w·(n × T).

@@ -174,6 +174,7 @@ double scene_scale(const Scene& s) {
 // textured parameters' values, the coat's own normal, and whether the pixel is fragile (grazing).
 struct ShadingFrame {
   Vec3 n, shading_n, t;
+  double w = 1;  // b = w·(n × t): the texture frame's handedness where t is that frame's
   Vec3 coat_n;  // the clear coat's normal (Material::coat_normal_differs): the object's own
   ShadingInputs textured;
   bool grazing = false;
@@ -206,6 +207,11 @@ ShadingFrame shading_frame(const Object& obj, const Reference& ref, const Corner
     f.t = follow_normal(f.t, f.shading_n);
     // The horizon rule jumps where the mapped normal turns from the eye.
     f.grazing = f.grazing || std::fabs(dot(f.shading_n, v)) < kNormalMapHorizon;
+  }
+  // KHR_materials_anisotropy: the lobes' tangent is the mesh's (the texture frame's), ⟂ their normal.
+  if (ref.program().uv_tangent() && framed) {
+    f.t = follow_normal(tangent, f.shading_n);
+    f.w = w;
   }
   if (m.coat_normal_map && framed) f.coat_n = ref.mapped_normal(uv, f.n, tangent, w, f.grazing, true);
   // The coat's horizon (its ρ is 0 where c·v ≤ 0) jumps where its normal turns from the eye.
@@ -248,7 +254,7 @@ void shade_pixel(const Scene& s, const ObjectBvh& bvh, const Cutouts& cut, const
     if (m.normal_map && dot(f.n, l) < kNormalMapHorizon && dot(f.shading_n, l) > 0) grazing = true;
     if (blocked(s, bvh, cut, h.object, h.hit.triangle, p, l, d, offset, close, grazing)) continue;
     seen |= Render::kReceivesLight;
-    ShadingInputs in = shading_inputs(f.shading_n, l, v, f.t, f.coat_n);
+    ShadingInputs in = shading_inputs(f.shading_n, l, v, f.t, f.coat_n, f.w);
     in.textured = f.textured.textured;
     RGB rho = ref.reflectance(in);
     for (int c = 0; c < 3; ++c) L[c] += factor * light.color[c] * rho[c];
@@ -279,8 +285,8 @@ Render render(const Material* fallback, const Scene& s, int width, int height, i
   // The normal-mapped meshes' tangents, once per render.
   std::vector<CornerTangents> tangents(s.objects.size());
   for (size_t i = 0; i < s.objects.size(); ++i)
-    if (const NormalMap* nm = shading[i]->material().frame_map(); nm && s.objects[i].type == Object::Type::Mesh)
-      tangents[i] = mesh_tangents(*s.objects[i].mesh, nm->texture().uv);
+    if (const auto set = shading[i]->material().frame_uv(); set && s.objects[i].type == Object::Type::Mesh)
+      tangents[i] = mesh_tangents(*s.objects[i].mesh, *set);
   Render r;
   r.image = Image(width, height);
   r.object.assign(size_t(width) * size_t(height), -1);

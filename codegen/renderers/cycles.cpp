@@ -168,8 +168,7 @@ void add_corner_tangents(json& scene, const std::vector<const RenderJob*>& jobs)
     if (s.objects[i].type != Object::Type::Mesh) continue;
     std::set<int> sets;
     for (const RenderJob* j : jobs)
-      if (const NormalMap* nm = s.material_of(i, j->material ? &*j->material : nullptr).frame_map())
-        sets.insert(nm->texture().uv);
+      if (const auto set = s.material_of(i, j->material ? &*j->material : nullptr).frame_uv()) sets.insert(*set);
     for (int set : sets) scene["objects"][i][fmt::format("facet_tangents{}", set)] = mesh_tangents(*s.objects[i].mesh, set);
   }
 }

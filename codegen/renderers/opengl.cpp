@@ -307,8 +307,8 @@ MeshBuffers mesh_buffers(const Scene& s, const Material* fallback) {
     if (o.type != Object::Type::Mesh) continue;
     const Mesh& m = *o.mesh;
     // A normal-mapped mesh's corner tangents (scene/tangents.h), 3 texels a triangle; 0 elsewhere.
-    const NormalMap* nm = s.material_of(i, fallback).frame_map();
-    const std::vector<std::array<double, 4>> corners = nm ? mesh_tangents(m, nm->texture().uv)
+    const auto set = s.material_of(i, fallback).frame_uv();
+    const std::vector<std::array<double, 4>> corners = set ? mesh_tangents(m, *set)
                                                           : std::vector<std::array<double, 4>>{};
     int node0 = int(b.nodes.size() / 8), tri0 = int(b.triangles.size() / 24);
     if (!m.colors.empty()) b.colors_base.back() = double(b.colors.size() / 4) - 3.0 * tri0;

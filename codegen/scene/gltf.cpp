@@ -183,7 +183,6 @@ class Importer {
     if (s_.objects.empty()) reader_.fail(fmt::format("scenes[{}]", scene_index), "has no meshes");
     read_meshes();
     check_texture_coordinates();
-    note_anisotropy_frames();
     check_gathered_parts();
     if (!have_camera_) frame_camera();
     if (s_.lights.empty()) add_default_light();
@@ -598,51 +597,6 @@ class Importer {
     }
   }
 
-  // KHR_materials_anisotropy turns its direction from the mesh's tangent frame (the README's
-  // TBN: TANGENT, or the normal texture's frame; B = w·(N × T)). facet's anisotropic lobes take
-  // the tangent rule t = normalize(tangent_axis × n) and b = n × t on every object, so each
-  // anisotropic mesh's note says how far the two directions are apart at its corners (TANGENT,
-  // else MikkTSpace on TEXCOORD_0), as an angle between lines: D and V do not see their sign.
-  void note_anisotropy_frames() {
-    for (const auto& o : s_.objects) {
-      if (o.type != Object::Type::Mesh || !o.mesh) continue;
-      auto m = s_.materials.find(o.material);
-      auto mp = material_paths_.find(o.material);
-      if (m == s_.materials.end() || mp == material_paths_.end() || !m->second.specular) continue;
-      const ModelSpec& spec = *m->second.specular;
-      if (!spec.def->gltf_brdf || spec.at("anisotropy_strength").number <= 0) continue;
-      const std::string key = mp->second + ".extensions.KHR_materials_anisotropy";
-      if (o.mesh->tangents.empty() && o.mesh->texcoords[0].empty()) {
-        notes_.push_back(fmt::format("{}: {} has neither TANGENT nor TEXCOORD_0, so no tangent frame of its own: "
-                                     "facet's tangent rule (tangent_axis × n) gives the direction",
-                                     key, o.name));
-        continue;
-      }
-      const auto corners = mesh_tangents(*o.mesh, 0);
-      const double r = spec.at("anisotropy_rotation").number;
-      double worst = 0;
-      size_t off = 0, count = 0;
-      for (size_t c = 0; c < corners.size(); ++c) {
-        const Vec3 n = normalize(o.mesh->normals[o.mesh->triangles[c / 3][c % 3]]);
-        const Vec3 T(corners[c][0], corners[c][1], corners[c][2]);
-        if (length(T) == 0) continue;
-        const Vec3 t = tangent_rule(n, Vec3(m->second.tangent_axis));
-        const Vec3 file = T * std::cos(r) + cross(n, T) * (corners[c][3] * std::sin(r));
-        const Vec3 rule = t * std::cos(r) + cross(n, t) * std::sin(r);
-        const double angle = std::acos(std::min(1.0, std::fabs(dot(normalize(file), rule)))) * 180 / kPi;
-        worst = std::max(worst, angle);
-        off += angle > 1;
-        ++count;
-      }
-      notes_.push_back(fmt::format(
-          "{}: {}: the direction is facet's tangent rule (tangent_axis × n, b = n × t), not the mesh's tangent "
-          "frame the extension turns from ({}); here they differ by up to {:.3g}° ({} of {} corners by more than "
-          "1°){}",
-          key, o.name, o.mesh->tangents.empty() ? "MikkTSpace on TEXCOORD_0" : "its TANGENT", worst, off, count,
-          worst <= 1 ? ": exact to that" : ": approximate"));
-    }
-  }
-
   // A glTF without lights (most sample models) would render black: facet adds a
   // headlight, a point light at the camera without falloff (facet's attenuation
   // "none"), colour 1: a white Lambert surface facing it shows 1 at any distance. A
@@ -858,15 +812,35 @@ class Exporter {
                                    map(s.at("clearcoat"), "r", "linear", "clear coat"),
                                    map(s.at("clearcoat_roughness"), "g", "linear", "clear coat roughness")})
       if (!why.empty()) return why;
+    if (const std::string why = anisotropy_unsaid(s); !why.empty()) return why;
     if (!metal.texture && !rough.texture) return "";
-    // One image's B (metallic) and G (roughness): the same file, sampler, set and transform.
-    const bool one = metal.texture && rough.texture && metal.texture->path == rough.texture->path &&
-                     metal.texture->uv == rough.texture->uv &&
-                     metal.texture->sampler.filter == rough.texture->sampler.filter &&
-                     metal.texture->sampler.wrap == rough.texture->sampler.wrap &&
-                     metal.texture->offset == rough.texture->offset && metal.texture->scale == rough.texture->scale &&
-                     metal.texture->rotation == rough.texture->rotation;
+    // One image's B (metallic) and G (roughness).
+    const bool one = metal.texture && rough.texture && same_image(*metal.texture, *rough.texture);
     return one ? "" : "metallic and roughness maps that are not one image's B and G";
+  }
+
+  // Whether two textured values read one image the same way: the same file, sampler, set and transform.
+  static bool same_image(const TextureRef& a, const TextureRef& b) {
+    return a.path == b.path && a.uv == b.uv && a.sampler.filter == b.sampler.filter && a.sampler.wrap == b.sampler.wrap &&
+           a.offset == b.offset && a.scale == b.scale && a.rotation == b.rotation;
+  }
+
+  // KHR_materials_anisotropy's texture holds the direction's x and y as R and G (2·rg − 1) and the
+  // strength as B (times anisotropyStrength): facet's three values say it where they are one
+  // image's R and G (factor 1) and B, or where none is an image (a direction of numbers turns into
+  // anisotropyRotation). "" where glTF says them.
+  static std::string anisotropy_unsaid(const ModelSpec& s) {
+    const Value &strength = s.at("anisotropy_strength"), &x = s.at("anisotropy_direction_x"),
+                &y = s.at("anisotropy_direction_y");
+    if (!strength.texture && !x.texture && !y.texture) return "";
+    const char* why = "anisotropy maps that are not one image's R and G (factor 1) and B";
+    if (!strength.texture || !x.texture || !y.texture) return why;
+    auto channel = [](const Value& v, const char* c, bool factor_one) {
+      return gltf_texture_unsaid(*v.texture, c, "linear").empty() && (!factor_one || v.number == 1);
+    };
+    const bool one = channel(strength, "b", false) && channel(x, "r", true) && channel(y, "g", true) &&
+                     same_image(*strength.texture, *x.texture) && same_image(*strength.texture, *y.texture);
+    return one ? "" : why;
   }
 
   // glTF's own BRDF written back as glTF: pbrMetallicRoughness's factors and maps,
@@ -905,10 +879,14 @@ class Exporter {
       g.extensions["KHR_materials_specular"] = tinygltf::Value(ext);
       used_.insert("KHR_materials_specular");
     }
-    if (const double strength = s.at("anisotropy_strength").number; strength > 0) {
+    if (const Value& strength = s.at("anisotropy_strength"); strength.texture || strength.number > 0) {
       tinygltf::Value::Object ext;
-      ext["anisotropyStrength"] = tinygltf::Value(strength);
-      ext["anisotropyRotation"] = tinygltf::Value(s.at("anisotropy_rotation").number);
+      ext["anisotropyStrength"] = tinygltf::Value(strength.number);
+      // A direction of numbers is the lobe's turn beyond the rotation (catalog/specular.cpp).
+      const double x = 2 * s.at("anisotropy_direction_x").number - 1, y = 2 * s.at("anisotropy_direction_y").number - 1;
+      const bool turned = !strength.texture && !(x == 0 && y == 0);
+      ext["anisotropyRotation"] = tinygltf::Value(s.at("anisotropy_rotation").number + (turned ? std::atan2(y, x) : 0.0));
+      if (strength.texture) ext["anisotropyTexture"] = extension_texture_info(*strength.texture);
       g.extensions["KHR_materials_anisotropy"] = tinygltf::Value(ext);
       used_.insert("KHR_materials_anisotropy");
     }

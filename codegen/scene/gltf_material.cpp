@@ -290,18 +290,27 @@ void coat_normal_map(const json& coat, const std::optional<TextureUse>& normal_m
   m["coat_normal_map"] = normal_map_of(t, scale);
 }
 
-// KHR_materials_anisotropy ("Anisotropy"): anisotropy_strength = anisotropyStrength,
-// anisotropy_rotation = anisotropyRotation (radians from the tangent towards the bitangent). The
-// lobe takes both as numbers: an anisotropyTexture (a direction and a strength per texel) is not
-// read, a note says so. The frame it turns from is facet's tangent rule, not the mesh's: the
-// import measures the two on each mesh (Importer::note_anisotropy_frames in gltf.cpp).
-void anisotropy_extension(const json& aniso, json& lobe, GltfImages& images, const std::string& key,
-                          std::vector<std::string>& notes) {
-  lobe["anisotropy_strength"] = extension_number(images, aniso, "anisotropyStrength", 0, 0, 1, key);
+// KHR_materials_anisotropy ("Anisotropy"): anisotropy_strength = anisotropyStrength (times
+// anisotropyTexture's B), anisotropy_rotation = anisotropyRotation (radians from the tangent
+// towards the bitangent), and with the texture the direction anisotropy_direction_x, _y = its R and
+// G (which the lobe maps as "red [0, 1] to X [−1, 1], green [0, 1] to Y [−1, 1]"), all linear. The direction
+// turns from the mesh's tangent frame (ModelDef::uv_tangent: TANGENT, else MikkTSpace on the
+// normal texture's coordinates, else on the anisotropy texture's, else on TEXCOORD_0), whose
+// coordinates the mesh must have: `sets` names them (a mesh without them is refused there).
+void anisotropy_extension(const json& aniso, bool normal_mapped, json& lobe, GltfImages& images, const std::string& key,
+                          std::vector<std::pair<int, std::string>>& sets) {
+  const double strength = extension_number(images, aniso, "anisotropyStrength", 0, 0, 1, key);
+  lobe["anisotropy_strength"] = strength;
   lobe["anisotropy_rotation"] = extension_number(images, aniso, "anisotropyRotation", 0, -kScalarMax, kScalarMax, key);
-  if (aniso.contains("anisotropyTexture"))
-    notes.push_back(key + ".anisotropyTexture: approximate: not read (facet's gltf_pbr takes the anisotropy's "
-                          "strength and rotation as numbers); the factors alone are used");
+  if (aniso.contains("anisotropyTexture")) {
+    const TextureUse t = extension_texture(images, aniso["anisotropyTexture"], key + ".anisotropyTexture");
+    sets.emplace_back(t.uv, t.key + ".texCoord");
+    lobe["anisotropy_strength"] = texture_value(t, "b", "linear", strength);
+    lobe["anisotropy_direction_x"] = texture_value(t, "r", "linear", 1);
+    lobe["anisotropy_direction_y"] = texture_value(t, "g", "linear", 1);
+  } else if (strength > 0 && !normal_mapped) {
+    sets.emplace_back(0, key + " (its tangent frame: TEXCOORD_0)");
+  }
 }
 
 // The glTF material as the catalog's gltf_pbr lobe, every input as the file gives it: glTF 2.0
@@ -327,7 +336,8 @@ json gltf_pbr_lobe(const tinygltf::Material& g, const Pbr& p, GltfImages& images
   if (spec.is_object()) specular_extension(spec, lobe, images, mpath + ".extensions.KHR_materials_specular", sets, notes);
   const json aniso = extension_of(g.extensions_json_string, "KHR_materials_anisotropy");
   if (aniso.is_object())
-    anisotropy_extension(aniso, lobe, images, mpath + ".extensions.KHR_materials_anisotropy", notes);
+    anisotropy_extension(aniso, g.normalTexture.index >= 0, lobe, images, mpath + ".extensions.KHR_materials_anisotropy",
+                         sets);
   const json sheen = extension_of(g.extensions_json_string, "KHR_materials_sheen");
   if (sheen.is_object()) sheen_extension(sheen, lobe, images, mpath + ".extensions.KHR_materials_sheen", notes);
   const json coat = extension_of(g.extensions_json_string, "KHR_materials_clearcoat");

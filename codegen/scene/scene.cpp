@@ -464,14 +464,13 @@ void check_texture_sets(const Scene& s, const Material* fallback) {
     if (o.type != Object::Type::Mesh) continue;
     if (o.material.empty() && !fallback) continue;  // reported where the material is needed
     const Material& m = s.material_of(i, fallback);
-    if (const NormalMap* frame = m.frame_map(); frame && o.mesh->texcoords[size_t(frame->texture().uv)].empty()) {
-      const size_t set = size_t(frame->texture().uv);
-      const char* key = m.normal_map ? "normal_map" : "coat_normal_map";
+    if (const auto frame = m.frame_uv(); frame && o.mesh->texcoords[size_t(*frame)].empty()) {
+      const size_t set = size_t(*frame);
       problems.push_back({s.source, index_path("objects", i),
-                          fmt::format("mesh \"{}\" has no texture coordinates set {} ({}), which material \"{}\"'s "
-                                      "normal map reads at {}.uv (its tangents come from them)",
+                          fmt::format("mesh \"{}\" has no texture coordinates set {} ({}), whose tangent frame "
+                                      "material \"{}\" reads at {} (its tangents come from them)",
                                       o.name, set, set == 0 ? "texcoords, glTF's TEXCOORD_0" : "texcoords1, glTF's TEXCOORD_1",
-                                      m.name, key)});
+                                      m.name, m.frame_key())});
     }
     for (const auto& t : compile(m).textured) {
       if (!t.value.texture->has_image()) continue;  // the vertex colour alone reads no coordinates

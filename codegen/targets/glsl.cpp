@@ -192,7 +192,7 @@ GlslParts glsl_parts(const MaterialProgram& p, Target dialect, const std::string
   for (const auto& f : p.functions()) functions += printer.function(f) + "\n";
 
   std::string inputs, arguments;
-  if (p.uses_bitangent()) inputs += "    vec3 b = cross(n, t);\n";
+  inputs += bitangent(p, "vec3");
   if (p.uses_half_vector())
     inputs += fmt::format("    // catalog.h, Input: h = (l + v) / max(|l + v|, ε)\n"
                           "    vec3 h = (l + v) * inversesqrt(max(dot(l + v, l + v), {}));\n",

@@ -81,7 +81,7 @@ std::string hlsl_textures(const MaterialProgram& p) {
 // facet_reflect's body before its return: the inputs the lobes read, and their names.
 std::pair<std::string, std::string> hlsl_inputs(const MaterialProgram& p, const targets::CPrinter& printer) {
   std::string inputs, arguments;
-  if (p.uses_bitangent()) inputs += "    float3 b = cross(n, t);\n";
+  inputs += bitangent(p, "float3");
   if (p.uses_half_vector())
     inputs += fmt::format("    // catalog.h, Input: h = (l + v) / max(|l + v|, ε)\n"
                           "    float3 h = (l + v) * rsqrt(max(dot(l + v, l + v), {}));\n",

@@ -93,14 +93,37 @@ std::string light_block(const targets::CPrinter& pr, const Light& l, size_t i, S
 
 // The textured parameters' shader parameters (each image's path), and the statements that
 // sample them at the shading point, before the lights: the locals facet_reflect takes.
+// ", W" for facet_reflect's handedness parameter or argument where the lobes' tangent is the
+// texture frame's (MaterialProgram::uv_tangent), else nothing.
+std::string handedness_arg(const MaterialProgram& p, const std::string& w) { return p.uv_tangent() ? ", " + w : ""; }
+
+// facet_reflect's statements that compute the shading inputs from Nn, L, V, T (and W, Nc), and
+// the reflectance's arguments: the inputs, its textured parameters by name.
+void reflect_inputs(const targets::CPrinter& pr, const MaterialProgram& p, std::string& inputs, std::string& arguments) {
+  if (p.uses_bitangent()) inputs += p.uv_tangent() ? "    vector B = W * cross(Nn, T);  // W: the frame's handedness\n"
+                                                    : "    vector B = cross(Nn, T);\n";
+  if (p.uses_half_vector())
+    inputs += fmt::format("    // h = (L + V) / max(|L + V|, ε), as on every target\n"
+                          "    vector H = (L + V) * inversesqrt(max(dot(L + V, L + V), {}));\n",
+                          pr.literal(kEpsilon * kEpsilon));
+  for (const auto& in : p.inputs) {
+    arguments += (arguments.empty() ? "" : ", ") + in;
+    if (p.is_textured(in)) continue;  // a parameter of facet_reflect, sampled by the shader
+    auto vec = [](char c) -> std::string { return c == 'N' ? "Nn" : c == 'C' ? "Nc" : std::string(1, c); };
+    inputs += fmt::format("    float {} = dot({}, {});\n", in, vec(in[0]), vec(in[2]));
+  }
+}
+
 struct OslTextures {
   std::string params, samples, reflect_params, reflect_args, mapping;
 };
 
 // The normal maps' statements (catalog/texture.h, NormalMap; glTF 2.0 §3.9.3): Ns, the lobes'
 // normal, from the sampled rgb and the frame facet_uv_tangent, facet_uv_handedness (T follows
-// it), and Nc, the coat's own (Material::coat_normal_map), from its map on the same frame.
-std::string osl_normal_mapping(const targets::CPrinter& pr, const Material& m) {
+// it), and Nc, the coat's own (Material::coat_normal_map), from its map on the same frame; T the
+// frame's own Tu made ⟂ the lobes' normal where the lobes turn from it (MaterialProgram::uv_tangent).
+std::string osl_normal_mapping(const targets::CPrinter& pr, const MaterialProgram& p) {
+  const Material& m = p.material;
   std::string out =
       "    // The normal maps: n_t = normalize((2·rgb − 1) ⊗ (s, s, 1)) (y negated for a green-down map),\n"
       "    // the normal normalize(n_t.x·Tu + n_t.y·Bu + n_t.z·Nn), Tu = ∂p/∂u made ⟂ Nn, Bu = w·(Nn × Tu)\n"
@@ -114,10 +137,12 @@ std::string osl_normal_mapping(const targets::CPrinter& pr, const Material& m) {
         "    vector {4} = normalize({2}_t[0] * Tu + {2}_t[1] * Bu + {2}_t[2] * Nn);  // {5}\n",
         pr.literal(map.strength), map.green_down ? "-" : "", tag, texel, normal, whose);
   };
-  if (m.normal_map) {
-    mapped(*m.normal_map, "normal_map", "nm", "Ns", "the lobes' normal");
+  if (m.normal_map) mapped(*m.normal_map, "normal_map", "nm", "Ns", "the lobes' normal");
+  const char* lobes = m.normal_map ? "Ns" : "Nn";
+  if (p.uv_tangent())  // KHR_materials_anisotropy: the mesh's tangent; facet_reflect's B = W·(N × T)
+    out += fmt::format("    T = normalize(Tu - {0} * dot({0}, Tu));  // the lobes' tangent: the texture frame's\n", lobes);
+  else if (m.normal_map)
     out += "    T = normalize(T - Ns * dot(Ns, T));  // the anisotropic tangent follows the mapped normal\n";
-  }
   if (m.coat_normal_map) mapped(*m.coat_normal_map, "coat_normal_map", "cm", "Nc", "the clear coat's own normal");
   return out;
 }
@@ -168,12 +193,12 @@ OslTextures osl_textures(const targets::CPrinter& pr, const MaterialProgram& p, 
   if (p.uses_vertex_color())
     out.params += "    color facet_color0 = 1,  // the vertex colour (glTF's COLOR_0, linear): link an Attribute node's Color\n"
                   "    float facet_alpha0 = 1,  // … and its Alpha; unlinked, white\n";
-  if (const NormalMap* frame = p.material.frame_map()) {
+  if (const auto frame = p.material.frame_uv()) {
     out.params += "    vector facet_uv_tangent = 0,  // the normal map's ∂p/∂u, world space (docs/textures.md, Tangent frames)\n"
                   "    float facet_uv_handedness = 1,  // w: B = w·(N × T)\n" +
                   fmt::format("    int facet_normal_map_uv = {},  // the coordinate set the normal maps read (their tangents')\n",
-                              frame->texture().uv);
-    out.mapping = osl_normal_mapping(pr, p.material);
+                              *frame);
+    out.mapping = osl_normal_mapping(pr, p);
   }
   return out;
 }
@@ -190,7 +215,8 @@ std::string osl_sweep_source(const Material& m) {
   targets::CPrinter pr(osl_dialect());
   std::string grid;
   for (const auto& f : ir::dependencies(sweep_grid())) grid += pr.function(f) + "\n";
-  std::string params, args = coat_normal_arg(p, "Nn");  // the coat's normal: the sweep's n
+  // The frame's handedness +1 (the sweep's t is the tangent), the coat's normal the sweep's n.
+  std::string params, args = handedness_arg(p, "1") + coat_normal_arg(p, "Nn");
   for (const auto& c : pr.free_constants(p.reflectance)) {
     params += fmt::format("    {} {} = {},\n", pr.type(c->type), c->name,
                           c->type == ir::Type::Color ? pr.color_literal(c->value) : pr.literal(c->value[0]));
@@ -216,21 +242,13 @@ std::string generate_osl(const Material& m, const GenerateOptions& o) {
     constant_args += ", " + c->name;
   }
   std::string inputs, arguments;
-  if (p.uses_bitangent()) inputs += "    vector B = cross(Nn, T);\n";
-  if (p.uses_half_vector())
-    inputs += fmt::format("    // h = (L + V) / max(|L + V|, ε), as on every target\n"
-                          "    vector H = (L + V) * inversesqrt(max(dot(L + V, L + V), {}));\n",
-                          pr.literal(kEpsilon * kEpsilon));
-  for (const auto& in : p.inputs) {
-    arguments += (arguments.empty() ? "" : ", ") + in;
-    if (p.is_textured(in)) continue;  // a parameter of facet_reflect, sampled by the shader
-    auto vec = [](char c) -> std::string { return c == 'N' ? "Nn" : c == 'C' ? "Nc" : std::string(1, c); };
-    inputs += fmt::format("    float {} = dot({}, {});\n", in, vec(in[0]), vec(in[2]));
-  }
+  reflect_inputs(pr, p, inputs, arguments);
   arguments += constant_args;
-  // facet_reflect(Nn, L, V, T[, Nc], constants…): Nc the coat's own normal where the lobes read it.
-  constant_params = coat_normal_arg(p, "vector Nc") + constant_params;
-  constant_args = coat_normal_arg(p, p.coat_normal_mapped() ? "Nc" : "Nn") + constant_args;
+  // facet_reflect(Nn, L, V, T[, W][, Nc], constants…): W the texture frame's handedness where the
+  // lobes' tangent is that frame's, Nc the coat's own normal where the lobes read it.
+  constant_params = handedness_arg(p, "float W") + coat_normal_arg(p, "vector Nc") + constant_params;
+  constant_args = handedness_arg(p, "uv_handedness") + coat_normal_arg(p, p.coat_normal_mapped() ? "Nc" : "Nn") +
+                  constant_args;
   ShaderParams params;
   const Scene& scene = o.scene ? *o.scene : default_scene();
   const targets::OslCutouts cutouts = targets::osl_cutouts(pr, m, scene, o.fallback ? *o.fallback : m, o);

@@ -280,15 +280,15 @@ void PovScene::register_mesh_files() {
     const bool textured = shading(o).textured();
     // A normal map's corner tangents (scene/tangents.h): three more planes.
     std::shared_ptr<const std::vector<std::array<double, 4>>> tangents;
-    if (const NormalMap* nm = shading(o).material->frame_map())
-      tangents = std::make_shared<const std::vector<std::array<double, 4>>>(mesh_tangents(*mesh, nm->texture().uv));
+    if (const auto set = shading(o).material->frame_uv())
+      tangents = std::make_shared<const std::vector<std::array<double, 4>>>(mesh_tangents(*mesh, *set));
     // The vertex colours where the material reads them (object_function() reads the same planes).
     const bool colors = shading(o).program.uses_vertex_color() && !mesh->colors.empty();
     data_[o] = pov_mesh_data(*mesh, fmt::format("{}_mesh{}.ppm", stem_, o), textured, tangents, colors);
     routes_[o] += fmt::format("; POV-Ray reads its positions from {} to within {:.2g} and normals to within {:.2g}",
                               data_[o].file, data_[o].position_error, data_[o].normal_error);
     if (textured) routes_[o] += fmt::format(", texture coordinates to within {:.2g}", data_[o].texcoord_error);
-    if (tangents) routes_[o] += ", and the normal map's tangents as its normals";
+    if (tangents) routes_[o] += ", and the tangent frame's tangents (normal maps', anisotropy's) as its normals";
     if (colors) routes_[o] += fmt::format(", vertex colours to within {:.2g}", data_[o].color_error);
     files_.push_back({data_[o].file, [mesh, d = data_[o]](std::ostream& out) { write_pov_mesh_image(out, *mesh, d); }});
   }
@@ -397,9 +397,10 @@ std::string PovScene::library() {
   const PovShading& sh = *shadings_.front();
   const Material& m = *sh.material;
   const std::string name = capital(identifier(m.name));
-  if (m.frame_map())  // its pigment macro takes the user's normal and no tangent frame
-    throw InputError({{m.source.empty() ? m.name : m.source, m.normal_map ? "normal_map" : "coat_normal_map",
-                       "POV-Ray's --library does not apply normal maps yet (a scene does: docs/textures.md)"}});
+  if (m.frame_uv())  // its pigment macro takes the user's normal and no tangent frame
+    throw InputError({{m.source.empty() ? m.name : m.source, m.frame_key(),
+                       "POV-Ray's --library does not read texture-coordinate tangent frames (normal maps, glTF's "
+                       "anisotropy) yet (a scene does: docs/textures.md)"}});
   if (m.masked())  // its pigment macro holds the radiance, which has no transmit
     throw InputError({{m.source.empty() ? m.name : m.source, "alpha_cutoff",
                        "POV-Ray's --library does not cut out yet (a scene does: docs/textures.md)"}});

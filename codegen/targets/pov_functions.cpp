@@ -84,14 +84,20 @@ std::vector<Expr> with(std::vector<Expr> a, const std::vector<Expr>& b) {
 // surface's own, where the lobes read a normal map's (MaterialProgram::uses_coat_normal).
 bool takes_coat(const PovShading& sh) { return sh.program.uses_coat_normal(); }
 
+// Whether they take the texture frame's handedness Tw after T: the lobes' tangent is that frame's
+// (MaterialProgram::uv_tangent; KHR_materials_anisotropy), and b = Tw·(n × t).
+bool takes_handedness(const PovShading& sh) { return sh.program.uv_tangent(); }
+
 ir::FunctionPtr frame_function(const ir::FunctionPtr& reflectance, const std::string& name, bool tangent,
                                const PovShading& sh) {
   ir::FunctionBuilder fb(name, "");
   Triple N = params(fb, "Nx", "Ny", "Nz"), L = params(fb, "Lx", "Ly", "Lz"), V = params(fb, "Vx", "Vy", "Vz");
   Triple T = tangent ? params(fb, "Tx", "Ty", "Tz") : Triple{0.0, 0.0, 0.0};
+  const std::optional<Expr> W = tangent && takes_handedness(sh) ? std::optional<Expr>(fb.param("Tw")) : std::nullopt;
   Triple E = takes_coat(sh) ? params(fb, "Ex", "Ey", "Ez") : Triple{0.0, 0.0, 0.0};
   const std::vector<Expr> uv = uv_params(fb, sh);
   Triple H = L + V, B = cross3(N, T);
+  if (W) B = {B.x * *W, B.y * *W, B.z * *W};  // b = w·(n × t) on the texture frame
   Expr Hl = reads(*reflectance, {"NoH", "VoH", "HoT", "HoB"}) ? fb.let("Hl", ir::max(length3(H), kEpsilon)) : Expr(1.0);
   auto input = [&](const std::string& in) -> Expr {
     if (auto t = sh.samples.find(in); t != sh.samples.end()) return sample_call(t->second, uv);
@@ -184,7 +190,31 @@ struct PointNormals {
 // Whether the lights' functions of `sh` take the tangent: a normal map under a lobe that reads
 // it, whose tangent follows the mapped normal (mapped_tangent) instead of the tangent rule on it.
 bool takes_tangent(const PovShading& sh, const ir::Function& reflectance) {
-  return sh.normal_map[0] && reads_tangent(reflectance);
+  return (sh.normal_map[0] || sh.program.uv_tangent()) && reads_tangent(reflectance);
+}
+
+Triple frame_tangent(ir::FunctionBuilder& fb, const Triple& t, const Triple& n);
+Triple mapped_tangent(ir::FunctionBuilder& fb, const PovShading& sh, const Triple& n, const Triple& m);
+
+// The tangent arguments of a light's function (where it takes them) at a point of own normal
+// `own` whose lobes read `n`, on the frame t, w: the texture frame's tangent made ⟂ n and its
+// handedness (w, or +1 on the shapes) where the lobes turn from it, else the tangent rule made ⟂ n.
+void append_tangent(ir::FunctionBuilder& fb, const PovShading& sh, std::vector<Expr>& a, const Triple& own,
+                    const Triple& n, const Triple& t, const std::optional<Expr>& w) {
+  if (!takes_tangent(sh, *sh.program.reflectance)) return;
+  if (!takes_handedness(sh)) return append(a, mapped_tangent(fb, sh, own, n));
+  append(a, frame_tangent(fb, t, n));
+  a.push_back(w ? *w : Expr(1.0));  // the shapes' frames are right-handed
+}
+
+// The texture frame's tangent t (a mesh's blended corner tangent, a shape's ∂p/∂u) made ⟂ the
+// lobes' normal n, normalize(t − n(n·t)): the lobes' tangent where they turn from that frame.
+Triple frame_tangent(ir::FunctionBuilder& fb, const Triple& t, const Triple& n) {
+  const Triple u = lets(fb, "Ox", "Oy", "Oz", t);
+  Expr along = fb.let("Od", dot3(u, n));
+  const Triple g = lets(fb, "Yx", "Yy", "Yz", {u.x - n.x * along, u.y - n.y * along, u.z - n.z * along});
+  Expr gl = fb.let("Yl", length3(g));
+  return g / gl;
 }
 
 // The tangent rule on the object's normal n (t = normalize(axis × n), or x̂ × n where
@@ -252,10 +282,12 @@ ir::FunctionPtr PovScene::light_function(PovShading& sh, size_t i, const ir::Fun
   Triple P = params(fb, "x", "y", "z"), N = params(fb, "Nx", "Ny", "Nz");
   const bool tangent = takes_tangent(sh, *sh.program.reflectance);
   const Triple T = tangent ? params(fb, "Tx", "Ty", "Tz") : Triple{0.0, 0.0, 0.0};
+  const std::optional<Expr> W = tangent && takes_handedness(sh) ? std::optional<Expr>(fb.param("Tw")) : std::nullopt;
   const std::optional<Triple> E = takes_coat(sh) ? std::optional<Triple>(params(fb, "Ex", "Ey", "Ez")) : std::nullopt;
   const std::vector<Expr> uv = uv_params(fb, sh);
   auto frame = [&](const Triple& L, const Triple& V) {
     std::vector<Expr> a = tangent ? args({N, L, V, T}) : args({N, L, V});
+    if (W) a.push_back(*W);
     if (E) append(a, *E);
     return with(a, uv);
   };
@@ -335,7 +367,10 @@ ir::FunctionPtr PovScene::kept_function(PovShading& sh) {
   ir::FunctionBuilder fb("Facet_Kept", "");
   params(fb, "x", "y", "z");
   params(fb, "Nx", "Ny", "Nz");
-  if (takes_tangent(sh, *sh.program.reflectance)) params(fb, "Tx", "Ty", "Tz");
+  if (takes_tangent(sh, *sh.program.reflectance)) {
+    params(fb, "Tx", "Ty", "Tz");
+    if (takes_handedness(sh)) fb.param("Tw");
+  }
   if (takes_coat(sh)) params(fb, "Ex", "Ey", "Ez");
   const std::vector<Expr> uv = uv_params(fb, sh);
   const size_t set = size_t(sh.alpha_uv);
@@ -374,7 +409,7 @@ ir::FunctionPtr PovScene::object_function(size_t o, const std::string& name, con
     if (own_normal) return ir::call(light, with(args({at, coat}), uv));
     const Triple n = normals.mapped(false);
     std::vector<Expr> a = args({at, n});
-    if (takes_tangent(sh, *sh.program.reflectance)) append(a, mapped_tangent(fb, sh, own, n));
+    append_tangent(fb, sh, a, own, n, t, w);
     if (takes_coat(sh)) append(a, coat);
     return ir::call(light, with(a, uv));
   };
@@ -805,6 +840,14 @@ std::string PovScene::sweep() {
   Expr x = fb.param("x"), y = fb.param("y");
   std::vector<Expr> directions;
   for (const auto& component : sweep_grid()) directions.push_back(ir::call(component, {x, y}));
+  // Lobes that read the texture frame's tangent take t as a parameter: the sweep's is the
+  // tangent rule's on n (as the other targets' sweeps give it), its handedness +1.
+  if (takes_tangent(sh, *sh.program.reflectance)) {
+    const Triple n = lets(fb, "Nx", "Ny", "Nz", {directions[0], directions[1], directions[2]});
+    directions[0] = n.x, directions[1] = n.y, directions[2] = n.z;
+    append(directions, mapped_tangent(fb, sh, n, n));
+    if (takes_handedness(sh)) directions.push_back(1.0);
+  }
   ir::FunctionPtr f = fb.returns(ir::call(sh.reflect, directions));
   sh.printer.add_own(f);
   std::string pigment = "  pigment {\n    average\n    pigment_map {\n";

@@ -59,7 +59,8 @@ struct PovShading {
   // The coat's own normal map's (Facet_Sample_coat_normal_map_r, …; Material::coat_normal_map), or null.
   std::array<ir::FunctionPtr, 3> coat_normal_map{};
   int normal_map_uv = 0;  // the set both maps read
-  bool framed() const { return normal_map[0] || coat_normal_map[0]; }  // a map turns on the tangent frame
+  // A map, or lobes whose tangent is the texture frame's (MaterialProgram::uv_tangent), turn on the tangent frame.
+  bool framed() const { return normal_map[0] || coat_normal_map[0] || program.uv_tangent(); }
   // A cut-out's alpha from an image (glTF's alphaMode MASK): Facet_Sample_alpha(S, T) of its
   // set, and {P}Facet_Kept(x, y, z, n, …), 1 where alpha ≥ the cutoff, 0 where the surface is
   // cut out, called like a light's function by each object's Facet_Object{o}_Kept. Null where

@@ -89,13 +89,17 @@ std::string describe_material(const Material& m, const std::string& marker) {
 
 void require_untextured(const Material& m, const std::string& target) {
   MaterialProgram p = compile(m);
-  if (!p.has_textures()) return;
+  // A frame the lobes' tangent alone reads is given as t (w = +1) where nothing samples images.
+  if (p.textured.empty() && !m.normal_map && !m.coat_normal_map) return;
   std::vector<Diagnostic> d;
   for (const auto& t : p.textured)
     d.push_back({m.source.empty() ? m.name : m.source, t.key,
                  "an image texture, which the " + target + " target does not sample yet (GLSL does; docs/textures.md)"});
   if (m.normal_map)
     d.push_back({m.source.empty() ? m.name : m.source, "normal_map",
+                 "a normal map, which the " + target + " target does not sample yet (GLSL does; docs/textures.md)"});
+  if (m.coat_normal_map)
+    d.push_back({m.source.empty() ? m.name : m.source, "coat_normal_map",
                  "a normal map, which the " + target + " target does not sample yet (GLSL does; docs/textures.md)"});
   throw InputError(d);
 }
@@ -158,16 +162,29 @@ void normal_mapping_values(const MaterialProgram& p, const std::string& let, std
   std::string mapping;
   if (p.normal_mapped())
     mapping = "    // The lobes read the normal map's normal and a tangent that follows it.\n"
-              "    " + let + " ns = facet_normal_mapped(n, facet_uv_tangent, facet_uv_handedness);\n"
-              "    t = normalize(t - ns * dot(ns, t));\n";
+              "    " + let + " ns = facet_normal_mapped(n, facet_uv_tangent, facet_uv_handedness);\n";
   else
     mapping = "    " + let + " ns = n;\n";
+  // The lobes' tangent: the texture frame's where they turn from it (KHR_materials_anisotropy:
+  // the mesh's tangent; facet_reflect's b is then w·(n × t)), else t; made ⟂ the lobes' normal.
+  if (p.uv_tangent())
+    mapping += "    // The lobes' tangent is the surface's texture frame's (the mesh's tangent), made ⟂ ns.\n"
+               "    t = normalize(facet_uv_tangent - ns * dot(ns, facet_uv_tangent));\n";
+  else if (p.normal_mapped())
+    mapping += "    t = normalize(t - ns * dot(ns, t));\n";
   // The coat's normal: its own map's, else the surface's own (KHR_materials_clearcoat).
   if (p.coat_normal_mapped())
     mapping += "    " + let + " nc = facet_coat_normal_mapped(n, facet_uv_tangent, facet_uv_handedness);\n";
   values["mapping"] = mapping;
   values["coat_arg"] = coat_normal_arg(p, p.coat_normal_mapped() ? "nc" : "n");
   values["emitted_normal"] = p.coat_normal_mapped() ? "nc" : "n";
+}
+
+std::string bitangent(const MaterialProgram& p, const std::string& let) {
+  if (!p.uses_bitangent()) return "";
+  if (!p.uv_tangent()) return "    " + let + " b = cross(n, t);\n";
+  return "    // b = w·(n × t): the texture frame's handedness w (B = w·(N × T), glTF's TANGENT.w).\n"
+         "    " + let + " b = facet_uv_handedness * cross(n, t);\n";
 }
 
 std::string coat_normal_arg(const MaterialProgram& p, const std::string& normal) {

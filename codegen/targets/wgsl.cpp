@@ -215,7 +215,7 @@ std::string wgsl_constants(const MaterialProgram& p, const WgslPrinter& pr) {
 // facet_reflect's inputs from n, l, v, t, and reflectance()'s arguments.
 std::pair<std::string, std::string> reflect_inputs(const MaterialProgram& p, const WgslPrinter& pr) {
   std::string inputs, arguments;
-  if (p.uses_bitangent()) inputs += "    let b = cross(n, t);\n";
+  inputs += bitangent(p, "let");
   if (p.uses_half_vector())
     inputs += fmt::format("    // catalog.h, Input: h = (l + v) / max(|l + v|, ε)\n"
                           "    let h = (l + v) * inverseSqrt(max(dot(l + v, l + v), {}));\n",

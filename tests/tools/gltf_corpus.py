@@ -791,8 +791,8 @@ def blender_principled_scene(folder):
     (KHR_materials_sheen), Coat Weight and Roughness and a Coat Normal through a Normal Map node
     (KHR_materials_clearcoat with its clearcoatNormalTexture), Emission Color and
     a Strength above 1 (KHR_materials_emissive_strength), Anisotropic and its Rotation
-    (KHR_materials_anisotropy; the sphere is rotated, so its UV tangents are not facet's tangent
-    rule's, and the import's note measures the difference)."""
+    (KHR_materials_anisotropy; the sphere is rotated, so its direction turns from its own UV
+    tangents, which facet reads as the README's TBN, not from any fixed axis)."""
     import bpy
     bpy.ops.wm.read_factory_settings(use_empty=True)
     scene = bpy.context.scene

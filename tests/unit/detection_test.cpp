@@ -850,6 +850,33 @@ TEST(Detection, CoatNormalMapFailsIgnoredOrFlipped) {
                 all});
 }
 
+// KHR_materials_anisotropy's direction from the mesh's tangent frame and its texture
+// (examples/textured/textured_anisotropy.json: direction and strength from an image, turned by
+// anisotropyRotation) on a mesh whose own TANGENTs are mirrored (w = −1,
+// tests/scenes/textured_mesh_tangents.json): the bitangent taken as n × t without the frame's
+// handedness (B = w·(N × T)), the tangent rule on tangent_axis for the mesh's tangent, and the
+// texture's direction left out each fail on the GLSL, OSL and POV-Ray routes, while the
+// generated code passes.
+TEST(Detection, AnisotropyFailsOffTheMeshFrameOrWithoutItsTexture) {
+  const char *handedness = "the frame's handedness ignored", *rule = "the tangent rule for the mesh's tangent",
+             *direction = "the texture's direction left out";
+  const std::string scene = (kSource / "tests" / "scenes" / "textured_mesh_tangents.json").string();
+  check_routes("textured_anisotropy", scene,
+               {{{handedness, "vec3 b = facet_uv_handedness * cross(n, t);", "vec3 b = cross(n, t);"},
+                 {rule, "t = normalize(facet_uv_tangent - ns * dot(ns, facet_uv_tangent));", ""},
+                 {direction, "float direction_unit_y = direction_y / direction_length;",
+                  "float direction_unit_y = 0.0;"}},
+                once},
+               {{{handedness, "vector B = W * cross(Nn, T);", "vector B = cross(Nn, T);"},
+                 {rule, "T = normalize(Tu - Nn * dot(Nn, Tu));", ""},
+                 {direction, "float direction_unit_y = direction_y / direction_length;",
+                  "float direction_unit_y = 0;"}},
+                once},
+               {{{handedness, "*Tw)", ")"},
+                 {direction, "Facet_Sample_specular_anisotropy_direction_y(S0, T0)", "0.5"}},
+                all});
+}
+
 // Normal maps (docs/textures.md, "Normal maps"): the example's map with its green channel
 // flipped (DirectX's convention taken for OpenGL's), the map ignored (the lobes on the
 // object's own normal) and the tangent reversed each fail on the sphere and the square of

@@ -54,6 +54,9 @@ struct Params {
   RGB sheen_color{0, 0, 0};
   double sheen_roughness = 0;
   double anisotropy_strength = 0, anisotropy_rotation = 0;
+  // The direction before the rotation (anisotropyTexture's 2·rg − 1; (1, 0) without one) and the
+  // tangent frame's handedness w (glTF's TANGENT.w: B = w·(N × T)).
+  double direction_x = 1, direction_y = 0, w = 1;
 };
 
 // The tangent both sides are given at a normal N: any unit vector across N, by the test's own rule.
@@ -62,13 +65,20 @@ Vec3 tangent_of(const Vec3& N) { return normalize(cross(N, Vec3(0.3, 0.5, 0.8)))
 double chi(double x) { return x > 0 ? 1.0 : 0.0; }
 double max_value(const RGB& c) { return std::max({c[0], c[1], c[2]}); }
 
-// KHR_materials_anisotropy, "Anisotropy" and "Implementation": the direction (cos r, sin r) in
-// the TBN frame (B = N × T, the tangent's w = +1), α_t = mix(α, 1, strength²) along it, α_b = α
-// across it (B' = N × T'); D_GGX_anisotropic and V_GGX_anisotropic as the README writes them,
-// without the sample's clamp of V at 1 (Appendix B's isotropic V has none; facet follows it).
+// KHR_materials_anisotropy, "Anisotropy" and "Implementation": the direction
+// mat2(cos r, sin r, −sin r, cos r) · normalize(direction) (the texture's, else (1, 0): then
+// (cos r, sin r), u_AnisotropyRotation itself) in the TBN frame (B = w·(N × T), the tangent's
+// w), α_t = mix(α, 1, strength²) along it, α_b = α across it (B' = N × T'); D_GGX_anisotropic and
+// V_GGX_anisotropic as the README writes them, without the sample's clamp of V at 1 (Appendix
+// B's isotropic V has none; facet follows it).
 double anisotropic_specular_brdf(const Params& p, const Vec3& N, const Vec3& L, const Vec3& V) {
-  const Vec3 H = normalize(L + V), T = tangent_of(N), B = cross(N, T);
-  const Vec3 anisotropicT = normalize(T * std::cos(p.anisotropy_rotation) + B * std::sin(p.anisotropy_rotation));
+  const Vec3 H = normalize(L + V), T = tangent_of(N), B = cross(N, T) * p.w;
+  const double length = std::hypot(p.direction_x, p.direction_y);
+  const double x = p.direction_x / length, y = p.direction_y / length;
+  const double c = std::cos(p.anisotropy_rotation), s_r = std::sin(p.anisotropy_rotation);
+  // GLSL's mat2(a, b, c, d) is column-major: the columns (a, b) and (c, d).
+  const double direction[2] = {c * x - s_r * y, s_r * x + c * y};
+  const Vec3 anisotropicT = normalize(T * direction[0] + B * direction[1]);
   const Vec3 anisotropicB = normalize(cross(N, anisotropicT));
   const double alphaRoughness = std::max(p.roughness * p.roughness, 1e-3);
   const double s = p.anisotropy_strength;
@@ -181,7 +191,10 @@ json material_json(const Params& p) {
             {"sheen_color", {p.sheen_color[0], p.sheen_color[1], p.sheen_color[2]}},
             {"sheen_roughness", p.sheen_roughness},
             {"anisotropy_strength", p.anisotropy_strength},
-            {"anisotropy_rotation", p.anisotropy_rotation}}}};
+            {"anisotropy_rotation", p.anisotropy_rotation},
+            // stored as anisotropyTexture stores them: (d + 1)/2
+            {"anisotropy_direction_x", (p.direction_x + 1) / 2},
+            {"anisotropy_direction_y", (p.direction_y + 1) / 2}}}};
 }
 
 // A direction at cosine `c` from `n` (a unit vector), at azimuth `phi` about it.
@@ -471,6 +484,75 @@ TEST(GltfPbr, KhrMaterialsAnisotropy) {
     return gltf_brdf(q, N, L, V);
   };
   EXPECT_GT(worst_error(brushed, turned_the_other_way), 1e-2) << "the rotation's sense must show";
+}
+
+// The direction given apart from the rotation (facet's anisotropy_direction_x, _y, stored as
+// anisotropyTexture stores them: numbers, or its red and green, which the README maps to
+// 2·rg − 1; its blue times anisotropyStrength) on tangent
+// frames of either handedness: the README's normalize, mat2 rotation and TBN · (direction, 0)
+// with B = w·(N × T). Numbers are folded when the code is generated; the texture's values are
+// handed to the reference as its textured inputs, at random texels, with w = +1 and −1.
+TEST(GltfPbr, KhrMaterialsAnisotropyDirectionAndHandedness) {
+  for (const auto& [x, y] : std::vector<std::pair<double, double>>{{0, 1}, {-0.6, 0.3}, {0.2, -0.9}})
+    for (double rotation : {0.0, 0.7, -2.0}) {
+      Params p;
+      p.base = {0.9, 0.7, 0.4};
+      p.roughness = 0.35;
+      p.anisotropy_strength = 0.8;
+      p.anisotropy_rotation = rotation;
+      p.direction_x = x;
+      p.direction_y = y;
+      EXPECT_LE(worst_error(p, gltf_brdf), kRelTol) << describe(p);
+    }
+  Params p;
+  p.base = {0.95, 0.9, 0.85};
+  p.roughness = 0.3;
+  p.anisotropy_rotation = 0.5;
+  json doc = material_json(p);
+  auto channel = [](const char* c, double factor) {
+    return json{{"texture", "anisotropy.png"}, {"channel", c}, {"factor", factor}};
+  };
+  doc["specular"]["anisotropy_strength"] = channel("b", 0.9);
+  doc["specular"]["anisotropy_direction_x"] = channel("r", 1);
+  doc["specular"]["anisotropy_direction_y"] = channel("g", 1);
+  const std::filesystem::path textures = std::filesystem::path(FACET_SOURCE_DIR) / "examples/textured/textures";
+  Material m = parse_material(doc, (textures / "anisotropy.json").string(), textures.string());
+  Reference ref(m);
+  ASSERT_TRUE(ref.program().uv_tangent());
+  ASSERT_EQ(ref.program().textured.size(), 3u);
+  std::mt19937_64 rng(17);
+  std::uniform_real_distribution<double> texel(0, 1);
+  double worst = 0, handedness_ignored = 0;
+  for (const auto& d : direction_sets(19, 3000))
+    for (double w : {1.0, -1.0}) {
+      const double r = texel(rng), g = texel(rng), b = texel(rng);
+      Params q = p;
+      q.anisotropy_strength = 0.9 * b;
+      q.direction_x = 2 * r - 1;
+      q.direction_y = 2 * g - 1;
+      q.w = w;
+      ShadingInputs in = shading_inputs(d.n, d.l, d.v, tangent_of(d.n), d.n, w);
+      for (size_t k = 0; k < ref.program().textured.size(); ++k) {
+        const std::string& key = ref.program().textured[k].key;
+        const double value = key == "specular.anisotropy_strength"      ? q.anisotropy_strength
+                             : key == "specular.anisotropy_direction_x" ? r
+                                                                        : g;
+        in.textured[k] = {value, value, value};
+      }
+      const RGB got = ref.reflectance(in);
+      const RGB want = gltf_brdf(q, d.n, d.l, d.v);
+      Params mirrored = q;
+      mirrored.w = -w;
+      const RGB other = gltf_brdf(mirrored, d.n, d.l, d.v);
+      for (int c = 0; c < 3; ++c) {
+        const double rho = kPi * want[c] * dot(d.n, d.l);
+        worst = std::max(worst, std::fabs(got[c] - rho) / rho);
+        handedness_ignored = std::max(handedness_ignored, std::fabs(got[c] - kPi * other[c] * dot(d.n, d.l)) / rho);
+      }
+    }
+  EXPECT_LE(worst, kRelTol);
+  EXPECT_GT(handedness_ignored, 1e-2) << "the frame's handedness must show";
+  std::printf("anisotropy from the texture on frames of either handedness: worst relative error %.2e\n", worst);
 }
 
 TEST(GltfPbr, KhrMaterialsSheen) {

@@ -245,7 +245,8 @@ Material leaf_lobe_material(const std::string& folder_name, const std::string& n
 // glTF's own BRDF goes out as glTF says it: the factors, the metallic–roughness map (one
 // image's B and G), KHR_materials_ior and KHR_materials_specular (with specularTexture's A),
 // KHR_materials_clearcoat with the coat's own normal map (clearcoatNormalTexture, its scale and
-// KHR_texture_transform).
+// KHR_texture_transform), KHR_materials_anisotropy with its texture (one image's R and G as the
+// direction, B the strength).
 TEST(Gltf, GltfBrdfExportsAsItsFactorsMapsAndExtensions) {
   const json lobe = {{"model", "gltf_pbr"},
                      {"base_color", {{"texture", "textures/leaf.png"}, {"colorspace", "srgb"}, {"factor", {0.9, 0.8, 0.7}}}},
@@ -258,7 +259,9 @@ TEST(Gltf, GltfBrdfExportsAsItsFactorsMapsAndExtensions) {
                      {"clearcoat_roughness", 0.3},
                      {"sheen_color", {0.6, 0.5, 0.4}},
                      {"sheen_roughness", 0.45},
-                     {"anisotropy_strength", 0.5},
+                     {"anisotropy_strength", {{"texture", "textures/leaf.png"}, {"channel", "b"}, {"factor", 0.5}}},
+                     {"anisotropy_direction_x", {{"texture", "textures/leaf.png"}, {"channel", "r"}}},
+                     {"anisotropy_direction_y", {{"texture", "textures/leaf.png"}, {"channel", "g"}}},
                      {"anisotropy_rotation", 1.25}};
   const json coat_map = {{"texture", "textures/leaf.png"}, {"transform", {{"rotation", 0.5}}}, {"strength", 0.7}};
   const Material m = leaf_lobe_material("gltf_brdf_export", "painted", lobe, {{"coat_normal_map", coat_map}});
@@ -286,6 +289,7 @@ TEST(Gltf, GltfBrdfExportsAsItsFactorsMapsAndExtensions) {
   EXPECT_EQ(g["extensions"]["KHR_materials_sheen"]["sheenRoughnessFactor"], 0.45);
   EXPECT_EQ(g["extensions"]["KHR_materials_anisotropy"]["anisotropyStrength"], 0.5);
   EXPECT_EQ(g["extensions"]["KHR_materials_anisotropy"]["anisotropyRotation"], 1.25);
+  EXPECT_TRUE(g["extensions"]["KHR_materials_anisotropy"].contains("anisotropyTexture"));
   for (const char* used : {"KHR_materials_ior", "KHR_materials_specular", "KHR_materials_sheen", "KHR_materials_clearcoat",
                            "KHR_materials_anisotropy"})
     EXPECT_NE(std::find(doc["extensionsUsed"].begin(), doc["extensionsUsed"].end(), used), doc["extensionsUsed"].end())
@@ -296,7 +300,8 @@ TEST(Gltf, GltfBrdfExportsAsItsFactorsMapsAndExtensions) {
   Scene back = import_gltf(out, {}, notes);
   const ModelSpec& now = *back.materials.begin()->second.specular;
   json a = to_json(m)["specular"], b = to_json(back.materials.begin()->second)["specular"];
-  for (const char* p : {"base_color", "metallic", "roughness", "specular", "clearcoat"}) {
+  for (const char* p : {"base_color", "metallic", "roughness", "specular", "clearcoat", "anisotropy_strength",
+                        "anisotropy_direction_x", "anisotropy_direction_y"}) {
     EXPECT_EQ(now.at(p).texture->texels->rgba, m.specular->at(p).texture->texels->rgba) << p;
     a[p].erase("texture");
     b[p].erase("texture");
@@ -314,7 +319,8 @@ TEST(Gltf, GltfBrdfExportsAsItsFactorsMapsAndExtensions) {
   const ModelSpec& read = *plain.materials.begin()->second.specular;
   EXPECT_EQ(read.def, m.specular->def);
   for (const char* p : {"base_color", "metallic", "roughness", "ior", "specular", "specular_color", "clearcoat",
-                        "clearcoat_roughness"}) {
+                        "clearcoat_roughness", "anisotropy_strength", "anisotropy_rotation", "anisotropy_direction_x",
+                        "anisotropy_direction_y"}) {
     const Value &x = m.specular->at(p), &y = read.at(p);
     EXPECT_EQ(x.rgb, y.rgb) << p;
     EXPECT_EQ(x.number, y.number) << p;
@@ -322,6 +328,7 @@ TEST(Gltf, GltfBrdfExportsAsItsFactorsMapsAndExtensions) {
     if (!x.texture) continue;
     EXPECT_EQ(x.texture->channel, y.texture->channel) << p;
     EXPECT_EQ(x.texture->colorspace, y.texture->colorspace) << p;
+    EXPECT_EQ(x.texture->bias, y.texture->bias) << p;
     EXPECT_EQ(x.texture->texels->rgba, y.texture->texels->rgba) << p;
   }
   const Material& plain_material = plain.materials.begin()->second;
@@ -348,6 +355,32 @@ TEST(Gltf, WhatGltfCannotSayOfTheLobeLeavesNothingBehind) {
   EXPECT_FALSE(doc.contains("textures")) << doc.value("textures", json()).dump();
   bool said = false;
   for (const auto& n : notes) said |= n.find("not one image's B and G") != std::string::npos;
+  EXPECT_TRUE(said);
+}
+
+// KHR_materials_anisotropy has no direction but its texture's: a direction of numbers goes out
+// as the rotation it adds (atan2(y, x)), and a direction from an image without the strength from
+// the same image's B (which glTF multiplies) is what glTF cannot say: a note, the fallback.
+TEST(Gltf, AnisotropyDirectionsGoOutAsGltfSaysThem) {
+  // The direction (0, −0.5), stored as (d + 1)/2.
+  const json turned = {{"model", "gltf_pbr"},          {"metallic", 1},
+                       {"anisotropy_strength", 0.6},    {"anisotropy_rotation", 0.25},
+                       {"anisotropy_direction_x", 0.5}, {"anisotropy_direction_y", 0.25}};
+  const Material m = leaf_lobe_material("gltf_anisotropy_turned", "turned", turned);
+  const std::string out = (scratch("gltf_anisotropy_turned") / "out.gltf").string();
+  std::vector<std::string> notes;
+  export_gltf(load_scene("single"), &m, out, notes);
+  const json doc = json::parse(read_file(out));
+  const json& ext = doc["materials"][0]["extensions"]["KHR_materials_anisotropy"];
+  EXPECT_NEAR(ext["anisotropyRotation"].get<double>(), 0.25 - M_PI / 2, 1e-15) << ext.dump();
+  EXPECT_FALSE(ext.contains("anisotropyTexture"));
+  json half = turned;
+  half["anisotropy_direction_x"] = {{"texture", "textures/leaf.png"}, {"channel", "r"}};
+  const Material h = leaf_lobe_material("gltf_anisotropy_half", "half", half);
+  notes.clear();
+  export_gltf(load_scene("single"), &h, (scratch("gltf_anisotropy_half") / "out.gltf").string(), notes);
+  bool said = false;
+  for (const auto& n : notes) said |= n.find("anisotropy maps that are not one image's") != std::string::npos;
   EXPECT_TRUE(said);
 }
 
@@ -849,44 +882,61 @@ TEST(GltfTextures, SheenIsReadAndItsTexturesNamed) {
 }
 
 // KHR_materials_anisotropy ("Anisotropy"): anisotropy_strength and anisotropy_rotation are the
-// factors; the texture, which the lobe does not take, and the rotation's sense on mirrored
-// tangents are named in notes; the extension may be required.
-// The triangle's texture frame: u along +x, v along +y (down the picture), so glTF's bitangent
-// B = w·(N × T) points along −y and w = −1 (a mirrored frame); facet's tangent rule on n = +z with
-// tangent_axis +y gives t = ŷ × ẑ = +x and b = n × t = +y. Unrotated the two directions are the
-// same line; turned by 1 radian they are 2 radians apart, the lines 180° − 114.6° = 65.4°.
-TEST(GltfTextures, AnisotropyIsReadAndWhatItLeavesOutNamed) {
+// factors; anisotropyTexture's B times the strength, its R and G the direction (which the lobe
+// maps red [0, 1] to X [−1, 1]), linear, on the texture's coordinates; the direction turns from the mesh's
+// tangent frame (TEXCOORD_0's without a normal or anisotropy texture), so nothing is approximate
+// and no note is left; the extension may be required. A mesh without the frame's coordinates is
+// refused naming the extension, as the README's "MUST have a defined tangent space" asks.
+TEST(GltfTextures, AnisotropyIsReadOnTheMeshFrameWithItsTexture) {
   json g = textured_triangle(json::array({data_uri_image(small_png())}));
   json& gm = g["materials"][0];
   gm["extensions"] = {{"KHR_materials_anisotropy", {{"anisotropyStrength", 0.6}}}};
   g["extensionsUsed"] = {"KHR_materials_anisotropy"};
   g["extensionsRequired"] = {"KHR_materials_anisotropy"};
-  auto frame_note = [](const std::vector<std::string>& notes) {
+  auto anisotropy_notes = [](const std::vector<std::string>& notes) {
     std::string found;
     for (const auto& n : notes)
-      if (n.find("KHR_materials_anisotropy: ") != std::string::npos && n.find("tangent rule") != std::string::npos)
-        found += n;
+      if (n.find("KHR_materials_anisotropy") != std::string::npos) found += n + "\n";
     return found;
   };
   std::vector<std::string> notes;
   Scene s = import_gltf(write_gltf("anisotropy.gltf", g).string(), {}, notes);
-  const ModelSpec& lobe = *s.materials.begin()->second.specular;
-  EXPECT_EQ(lobe.at("anisotropy_strength").number, 0.6);
-  EXPECT_EQ(lobe.at("anisotropy_rotation").number, 0.0);
-  EXPECT_NE(frame_note(notes).find("differ by up to 0° (0 of 3 corners by more than 1°): exact to that"),
-            std::string::npos)
-      << frame_note(notes);
+  const Material& m = s.materials.begin()->second;
+  EXPECT_EQ(m.specular->at("anisotropy_strength").number, 0.6);
+  EXPECT_EQ(m.specular->at("anisotropy_rotation").number, 0.0);
+  EXPECT_TRUE(m.lobes_uv_tangent());
+  EXPECT_EQ(m.frame_uv(), std::optional<int>(0));
+  EXPECT_EQ(anisotropy_notes(notes), "");
   gm["extensions"]["KHR_materials_anisotropy"]["anisotropyRotation"] = 1.0;
   gm["extensions"]["KHR_materials_anisotropy"]["anisotropyTexture"] = {{"index", 0}};
   notes.clear();
   Scene t = import_gltf(write_gltf("anisotropy_texture.gltf", g).string(), {}, notes);
-  EXPECT_EQ(t.materials.begin()->second.specular->at("anisotropy_rotation").number, 1.0);
-  EXPECT_NE(frame_note(notes).find("differ by up to 65.4° (3 of 3 corners by more than 1°): approximate"),
-            std::string::npos)
-      << frame_note(notes);
-  int said = 0;
-  for (const auto& n : notes) said += n.find("anisotropyTexture: approximate") != std::string::npos;
-  EXPECT_EQ(said, 1);
+  const ModelSpec& lobe = *t.materials.begin()->second.specular;
+  EXPECT_EQ(lobe.at("anisotropy_rotation").number, 1.0);
+  const Value &strength = lobe.at("anisotropy_strength"), &x = lobe.at("anisotropy_direction_x"),
+              &y = lobe.at("anisotropy_direction_y");
+  ASSERT_TRUE(strength.texture && x.texture && y.texture);
+  EXPECT_EQ(strength.texture->channel, "b");
+  EXPECT_EQ(strength.number, 0.6);
+  EXPECT_EQ(strength.texture->bias, (RGB{0, 0, 0}));
+  for (const auto& [v, c] : {std::pair<const Value*, const char*>{&x, "r"}, {&y, "g"}}) {
+    EXPECT_EQ(v->texture->channel, c);
+    EXPECT_EQ(v->texture->colorspace, "linear");
+    EXPECT_EQ(v->number, 1.0);
+    EXPECT_EQ(v->texture->bias, (RGB{0, 0, 0}));
+  }
+  EXPECT_EQ(anisotropy_notes(notes), "");
+  // Without TEXCOORD_0 (and without the textures, which read it) the mesh has no tangent frame.
+  gm["extensions"]["KHR_materials_anisotropy"].erase("anisotropyTexture");
+  gm["pbrMetallicRoughness"].erase("baseColorTexture");
+  g["meshes"][0]["primitives"][0]["attributes"].erase("TEXCOORD_0");
+  try {
+    import_gltf(write_gltf("anisotropy_no_frame.gltf", g).string(), {}, notes);
+    ADD_FAILURE() << "a mesh without a tangent frame was read for an anisotropic material";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("KHR_materials_anisotropy"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("TEXCOORD_0"), std::string::npos) << e.what();
+  }
 }
 
 TEST(GltfTextures, UnlitFileGetsAHeadlight) {

@@ -877,7 +877,8 @@ def test_convert_principled():
     check("diffuse" not in data, f"a Principled BSDF is one gltf_pbr lobe: {data}")
     want = {"model": "gltf_pbr", "color": [1.0, 1.0, 1.0], "base_color": list(base), "metallic": metallic,
             "roughness": roughness, "clearcoat": 0.0, "clearcoat_roughness": 0.0, "sheen_color": [0.0, 0.0, 0.0],
-            "sheen_roughness": 0.0, "anisotropy_strength": 0.0, "anisotropy_rotation": 0.0}
+            "sheen_roughness": 0.0, "anisotropy_strength": 0.0, "anisotropy_rotation": 0.0,
+            "anisotropy_direction_x": 1.0, "anisotropy_direction_y": 0.5}
     if modern:   # 4.x: KHR_materials_ior and KHR_materials_specular (specularFactor = 2·Specular IOR Level)
         want.update(ior=1.45, specular=0.5, specular_color=[1.0, 1.0, 1.0])
     else:        # 3.x: f0 = 0.08·Specular at IOR 1.5, as specular_color 2·Specular
@@ -2198,13 +2199,18 @@ def test_render_engine_takes_a_principled_bsdf_with_layers():
     floor = new_material("EngineFloor", "lambert")
     floor.facet.diffuse_lambert.color = (0.5, 0.5, 0.5)
     w, h = 48, 36
-    add_uv_sphere("Ball", (0.0, 0.0, 1.0), 1.0, 32, 16, True, ball)
+    # glTF's anisotropy turns from the mesh's tangent frame: the ball needs a UV map (without one
+    # the export is refused naming it, below).
+    sphere = add_uv_sphere("Ball", (0.0, 0.0, 1.0), 1.0, 32, 16, True, ball)
     add_quad("Floor", 4.0, material=floor)
     add_camera((0.5, -6.0, 3.0), (0.0, 0.0, 0.8), 40.0)
     add_light("POINT", (2.0, -3.0, 4.0), 600.0)
     add_light("SUN", (0.0, 0.0, 5.0), 1.0, rotation=(0.4, 0.2, 0.0))
     scene = bpy.context.scene
     scene.render.resolution_x, scene.render.resolution_y, scene.render.resolution_percentage = w, h, 100
+    expect_error("export_pov", None, ["'Ball' has no UV map", "anisotropy", "LayeredPrincipled"],
+                 filepath=work("layered_no_uv.pov"), render=False, save_scene=True)
+    add_uv_map(sphere, sphere_uvs)
     expect_ok("export_pov", None, filepath=work("layered.pov"), render=False, save_scene=True)
     exported = read_json(work("layered.json"))
     check_equal(exported["materials"]["LayeredPrincipled"]["specular"]["model"], "gltf_pbr", "the Principled lobe")

@@ -142,8 +142,9 @@ def _mesh_data(obj, mesh):
     return positions, triangles, normals, slots, loops
 
 
-def _find_uv_layer(mesh, name, obj_name, material):
-    """The named UV map ("" the active render one, "#k" the k-th) or a UserError naming it."""
+def _find_uv_layer(mesh, name, obj_name, material, reader=None):
+    """The named UV map ("" the active render one, "#k" the k-th) or a UserError naming it and what
+    reads it (`reader`: the textures of `material` where None)."""
     layers = mesh.uv_layers
     if name.startswith("#") and name[1:].isdigit():        # a material file's set k: the k-th UV map
         k = int(name[1:])
@@ -153,30 +154,38 @@ def _find_uv_layer(mesh, name, obj_name, material):
         layer = layers.get(name) if name else next((l for l in layers if l.active_render), layers.active)
     if layer is None:
         raise UserError(f"object '{obj_name}' has no UV map " + (f"'{name}'" if name else "at all")
-                        + f", which the textures of material '{material}' read: add it, or change the "
-                          f"UV Map node and convert the material again")
+                        + (f", which the textures of material '{material}' read: add it, or change the "
+                           f"UV Map node and convert the material again" if reader is None else
+                           f", {reader}"))
     return layer
 
 
-def _uv_layer(mesh, name, obj_name, material):
+def _uv_layer(mesh, name, obj_name, material, reader=None):
     """Per-loop UVs (flat list) of the named UV map."""
-    layer = _find_uv_layer(mesh, name, obj_name, material)
+    layer = _find_uv_layer(mesh, name, obj_name, material, reader)
     values = [0.0] * (2 * len(mesh.loops))
     layer.data.foreach_get("uv", values)
     return values
 
 
-def _corner_uvs(mesh, obj_name, loops, slot_names, bindings_of):
-    """Per triangle, its corners' UVs of the UV maps its material's textures read."""
+def _corner_uvs(mesh, obj_name, loops, slot_names, bindings_of, frame_of):
+    """Per triangle, its corners' UVs of the UV maps its material's textures read, or of the one
+    its tangent frame is taken from (`frame_of`) where they read none."""
     per_material, layers, out = {}, {}, []
     for t, material in enumerate(slot_names):
         maps = per_material.get(material.name)
+        reader = None
         if maps is None:
-            maps = per_material[material.name] = textures.uv_maps(bindings_of(material), material.name)
+            maps = textures.uv_maps(bindings_of(material), material.name)
+            if not maps and frame_of(material) is not None:
+                maps = [frame_of(material)]
+                reader = (f"whose tangents the anisotropy of material '{material.name}' turns from (glTF's "
+                          f"KHR_materials_anisotropy): add one (UV > Unwrap), or set its Anisotropic to 0")
+            per_material[material.name] = maps
         data = []
         for name in maps:
             if name not in layers:
-                layers[name] = _uv_layer(mesh, name, obj_name, material.name)
+                layers[name] = _uv_layer(mesh, name, obj_name, material.name, reader)
             data.append(layers[name])
         out.append(tuple(tuple((d[2 * l], d[2 * l + 1]) for d in data) for l in loops[3 * t:3 * t + 3]))
     return out
@@ -258,10 +267,13 @@ def _corner_colors(mesh, obj_name, loops, slot_materials, bindings_of):
     return out
 
 
-def objects_json(depsgraph, materials, material_keys=None, bindings_of=material_mod.texture_bindings):
+def objects_json(depsgraph, materials, material_keys=None, bindings_of=material_mod.texture_bindings,
+                 frame_of=lambda material: None):
     """(facet mesh objects, notes). `materials` collects name -> Blender material of
     every material used (their facet settings are checked by the caller); `bindings_of`
-    gives a material's texture bindings as the export writes it."""
+    gives a material's texture bindings as the export writes it, `frame_of` the UV map ("" the
+    active render one) whose tangent frame it reads without a texture (glTF's anisotropy turns
+    from the mesh's tangent: facet computes Blender's MikkTSpace tangents from it), or None."""
     objects, notes = [], []
     for name, obj, matrix in _instances(depsgraph):
         if obj.type not in MESH_TYPES:
@@ -285,8 +297,8 @@ def objects_json(depsgraph, materials, material_keys=None, bindings_of=material_
                 names.append(mat.name)
                 used_materials.append(materials[mat.name])
             uvs = tangents = colors = None
-            if any(bindings_of(m) for m in set(used_materials)):
-                uvs = _corner_uvs(mesh, name, loops, used_materials, bindings_of)
+            if any(bindings_of(m) or frame_of(m) is not None for m in set(used_materials)):
+                uvs = _corner_uvs(mesh, name, loops, used_materials, bindings_of, frame_of)
                 tangents = _corner_tangents(mesh, name, loops, used_materials, material_keys, bindings_of)
                 colors = _corner_colors(mesh, name, loops, used_materials, bindings_of)
             objects.extend(core_scene.mesh_objects(name, _rows(matrix), positions, triangles, normals, names, uvs,
@@ -317,7 +329,8 @@ def full_scene(context, material_keys=None, reserved=(), strict=False):
         return resolved[material.name]
 
     used = {}
-    objects, more = objects_json(depsgraph, used, material_keys, lambda m: resolve(m)[1])
+    objects, more = objects_json(depsgraph, used, material_keys, lambda m: resolve(m)[1],
+                                 lambda m: textures.frame_uv_map(resolve(m)[0]))
     notes += more
     if not objects:
         raise UserError(f"scene '{scene.name}' has no mesh objects to export")

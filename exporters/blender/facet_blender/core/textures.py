@@ -509,6 +509,17 @@ def uv_maps(bindings, material=""):
     return names
 
 
+def frame_uv_map(material_json):
+    """The UV map whose tangent frame a material reads besides its textures' ("" the active
+    render one), or None: glTF's anisotropy (an anisotropic gltf_pbr lobe) turns from the mesh's
+    tangent (KHR_materials_anisotropy), which facet computes from texture coordinates set 0."""
+    lobe = (material_json or {}).get("specular") or {}
+    strength = lobe.get("anisotropy_strength", 0)
+    if lobe.get("model") == "gltf_pbr" and (isinstance(strength, dict) or strength > 0):
+        return ""
+    return None
+
+
 MATERIAL_KEYS = ("normal_map", "coat_normal_map", "emission", "ambient", "alpha")   # material-level keys a texture may fill
 
 

@@ -684,3 +684,17 @@ def test_a_color_attribute_two_mixes_deep_into_emission_is_named():
     r = map_surface(principled({"Emission Color": src}, **{"Emission Color": [0.5, 0.5, 0.5, 1.0]}), "Glow")
     assert not any(b["path"] == ["emission"] for b in r.textures)
     assert any("'Color Attribute' (VERTEX_COLOR)" in m for m in messages(r, IGNORED))
+
+
+def test_an_anisotropic_gltf_pbr_lobe_reads_the_active_uv_maps_frame():
+    """glTF's anisotropy turns from the mesh's tangent (KHR_materials_anisotropy), which facet
+    computes from texture coordinates set 0: the export writes the active render UV map for it
+    even where no texture reads one; an isotropic lobe, or another model, reads none."""
+    def lobe(**values):
+        return {"specular": {"model": "gltf_pbr", **values}}
+    assert textures.frame_uv_map(lobe(anisotropy_strength=0.5)) == ""
+    assert textures.frame_uv_map(lobe(anisotropy_strength={"texture": "a.png", "channel": "b"})) == ""
+    assert textures.frame_uv_map(lobe(anisotropy_strength=0)) is None
+    assert textures.frame_uv_map(lobe()) is None
+    assert textures.frame_uv_map({"specular": {"model": "ward", "anisotropy_strength": 0.5}}) is None
+    assert textures.frame_uv_map({"diffuse": {"model": "lambert"}}) is None
