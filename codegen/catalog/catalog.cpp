@@ -190,13 +190,31 @@ ir::Expr LobeContext::parameter(const ModelSpec& spec, const std::string& param,
       // The key path: the lobe's own parameter, or a sub-model's (fresnel_f0 → fresnel.f0).
       std::string rest = name.substr(lobe_.size() + 1);
       if (&spec != &spec_) rest[rest.find('_')] = '.';
-      textured_.push_back({name, lobe_ + "." + rest, type, v, def ? def->range : Range{}});
+      textured_.push_back({name, lobe_ + "." + rest, type, v, def ? def->range : Range{}, ""});
     }
     return fb_.param(name, type);
   }
   if (v.kind != ParamKind::Color) return ir::constant(name, v.number);
   if (grey && v.rgb[0] == v.rgb[1] && v.rgb[1] == v.rgb[2]) return ir::constant(name, v.rgb[0]);
   return ir::constant(name, v.rgb);
+}
+
+ir::Expr LobeContext::max_of(const ModelSpec& spec, const std::string& param, const std::string& name) {
+  const Value& v = spec.at(param);
+  if (!v.texture) return ir::constant(name + "_max", std::max({v.rgb[0], v.rgb[1], v.rgb[2]}));
+  parameter(spec, param, name);  // the colour, sampled first
+  const std::string derived = name + "_max";
+  auto known = std::find_if(textured_.begin(), textured_.end(), [&](const TexturedInput& t) { return t.name == derived; });
+  if (known == textured_.end()) {
+    const TexturedInput& colour =
+        *std::find_if(textured_.begin(), textured_.end(), [&](const TexturedInput& t) { return t.name == name; });
+    TexturedInput d = colour;
+    d.name = derived;
+    d.type = ir::Type::Float;
+    d.max_of = name;
+    textured_.push_back(d);
+  }
+  return fb_.param(derived, ir::Type::Float);
 }
 
 bool LobeContext::flag(const std::string& param) const { return spec_.at(param).flag; }
@@ -272,12 +290,10 @@ void mark_texturable(std::vector<ModelDef>& all) {
     for (auto& p : m.params) {
       // Toon's width 0 selects the hard step when the code is generated: it stays a number.
       if (m.name == "toon" && p.name == "width") continue;
-      // gltf_pbr needs max(specular_color) and max(sheen_color) in closed form, folds the sheen
-      // albedo's fit for its sheen_roughness and the anisotropy's rotation into constants
-      // (catalog/specular.cpp); the anisotropy's strength and direction take its texture.
-      if (m.name == "gltf_pbr" && (p.name == "specular_color" || p.name == "sheen_color" ||
-                                   p.name == "sheen_roughness" || p.name == "anisotropy_rotation"))
-        continue;
+      // gltf_pbr folds the sheen albedo's fit for its sheen_roughness and the anisotropy's
+      // rotation into constants (catalog/specular.cpp); max₃ of specular_color and sheen_color
+      // it takes from their sampled values where they are images (LobeContext::max_of).
+      if (m.name == "gltf_pbr" && (p.name == "sheen_roughness" || p.name == "anisotropy_rotation")) continue;
       p.texturable = p.kind == ParamKind::Number || p.kind == ParamKind::Color;
     }
   }

@@ -325,6 +325,10 @@ struct TexturedInput {
   ir::Type type = ir::Type::Float;
   Value value;  // its texture and factor
   Range range;  // the parameter's: the value is clamped to it
+  // Non-empty: a Float input derived from the textured colour input of that name, max₃ of its
+  // value (max(r, g, b) of the clamped colour, after it is sampled): every target computes it from
+  // the colour it sampled, no image of its own (LobeContext::max_of). `value` is the colour's.
+  std::string max_of;
 };
 
 // What a lobe's `build` sees: inputs, the material's parameter values as named
@@ -352,6 +356,11 @@ class LobeContext {
   // where it comes from an image.
   ir::Expr parameter(const ModelSpec& spec, const std::string& param, const std::string& name, bool grey = false);
   bool textured(const ModelSpec& spec, const std::string& param) const;
+  // max₃ of colour parameter `param` of `spec`, taken as `name` where it comes from an image:
+  // an input derived from the sampled colour (TexturedInput::max_of) named `name`_max; where
+  // it is a colour, the constant `name`_max. Closed forms such as max₃(F) of a tinted Fresnel
+  // read it (KHR_materials_specular, KHR_materials_sheen).
+  ir::Expr max_of(const ModelSpec& spec, const std::string& param, const std::string& name);
   const std::vector<TexturedInput>& textured_inputs() const { return textured_; }
   bool flag(const std::string& param) const;
   const std::string& choice(const std::string& param) const;

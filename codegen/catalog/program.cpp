@@ -104,7 +104,7 @@ MaterialProgram compile(const Material& m) {
     ir::Expr k = ir::constant(k_name, color.rgb);
     if (color.texture) {
       k = fb.param(k_name, ir::Type::Color);
-      p.textured.push_back({k_name, std::string(name) + ".color", ir::Type::Color, color, spec.def->param("color")->range});
+      p.textured.push_back({k_name, std::string(name) + ".color", ir::Type::Color, color, spec.def->param("color")->range, ""});
     }
     ir::Expr term = k * ir::call(lobe, args_for(lobe, fb));
     sum = first ? term : sum + term;
@@ -123,7 +123,7 @@ MaterialProgram compile(const Material& m) {
     Value v = material_term(m, ambient);
     if (v.texture)
       p.textured.push_back({ambient ? kAmbientInput : kEmissionInput, ambient ? "ambient" : "emission", ir::Type::Color,
-                            v, Range::color()});
+                            v, Range::color(), ""});
   }
   const bool emits = m.emission_texture || m.emission != RGB{0, 0, 0};
   if (emits && m.specular && m.specular->def->emission_weight)

@@ -159,7 +159,7 @@ ir::Expr gltf_core(LobeContext& c) {
   ir::Expr f0_ior = c.let("f0_ior", ir::sq((ior - 1.0) / (ior + 1.0)));
   // A grey specular_color (the default) keeps F one number, its own max.
   const std::array<double, 3>& tint = c.spec().at("specular_color").rgb;
-  const bool grey = tint[0] == tint[1] && tint[1] == tint[2];
+  const bool grey = !c.textured(c.spec(), "specular_color") && tint[0] == tint[1] && tint[1] == tint[2];
   ir::Expr color = c.parameter(c.spec(), "specular_color", c.lobe() + "_specular_color", true);
   ir::Expr f0 = c.let("dielectric_f0", ir::min(f0_ior * color, grey ? ir::Expr(1.0) : ir::color(1, 1, 1)) * specular);
   ir::Expr F = c.let("dielectric_fresnel", ir::call(terms::fresnel_schlick_f90(f0.type()), {f0, specular, w}));
@@ -168,8 +168,9 @@ ir::Expr gltf_core(LobeContext& c) {
         c.let("dielectric_brdf", ir::call(terms::fresnel_mix(F.type(), base.type()), {F, layer, base * c.NoL()}));
   } else {
     // max(F) in closed form: F = f0 (1 − w) + f90 w with 1 − w ≥ 0 is largest where f0 is,
-    // and max(min(a c, 1)) = min(a max(c), 1) for a ≥ 0: so specular_color must be a constant.
-    ir::Expr tint_max = ir::constant(c.lobe() + "_specular_color_max", std::max({tint[0], tint[1], tint[2]}));
+    // and max(min(a c, 1)) = min(a max(c), 1) for a ≥ 0: max₃ of specular_color, a constant, or
+    // of specularColorTexture's sampled value (LobeContext::max_of).
+    ir::Expr tint_max = c.max_of(c.spec(), "specular_color", c.lobe() + "_specular_color");
     ir::Expr F_max =
         c.let("dielectric_fresnel_max", ir::min(f0_ior * tint_max, 1.0) * specular * (1.0 - w) + specular * w);
     dielectric =
@@ -193,7 +194,7 @@ ir::Expr gltf_core(LobeContext& c) {
 // sheen colour of 0 (every material without the extension) leaves the core as it is: "If
 // sheenColorFactor is zero, the whole sheen layer is disabled."
 ir::Expr gltf_sheen(LobeContext& c, ir::Expr core) {
-  const std::array<double, 3>& color = c.spec().at("sheen_color").rgb;
+  const std::array<double, 3>& color = c.spec().at("sheen_color").rgb;  // the factor, where it is an image
   const double color_max = std::max({color[0], color[1], color[2]});
   if (color_max == 0) return core;
   const double r = c.spec().at("sheen_roughness").number;
@@ -237,7 +238,8 @@ ir::Expr gltf_sheen(LobeContext& c, ir::Expr core) {
   };
   ir::Expr e_v = albedo(c.NoV(), "sheen_E_v");
   ir::Expr e_l = albedo(c.NoL(), "sheen_E_l");
-  ir::Expr cmax = ir::constant(c.lobe() + "_sheen_color_max", color_max);
+  // max₃(sheenColor): a constant, or of sheenColorTexture's sampled value (LobeContext::max_of).
+  ir::Expr cmax = c.max_of(c.spec(), "sheen_color", c.lobe() + "_sheen_color");
   ir::Expr scaling = c.let("sheen_scaling", ir::min(1.0 - cmax * e_v, 1.0 - cmax * e_l));
   ir::Expr sheen_color = c.parameter(c.spec(), "sheen_color", c.lobe() + "_sheen_color", true);
   return sheen_color * brdf + core * scaling;
@@ -542,7 +544,9 @@ void add_specular(std::vector<ModelDef>& all) {
                Range::closed(0, kScalarMax), 1.5, false),
         number("specular", "KHR_materials_specular specularFactor: f90 of the dielectric, and a factor of its f0",
                Range::closed(0, 1), 1, false),
-        color("specular_color", "KHR_materials_specular specularColorFactor: the dielectric f0's colour (not an image)",
+        color("specular_color",
+              "KHR_materials_specular specularColorFactor: the dielectric f0's colour; an image's: "
+              "specularColorTexture's rgb (sRGB) times it",
               Range::color(), {1, 1, 1}),
         number("clearcoat", "KHR_materials_clearcoat clearcoatFactor: the clear coat's weight (0: none)",
                Range::closed(0, 1), 0, false),
@@ -568,7 +572,9 @@ void add_specular(std::vector<ModelDef>& all) {
                "KHR_materials_anisotropy anisotropyTexture's green: the direction's y (along b), y = 2·value − 1 "
                "(0.5: y = 0; the defaults give the README's (1, 0), the tangent)",
                Range::closed(0, 1), 0.5, false),
-        color("sheen_color", "KHR_materials_sheen sheenColorFactor: the sheen's colour (0: none; not an image)",
+        color("sheen_color",
+              "KHR_materials_sheen sheenColorFactor: the sheen's colour (0: none); an image's: sheenColorTexture's "
+              "rgb (sRGB) times it",
               Range::closed(0, 1), {0, 0, 0}),
         number("sheen_roughness",
                "KHR_materials_sheen sheenRoughnessFactor; the sheen's α = sheen_roughness², at least 1e-3 (not an "

@@ -290,6 +290,14 @@ bool Reference::sample_textures(const std::array<std::array<double, 2>, 2>& uv, 
   bool fragile = false;
   for (size_t i = 0; i < textured.size(); ++i) {
     const TexturedInput& t = textured[i];
+    if (!t.max_of.empty()) {  // max₃ of the colour sampled before it
+      const auto colour = std::find_if(textured.begin(), textured.begin() + long(i),
+                                       [&](const TexturedInput& x) { return x.name == t.max_of; });
+      const RGB& c = in.textured[size_t(colour - textured.begin())];
+      const double m = std::max({c[0], c[1], c[2]});
+      in.textured[i] = {m, m, m};
+      continue;
+    }
     const auto& st = uv[size_t(t.value.texture->uv)];
     in.textured[i] = texture_value(t.value, t.range, st[0], st[1], &fragile, color0);
   }

@@ -809,6 +809,8 @@ class Exporter {
     for (const std::string& why : {map(s.at("base_color"), "rgb", "srgb", "base colour"),
                                    map(metal, "b", "linear", "metallic"), map(rough, "g", "linear", "roughness"),
                                    map(s.at("specular"), "a", "linear", "specular"),
+                                   map(s.at("specular_color"), "rgb", "srgb", "specular colour"),
+                                   map(s.at("sheen_color"), "rgb", "srgb", "sheen colour"),
                                    map(s.at("clearcoat"), "r", "linear", "clear coat"),
                                    map(s.at("clearcoat_roughness"), "g", "linear", "clear coat roughness")})
       if (!why.empty()) return why;
@@ -871,11 +873,12 @@ class Exporter {
       used_.insert("KHR_materials_ior");
     }
     const Value &specular = s.at("specular"), &tint = s.at("specular_color");
-    if (specular.texture || specular.number != 1 || tint.rgb != RGB{1, 1, 1}) {
+    if (specular.texture || specular.number != 1 || tint.texture || tint.rgb != RGB{1, 1, 1}) {
       tinygltf::Value::Object ext;
       ext["specularFactor"] = tinygltf::Value(specular.number);
       ext["specularColorFactor"] = rgb_value(tint.rgb);
       if (specular.texture) ext["specularTexture"] = extension_texture_info(*specular.texture);
+      if (tint.texture) ext["specularColorTexture"] = extension_texture_info(*tint.texture);
       g.extensions["KHR_materials_specular"] = tinygltf::Value(ext);
       used_.insert("KHR_materials_specular");
     }
@@ -890,11 +893,12 @@ class Exporter {
       g.extensions["KHR_materials_anisotropy"] = tinygltf::Value(ext);
       used_.insert("KHR_materials_anisotropy");
     }
-    const RGB& sheen = s.at("sheen_color").rgb;
-    if (sheen != RGB{0, 0, 0}) {
+    const Value& sheen = s.at("sheen_color");
+    if (sheen.rgb != RGB{0, 0, 0}) {
       tinygltf::Value::Object ext;
-      ext["sheenColorFactor"] = rgb_value(sheen);
+      ext["sheenColorFactor"] = rgb_value(sheen.rgb);
       ext["sheenRoughnessFactor"] = tinygltf::Value(s.at("sheen_roughness").number);
+      if (sheen.texture) ext["sheenColorTexture"] = extension_texture_info(*sheen.texture);
       g.extensions["KHR_materials_sheen"] = tinygltf::Value(ext);
       used_.insert("KHR_materials_sheen");
     }

@@ -217,29 +217,40 @@ RGB extension_color(GltfImages& images, const json& ext, const char* name, RGB f
   return out;
 }
 
-// KHR_materials_specular: specular = specularFactor × specularTexture's A; specular_color =
-// specularColorFactor (specularColorTexture is not read: a note says so).
-void specular_extension(const json& spec, json& lobe, GltfImages& images, const std::string& key,
-                        std::vector<std::pair<int, std::string>>& sets, std::vector<std::string>& notes) {
-  factor_and_texture(spec, "specularFactor", 1, "specularTexture", "a", "specular", lobe, images, key, sets);
-  lobe["specular_color"] = extension_color(images, spec, "specularColorFactor", {1, 1, 1}, kColorMax, key);
-  if (spec.contains("specularColorTexture"))
-    notes.push_back(key + ".specularColorTexture: not read (facet's gltf_pbr takes specular_color as a number); "
-                          "specularColorFactor alone is used");
+// A colour factor of extension `ext` times its texture `texture`'s rgb in sRGB (the READMEs'
+// "factor * sampleLinear(texture).rgb", the texture "encoded in sRGB"), into the lobe's `param`.
+void color_and_texture(const json& ext, const char* factor, RGB fallback, double hi, const char* texture,
+                       const char* param, json& lobe, GltfImages& images, const std::string& key,
+                       std::vector<std::pair<int, std::string>>& sets) {
+  const RGB f = extension_color(images, ext, factor, fallback, hi, key);
+  lobe[param] = f;
+  if (!ext.contains(texture)) return;
+  const TextureUse t = extension_texture(images, ext[texture], key + "." + texture);
+  sets.emplace_back(t.uv, t.key + ".texCoord");
+  lobe[param] = texture_value(t, "rgb", "srgb", f);
 }
 
-// KHR_materials_sheen ("Sheen"): sheen_color = sheenColorFactor, sheen_roughness =
-// sheenRoughnessFactor. The lobe takes both as numbers (max₃ of the colour and the albedo's
-// fit at the roughness are folded when the code is generated): their textures are not read,
-// a note says so.
+// KHR_materials_specular: specular = specularFactor × specularTexture's A; specular_color =
+// specularColorFactor × specularColorTexture's rgb ("Implementation": specularColor =
+// specularColorFactor * sampleLinear(specularColorTexture).rgb).
+void specular_extension(const json& spec, json& lobe, GltfImages& images, const std::string& key,
+                        std::vector<std::pair<int, std::string>>& sets) {
+  factor_and_texture(spec, "specularFactor", 1, "specularTexture", "a", "specular", lobe, images, key, sets);
+  color_and_texture(spec, "specularColorFactor", {1, 1, 1}, kColorMax, "specularColorTexture", "specular_color", lobe,
+                    images, key, sets);
+}
+
+// KHR_materials_sheen ("Sheen"): sheen_color = sheenColorFactor × sheenColorTexture's rgb (sRGB),
+// sheen_roughness = sheenRoughnessFactor. The lobe folds the albedo's fit at the roughness when the
+// code is generated: sheenRoughnessTexture is not read, a note says so.
 void sheen_extension(const json& sheen, json& lobe, GltfImages& images, const std::string& key,
-                     std::vector<std::string>& notes) {
-  lobe["sheen_color"] = extension_color(images, sheen, "sheenColorFactor", {0, 0, 0}, 1, key);
+                     std::vector<std::pair<int, std::string>>& sets, std::vector<std::string>& notes) {
+  color_and_texture(sheen, "sheenColorFactor", {0, 0, 0}, 1, "sheenColorTexture", "sheen_color", lobe, images, key,
+                    sets);
   lobe["sheen_roughness"] = extension_number(images, sheen, "sheenRoughnessFactor", 0, 0, 1, key);
-  for (const char* texture : {"sheenColorTexture", "sheenRoughnessTexture"})
-    if (sheen.contains(texture))
-      notes.push_back(key + "." + texture + ": approximate: not read (facet's gltf_pbr takes the sheen's colour and "
-                      "roughness as numbers); the factor alone is used");
+  if (sheen.contains("sheenRoughnessTexture"))
+    notes.push_back(key + ".sheenRoughnessTexture: approximate: not read (facet's gltf_pbr folds the sheen's albedo "
+                          "fit for a roughness of numbers); sheenRoughnessFactor alone is used");
 }
 
 // KHR_materials_clearcoat ("Clearcoat"): clearcoat = clearcoatFactor × clearcoatTexture's R,
@@ -333,13 +344,13 @@ json gltf_pbr_lobe(const tinygltf::Material& g, const Pbr& p, GltfImages& images
     lobe["ior"] = eta;
   }
   const json spec = extension_of(g.extensions_json_string, "KHR_materials_specular");
-  if (spec.is_object()) specular_extension(spec, lobe, images, mpath + ".extensions.KHR_materials_specular", sets, notes);
+  if (spec.is_object()) specular_extension(spec, lobe, images, mpath + ".extensions.KHR_materials_specular", sets);
   const json aniso = extension_of(g.extensions_json_string, "KHR_materials_anisotropy");
   if (aniso.is_object())
     anisotropy_extension(aniso, g.normalTexture.index >= 0, lobe, images, mpath + ".extensions.KHR_materials_anisotropy",
                          sets);
   const json sheen = extension_of(g.extensions_json_string, "KHR_materials_sheen");
-  if (sheen.is_object()) sheen_extension(sheen, lobe, images, mpath + ".extensions.KHR_materials_sheen", notes);
+  if (sheen.is_object()) sheen_extension(sheen, lobe, images, mpath + ".extensions.KHR_materials_sheen", sets, notes);
   const json coat = extension_of(g.extensions_json_string, "KHR_materials_clearcoat");
   if (coat.is_object())
     clearcoat_extension(coat, lobe, images, mpath + ".extensions.KHR_materials_clearcoat", sets);

@@ -16,6 +16,10 @@ Vec3 osl_blender(const Vec3& p) { return {p.x, -p.z, p.y}; }
 
 OslSample osl_sample(const CPrinter& pr, const TextureCall& c, const std::string& file) {
   OslSample out;
+  if (!c.max_of.empty()) {  // max₃ of the colour sampled before it
+    out.value = fmt::format("max(max({0}[0], {0}[1]), {0}[2])", c.max_of);
+    return out;
+  }
   std::string texel;
   if (c.image) {
     std::string s = fmt::format("s{}", c.uv), t = fmt::format("t{}", c.uv);

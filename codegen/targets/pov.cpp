@@ -302,7 +302,15 @@ void PovScene::register_textures() {
     std::vector<TextureCall> calls = texture_calls(sh->program);
     for (const auto& n : normal_map_calls(sh->program)) calls.push_back(n);
     if (auto a = alpha_call(*sh->material)) calls.push_back(*a);
+    std::map<std::string, PovTexture> sampled;  // the colours a max₃ is derived from
     for (const auto& c : calls) {
+      if (!c.max_of.empty()) {  // max₃ of a colour sampled before it (TexturedInput::max_of)
+        const PovTexture& colour = sampled.at(c.max_of);
+        const std::vector<ir::FunctionPtr> fs = pov_max_sample_functions(colour, c.name);
+        for (const auto& f : fs) sh->printer.add_own(f);
+        sh->samples[c.name] = {fs.back(), colour.call.uv, colour.call.image, colour.call.vertex_color};
+        continue;
+      }
       PovTexture t;
       t.call = c;
       t.image = -1;
@@ -331,6 +339,7 @@ void PovScene::register_textures() {
       }
       ir::FunctionPtr f = pov_sample_function(t);
       sh->printer.add_own(f);
+      sampled[c.name] = t;
       if (c.name == "alpha") {  // the cut-out's: read by its Facet_Kept, not by the reflectance
         sh->alpha = f;
         sh->alpha_uv = c.uv;

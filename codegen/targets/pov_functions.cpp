@@ -848,6 +848,8 @@ std::string PovScene::sweep() {
     append(directions, mapped_tangent(fb, sh, n, n));
     if (takes_handedness(sh)) directions.push_back(1.0);
   }
+  // A frame alone makes the shading take texture coordinates, which no image reads here.
+  if (sh.textured()) directions.insert(directions.end(), 4, Expr(0.0));
   ir::FunctionPtr f = fb.returns(ir::call(sh.reflect, directions));
   sh.printer.add_own(f);
   std::string pigment = "  pigment {\n    average\n    pigment_map {\n";

@@ -130,6 +130,31 @@ ir::FunctionPtr pov_sample_function(const PovTexture& t) {
   return fb.returns(value);
 }
 
+std::vector<ir::FunctionPtr> pov_max_sample_functions(const PovTexture& t, const std::string& name) {
+  const TextureCall& c = t.call;
+  ir::FunctionBuilder fb("Facet_Sample_" + name, "");
+  std::vector<Expr> args;
+  if (c.image) args = {fb.param("S"), fb.param("T")};
+  if (c.vertex_color)
+    for (const char* v : {"R", "G", "B", "A"}) args.push_back(fb.param(v));
+  std::vector<ir::FunctionPtr> out;
+  std::optional<Expr> largest;
+  for (int k = 0; k < 3; ++k) {
+    // Lane k as a number: the image's channel k (and the vertex colour's), its factor and offset.
+    PovTexture lane = t;
+    lane.call.name = name + "_" + "rgb"[k];
+    lane.call.color = false;
+    lane.call.channel = k;
+    lane.call.factor = {c.factor[size_t(k)], c.factor[size_t(k)], c.factor[size_t(k)]};
+    lane.call.offset = {c.offset[size_t(k)], c.offset[size_t(k)], c.offset[size_t(k)]};
+    out.push_back(pov_sample_function(lane));
+    Expr value = ir::call(out.back(), args);
+    largest = largest ? ir::max(*largest, value) : value;
+  }
+  out.push_back(fb.returns(*largest));
+  return out;
+}
+
 std::string pov_rgb_declarations() {
   std::string out = "// A colour from three numbers, channel by channel: a vertex colour's rgb.\n";
   for (int ch = 0; ch < 3; ++ch)

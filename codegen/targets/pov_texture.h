@@ -37,6 +37,10 @@ void write_pov_texture_image(std::ostream& out, const Texels& t, bool alpha);
 // Facet_Sample_<name>(S, T[, R, G, B, A]): the textured parameter's value at texture
 // coordinates (S, T) on a surface of vertex colour (R, G, B, A).
 ir::FunctionPtr pov_sample_function(const PovTexture& t);
+// Facet_Sample_<name>_r, _g, _b (each lane of colour texture t's value, sampled as a number) and,
+// last, Facet_Sample_<name>(S, T[, R, G, B, A]) = their max: max₃ of t's value
+// (TexturedInput::max_of), since POV-Ray's functions are scalar.
+std::vector<ir::FunctionPtr> pov_max_sample_functions(const PovTexture& t, const std::string& name);
 // Facet_Rgb_R, _G, _B(R, G, B): a colour from three numbers, channel by channel (POV-Ray's
 // functions are scalar): what a colour's vertex colour is made of. Declared once in a scene
 // whose materials read the vertex colour.

@@ -93,6 +93,7 @@ void require_untextured(const Material& m, const std::string& target) {
   if (p.textured.empty() && !m.normal_map && !m.coat_normal_map) return;
   std::vector<Diagnostic> d;
   for (const auto& t : p.textured)
+    if (t.max_of.empty())  // a derived max₃ names no key of its own
     d.push_back({m.source.empty() ? m.name : m.source, t.key,
                  "an image texture, which the " + target + " target does not sample yet (GLSL does; docs/textures.md)"});
   if (m.normal_map)

@@ -38,6 +38,11 @@ TextureCall call_of(const TexturedInput& t) {
   c.image = r.has_image();
   c.vertex_color = r.vertex_color;
   c.offset = r.bias;
+  if (!t.max_of.empty()) {
+    c.max_of = t.max_of;
+    c.color = false;
+    c.image = c.vertex_color = false;
+  }
   return c;
 }
 
@@ -52,16 +57,16 @@ std::vector<TextureCall> texture_calls(const MaterialProgram& p) {
 std::vector<TextureCall> normal_map_calls(const MaterialProgram& p) {
   std::vector<TextureCall> out;
   const Material& m = p.material;
-  if (m.normal_map) out.push_back(call_of({"normal_map", "normal_map", ir::Type::Color, m.normal_map->value, Range::closed(0, 1)}));
+  if (m.normal_map) out.push_back(call_of({"normal_map", "normal_map", ir::Type::Color, m.normal_map->value, Range::closed(0, 1), ""}));
   if (m.coat_normal_map)
     out.push_back(call_of({"coat_normal_map", "coat_normal_map", ir::Type::Color, m.coat_normal_map->value,
-                           Range::closed(0, 1)}));
+                           Range::closed(0, 1), ""}));
   return out;
 }
 
 std::optional<TextureCall> alpha_call(const Material& m) {
   if (!m.masked() || !m.alpha.texture) return std::nullopt;
-  return call_of({"alpha", "alpha", ir::Type::Float, m.alpha, alpha_param().range});
+  return call_of({"alpha", "alpha", ir::Type::Float, m.alpha, alpha_param().range, ""});
 }
 
 std::vector<TextureCall> image_calls(const MaterialProgram& p) {
@@ -85,6 +90,7 @@ std::string texture_value_code(const TextureCall& c, const std::string& texel, c
 }
 
 std::string gpu_sample_statement(const TextureCall& c, const std::string& uv, const SampleWords& w) {
+  if (!c.max_of.empty()) return fmt::format("    {0} = max(max({1}.x, {1}.y), {1}.z);\n", c.name, c.max_of);
   std::string texel;
   if (c.image) {
     const std::string lookup = fmt::format("facet_texture(facet_texture_{}, {}, {}({}, {}), {}, {})", c.name, uv,

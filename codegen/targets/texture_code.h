@@ -32,6 +32,9 @@ struct TextureCall {
   bool image = true;              // false: the vertex colour alone (no image to bind or sample)
   bool vertex_color = false;      // times the vertex colour: its rgb (colours) or component `channel` (numbers)
   std::array<double, 3> offset{0, 0, 0};  // added before the clamp
+  // Non-empty: max₃ of the colour call of that name, sampled before it (TexturedInput::max_of);
+  // no image or vertex colour of its own, every other field the colour's.
+  std::string max_of;
   bool offset_zero() const { return offset == std::array<double, 3>{0, 0, 0}; }
 };
 

@@ -254,10 +254,10 @@ TEST(Gltf, GltfBrdfExportsAsItsFactorsMapsAndExtensions) {
                      {"roughness", {{"texture", "textures/leaf.png"}, {"channel", "g"}, {"factor", 0.7}}},
                      {"ior", 1.8},
                      {"specular", {{"texture", "textures/leaf.png"}, {"channel", "a"}, {"factor", 0.9}}},
-                     {"specular_color", {1.0, 0.5, 0.25}},
+                     {"specular_color", {{"texture", "textures/leaf.png"}, {"colorspace", "srgb"}, {"factor", {1.0, 0.5, 0.25}}}},
                      {"clearcoat", {{"texture", "textures/leaf.png"}, {"channel", "r"}, {"factor", 0.8}}},
                      {"clearcoat_roughness", 0.3},
-                     {"sheen_color", {0.6, 0.5, 0.4}},
+                     {"sheen_color", {{"texture", "textures/leaf.png"}, {"colorspace", "srgb"}, {"factor", {0.6, 0.5, 0.4}}}},
                      {"sheen_roughness", 0.45},
                      {"anisotropy_strength", {{"texture", "textures/leaf.png"}, {"channel", "b"}, {"factor", 0.5}}},
                      {"anisotropy_direction_x", {{"texture", "textures/leaf.png"}, {"channel", "r"}}},
@@ -279,6 +279,8 @@ TEST(Gltf, GltfBrdfExportsAsItsFactorsMapsAndExtensions) {
   EXPECT_EQ(g["extensions"]["KHR_materials_specular"]["specularFactor"], 0.9);
   EXPECT_EQ(g["extensions"]["KHR_materials_specular"]["specularColorFactor"], json::array({1.0, 0.5, 0.25}));
   EXPECT_TRUE(g["extensions"]["KHR_materials_specular"].contains("specularTexture"));
+  EXPECT_TRUE(g["extensions"]["KHR_materials_specular"].contains("specularColorTexture"));
+  EXPECT_TRUE(g["extensions"]["KHR_materials_sheen"].contains("sheenColorTexture"));
   EXPECT_EQ(g["extensions"]["KHR_materials_clearcoat"]["clearcoatFactor"], 0.8);
   EXPECT_EQ(g["extensions"]["KHR_materials_clearcoat"]["clearcoatRoughnessFactor"], 0.3);
   EXPECT_TRUE(g["extensions"]["KHR_materials_clearcoat"].contains("clearcoatTexture"));
@@ -301,7 +303,7 @@ TEST(Gltf, GltfBrdfExportsAsItsFactorsMapsAndExtensions) {
   const ModelSpec& now = *back.materials.begin()->second.specular;
   json a = to_json(m)["specular"], b = to_json(back.materials.begin()->second)["specular"];
   for (const char* p : {"base_color", "metallic", "roughness", "specular", "clearcoat", "anisotropy_strength",
-                        "anisotropy_direction_x", "anisotropy_direction_y"}) {
+                        "anisotropy_direction_x", "anisotropy_direction_y", "specular_color", "sheen_color"}) {
     EXPECT_EQ(now.at(p).texture->texels->rgba, m.specular->at(p).texture->texels->rgba) << p;
     a[p].erase("texture");
     b[p].erase("texture");
@@ -320,7 +322,7 @@ TEST(Gltf, GltfBrdfExportsAsItsFactorsMapsAndExtensions) {
   EXPECT_EQ(read.def, m.specular->def);
   for (const char* p : {"base_color", "metallic", "roughness", "ior", "specular", "specular_color", "clearcoat",
                         "clearcoat_roughness", "anisotropy_strength", "anisotropy_rotation", "anisotropy_direction_x",
-                        "anisotropy_direction_y"}) {
+                        "anisotropy_direction_y", "sheen_color", "sheen_roughness"}) {
     const Value &x = m.specular->at(p), &y = read.at(p);
     EXPECT_EQ(x.rgb, y.rgb) << p;
     EXPECT_EQ(x.number, y.number) << p;
@@ -847,10 +849,11 @@ TEST(GltfTextures, ClearcoatIsReadWithItsMapsAndItsLimitsSaid) {
             1);
 }
 
-// KHR_materials_sheen ("Sheen"): sheen_color = sheenColorFactor, sheen_roughness =
-// sheenRoughnessFactor; the textures, which the lobe does not take, are named in a note; the
-// extension may be required (facet reads it as its README says); a colour out of [0, 1] is
-// refused naming its key.
+// KHR_materials_sheen ("Sheen"): sheen_color = sheenColorFactor × sheenColorTexture's rgb (sRGB),
+// sheen_roughness = sheenRoughnessFactor; sheenRoughnessTexture, which the lobe does not take, is
+// named in a note; the extension may be required (facet reads it as its README says); a colour
+// out of [0, 1] is refused naming its key. KHR_materials_specular's specularColorTexture is read
+// the same way (factor × rgb, sRGB).
 TEST(GltfTextures, SheenIsReadAndItsTexturesNamed) {
   json g = textured_triangle(json::array({data_uri_image(small_png())}));
   json& gm = g["materials"][0];
@@ -865,13 +868,25 @@ TEST(GltfTextures, SheenIsReadAndItsTexturesNamed) {
   for (const auto& n : notes) EXPECT_EQ(n.find("KHR_materials_sheen"), std::string::npos) << n;
   gm["extensions"]["KHR_materials_sheen"]["sheenColorTexture"] = {{"index", 0}};
   gm["extensions"]["KHR_materials_sheen"]["sheenRoughnessTexture"] = {{"index", 0}};
+  gm["extensions"]["KHR_materials_specular"] = {{"specularColorFactor", {1.5, 1.0, 0.5}},
+                                                {"specularColorTexture", {{"index", 0}}}};
+  g["extensionsUsed"].push_back("KHR_materials_specular");
   notes.clear();
-  import_gltf(write_gltf("sheen_textures.gltf", g).string(), {}, notes);
+  Scene t = import_gltf(write_gltf("sheen_textures.gltf", g).string(), {}, notes);
+  const ModelSpec& textured = *t.materials.begin()->second.specular;
+  for (const auto& [param, factor] : {std::pair<const char*, RGB>{"sheen_color", {0.9, 0.5, 0.3}},
+                                      {"specular_color", {1.5, 1.0, 0.5}}}) {
+    const Value& v = textured.at(param);
+    ASSERT_TRUE(v.texture) << param;
+    EXPECT_EQ(v.texture->channel, "rgb") << param;
+    EXPECT_EQ(v.texture->colorspace, "srgb") << param;
+    EXPECT_EQ(v.rgb, factor) << param;
+  }
   int said = 0;
   for (const auto& n : notes)
-    said += (n.find("sheenColorTexture: approximate") != std::string::npos) +
-            (n.find("sheenRoughnessTexture: approximate") != std::string::npos);
-  EXPECT_EQ(said, 2);
+    said += (n.find("sheenColorTexture") != std::string::npos) + (n.find("specularColorTexture") != std::string::npos) +
+            2 * (n.find("sheenRoughnessTexture: approximate") != std::string::npos);
+  EXPECT_EQ(said, 2) << "sheenRoughnessTexture alone is named";
   gm["extensions"]["KHR_materials_sheen"]["sheenColorFactor"] = {0.9, 1.5, 0.3};
   try {
     import_gltf(write_gltf("sheen_bad.gltf", g).string(), {}, notes);
