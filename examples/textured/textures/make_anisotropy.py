@@ -3,14 +3,13 @@
 [0, 1] → [−1, 1], blue the strength, all linear), for textured_anisotropy.json. The direction
 turns from +x (the tangent) through 100° across the image, slowly enough that bilinear
 filtering never blends it towards zero; the strength runs from 0.35 to 1 down it. Standard
-library only:
+library only (the PNG writer is make_metal_roughness.py's):
 
     python3 examples/textured/textures/make_anisotropy.py
 """
 import math
-import os
-import struct
-import zlib
+
+from make_metal_roughness import write_rgb_png
 
 SIDE = 16
 
@@ -22,18 +21,8 @@ def texel(i, j):
     return encode(math.cos(angle)), encode(math.sin(angle)), round(strength * 255)
 
 
-def chunk(kind, data):
-    return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
-
-
 def main():
-    rows = b"".join(b"\0" + bytes(c for i in range(SIDE) for c in texel(i, j)) for j in range(SIDE))
-    png = (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", SIDE, SIDE, 8, 2, 0, 0, 0)) +
-           chunk(b"IDAT", zlib.compress(rows, 9)) + chunk(b"IEND", b""))
-    path = os.path.join(os.path.dirname(os.path.abspath(__file__)), "anisotropy.png")
-    with open(path, "wb") as f:
-        f.write(png)
-    print(f"wrote {path}")
+    write_rgb_png("anisotropy.png", SIDE, texel)
 
 
 if __name__ == "__main__":

@@ -24,14 +24,20 @@ def chunk(kind, data):
     return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
 
 
-def main():
-    rows = b"".join(b"\0" + bytes(c for i in range(SIDE) for c in texel(i, j)) for j in range(SIDE))
-    png = (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", SIDE, SIDE, 8, 2, 0, 0, 0)) +
+def write_rgb_png(name, side, texel):
+    """Writes `name` beside this script: an 8-bit RGB PNG of side × side texels, texel(i, j) the
+    (r, g, b) bytes of column i, row j (row 0 at the top). make_anisotropy.py writes with it too."""
+    rows = b"".join(b"\0" + bytes(c for i in range(side) for c in texel(i, j)) for j in range(side))
+    png = (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", side, side, 8, 2, 0, 0, 0)) +
            chunk(b"IDAT", zlib.compress(rows, 9)) + chunk(b"IEND", b""))
-    path = os.path.join(os.path.dirname(os.path.abspath(__file__)), "metal_roughness.png")
+    path = os.path.join(os.path.dirname(os.path.abspath(__file__)), name)
     with open(path, "wb") as f:
         f.write(png)
     print(f"wrote {path}")
+
+
+def main():
+    write_rgb_png("metal_roughness.png", SIDE, texel)
 
 
 if __name__ == "__main__":
