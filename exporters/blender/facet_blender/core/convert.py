@@ -16,12 +16,12 @@ radiance as Cycles for a point or sun light of radius 0 (see scene.py for the un
 | Glossy BSDF, Ashikhmin–Shirley            | refused                                             | no facet model |
 | Principled BSDF                           | gltf_pbr (glTF's BRDF, its specular lobe alone): base_color = Base Color, metallic, roughness | as Blender's glTF exporter writes the node; approximate to Cycles, whose Principled layers an energy-compensated dielectric, multiscatter GGX and F82-tinted metals (docs/blender.md measures it) |
 |   IOR (4.x)                               | ior (KHR_materials_ior)                             | |
-|   Specular IOR Level, Specular Tint (4.x) | specular = 2·level, specular_color = Tint (KHR_materials_specular; 2·level > 1: specular 1, Tint × 2·level, as the exporter writes it) | |
+|   Specular IOR Level, Specular Tint (4.x) | specular = 2·level, specular_color = Tint, an image on it too (KHR_materials_specular's specularColorTexture; 2·level > 1: specular 1, Tint × 2·level, as the exporter writes it) | |
 |   Specular, Specular Tint (3.x)           | specular_color = 2·Specular·mix(1, Base/luminance(Base), Tint) (f0 = 0.08·Specular·tint) | approximate: 3.x's f90 |
 |   Roughness below 0.0316                  | roughness as typed; α = roughness² is floored at 1e-3 | approximate (a warning, never an error) |
 |   Emission (× Strength)                   | emission                                            | exact |
 |   Coat Weight, Coat Roughness (4.x)       | clearcoat, clearcoat_roughness (KHR_materials_clearcoat) | Coat IOR other than 1.5, Coat Tint, Coat Normal: named in a warning |
-|   Sheen Weight, Sheen Tint, Sheen Roughness (4.x) | sheen_color = Weight × Tint, sheen_roughness (KHR_materials_sheen) | images on them: named in a warning |
+|   Sheen Weight, Sheen Tint, Sheen Roughness (4.x) | sheen_color = Weight × Tint, an image on it too (sheenColorTexture), sheen_roughness (KHR_materials_sheen) | an image on Sheen Roughness: named in a warning |
 |   Anisotropic, Anisotropic Rotation (4.x)  | anisotropy_strength, anisotropy_rotation = 2π·rotation (KHR_materials_anisotropy) | Cycles' anisotropic GGX is parametrized otherwise (docs/blender.md) |
 |   Sheen (3.x), Transmission, Subsurface, Diffuse Roughness, Alpha | ignored, each named in a warning (Alpha: a cut-out where Blender's glTF importer wired one) | |
 | Add Shader (a, b)                         | the lobes of a and b together                       | as exact as a and b (one diffuse and one specular lobe at most) |
@@ -310,16 +310,18 @@ def _specular_level(node, result, lobe, level_tex):
     """KHR_materials_specular as Blender's glTF exporter writes it from Specular IOR Level and
     Specular Tint (glTF-Blender-IO 4.5, exp/material/extensions/specular.py; its importer reads
     specularFactor back as Specular IOR Level = 0.5·specularFactor): specular = 2·level, and
-    where that exceeds glTF's 1, specular 1 with the tint times 2·level."""
-    if node.texture("Specular Tint", "color"):
-        result.note(IGNORED, f"{node.label}: Specular Tint is an image (glTF's specularColorTexture); facet's "
-                             f"gltf_pbr takes specular_color as a number: the unlinked "
-                             f"{_Node._fmt(node.inputs['Specular Tint'])} is used")
-    tint = _rgb(node.get("Specular Tint", (1.0, 1.0, 1.0)))
+    where that exceeds glTF's 1, specular 1 with the tint times 2·level. An image on Specular Tint
+    is glTF's specularColorTexture: specular_color = the image times that factor."""
+    tint_tex = node.texture("Specular Tint", "color")
+    tint = [1.0, 1.0, 1.0] if tint_tex else _rgb(node.get("Specular Tint", (1.0, 1.0, 1.0)))
     level = max(float(node.get("Specular IOR Level", 0.5)), 0.0)
     factor = 2.0 * (level_tex.get("scale", 1.0) if level_tex else level)
     lobe["specular"] = min(factor, 1.0)
     lobe["specular_color"] = [t * max(factor, 1.0) for t in tint]
+    if tint_tex:   # the image times the factor (a Mix's constant side, `scale`, folded by binding)
+        _bind(result, ("specular", "specular_color"), "gltf_pbr", tint_tex, max(factor, 1.0) if factor > 1.0 else None)
+        result.note(EXACT, f"{node.label}: specular_color from image '{tint_tex['image']}', glTF's "
+                           f"specularColorTexture")
     if level_tex:
         spec = dict(level_tex)
         spec.pop("scale", None)
@@ -358,13 +360,18 @@ def _sheen(node, result, lobe):
     sheen_color = Weight × Tint, sheen_roughness = Roughness. Blender's glTF exporter
     (glTF-Blender-IO 4.5, exp/material/extensions/sheen.py) writes the Tint alone and its importer
     sets Weight 1: a Weight of 1 round-trips exactly; another Weight is folded into the colour
-    (said). Images on them (sheenColorTexture, sheenRoughnessTexture) are not taken: node.get names
-    a linked input and uses its unlinked value."""
+    (said). An image on Sheen Tint is glTF's sheenColorTexture (sheen_color = Weight × the image);
+    one on Sheen Roughness (sheenRoughnessTexture) is not taken: node.get names a linked input and
+    uses its unlinked value."""
     weight = min(max(float(node.get("Sheen Weight", 0.0)), 0.0), 1.0)
     if weight == 0.0:
         return
-    tint = [min(max(c, 0.0), 1.0) for c in _rgb(node.get("Sheen Tint", (1.0, 1.0, 1.0)))]
+    tint_tex = node.texture("Sheen Tint", "color")
+    tint = [1.0, 1.0, 1.0] if tint_tex else [min(max(c, 0.0), 1.0) for c in _rgb(node.get("Sheen Tint", (1.0, 1.0, 1.0)))]
     lobe["sheen_color"] = [weight * c for c in tint]
+    if tint_tex:
+        _bind(result, ("specular", "sheen_color"), "gltf_pbr", tint_tex, weight if weight != 1.0 else None)
+        result.note(EXACT, f"{node.label}: sheen_color from image '{tint_tex['image']}', glTF's sheenColorTexture")
     lobe["sheen_roughness"] = min(max(float(node.get("Sheen Roughness", 0.5)), 0.0), 1.0)
     result.note(EXACT, f"{node.label}: Sheen Weight × Sheen Tint and Sheen Roughness -> sheen_color, sheen_roughness "
                        f"(KHR_materials_sheen)")

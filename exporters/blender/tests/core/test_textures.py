@@ -698,3 +698,24 @@ def test_an_anisotropic_gltf_pbr_lobe_reads_the_active_uv_maps_frame():
     assert textures.frame_uv_map(lobe()) is None
     assert textures.frame_uv_map({"specular": {"model": "ward", "anisotropy_strength": 0.5}}) is None
     assert textures.frame_uv_map({"diffuse": {"model": "lambert"}}) is None
+
+
+def test_images_on_specular_and_sheen_tint_are_gltfs_colour_textures():
+    """Blender's glTF exporter writes an image on Specular Tint as specularColorTexture and one on
+    Sheen Tint as sheenColorTexture (KHR_materials_specular, _sheen): bindings of gltf_pbr's
+    specular_color and sheen_color, the Sheen Weight their factor; an image on Sheen Roughness
+    (sheenRoughnessTexture) is still named as not taken."""
+    tint = tex_image(image("tint"))
+    r = map_surface(principled({"Specular Tint": tint, "Sheen Tint": tex_image(image("sheen"))},
+                               **{"Sheen Weight": 0.5, "Sheen Roughness": 0.3}), "Tinted")
+    by_path = {tuple(b["path"]): b for b in r.textures}
+    assert set(by_path) == {("specular", "specular_color"), ("specular", "sheen_color")}
+    assert by_path[("specular", "specular_color")]["spec"]["image"] == "tint"
+    assert "factor" not in by_path[("specular", "specular_color")]
+    assert by_path[("specular", "sheen_color")]["factor"] == pytest.approx(0.5)
+    assert r.specular["specular_color"] == [1.0, 1.0, 1.0] and r.specular["sheen_color"] == [0.5, 0.5, 0.5]
+    assert not any("unlinked value" in m for m in messages(r))
+    rough = map_surface(principled({"Sheen Roughness": tex_image(image("rough", "Non-Color"))},
+                                   **{"Sheen Weight": 1.0}), "Rough")
+    assert rough.textures == [] and any("Sheen Roughness" in m and "unlinked value" in m
+                                        for m in messages(rough, IGNORED))
