@@ -790,7 +790,8 @@ def blender_principled_scene(folder):
     Specular IOR Level and Tint (KHR_materials_specular), Sheen Weight, Tint and Roughness
     (KHR_materials_sheen), Coat Weight and Roughness and a Coat Normal through a Normal Map node
     (KHR_materials_clearcoat with its clearcoatNormalTexture), Emission Color and
-    a Strength above 1 (KHR_materials_emissive_strength), Anisotropic and its Rotation
+    a Strength above 1 (KHR_materials_emissive_strength), images on Sheen Tint and Specular Tint
+    (sheenColorTexture, specularColorTexture), Anisotropic and its Rotation
     (KHR_materials_anisotropy; the sphere is rotated, so its direction turns from its own UV
     tangents, which facet reads as the README's TBN, not from any fixed axis)."""
     import bpy
@@ -828,6 +829,21 @@ def blender_principled_scene(folder):
     normal_map.inputs["Strength"].default_value = 0.8
     tree.links.new(tex.outputs["Color"], normal_map.inputs["Color"])
     tree.links.new(normal_map.outputs["Normal"], tree.nodes["Principled BSDF"].inputs["Coat Normal"])
+    # Colour images (sRGB) on Sheen Tint and Specular Tint, which Blender's exporter writes as
+    # sheenColorTexture and specularColorTexture.
+    side = 16
+    ramp = np.array([[(0.3 + 0.7 * i / (side - 1), 0.2 + 0.8 * j / (side - 1), 0.6, 1.0) for i in range(side)]
+                     for j in range(side)], dtype=np.float32)
+    tints = bpy.data.images.new("tints", side, side, alpha=True)
+    tints.pixels.foreach_set(ramp.ravel())
+    tints.filepath_raw = os.path.join(folder, "tints.png")
+    tints.file_format = "PNG"
+    tints.save()
+    for material, socket in ((materials[0], "Sheen Tint"), (materials[1], "Specular Tint")):
+        tree = material.node_tree
+        tex = tree.nodes.new("ShaderNodeTexImage")
+        tex.image, tex.interpolation = tints, "Linear"
+        tree.links.new(tex.outputs["Color"], tree.nodes["Principled BSDF"].inputs[socket])
     floor = blender_material("floor", (0.5, 0.5, 0.5), 0.0, 0.7)
     blender_object("floor", lambda: bpy.ops.mesh.primitive_plane_add(size=10), floor, (0, 0, 0), smooth=False)
     for k, m in enumerate(materials):
@@ -891,9 +907,11 @@ CORPUS.append(("blender_textured.gltf", "written by Blender's glTF exporter: an 
                                         "a second UV map (KHR_texture_transform, TEXCOORD_1), mirrored and rotated "
                                         "objects, a point light and a sun", None))
 CORPUS.append(("blender_principled.glb", "written by Blender's glTF exporter from Principled BSDFs: IOR, Specular IOR "
-                                         "Level and Tint, Sheen, Coat with its own Coat Normal map, Emission Strength "
-                                         "2, Anisotropic on a rotated sphere: KHR_materials_ior, _specular, _sheen, "
-                                         "_clearcoat (clearcoatNormalTexture), _emissive_strength, _anisotropy", None))
+                                         "Level and Tint (an image), Sheen (its Tint an image), Coat with its own Coat "
+                                         "Normal map, Emission Strength 2, Anisotropic on a rotated sphere: "
+                                         "KHR_materials_ior, _specular (specularColorTexture), _sheen "
+                                         "(sheenColorTexture), _clearcoat (clearcoatNormalTexture), "
+                                         "_emissive_strength, _anisotropy", None))
 
 
 # ----------------------------------------------------------------------------- wrong twins
