@@ -58,10 +58,10 @@ ir::Expr microfacet(LobeContext& c, const ir::Expr& D, const ir::Expr& alpha) {
 // "Implementation": mat2(cos r, sin r, −sin r, cos r) · normalize(direction)), so t' = d'_x t +
 // d'_y b and b' = n × t' = d'_x b − d'_y t (up to the sign w, which D and V square away). d is
 // 2·(anisotropy_direction_x, _y) − 1: anisotropyTexture's red and green as the README maps them,
-// (1, 0) with the defaults (1, 0.5), the README's default texel. Along t' α_t = mix(α, 1, strength²) (strength times the
-// texture's blue), across it α_b = α. D is the README's (Burley's anisotropic GGX), V the
-// anisotropic height-correlated Smith term of its "Implementation" (without the sample's clamp
-// at 1, as Appendix B's isotropic V has none).
+// (1, 0) with the defaults (1, 0.5), the README's default texel. Along t' α_t = mix(α, 1,
+// strength²) (strength times the texture's blue), across it α_b = α. D is the README's
+// (Burley's anisotropic GGX), V the anisotropic height-correlated Smith term of its
+// "Implementation" (without the sample's clamp at 1, as Appendix B's isotropic V has none).
 ir::Expr gltf_anisotropic_layer(LobeContext& c, const ir::Expr& alpha) {
   const ModelSpec& s = c.spec();
   ir::Expr strength = c.number("anisotropy_strength");
