@@ -188,7 +188,8 @@ struct PointNormals {
 };
 
 // Whether the lights' functions of `sh` take the tangent: a normal map under a lobe that reads
-// it, whose tangent follows the mapped normal (mapped_tangent) instead of the tangent rule on it.
+// it, whose tangent follows the mapped normal (mapped_tangent) instead of the tangent rule on it,
+// or lobes that turn from the texture frame's tangent (frame_tangent; they take Tw too).
 bool takes_tangent(const PovShading& sh, const ir::Function& reflectance) {
   return (sh.normal_map[0] || sh.program.uv_tangent()) && reads_tangent(reflectance);
 }
