@@ -223,6 +223,14 @@ Reference::Reference(const Material& m) : program_(compile(m)) {
   if (program_.textured.size() > kMaxTexturedInputs)
     throw std::logic_error(fmt::format("facet reference: {} textured parameters; at most {}", program_.textured.size(),
                                        kMaxTexturedInputs));
+  // Each derived max₃'s colour (TexturedInput::max_of), sampled before it.
+  const auto& textured = program_.textured;
+  max_of_.assign(textured.size(), 0);
+  for (size_t i = 0; i < textured.size(); ++i)
+    if (!textured[i].max_of.empty())
+      max_of_[i] = size_t(std::find_if(textured.begin(), textured.begin() + long(i),
+                                       [&](const TexturedInput& x) { return x.name == textured[i].max_of; }) -
+                          textured.begin());
   reflectance_ = prepare(program_.reflectance);
   if (program_.diffuse) diffuse_ = prepare(program_.diffuse);
   if (program_.specular) specular_ = prepare(program_.specular);
@@ -291,9 +299,7 @@ bool Reference::sample_textures(const std::array<std::array<double, 2>, 2>& uv, 
   for (size_t i = 0; i < textured.size(); ++i) {
     const TexturedInput& t = textured[i];
     if (!t.max_of.empty()) {  // max₃ of the colour sampled before it
-      const auto colour = std::find_if(textured.begin(), textured.begin() + long(i),
-                                       [&](const TexturedInput& x) { return x.name == t.max_of; });
-      const RGB& c = in.textured[size_t(colour - textured.begin())];
+      const RGB& c = in.textured[max_of_[i]];
       const double m = std::max({c[0], c[1], c[2]});
       in.textured[i] = {m, m, m};
       continue;

@@ -102,6 +102,7 @@ class Reference {
   MaterialProgram program_;
   Interpreter interp_;
   Prepared reflectance_, diffuse_, specular_, emission_weight_;
+  std::vector<size_t> max_of_;  // per textured input: where it is a derived max₃, its colour's index
   int inverse_square_ = -1, polynomial_ = -1, windowed_ = -1, spot_ = -1;
 };
 

@@ -327,11 +327,7 @@ void PovScene::register_textures() {
       if (c.name == "normal_map" || c.name == "coat_normal_map") {  // three channels as numbers, which the object functions combine
         auto& rgb = c.name == "normal_map" ? sh->normal_map : sh->coat_normal_map;
         for (int k = 0; k < 3; ++k) {
-          PovTexture lane = t;
-          lane.call.channel = k;
-          lane.call.color = false;
-          lane.call.name = c.name + "_" + "rgb"[k];
-          rgb[size_t(k)] = pov_sample_function(lane);
+          rgb[size_t(k)] = pov_sample_function(pov_lane(t, k, c.name));
           sh->printer.add_own(rgb[size_t(k)]);
         }
         sh->normal_map_uv = c.uv;

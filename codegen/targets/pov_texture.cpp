@@ -130,6 +130,17 @@ ir::FunctionPtr pov_sample_function(const PovTexture& t) {
   return fb.returns(value);
 }
 
+PovTexture pov_lane(const PovTexture& t, int k, const std::string& name) {
+  PovTexture lane = t;
+  const size_t i = size_t(k);
+  lane.call.name = name + "_" + "rgb"[i];
+  lane.call.color = false;
+  lane.call.channel = k;
+  lane.call.factor = {t.call.factor[i], t.call.factor[i], t.call.factor[i]};
+  lane.call.offset = {t.call.offset[i], t.call.offset[i], t.call.offset[i]};
+  return lane;
+}
+
 std::vector<ir::FunctionPtr> pov_max_sample_functions(const PovTexture& t, const std::string& name) {
   const TextureCall& c = t.call;
   ir::FunctionBuilder fb("Facet_Sample_" + name, "");
@@ -140,14 +151,7 @@ std::vector<ir::FunctionPtr> pov_max_sample_functions(const PovTexture& t, const
   std::vector<ir::FunctionPtr> out;
   std::optional<Expr> largest;
   for (int k = 0; k < 3; ++k) {
-    // Lane k as a number: the image's channel k (and the vertex colour's), its factor and offset.
-    PovTexture lane = t;
-    lane.call.name = name + "_" + "rgb"[k];
-    lane.call.color = false;
-    lane.call.channel = k;
-    lane.call.factor = {c.factor[size_t(k)], c.factor[size_t(k)], c.factor[size_t(k)]};
-    lane.call.offset = {c.offset[size_t(k)], c.offset[size_t(k)], c.offset[size_t(k)]};
-    out.push_back(pov_sample_function(lane));
+    out.push_back(pov_sample_function(pov_lane(t, k, name)));
     Expr value = ir::call(out.back(), args);
     largest = largest ? ir::max(*largest, value) : value;
   }

@@ -37,6 +37,10 @@ void write_pov_texture_image(std::ostream& out, const Texels& t, bool alpha);
 // Facet_Sample_<name>(S, T[, R, G, B, A]): the textured parameter's value at texture
 // coordinates (S, T) on a surface of vertex colour (R, G, B, A).
 ir::FunctionPtr pov_sample_function(const PovTexture& t);
+// Lane k (0–2) of colour texture t as a number named `name`_r, _g or _b: the image's channel k (and
+// the vertex colour's), lane k of its factor and offset. The normal maps' r, g, b and a colour's
+// max₃ are sampled so.
+PovTexture pov_lane(const PovTexture& t, int k, const std::string& name);
 // Facet_Sample_<name>_r, _g, _b (each lane of colour texture t's value, sampled as a number) and,
 // last, Facet_Sample_<name>(S, T[, R, G, B, A]) = their max: max₃ of t's value
 // (TexturedInput::max_of), since POV-Ray's functions are scalar.
