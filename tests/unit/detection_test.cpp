@@ -25,6 +25,7 @@
 #include "renderers/renderer.h"
 #include "renderers/sweep.h"
 #include "targets/targets.h"
+#include "test_support.h"
 
 namespace facet {
 namespace {
@@ -49,8 +50,7 @@ Fixture fixture(const std::string& example, const std::string& renderer, const s
   f.job.material = f.material;
   f.job.scene = f.scene;
   f.job.width = f.job.height = kSize;
-  f.job.workdir = (fs::temp_directory_path() / ("facet-detection-" + std::to_string(::getpid())) / renderer / example)
-                      .string();
+  f.job.workdir = (test::scratch("detection", renderer) / example).string();
   for (float v : f.reference.image.rgb) f.job.max_value = std::max<double>(f.job.max_value, v);
   return f;
 }
@@ -245,7 +245,7 @@ TEST(Detection, PovCannotReadOrWriteOutsideItsFolder) {
   o.target = Target::Pov;
   o.scene = f.scene;
   const std::string good = generate(f.material, o);
-  const fs::path outside = fs::temp_directory_path() / ("facet-outside-" + std::to_string(::getpid()));
+  const fs::path outside = test::scratch("detection", "outside");
   fs::create_directories(outside);
   const fs::path secret = outside / "secret.inc", pwned = outside / "PWNED.txt";
   write_file_atomic(secret.string(), "#declare Facet_Secret = 1;\n");
@@ -644,8 +644,7 @@ SweepCount horizon_fault(const std::string& renderer, const std::string& bad_cod
   const Material m = sweep_material();
   Material faulty = m;
   faulty.name = m.name + "_with_a_fault";
-  const std::string workdir =
-      (fs::temp_directory_path() / ("facet-detection-" + std::to_string(::getpid())) / (renderer + "-sweep")).string();
+  const std::string workdir = test::scratch("detection", renderer + "-sweep").string();
   std::vector<SweepCount> c = r->sweep({{m, ""}, {faulty, bad_code}}, {kSweepGrid, 0, workdir});
   EXPECT_EQ(c.size(), 2u) << renderer;
   EXPECT_TRUE(c.at(0).ok()) << renderer << ": " << c.at(0).error;

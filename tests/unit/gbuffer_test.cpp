@@ -14,7 +14,6 @@
 #include <iterator>
 #include <tuple>
 
-#include <unistd.h>
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
@@ -25,6 +24,7 @@
 #include "renderers/opengl.h"
 #include "scene/shapes.h"
 #include "targets/targets.h"
+#include "test_support.h"
 
 namespace facet {
 namespace {
@@ -325,7 +325,7 @@ TEST(GBuffer, WrongVisibilityBitIsSeen) {
 
 // The shading pass compiles in each dialect (glslang: GLSL 3.30, ES 3.00, and Vulkan SPIR-V).
 TEST(GBuffer, ShadingPassCompilesInEveryDialect) {
-  const fs::path dir = fs::temp_directory_path() / fmt::format("facet-gbuffer-{}", ::getpid());
+  const fs::path dir = test::scratch("gbuffer", "dialects");
   fs::create_directories(dir);
   const Material m = load_material((kSource / "examples" / "textured" / "textured_normal_cook_torrance.json").string());
   for (auto [target, name, flags] : {std::tuple{Target::Glsl, "glsl", ""}, std::tuple{Target::Essl, "essl", ""},

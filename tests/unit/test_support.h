@@ -4,18 +4,46 @@
 
 #include <unistd.h>
 
+#include <cerrno>
+#include <cstdlib>
+#include <cstring>
+#include <stdexcept>
+
 #include <filesystem>
 #include <string>
+#include <system_error>
 #include <vector>
 
 #include "renderers/process.h"
 
 namespace facet::test {
 
-// A file (or folder) name under a temporary folder of this process, e.g. scratch("cli", "a.frag").
+// This process's own temporary folder, made new on first use (mkdtemp) and removed when the
+// process ends (set FACET_KEEP_TEST_FILES=1 to keep it and look): a folder an earlier process
+// with the same pid left behind (pids are reused; /tmp outlives a CI run) cannot show its files
+// to a test that checks something was not written.
+inline const std::filesystem::path& process_folder() {
+  struct Folder {
+    std::filesystem::path path;
+    Folder() {
+      std::string name = (std::filesystem::temp_directory_path() /
+                          ("facet-test-" + std::to_string(::getpid()) + "-XXXXXX"))
+                             .string();
+      if (::mkdtemp(name.data()) == nullptr) throw std::runtime_error("mkdtemp " + name + ": " + std::strerror(errno));
+      path = name;
+    }
+    ~Folder() {
+      std::error_code ignored;
+      if (std::getenv("FACET_KEEP_TEST_FILES") == nullptr) std::filesystem::remove_all(path, ignored);
+    }
+  };
+  static const Folder folder;
+  return folder.path;
+}
+
+// A file (or folder) name in a folder of this process for one test suite, e.g. scratch("cli", "a.frag").
 inline std::filesystem::path scratch(const std::string& suite, const std::string& name) {
-  std::filesystem::path dir =
-      std::filesystem::temp_directory_path() / ("facet-" + suite + "-test-" + std::to_string(::getpid()));
+  const std::filesystem::path dir = process_folder() / suite;
   std::filesystem::create_directories(dir);
   return dir / name;
 }

@@ -11,7 +11,6 @@
 #include <cstring>
 #include <filesystem>
 
-#include <unistd.h>
 
 #include "catalog/material.h"
 #include "catalog/program.h"
@@ -21,6 +20,7 @@
 #include "scene/shapes.h"
 #include "targets/glsl_lights.h"
 #include "targets/targets.h"
+#include "test_support.h"
 
 namespace fs = std::filesystem;
 using namespace facet;
@@ -30,7 +30,7 @@ namespace {
 const fs::path kSource = FACET_SOURCE_DIR;
 
 std::string folder(const std::string& name) {
-  return (fs::temp_directory_path() / ("facet-vulkan-" + std::to_string(::getpid())) / name).string();
+  return test::scratch("vulkan", name).string();
 }
 
 VulkanDevice& device() {
