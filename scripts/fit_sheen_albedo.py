@@ -9,20 +9,22 @@ and its albedo scaling reads E at n·v and at n·l ("Albedo-scaling technique").
     E(μ, r) = ∫ D_s(h) ν_s(l, v) (n·l) dω_l      (sheenColor 1; v at cosine μ from n)
 
 integrated here on a midpoint grid in (n·l)^⅙ and φ. The fit, identical on every target because it is
-printed as code: μ in three pieces, [10⁻³, 0.15], [0.15, 0.5] (lambda_sheen changes formula at a
-cosine of 0.5, a kink in E) and [0.5, 1]; in each, log(E + 1e-4) as a Chebyshev series of degree
-9 in μ^¼ (the first piece) or √μ, interpolated at 10 Gauss–Chebyshev nodes; E = clamp(exp(series)
-− 1e-4, 0, 1), and below μ = 10⁻³ E is E(10⁻³) (E grows as 1/μ toward 0). The
-table holds log(E + 1e-4) at the nodes for rows of sheen roughness r; a material's r is
-interpolated between rows (cubic Lagrange over the four nearest) and the series' coefficients
-computed when its code is generated (catalog/sheen.cpp).
+printed as code, is a Chebyshev series in two variables, one piece of μ × one piece of r at a time:
+μ in three pieces, [10⁻³, 0.15], [0.15, 0.5] (lambda_sheen changes formula at a cosine of 0.5, a kink
+in E) and [0.5, 1], the series in μ^¼ (the first piece) or √μ; r in three pieces, [√10⁻³, 0.1],
+[0.1, 0.3] and [0.3, 1] (E changes fastest at small r), the series in √r; degree 9 in each, the
+interpolant of log(E + 1e-4) at the 10 × 10 Gauss–Chebyshev nodes of the two. E = clamp(exp(series)
+− 1e-4, 0, 1); below μ = 10⁻³ E is E(10⁻³) (E grows as 1/μ toward 0), and r is clamped into [√10⁻³, 1].
+A material whose sheen roughness is a number has the r series summed when its code is generated
+(catalog/sheen.cpp); one whose roughness is an image (sheenRoughnessTexture) sums it at every pixel,
+the same coefficients: the same E either way.
 
 min(·, 1): the integral exceeds 1 at grazing views below a sheen roughness of about 0.3 (the
 visibility fit is not energy conserving there; up to 6 at μ = 10⁻³ and the floor), where the
 scaling 1 − max₃(c) E would turn the base negative; facet's E is min(∫, 1).
 
-Run it (numpy only; a few minutes) after changing the formula: it integrates the table's
-nodes and, independently, a check grid (62 roughnesses × 53 cosines, most of them off the table's
+Run it (numpy only; a few minutes) after changing the formula: it integrates the fit's
+nodes and, independently, a check grid (62 roughnesses × 53 cosines, most of them off the fit's
 rows and nodes), and prints and writes the fit's worst error on the check grid.
 tests/unit/gltf_pbr_test.cpp checks the fit against an integral of its own.
 """
@@ -41,9 +43,10 @@ MU_PIECES = [MU_MIN, 0.15, 0.5, 1.0]
 # Each piece's series is in μ^q: near 0 E has a term in μ^c, c ≈ 0.17–0.2 (the README's l(x)).
 POWERS = [0.25, 0.5, 0.5]
 NODES = 10
-# The table's rows of sheen roughness: every 0.005 up to 0.1 and every 0.01 up to 0.2, where E
-# changes fastest, then every 0.02.
-ROWS = np.concatenate([[R_MIN], np.arange(7, 20) / 200, np.arange(10, 20) / 100, np.arange(10, 51) / 50])
+# The pieces of sheen roughness, each a series in r^R_POWER.
+R_PIECES = [R_MIN, 0.1, 0.3, 1.0]
+R_POWER = 0.5
+R_NODES = 10
 # The check grid, off most of the rows and nodes.
 MUS = np.concatenate([np.linspace(0.001, 0.1, 23), np.linspace(0.11, 1, 30)])
 
@@ -94,46 +97,44 @@ def chebyshev(x, n):
     return out[: n + 1]
 
 
-def gauss_nodes():
-    """x_j = cos(π (j + ½) / N), and each piece's μ at them (μ^q linear in x)."""
-    x = np.cos(np.pi * (np.arange(NODES) + 0.5) / NODES)
-    mus = []
-    for lo, hi, q in zip(MU_PIECES[:-1], MU_PIECES[1:], POWERS):
-        w = lo ** q + (x + 1) / 2 * (hi ** q - lo ** q)
-        mus.append(w ** (1 / q))
-    return x, np.array(mus)
+def gauss_nodes(n=NODES):
+    """x_j = cos(π (j + ½) / n)."""
+    return np.cos(np.pi * (np.arange(n) + 0.5) / n)
 
 
-def coefficients(y):
-    """Chebyshev coefficients a_k of the interpolant through y at the Gauss nodes (a_0 halved)."""
-    k = np.arange(NODES)[:, None]
-    j = np.arange(NODES)[None, :]
-    a = 2 / NODES * (np.cos(np.pi * k * (j + 0.5) / NODES) @ y)
-    a[0] /= 2
+def piece_points(pieces, powers, n):
+    """Each piece's points at the Gauss nodes (the point^q linear in x)."""
+    x = gauss_nodes(n)
+    return np.array([(lo ** q + (x + 1) / 2 * (hi ** q - lo ** q)) ** (1 / q)
+                     for lo, hi, q in zip(pieces[:-1], pieces[1:], powers)])
+
+
+def coefficients(y, axis):
+    """Chebyshev coefficients of the interpolant through y at the Gauss nodes along `axis` (a_0 halved)."""
+    n = y.shape[axis]
+    k = np.arange(n)[:, None]
+    j = np.arange(n)[None, :]
+    a = np.moveaxis(np.tensordot(2 / n * np.cos(np.pi * k * (j + 0.5) / n), y, axes=(1, axis)), 0, axis)
+    first = [slice(None)] * y.ndim
+    first[axis] = 0
+    a[tuple(first)] /= 2
     return a
 
 
-def interpolate_row(table, r):
-    """log(E + ε) at the nodes for sheen roughness r: cubic Lagrange over the four nearest rows."""
-    r = min(max(r, R_MIN), 1.0)
-    i = int(np.clip(np.searchsorted(ROWS, r) - 2, 0, len(ROWS) - 4))
-    xs = ROWS[i:i + 4]
-    out = np.zeros_like(table[0])
-    for a in range(4):
-        w = np.prod([(r - xs[b]) / (xs[a] - xs[b]) for b in range(4) if b != a])
-        out += w * table[i + a]
-    return out
+def argument(v, pieces, powers):
+    """The piece v lies in and v^q mapped onto [−1, 1] there."""
+    p = min(int(np.searchsorted(pieces, v, side="right")) - 1, len(pieces) - 2)
+    q = powers[p]
+    lo, hi = pieces[p] ** q, pieces[p + 1] ** q
+    return p, 2 * (v ** q - lo) / (hi - lo) - 1
 
 
-def fit(table, mu, r):
-    """facet's E(μ, r), as catalog/sheen.cpp computes it."""
-    y = interpolate_row(table, r)
-    mu = max(mu, MU_MIN)
-    p = min(np.searchsorted(MU_PIECES, mu, side="right") - 1, len(MU_PIECES) - 2)
-    q = POWERS[p]
-    lo, hi = MU_PIECES[p] ** q, MU_PIECES[p + 1] ** q
-    x = 2 * (mu ** q - lo) / (hi - lo) - 1
-    s = sum(a * t for a, t in zip(coefficients(y[p]), chebyshev(np.array(x), NODES - 1)))
+def fit(c, mu, r):
+    """facet's E(μ, r), as catalog/sheen.cpp computes it: c[r piece][μ piece][k (μ)][j (r)]."""
+    rp, y = argument(min(max(r, R_MIN), 1.0), R_PIECES, [R_POWER] * (len(R_PIECES) - 1))
+    p, x = argument(max(mu, MU_MIN), MU_PIECES, POWERS)
+    a = c[rp][p] @ np.array(chebyshev(np.array(y), R_NODES - 1))
+    s = a @ np.array(chebyshev(np.array(x), NODES - 1))
     return float(np.clip(np.exp(s) - EPSILON, 0, 1))
 
 
@@ -156,13 +157,15 @@ def main():
     args = ap.parse_args()
     if args.cache:
         args.cache.mkdir(parents=True, exist_ok=True)
-    _, node_mus = gauss_nodes()
+    node_mus = piece_points(MU_PIECES, POWERS, NODES)
+    node_rs = piece_points(R_PIECES, [R_POWER] * (len(R_PIECES) - 1), R_NODES)
 
     def table_integrals():
-        out = np.zeros((len(ROWS),) + node_mus.shape)
-        for i, r in enumerate(ROWS):
-            out[i] = [[albedo(m, r) for m in piece] for piece in node_mus]
-            print(f"  table row r = {r:.4f} ({i + 1}/{len(ROWS)})", file=sys.stderr, flush=True)
+        out = np.zeros(node_rs.shape + node_mus.shape)
+        for i, rows in enumerate(node_rs):
+            for j, r in enumerate(rows):
+                out[i, j] = [[albedo(m, r) for m in piece] for piece in node_mus]
+                print(f"  node r = {r:.4f} ({i * R_NODES + j + 1}/{node_rs.size})", file=sys.stderr, flush=True)
         return out
 
     rs = check_rows()
@@ -174,28 +177,34 @@ def main():
             print(f"  check row r = {r:.4f} ({i + 1}/{len(rs)})", file=sys.stderr, flush=True)
         return out
 
-    table_e = cached(args.cache / "table.npz" if args.cache else None, (len(ROWS),) + node_mus.shape, table_integrals)
+    table_e = cached(args.cache / "nodes.npz" if args.cache else None, node_rs.shape + node_mus.shape, table_integrals)
     check_e = cached(args.cache / "check.npz" if args.cache else None, (len(rs), len(MUS)), check_integrals)
-    table = np.log(table_e + EPSILON)
-    err = np.array([[abs(fit(table, m, r) - min(e, 1)) for m, e in zip(MUS, row)] for r, row in zip(rs, check_e)])
+    # [r piece][r node][μ piece][μ node] → c[r piece][μ piece][k][j].
+    c = coefficients(coefficients(np.log(table_e + EPSILON), axis=1), axis=3).transpose(0, 2, 3, 1)
+    err = np.array([[abs(fit(c, m, r) - min(e, 1)) for m, e in zip(MUS, row)] for r, row in zip(rs, check_e)])
     worst, worst_above = err.max(), err[rs >= 0.1].max()
     i, j = np.unravel_index(err.argmax(), err.shape)
     print(f"worst |fit − min(∫, 1)| on the check grid: {worst:.2e} (at r = {rs[i]:.4f}, μ = {MUS[j]:.3f}); "
           f"{worst_above:.2e} for r ≥ 0.1")
-    rows_text = ",\n".join("    {" + ", ".join("{" + ", ".join(f"{v:.17g}" for v in piece) + "}" for piece in row) + "}"
-                           for row in table)
+    def nested(a):
+        if a.ndim == 1:
+            return "{" + ", ".join(f"{v:.17g}" for v in a) + "}"
+        return "{" + ",\n     ".join(nested(b) for b in a) + "}"
+
     text = f"""// Generated by scripts/fit_sheen_albedo.py; do not edit. log(E + {EPSILON:g}) of KHR_materials_sheen's
-// directional albedo E(μ, r) (Charlie D and visibility, α = max(r², 1e-3)) at {NODES} Gauss–Chebyshev
-// nodes in μ^q of each μ piece (q = kSheenAlbedoPowers), for each row of sheen roughness r. Worst |fit − min(∫, 1)| on a
-// check grid of {len(rs)} roughnesses × {len(MUS)} cosines: {worst:.1e} ({worst_above:.1e} for r ≥ 0.1).
+// directional albedo E(μ, r) (Charlie D and visibility, α = max(r², 1e-3)) as Chebyshev series in
+// μ^q (q = kSheenAlbedoPowers) and r^{R_POWER:g} on pieces of each: coefficient [r piece][μ piece][k][j] of
+// T_k(x(μ)) T_j(y(r)). Worst |fit − min(∫, 1)| on a check grid of {len(rs)} roughnesses × {len(MUS)} cosines:
+// {worst:.1e} ({worst_above:.1e} for r ≥ 0.1).
 inline constexpr int kSheenAlbedoNodes = {NODES};
+inline constexpr int kSheenAlbedoRNodes = {R_NODES};
 inline constexpr double kSheenAlbedoEpsilon = {EPSILON:g};
 inline constexpr double kSheenAlbedoWorstError = {worst:.2e};
 inline constexpr double kSheenAlbedoMuPieces[] = {{{", ".join(f"{p:g}" for p in MU_PIECES)}}};
 inline constexpr double kSheenAlbedoPowers[] = {{{", ".join(f"{q:g}" for q in POWERS)}}};
-inline constexpr double kSheenAlbedoRows[] = {{{", ".join(f"{r:.17g}" for r in ROWS)}}};
-inline constexpr double kSheenAlbedoTable[][{len(MU_PIECES) - 1}][{NODES}] = {{
-{rows_text}}};
+inline constexpr double kSheenAlbedoRPieces[] = {{{", ".join(f"{p:.17g}" for p in R_PIECES)}}};
+inline constexpr double kSheenAlbedoRPower = {R_POWER:g};
+inline constexpr double kSheenAlbedoCoefficients[{len(R_PIECES) - 1}][{len(MU_PIECES) - 1}][{NODES}][{R_NODES}] = {nested(c)};
 """
     args.output.write_text(text)
     print(f"wrote {args.output}")

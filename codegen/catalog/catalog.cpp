@@ -290,10 +290,11 @@ void mark_texturable(std::vector<ModelDef>& all) {
     for (auto& p : m.params) {
       // Toon's width 0 selects the hard step when the code is generated: it stays a number.
       if (m.name == "toon" && p.name == "width") continue;
-      // gltf_pbr folds the sheen albedo's fit for its sheen_roughness and the anisotropy's
-      // rotation into constants (catalog/specular.cpp); max₃ of specular_color and sheen_color
-      // it takes from their sampled values where they are images (LobeContext::max_of).
-      if (m.name == "gltf_pbr" && (p.name == "sheen_roughness" || p.name == "anisotropy_rotation")) continue;
+      // gltf_pbr folds the anisotropy's rotation into constants (catalog/specular.cpp): glTF
+      // gives it no image; max₃ of specular_color and sheen_color it takes from their sampled
+      // values where they are images (LobeContext::max_of), the sheen albedo's fit at a sampled
+      // sheen_roughness it sums at every pixel (gltf_sheen).
+      if (m.name == "gltf_pbr" && p.name == "anisotropy_rotation") continue;
       p.texturable = p.kind == ParamKind::Number || p.kind == ParamKind::Color;
     }
   }

@@ -409,13 +409,25 @@ struct SheenAlbedoPiece {
   std::vector<double> coefficients;
 };
 std::vector<SheenAlbedoPiece> sheen_albedo_pieces(double sheen_roughness);
+// The pieces' coefficients as series in r: on r's piece (r below `r_end`, at or above the
+// previous piece's), a_k of μ piece p = Σ_j c[p][k][j] T_j(y), y = scale·√r + offset, r clamped
+// into [r_min, 1]. sheen_albedo_pieces sums them for a roughness of numbers; a roughness from an
+// image sums them at every pixel (gltf_sheen).
+struct SheenAlbedoRPiece {
+  double r_end = 1, scale = 2, offset = -1;
+  std::vector<std::vector<std::vector<double>>> c;  // [μ piece][k][j]
+};
+std::vector<SheenAlbedoRPiece> sheen_albedo_r_pieces();
+double sheen_albedo_r_min();
 double sheen_albedo(double mu, double sheen_roughness);
 double sheen_albedo_epsilon();
 double sheen_albedo_mu_min();
 double sheen_albedo_worst_error();
 // The constants of KHR_materials_sheen's visibility at α: the README's l(x) = a / (1 + b x^c) +
-// d x + e, each of a … e mixed by (1 − α)², and l(0.5): {a, b, c, d, e, l(0.5)}.
+// d x + e, each of a … e mixed by (1 − α)², and l(0.5): {a, b, c, d, e, l(0.5)}; the (p, q) of
+// each mix(p, q, (1 − α)²), for a lobe that mixes them at every pixel (a roughness from an image).
 std::array<double, 6> sheen_visibility_constants(double alpha);
+std::array<std::pair<double, double>, 5> sheen_l_mix();
 
 // The term functions of the catalog, one per term, each built once. Models
 // compose them; tests and the docs reach them here.

@@ -1,14 +1,17 @@
 // KHR_materials_sheen's terms (README, "Implementation Notes"): the "Charlie" distribution and
 // visibility of Conty & Kulla 2017, and E, the directional albedo the base is scaled by.
-// E is a fit (scripts/fit_sheen_albedo.py; its table sheen_albedo_table.inc holds log(E + ε) at
-// Gauss–Chebyshev nodes for rows of sheen roughness): a material's roughness is interpolated
-// between rows and the series' coefficients computed when its code is generated, so a target
-// evaluates three Chebyshev series in μ^¼ or √μ, one per piece of μ, the same on every target.
+// E is a fit (scripts/fit_sheen_albedo.py; sheen_albedo_table.inc holds its coefficients): log(E + ε)
+// as a Chebyshev series in μ^¼ or √μ, one per piece of μ, whose coefficients are Chebyshev series
+// in √r, one per piece of sheen roughness r. A roughness of numbers has its r series summed when
+// the code is generated (sheen_albedo_pieces), a roughness from an image at every pixel
+// (sheen_albedo_r_pieces, catalog/specular.cpp gltf_sheen): the same E on every target, either way.
 #include <algorithm>
 #include <cmath>
 #include <iterator>
 #include <stdexcept>
 #include <string>
+#include <tuple>
+#include <utility>
 
 #include "catalog/catalog.h"
 #include "core/vec.h"
@@ -29,45 +32,58 @@ std::vector<double> chebyshev(double x, int n) {
   return t;
 }
 
-// log(E + ε) at the nodes of μ piece `piece` for sheen roughness r: cubic Lagrange over the four
-// nearest rows (the script's interpolate_row).
-std::array<double, kSheenAlbedoNodes> row_at(double r, int piece) {
-  const int rows = static_cast<int>(std::size(kSheenAlbedoRows));
-  r = std::clamp(r, kSheenAlbedoRows[0], 1.0);
-  const int above = static_cast<int>(std::lower_bound(kSheenAlbedoRows, kSheenAlbedoRows + rows, r) - kSheenAlbedoRows);
-  const int i = std::clamp(above - 2, 0, rows - 4);
-  std::array<double, kSheenAlbedoNodes> y{};
-  for (int a = 0; a < 4; ++a) {
-    double w = 1;
-    for (int b = 0; b < 4; ++b)
-      if (b != a) w *= (r - kSheenAlbedoRows[i + b]) / (kSheenAlbedoRows[i + a] - kSheenAlbedoRows[i + b]);
-    for (int j = 0; j < kSheenAlbedoNodes; ++j) y[j] += w * kSheenAlbedoTable[i + a][piece][j];
-  }
-  return y;
+constexpr int kRPieces = static_cast<int>(std::size(kSheenAlbedoRPieces)) - 1;
+static_assert(kSheenAlbedoRPower == 0.5, "gltf_sheen sums the r series in √r");
+
+// x = scale·v^q + offset maps [lo^q, hi^q] onto [−1, 1].
+std::pair<double, double> chebyshev_map(double lo, double hi, double q) {
+  const double a = std::pow(lo, q), b = std::pow(hi, q);
+  return {2 / (b - a), -2 * a / (b - a) - 1};
 }
 
 }  // namespace
 
 double sheen_albedo_worst_error() { return kSheenAlbedoWorstError; }
 
+std::vector<SheenAlbedoRPiece> sheen_albedo_r_pieces() {
+  std::vector<SheenAlbedoRPiece> out;
+  for (int rp = 0; rp < kRPieces; ++rp) {
+    SheenAlbedoRPiece piece;
+    piece.r_end = kSheenAlbedoRPieces[rp + 1];
+    std::tie(piece.scale, piece.offset) =
+        chebyshev_map(kSheenAlbedoRPieces[rp], piece.r_end, kSheenAlbedoRPower);
+    for (const auto& mu_piece : kSheenAlbedoCoefficients[rp]) {
+      std::vector<std::vector<double>> c;
+      for (const auto& k : mu_piece) c.emplace_back(std::begin(k), std::end(k));
+      piece.c.push_back(std::move(c));
+    }
+    out.push_back(std::move(piece));
+  }
+  return out;
+}
+
+double sheen_albedo_r_min() { return kSheenAlbedoRPieces[0]; }
+
 std::vector<SheenAlbedoPiece> sheen_albedo_pieces(double sheen_roughness) {
+  // The r series at r: its piece, y on [−1, 1], T_j(y).
+  const std::vector<SheenAlbedoRPiece> r_pieces = sheen_albedo_r_pieces();
+  const double r = std::clamp(sheen_roughness, sheen_albedo_r_min(), 1.0);
+  size_t rp = 0;
+  while (rp + 1 < r_pieces.size() && r >= r_pieces[rp].r_end) ++rp;
+  const std::vector<double> t =
+      chebyshev(r_pieces[rp].scale * std::pow(r, kSheenAlbedoRPower) + r_pieces[rp].offset, kSheenAlbedoRNodes - 1);
   std::vector<SheenAlbedoPiece> out;
-  const double n = kSheenAlbedoNodes;
   for (int p = 0; p < kMuPieces; ++p) {
     SheenAlbedoPiece piece;
     piece.mu_end = kSheenAlbedoMuPieces[p + 1];
     piece.power = kSheenAlbedoPowers[p];
     // The lobe takes m^q as √m or √√m (catalog/specular.cpp, gltf_sheen).
     if (piece.power != 0.5 && piece.power != 0.25) throw std::logic_error("sheen albedo: a piece's power is not ½ or ¼");
-    const double lo = std::pow(kSheenAlbedoMuPieces[p], piece.power), hi = std::pow(piece.mu_end, piece.power);
-    piece.scale = 2 / (hi - lo);
-    piece.offset = -2 * lo / (hi - lo) - 1;
-    const auto y = row_at(sheen_roughness, p);
-    // The interpolant through the Gauss nodes: a_k = (2/N) Σ_j y_j cos(π k (j + ½) / N), a_0 halved.
-    for (int k = 0; k < kSheenAlbedoNodes; ++k) {
+    std::tie(piece.scale, piece.offset) = chebyshev_map(kSheenAlbedoMuPieces[p], piece.mu_end, piece.power);
+    for (const std::vector<double>& c : r_pieces[rp].c[p]) {
       double a = 0;
-      for (int j = 0; j < kSheenAlbedoNodes; ++j) a += y[j] * std::cos(kPi * k * (j + 0.5) / n);
-      piece.coefficients.push_back((k == 0 ? 1 : 2) * a / n);
+      for (int j = 0; j < kSheenAlbedoRNodes; ++j) a += c[j] * t[j];
+      piece.coefficients.push_back(a);
     }
     out.push_back(piece);
   }
@@ -89,13 +105,18 @@ double sheen_albedo(double mu, double sheen_roughness) {
   return std::clamp(std::exp(s) - kSheenAlbedoEpsilon, 0.0, 1.0);
 }
 
+std::array<std::pair<double, double>, 5> sheen_l_mix() {
+  // The README's l(x, alpha_g): a … e, each mix(p, q, (1 − α)²).
+  return {{{21.5473, 25.3245}, {3.82987, 3.32435}, {0.19823, 0.16801}, {-1.97760, -1.27393}, {-4.32054, -4.85967}}};
+}
+
 std::array<double, 6> sheen_visibility_constants(double alpha) {
-  // The README's l(x, alpha_g): each of a … e is mix(p, q, (1 − α)²).
   const double t = (1 - alpha) * (1 - alpha);
-  auto mix = [t](double p, double q) { return p + (q - p) * t; };
-  const double a = mix(21.5473, 25.3245), b = mix(3.82987, 3.32435), c = mix(0.19823, 0.16801),
-               d = mix(-1.97760, -1.27393), e = mix(-4.32054, -4.85967);
-  return {a, b, c, d, e, a / (1 + b * std::pow(0.5, c)) + d * 0.5 + e};
+  std::array<double, 6> k{};
+  const auto pq = sheen_l_mix();
+  for (size_t i = 0; i < pq.size(); ++i) k[i] = pq[i].first + (pq[i].second - pq[i].first) * t;
+  k[5] = k[0] / (1 + k[1] * std::pow(0.5, k[2])) + k[3] * 0.5 + k[4];
+  return k;
 }
 
 namespace terms {

@@ -186,39 +186,102 @@ ir::Expr gltf_core(LobeContext& c) {
   return ir::call(terms::mix_by(metal.type()), {dielectric, metal, c.number("metallic")});
 }
 
+// What the sheen's terms take of its roughness r: α = max(r², 1e-3), the visibility's l()
+// coefficients a … e and l(0.5), and E's series coefficients [μ piece][k].
+struct SheenConstants {
+  ir::Expr alpha = 0.0;
+  std::vector<ir::Expr> l;
+  std::vector<std::vector<ir::Expr>> e;
+};
+
+// r a number: every one a constant of the material, folded when the code is generated.
+SheenConstants sheen_folded(LobeContext& c) {
+  const double r = c.spec().at("sheen_roughness").number;
+  const double alpha = std::max(r * r, kRoughnessMin);
+  SheenConstants k;
+  k.alpha = ir::constant(c.lobe() + "_sheen_alpha", alpha);
+  const std::array<double, 6> l = sheen_visibility_constants(alpha);
+  const char* l_names[] = {"a", "b", "c", "d", "e", "l_half"};
+  for (size_t i = 0; i < l.size(); ++i) k.l.push_back(ir::constant(c.lobe() + "_sheen_l_" + l_names[i], l[i]));
+  const std::vector<SheenAlbedoPiece> pieces = sheen_albedo_pieces(r);
+  for (size_t p = 0; p < pieces.size(); ++p) {
+    k.e.emplace_back();
+    for (size_t i = 0; i < pieces[p].coefficients.size(); ++i)
+      k.e[p].push_back(ir::constant(c.lobe() + "_sheen_e" + std::to_string(p) + "_" + std::to_string(i),
+                                    pieces[p].coefficients[i]));
+  }
+  return k;
+}
+
+// r from an image (sheenRoughnessTexture): the same quantities at every pixel, the README's mixes
+// of l()'s coefficients and the fit's series in √r (sheen_albedo_r_pieces) summed as
+// sheen_albedo_pieces sums them for a number: E is the same function of r either way.
+SheenConstants sheen_per_pixel(LobeContext& c) {
+  SheenConstants k;
+  ir::Expr r = c.let("sheen_r", ir::clamp(c.parameter(c.spec(), "sheen_roughness", c.lobe() + "_sheen_roughness"),
+                                          sheen_albedo_r_min(), 1.0));
+  k.alpha = c.let("sheen_alpha", ir::max(r * r, kRoughnessMin));
+  ir::Expr t = c.let("sheen_t", (1.0 - k.alpha) * (1.0 - k.alpha));
+  const char* l_names[] = {"a", "b", "c", "d", "e"};
+  const auto pq = sheen_l_mix();
+  for (size_t i = 0; i < pq.size(); ++i)
+    k.l.push_back(c.let(std::string("sheen_l_") + l_names[i], pq[i].first + (pq[i].second - pq[i].first) * t));
+  k.l.push_back(c.let("sheen_l_half", k.l[0] / (1.0 + k.l[1] * ir::pow(ir::Expr(0.5), k.l[2])) + k.l[3] * 0.5 + k.l[4]));
+  const std::vector<SheenAlbedoRPiece> pieces = sheen_albedo_r_pieces();
+  auto pick = [&](const std::function<double(const SheenAlbedoRPiece&)>& of) {
+    ir::Expr out = of(pieces.back());
+    for (size_t p = pieces.size() - 1; p-- > 0;) out = ir::select(r < pieces[p].r_end, ir::Expr(of(pieces[p])), out);
+    return out;
+  };
+  // T_j(y), y = √r mapped onto [−1, 1] on r's piece.
+  ir::Expr y = c.let("sheen_r_y", ir::sqrt(r) * pick([](const SheenAlbedoRPiece& p) { return p.scale; }) +
+                                      pick([](const SheenAlbedoRPiece& p) { return p.offset; }));
+  std::vector<ir::Expr> T{1.0, y};
+  for (size_t j = 2; j < pieces[0].c[0][0].size(); ++j)
+    T.push_back(c.let("sheen_r_T" + std::to_string(j), 2.0 * y * T[j - 1] - T[j - 2]));
+  for (size_t mu = 0; mu < pieces[0].c.size(); ++mu) {
+    k.e.emplace_back();
+    for (size_t i = 0; i < pieces[0].c[mu].size(); ++i) {
+      // One sum per piece of r, the piece's chosen: two selects a coefficient, not one a term.
+      auto sum = [&](const SheenAlbedoRPiece& p) {
+        ir::Expr a = p.c[mu][i][0];
+        for (size_t j = 1; j < T.size(); ++j) a = a + p.c[mu][i][j] * T[j];
+        return a;
+      };
+      ir::Expr a = sum(pieces.back());
+      for (size_t p = pieces.size() - 1; p-- > 0;) a = ir::select(r < pieces[p].r_end, sum(pieces[p]), a);
+      k.e[mu].push_back(c.let("sheen_e" + std::to_string(mu) + "_" + std::to_string(i), a));
+    }
+  }
+  return k;
+}
+
 // KHR_materials_sheen, "Sheen" and "Implementation Notes": sheen_material = sheenColor ⊗
 // sheen_brdf + material · min(1 − max₃(sheenColor) E(n·v), 1 − max₃(sheenColor) E(n·l)), the
 // sheen BRDF the "Charlie" D and visibility of α = sheenRoughness² (floored like the GGX α), the
 // albedo scaling the reciprocal one the README writes first, not its view-only shortcut. E is
-// the fit of catalog/sheen.cpp, its coefficients folded here for the material's roughness. A
+// the fit of catalog/sheen.cpp, its coefficients folded for a roughness of numbers (sheen_folded),
+// summed at every pixel for sheenRoughnessTexture's (sheen_per_pixel). A
 // sheen colour of 0 (every material without the extension) leaves the core as it is: "If
 // sheenColorFactor is zero, the whole sheen layer is disabled."
 ir::Expr gltf_sheen(LobeContext& c, ir::Expr core) {
   const std::array<double, 3>& color = c.spec().at("sheen_color").rgb;  // the factor, where it is an image
   const double color_max = std::max({color[0], color[1], color[2]});
   if (color_max == 0) return core;
-  const double r = c.spec().at("sheen_roughness").number;
-  const double alpha_value = std::max(r * r, kRoughnessMin);
-  ir::Expr alpha = ir::constant(c.lobe() + "_sheen_alpha", alpha_value);
-  ir::Expr D = c.let("sheen_D", ir::call(terms::distribution_charlie(), {c.NoH(), alpha}));
-  // The visibility's l() coefficients and l(0.5) depend on α alone: constants of the material.
+  const SheenConstants k = c.textured(c.spec(), "sheen_roughness") ? sheen_per_pixel(c) : sheen_folded(c);
+  ir::Expr D = c.let("sheen_D", ir::call(terms::distribution_charlie(), {c.NoH(), k.alpha}));
   std::vector<ir::Expr> v_args{c.NoL(), c.NoV()};
-  const std::array<double, 6> k = sheen_visibility_constants(alpha_value);
-  const char* k_names[] = {"a", "b", "c", "d", "e", "l_half"};
-  for (size_t i = 0; i < k.size(); ++i) v_args.push_back(ir::constant(c.lobe() + "_sheen_l_" + k_names[i], k[i]));
+  v_args.insert(v_args.end(), k.l.begin(), k.l.end());
   ir::Expr V = c.let("sheen_V", ir::call(terms::visibility_charlie(), v_args));
   ir::Expr brdf = c.let("sheen_brdf", kPi * D * V * c.NoL());
   // E at n·v and at n·l: the piece of μ chooses its series' coefficients and argument, then one
-  // series is summed; the coefficients are constants of the material.
-  const std::vector<SheenAlbedoPiece> pieces = sheen_albedo_pieces(r);
-  std::vector<std::vector<ir::Expr>> coefficient(pieces.size());
+  // series is summed.
+  const std::vector<SheenAlbedoPiece> pieces = sheen_albedo_pieces(0);  // the μ pieces' bounds and maps
   std::vector<ir::Expr> scale, offset;
   for (size_t p = 0; p < pieces.size(); ++p) {
     const std::string piece = c.lobe() + "_sheen_e" + std::to_string(p);
     scale.push_back(ir::constant(piece + "_scale", pieces[p].scale));
     offset.push_back(ir::constant(piece + "_offset", pieces[p].offset));
-    for (size_t i = 0; i < pieces[p].coefficients.size(); ++i)
-      coefficient[p].push_back(ir::constant(piece + "_" + std::to_string(i), pieces[p].coefficients[i]));
   }
   auto albedo = [&](const ir::Expr& mu, const std::string& name) {
     // m = max(μ, mu_min); √m, and √√m for a piece in m^¼.
@@ -232,7 +295,7 @@ ir::Expr gltf_sheen(LobeContext& c, ir::Expr core) {
     std::vector<ir::Expr> args{c.let(name + "_x", pick([&](size_t p) {
       return (pieces[p].power == 0.25 ? u4 : u) * scale[p] + offset[p];
     }))};
-    for (size_t i = 0; i < coefficient[0].size(); ++i) args.push_back(pick([&](size_t p) { return coefficient[p][i]; }));
+    for (size_t i = 0; i < k.e[0].size(); ++i) args.push_back(pick([&](size_t p) { return k.e[p][i]; }));
     ir::Expr s = c.let(name + "_s", ir::call(terms::sheen_albedo_series(), args));
     return c.let(name, ir::clamp(ir::exp(s) - sheen_albedo_epsilon(), 0.0, 1.0));
   };
@@ -577,8 +640,8 @@ void add_specular(std::vector<ModelDef>& all) {
               "rgb (sRGB) times it",
               Range::closed(0, 1), {0, 0, 0}),
         number("sheen_roughness",
-               "KHR_materials_sheen sheenRoughnessFactor; the sheen's α = sheen_roughness², at least 1e-3 (not an "
-               "image: its albedo's fit is folded for it when the code is generated)",
+               "KHR_materials_sheen sheenRoughnessFactor; the sheen's α = sheen_roughness², at least 1e-3; an "
+               "image's: sheenRoughnessTexture's alpha times it",
                Range::closed(0, 1), 0, false)};
     m.cycles = approximate("principled_bsdf: its dielectric is energy-compensated, not Appendix B's fresnel_mix");
     m.pov = none(kMicrofacetPov);

@@ -26,6 +26,11 @@ struct Interpreter::Impl {
     int callee = -1;  // Call
     std::vector<int> args;
   };
+  // A function's parameters and let-bindings, each a slot of its frame on the stack: glTF's
+  // sheen with a roughness from an image binds about a hundred (catalog/specular.cpp,
+  // sheen_per_pixel).
+  static constexpr int kFrameSlots = 256;
+
   struct CFunction {
     std::vector<CNode> nodes;
     std::vector<std::pair<int, int>> lets;  // (slot, root)
@@ -59,6 +64,9 @@ struct Interpreter::Impl {
       cf.lets.emplace_back(slots[l.name], root);
     }
     cf.result = flatten(f.result.node());
+    if (cf.slots > kFrameSlots)
+      throw std::logic_error("facet reference: " + f.name + " has " + std::to_string(cf.slots) + " slots, more than " +
+                             std::to_string(kFrameSlots));
     functions.push_back(std::move(cf));
     int id = int(functions.size() - 1);
     index[&f] = id;
@@ -67,8 +75,7 @@ struct Interpreter::Impl {
 
   RGB run(int fid, const RGB* args) const {
     const CFunction& f = functions[fid];
-    RGB frame[64];
-    if (f.slots > 64) throw std::logic_error("facet reference: function frame too large");
+    RGB frame[kFrameSlots];
     for (int i = 0; i < f.params; ++i) frame[i] = args[i];
     for (const auto& [slot, root] : f.lets) frame[slot] = eval(f, root, frame);
     return eval(f, f.result, frame);
@@ -130,7 +137,7 @@ struct Interpreter::Impl {
       case Op::Step: return lanes2(arg(0), arg(1), [](double e, double x) { return x >= e ? 1.0 : 0.0; });
       case Op::Select: return test(f, n.args[0], frame) ? arg(1) : arg(2);
       case Op::Call: {
-        RGB args[64];
+        RGB args[kFrameSlots];
         for (size_t k = 0; k < n.args.size(); ++k) args[k] = eval(f, n.args[k], frame);
         return run(n.callee, args);
       }

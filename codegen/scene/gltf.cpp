@@ -811,6 +811,7 @@ class Exporter {
                                    map(s.at("specular"), "a", "linear", "specular"),
                                    map(s.at("specular_color"), "rgb", "srgb", "specular colour"),
                                    map(s.at("sheen_color"), "rgb", "srgb", "sheen colour"),
+                                   map(s.at("sheen_roughness"), "a", "linear", "sheen roughness"),
                                    map(s.at("clearcoat"), "r", "linear", "clear coat"),
                                    map(s.at("clearcoat_roughness"), "g", "linear", "clear coat roughness")})
       if (!why.empty()) return why;
@@ -899,6 +900,8 @@ class Exporter {
       ext["sheenColorFactor"] = rgb_value(sheen.rgb);
       ext["sheenRoughnessFactor"] = tinygltf::Value(s.at("sheen_roughness").number);
       if (sheen.texture) ext["sheenColorTexture"] = extension_texture_info(*sheen.texture);
+      if (const Value& r = s.at("sheen_roughness"); r.texture)
+        ext["sheenRoughnessTexture"] = extension_texture_info(*r.texture);
       g.extensions["KHR_materials_sheen"] = tinygltf::Value(ext);
       used_.insert("KHR_materials_sheen");
     }

@@ -241,16 +241,14 @@ void specular_extension(const json& spec, json& lobe, GltfImages& images, const 
 }
 
 // KHR_materials_sheen ("Sheen"): sheen_color = sheenColorFactor × sheenColorTexture's rgb (sRGB),
-// sheen_roughness = sheenRoughnessFactor. The lobe folds the albedo's fit at the roughness when the
-// code is generated: sheenRoughnessTexture is not read, a note says so.
+// sheen_roughness = sheenRoughnessFactor × sheenRoughnessTexture's A ("sheenRoughness =
+// sheenRoughnessFactor * sample(sheenRoughnessTexture).a").
 void sheen_extension(const json& sheen, json& lobe, GltfImages& images, const std::string& key,
-                     std::vector<std::pair<int, std::string>>& sets, std::vector<std::string>& notes) {
+                     std::vector<std::pair<int, std::string>>& sets) {
   color_and_texture(sheen, "sheenColorFactor", {0, 0, 0}, 1, "sheenColorTexture", "sheen_color", lobe, images, key,
                     sets);
-  lobe["sheen_roughness"] = extension_number(images, sheen, "sheenRoughnessFactor", 0, 0, 1, key);
-  if (sheen.contains("sheenRoughnessTexture"))
-    notes.push_back(key + ".sheenRoughnessTexture: approximate: not read (facet's gltf_pbr folds the sheen's albedo "
-                          "fit for a roughness of numbers); sheenRoughnessFactor alone is used");
+  factor_and_texture(sheen, "sheenRoughnessFactor", 0, "sheenRoughnessTexture", "a", "sheen_roughness", lobe, images,
+                     key, sets);
 }
 
 // KHR_materials_clearcoat ("Clearcoat"): clearcoat = clearcoatFactor × clearcoatTexture's R,
@@ -330,7 +328,7 @@ void anisotropy_extension(const json& aniso, bool normal_mapped, json& lobe, Glt
 // (ior), KHR_materials_specular (specularFactor times specularTexture's A; specularColorFactor),
 // KHR_materials_sheen (its factors) and KHR_materials_clearcoat.
 json gltf_pbr_lobe(const tinygltf::Material& g, const Pbr& p, GltfImages& images, const std::string& mpath,
-                   std::vector<std::pair<int, std::string>>& sets, std::vector<std::string>& notes) {
+                   std::vector<std::pair<int, std::string>>& sets) {
   json lobe = {{"model", "gltf_pbr"}};
   lobe["base_color"] = times_vertex_color(p, p.base_map ? texture_value(*p.base_map, "rgb", "srgb", p.base) : json(p.base));
   lobe["metallic"] = p.mr_map ? texture_value(*p.mr_map, "b", "linear", p.metal) : json(p.metal);
@@ -350,7 +348,7 @@ json gltf_pbr_lobe(const tinygltf::Material& g, const Pbr& p, GltfImages& images
     anisotropy_extension(aniso, g.normalTexture.index >= 0, lobe, images, mpath + ".extensions.KHR_materials_anisotropy",
                          sets);
   const json sheen = extension_of(g.extensions_json_string, "KHR_materials_sheen");
-  if (sheen.is_object()) sheen_extension(sheen, lobe, images, mpath + ".extensions.KHR_materials_sheen", sets, notes);
+  if (sheen.is_object()) sheen_extension(sheen, lobe, images, mpath + ".extensions.KHR_materials_sheen", sets);
   const json coat = extension_of(g.extensions_json_string, "KHR_materials_clearcoat");
   if (coat.is_object())
     clearcoat_extension(coat, lobe, images, mpath + ".extensions.KHR_materials_clearcoat", sets);
@@ -404,7 +402,7 @@ json pbr_material(const tinygltf::Material& g, const std::string& mpath, GltfIma
     notes.push_back(fmt::format("{}.name \"{}\" {}: made one line, a stand-in for each such character", mpath,
                                 one_line(g.name), describe(*b)));
   json m = {{"name", one_line(g.name.empty() ? mpath : g.name) + (vertex_colors ? " (COLOR_0)" : "")}};
-  m["specular"] = gltf_pbr_lobe(g, p, images, mpath, sets, notes);
+  m["specular"] = gltf_pbr_lobe(g, p, images, mpath, sets);
   auto e = rgb3(g.emissiveFactor, 0);
   json strength = extension_of(g.extensions_json_string, "KHR_materials_emissive_strength");
   double k = strength.is_object() ? strength.value("emissiveStrength", 1.0) : 1.0;

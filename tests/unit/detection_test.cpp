@@ -878,28 +878,35 @@ TEST(Detection, AnisotropyFailsOffTheMeshFrameOrWithoutItsTexture) {
 
 // max₃ of a textured colour (KHR_materials_specular's specularColorTexture: max₃(F) weights the
 // base; KHR_materials_sheen's sheenColorTexture: max₃(sheenColor) scales the layers under the
-// sheen), derived from the sampled colour on every target (TexturedInput::max_of): taken as the
-// factor's max instead, as facet did with a colour of numbers, it fails on the GLSL, OSL and
-// POV-Ray routes, while the generated code passes. examples/textured/textured_specular_sheen.json.
-TEST(Detection, MaxOfATexturedColourFailsAsItsFactors) {
-  const char *specular = "max(specular_color) as its factor's", *sheen = "max(sheen_color) as its factor's";
+// sheen), derived from the sampled colour on every target (TexturedInput::max_of), and the sheen's
+// roughness from sheenRoughnessTexture (its D, V and E at every pixel: gltf_sheen's
+// sheen_per_pixel): each taken as its factor instead, as facet did with values of numbers, fails
+// on the GLSL, OSL and POV-Ray routes, while the generated code passes.
+// examples/textured/textured_specular_sheen.json.
+TEST(Detection, SpecularAndSheenImagesFailAsTheirFactors) {
+  const char *specular = "max(specular_color) as its factor's", *sheen = "max(sheen_color) as its factor's",
+             *roughness = "sheen_roughness as its factor";
+  const std::string sheen_r = "float sheen_r = clamp(specular_sheen_roughness,";
   check_routes("textured_specular_sheen", "single",
                {{{specular, "specular_specular_color_max = max(max(specular_specular_color.x, specular_specular_color.y), "
                             "specular_specular_color.z);",
                   "specular_specular_color_max = 1.6;"},
                  {sheen, "specular_sheen_color_max = max(max(specular_sheen_color.x, specular_sheen_color.y), "
                          "specular_sheen_color.z);",
-                  "specular_sheen_color_max = 0.9;"}},
+                  "specular_sheen_color_max = 0.9;"},
+                 {roughness, sheen_r, "float sheen_r = clamp(0.9,"}},
                 once},
                {{{specular, "float specular_specular_color_max = max(max(specular_specular_color[0], "
                             "specular_specular_color[1]), specular_specular_color[2]);",
                   "float specular_specular_color_max = 1.6;"},
                  {sheen, "float specular_sheen_color_max = max(max(specular_sheen_color[0], specular_sheen_color[1]), "
                          "specular_sheen_color[2]);",
-                  "float specular_sheen_color_max = 0.9;"}},
+                  "float specular_sheen_color_max = 0.9;"},
+                 {roughness, sheen_r, "float sheen_r = clamp(0.9,"}},
                 once},
                {{{specular, "Facet_Sample_specular_specular_color_max(S0, T0)", "1.6"},
-                 {sheen, "Facet_Sample_specular_sheen_color_max(S0, T0)", "0.9"}},
+                 {sheen, "Facet_Sample_specular_sheen_color_max(S0, T0)", "0.9"},
+                 {roughness, "Facet_Sample_specular_sheen_roughness(S0, T0)", "0.9"}},
                 all});
 }
 

@@ -286,11 +286,14 @@ TEST(GltfPbr, KhrMaterialsSpecular) {
     }
 }
 
-// specularColorTexture and sheenColorTexture (KHR_materials_specular, KHR_materials_sheen: the
-// factor times the texture's rgb, sRGB): max₃ of the sampled colour enters max₃(F) and the sheen's
-// albedo scaling. At random texture coordinates the reference samples both colours (and derives
-// their max₃: TexturedInput::max_of); the specification's BRDF of those colours is its reflectance.
-TEST(GltfPbr, SpecularAndSheenColourTextures) {
+// specularColorTexture, sheenColorTexture and sheenRoughnessTexture (KHR_materials_specular,
+// KHR_materials_sheen: the factor times the texture's rgb, sRGB; sheenRoughnessFactor times the
+// texture's alpha): max₃ of the sampled colour enters max₃(F) and the sheen's albedo scaling, the
+// sampled roughness the sheen's D, V and E (E's fit summed at the pixel, catalog/specular.cpp
+// sheen_per_pixel). At random texture coordinates the reference samples all three (and derives
+// the colours' max₃: TexturedInput::max_of); the specification's BRDF of those values, with E
+// folded for the sampled roughness (sheen_albedo), is its reflectance.
+TEST(GltfPbr, SpecularAndSheenTextures) {
   Params p;
   p.base = {0.25, 0.3, 0.6};
   p.metallic = 0.3;
@@ -302,6 +305,7 @@ TEST(GltfPbr, SpecularAndSheenColourTextures) {
   json doc = material_json(p);
   doc["specular"]["specular_color"] = {{"texture", "checker.png"}, {"colorspace", "srgb"}, {"factor", {1.6, 1.2, 0.8}}};
   doc["specular"]["sheen_color"] = {{"texture", "metal_roughness.png"}, {"colorspace", "srgb"}, {"factor", {0.5, 0.9, 0.7}}};
+  doc["specular"]["sheen_roughness"] = {{"texture", "leaf.png"}, {"channel", "a"}, {"factor", 0.9}};
   const std::filesystem::path textures = std::filesystem::path(FACET_SOURCE_DIR) / "examples/textured/textures";
   Material m = parse_material(doc, (textures / "tinted.json").string(), textures.string());
   Reference ref(m);
@@ -311,13 +315,15 @@ TEST(GltfPbr, SpecularAndSheenColourTextures) {
     EXPECT_NE(it, t.end()) << name;
     return size_t(it - t.begin());
   };
-  const size_t tint = index_of("specular_specular_color"), sheen = index_of("specular_sheen_color");
+  const size_t tint = index_of("specular_specular_color"), sheen = index_of("specular_sheen_color"),
+               sheen_roughness = index_of("specular_sheen_roughness");
   index_of("specular_specular_color_max");
   index_of("specular_sheen_color_max");
   std::mt19937_64 rng(23);
   std::uniform_real_distribution<double> u(0, 1);
   double worst = 0;
   std::set<double> tint_maxima;
+  std::array<int, 3> r_pieces{};  // sampled roughnesses in each piece of E's fit: [floor, 0.1), [0.1, 0.3), [0.3, 1]
   for (const auto& d : direction_sets(29, 3000)) {
     ShadingInputs in = shading_inputs(d.n, d.l, d.v, tangent_of(d.n));
     const std::array<double, 2> st = {u(rng), u(rng)};
@@ -325,7 +331,9 @@ TEST(GltfPbr, SpecularAndSheenColourTextures) {
     Params q = p;
     q.specular_color = in.textured[tint];
     q.sheen_color = in.textured[sheen];
+    q.sheen_roughness = in.textured[sheen_roughness][0];
     tint_maxima.insert(max_value(q.specular_color));
+    ++r_pieces[q.sheen_roughness < 0.1 ? 0 : q.sheen_roughness < 0.3 ? 1 : 2];
     const RGB got = ref.reflectance(in);
     const RGB want = gltf_brdf(q, d.n, d.l, d.v);
     for (int c = 0; c < 3; ++c) {
@@ -335,7 +343,8 @@ TEST(GltfPbr, SpecularAndSheenColourTextures) {
   }
   EXPECT_LE(worst, kRelTol);
   EXPECT_GT(tint_maxima.size(), 100u) << "the texture's colours must vary";
-  std::printf("specular and sheen colours from images: worst relative error %.2e\n", worst);
+  for (int n : r_pieces) EXPECT_GT(n, 100) << "the sheen roughness must reach every piece of E's fit";
+  std::printf("specular and sheen colours and sheen roughness from images: worst relative error %.2e\n", worst);
 }
 
 // A near miss of the coat: its Fresnel of v·h (as the core's), where the README takes |n·v|.

@@ -258,7 +258,7 @@ TEST(Gltf, GltfBrdfExportsAsItsFactorsMapsAndExtensions) {
                      {"clearcoat", {{"texture", "textures/leaf.png"}, {"channel", "r"}, {"factor", 0.8}}},
                      {"clearcoat_roughness", 0.3},
                      {"sheen_color", {{"texture", "textures/leaf.png"}, {"colorspace", "srgb"}, {"factor", {0.6, 0.5, 0.4}}}},
-                     {"sheen_roughness", 0.45},
+                     {"sheen_roughness", {{"texture", "textures/leaf.png"}, {"channel", "a"}, {"factor", 0.45}}},
                      {"anisotropy_strength", {{"texture", "textures/leaf.png"}, {"channel", "b"}, {"factor", 0.5}}},
                      {"anisotropy_direction_x", {{"texture", "textures/leaf.png"}, {"channel", "r"}}},
                      {"anisotropy_direction_y", {{"texture", "textures/leaf.png"}, {"channel", "g"}}},
@@ -281,6 +281,7 @@ TEST(Gltf, GltfBrdfExportsAsItsFactorsMapsAndExtensions) {
   EXPECT_TRUE(g["extensions"]["KHR_materials_specular"].contains("specularTexture"));
   EXPECT_TRUE(g["extensions"]["KHR_materials_specular"].contains("specularColorTexture"));
   EXPECT_TRUE(g["extensions"]["KHR_materials_sheen"].contains("sheenColorTexture"));
+  EXPECT_TRUE(g["extensions"]["KHR_materials_sheen"].contains("sheenRoughnessTexture"));
   EXPECT_EQ(g["extensions"]["KHR_materials_clearcoat"]["clearcoatFactor"], 0.8);
   EXPECT_EQ(g["extensions"]["KHR_materials_clearcoat"]["clearcoatRoughnessFactor"], 0.3);
   EXPECT_TRUE(g["extensions"]["KHR_materials_clearcoat"].contains("clearcoatTexture"));
@@ -303,7 +304,8 @@ TEST(Gltf, GltfBrdfExportsAsItsFactorsMapsAndExtensions) {
   const ModelSpec& now = *back.materials.begin()->second.specular;
   json a = to_json(m)["specular"], b = to_json(back.materials.begin()->second)["specular"];
   for (const char* p : {"base_color", "metallic", "roughness", "specular", "clearcoat", "anisotropy_strength",
-                        "anisotropy_direction_x", "anisotropy_direction_y", "specular_color", "sheen_color"}) {
+                        "anisotropy_direction_x", "anisotropy_direction_y", "specular_color", "sheen_color",
+                        "sheen_roughness"}) {
     EXPECT_EQ(now.at(p).texture->texels->rgba, m.specular->at(p).texture->texels->rgba) << p;
     a[p].erase("texture");
     b[p].erase("texture");
@@ -850,11 +852,11 @@ TEST(GltfTextures, ClearcoatIsReadWithItsMapsAndItsLimitsSaid) {
 }
 
 // KHR_materials_sheen ("Sheen"): sheen_color = sheenColorFactor × sheenColorTexture's rgb (sRGB),
-// sheen_roughness = sheenRoughnessFactor; sheenRoughnessTexture, which the lobe does not take, is
-// named in a note; the extension may be required (facet reads it as its README says); a colour
-// out of [0, 1] is refused naming its key. KHR_materials_specular's specularColorTexture is read
-// the same way (factor × rgb, sRGB).
-TEST(GltfTextures, SheenIsReadAndItsTexturesNamed) {
+// sheen_roughness = sheenRoughnessFactor × sheenRoughnessTexture's alpha ("sheenRoughness =
+// sheenRoughnessFactor * sample(sheenRoughnessTexture).a"), no note left for either; the extension
+// may be required (facet reads it as its README says); a colour out of [0, 1] is refused naming
+// its key. KHR_materials_specular's specularColorTexture is read the same way (factor × rgb, sRGB).
+TEST(GltfTextures, SheenIsReadWithItsTextures) {
   json g = textured_triangle(json::array({data_uri_image(small_png())}));
   json& gm = g["materials"][0];
   gm["extensions"] = {{"KHR_materials_sheen", {{"sheenColorFactor", {0.9, 0.5, 0.3}}, {"sheenRoughnessFactor", 0.4}}}};
@@ -882,11 +884,12 @@ TEST(GltfTextures, SheenIsReadAndItsTexturesNamed) {
     EXPECT_EQ(v.texture->colorspace, "srgb") << param;
     EXPECT_EQ(v.rgb, factor) << param;
   }
-  int said = 0;
-  for (const auto& n : notes)
-    said += (n.find("sheenColorTexture") != std::string::npos) + (n.find("specularColorTexture") != std::string::npos) +
-            2 * (n.find("sheenRoughnessTexture: approximate") != std::string::npos);
-  EXPECT_EQ(said, 2) << "sheenRoughnessTexture alone is named";
+  const Value& roughness = textured.at("sheen_roughness");
+  ASSERT_TRUE(roughness.texture);
+  EXPECT_EQ(roughness.texture->channel, "a");
+  EXPECT_EQ(roughness.texture->colorspace, "linear");
+  EXPECT_EQ(roughness.number, 0.4);
+  for (const auto& n : notes) EXPECT_EQ(n.find("Texture"), std::string::npos) << "every texture is read: " << n;
   gm["extensions"]["KHR_materials_sheen"]["sheenColorFactor"] = {0.9, 1.5, 0.3};
   try {
     import_gltf(write_gltf("sheen_bad.gltf", g).string(), {}, notes);

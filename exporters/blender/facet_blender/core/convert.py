@@ -21,7 +21,7 @@ radiance as Cycles for a point or sun light of radius 0 (see scene.py for the un
 |   Roughness below 0.0316                  | roughness as typed; α = roughness² is floored at 1e-3 | approximate (a warning, never an error) |
 |   Emission (× Strength)                   | emission                                            | exact |
 |   Coat Weight, Coat Roughness (4.x)       | clearcoat, clearcoat_roughness (KHR_materials_clearcoat) | Coat IOR other than 1.5, Coat Tint, Coat Normal: named in a warning |
-|   Sheen Weight, Sheen Tint, Sheen Roughness (4.x) | sheen_color = Weight × Tint, an image on it too (sheenColorTexture), sheen_roughness (KHR_materials_sheen) | an image on Sheen Roughness: named in a warning |
+|   Sheen Weight, Sheen Tint, Sheen Roughness (4.x) | sheen_color = Weight × Tint, an image on it too (sheenColorTexture), sheen_roughness, an image on it too (sheenRoughnessTexture) (KHR_materials_sheen) | – |
 |   Anisotropic, Anisotropic Rotation (4.x)  | anisotropy_strength, anisotropy_rotation = 2π·rotation (KHR_materials_anisotropy) | Cycles' anisotropic GGX is parametrized otherwise (docs/blender.md) |
 |   Sheen (3.x), Transmission, Subsurface, Diffuse Roughness, Alpha | ignored, each named in a warning (Alpha: a cut-out where Blender's glTF importer wired one) | |
 | Add Shader (a, b)                         | the lobes of a and b together                       | as exact as a and b (one diffuse and one specular lobe at most) |
@@ -360,9 +360,9 @@ def _sheen(node, result, lobe):
     sheen_color = Weight × Tint, sheen_roughness = Roughness. Blender's glTF exporter
     (glTF-Blender-IO 4.5, exp/material/extensions/sheen.py) writes the Tint alone and its importer
     sets Weight 1: a Weight of 1 round-trips exactly; another Weight is folded into the colour
-    (said). An image on Sheen Tint is glTF's sheenColorTexture (sheen_color = Weight × the image);
-    one on Sheen Roughness (sheenRoughnessTexture) is not taken: node.get names a linked input and
-    uses its unlinked value."""
+    (said). An image on Sheen Tint is glTF's sheenColorTexture (sheen_color = Weight × the image),
+    one on Sheen Roughness glTF's sheenRoughnessTexture (sheen_roughness = the image: facet sums
+    the sheen's albedo fit at every pixel)."""
     weight = min(max(float(node.get("Sheen Weight", 0.0)), 0.0), 1.0)
     if weight == 0.0:
         return
@@ -372,7 +372,12 @@ def _sheen(node, result, lobe):
     if tint_tex:
         _bind(result, ("specular", "sheen_color"), "gltf_pbr", tint_tex, weight if weight != 1.0 else None)
         result.note(EXACT, f"{node.label}: sheen_color from image '{tint_tex['image']}', glTF's sheenColorTexture")
+    rough_tex = node.texture("Sheen Roughness", "number")
     lobe["sheen_roughness"] = min(max(float(node.get("Sheen Roughness", 0.5)), 0.0), 1.0)
+    if rough_tex:
+        _bind(result, ("specular", "sheen_roughness"), "gltf_pbr", rough_tex)
+        result.note(EXACT, f"{node.label}: sheen_roughness from image '{rough_tex['image']}' "
+                           f"({rough_tex['channel']}), glTF's sheenRoughnessTexture")
     result.note(EXACT, f"{node.label}: Sheen Weight × Sheen Tint and Sheen Roughness -> sheen_color, sheen_roughness "
                        f"(KHR_materials_sheen)")
     if weight != 1.0:

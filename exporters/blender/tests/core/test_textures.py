@@ -700,11 +700,11 @@ def test_an_anisotropic_gltf_pbr_lobe_reads_the_active_uv_maps_frame():
     assert textures.frame_uv_map({"diffuse": {"model": "lambert"}}) is None
 
 
-def test_images_on_specular_and_sheen_tint_are_gltfs_colour_textures():
-    """Blender's glTF exporter writes an image on Specular Tint as specularColorTexture and one on
-    Sheen Tint as sheenColorTexture (KHR_materials_specular, _sheen): bindings of gltf_pbr's
-    specular_color and sheen_color, the Sheen Weight their factor; an image on Sheen Roughness
-    (sheenRoughnessTexture) is still named as not taken."""
+def test_images_on_specular_and_sheen_tint_and_sheen_roughness_are_gltfs_textures():
+    """Blender's glTF exporter writes an image on Specular Tint as specularColorTexture, one on
+    Sheen Tint as sheenColorTexture and one on Sheen Roughness as sheenRoughnessTexture
+    (KHR_materials_specular, _sheen): bindings of gltf_pbr's specular_color, sheen_color (the
+    Sheen Weight its factor) and sheen_roughness (the channel the link reads)."""
     tint = tex_image(image("tint"))
     r = map_surface(principled({"Specular Tint": tint, "Sheen Tint": tex_image(image("sheen"))},
                                **{"Sheen Weight": 0.5, "Sheen Roughness": 0.3}), "Tinted")
@@ -715,7 +715,10 @@ def test_images_on_specular_and_sheen_tint_are_gltfs_colour_textures():
     assert by_path[("specular", "sheen_color")]["factor"] == pytest.approx(0.5)
     assert r.specular["specular_color"] == [1.0, 1.0, 1.0] and r.specular["sheen_color"] == [0.5, 0.5, 0.5]
     assert not any("unlinked value" in m for m in messages(r))
-    rough = map_surface(principled({"Sheen Roughness": tex_image(image("rough", "Non-Color"))},
+    rough = map_surface(principled({"Sheen Roughness": tex_image(image("rough", "Non-Color"), output="Alpha")},
                                    **{"Sheen Weight": 1.0}), "Rough")
-    assert rough.textures == [] and any("Sheen Roughness" in m and "unlinked value" in m
-                                        for m in messages(rough, IGNORED))
+    [binding] = rough.textures
+    assert tuple(binding["path"]) == ("specular", "sheen_roughness")
+    assert binding["spec"]["image"] == "rough" and binding["spec"]["channel"] == "a"
+    assert not any("unlinked value" in m for m in messages(rough))
+    assert any("sheenRoughnessTexture" in m for m in messages(rough, EXACT))
