@@ -283,8 +283,10 @@ struct ModelDef {
   // KHR_materials_anisotropy's TBN) rather than the tangent rule on tangent_axis, for these
   // values: the coordinate set whose frame they read where no normal map names one, or nullopt
   // (the tangent rule). Every target then takes t = that frame's T made ⟂ n and b = w·(n × t).
-  // Null: the tangent rule.
+  // Null: the tangent rule. `uv_tangent_param`: the parameter whose values ask for the frame,
+  // which a message about a missing frame names ("anisotropy_strength").
   std::function<std::optional<int>(const ModelSpec& lobe)> uv_tangent;
+  std::string uv_tangent_param;
   // Fresnel terms: the reflectance at normal incidence F(0) as a colour, where the
   // term states it. glTF's metallic workflow takes it as a conductor's base colour:
   // a specular-only material whose Fresnel term has it exports as a metal.

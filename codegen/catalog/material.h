@@ -54,7 +54,9 @@ struct Material {
   }
   // The key that asks for that frame, for messages: "normal_map", "coat_normal_map" or the lobe's.
   std::string frame_key() const {
-    return normal_map ? "normal_map" : coat_normal_map ? "coat_normal_map" : "specular.anisotropy_strength";
+    if (normal_map) return "normal_map";
+    if (coat_normal_map) return "coat_normal_map";
+    return specular ? "specular." + specular->def->uv_tangent_param : "specular";
   }
   // glTF's alphaMode MASK (glTF 2.0 §3.9.4): where `alpha_cutoff` is set the surface is there
   // only where alpha ≥ alpha_cutoff, and camera and shadow rays pass where it is not. `alpha`

@@ -660,6 +660,7 @@ void add_specular(std::vector<ModelDef>& all) {
       const Value& strength = s.at("anisotropy_strength");
       return strength.texture ? strength.texture->uv : 0;
     };
+    m.uv_tangent_param = "anisotropy_strength";
     m.reciprocal = false;
     m.physics_note = "without a clear coat symmetric: D, V and F (of v·h = l·h) are, and so is the diffuse weight "
                      "1 − max(F); KHR_materials_clearcoat weights its layers by the Fresnel of n·v alone, which is "

@@ -55,6 +55,21 @@ TEST(Catalog, EveryLobeIsDocumentedCitedAndBuildable) {
   }
 }
 
+// A lobe that reads the mesh's tangent frame names the parameter that asks for it, so a
+// message about a mesh without that frame names a key of the material (Material::frame_key).
+TEST(Catalog, FrameTangentLobesNameTheirParameter) {
+  int lobes = 0;
+  for (const auto& m : catalog()) {
+    if (!m.uv_tangent) {
+      EXPECT_TRUE(m.uv_tangent_param.empty()) << m.name;
+      continue;
+    }
+    ++lobes;
+    EXPECT_NE(m.param(m.uv_tangent_param), nullptr) << m.name << ": " << m.uv_tangent_param;
+  }
+  EXPECT_GT(lobes, 0);
+}
+
 TEST(Catalog, ParameterDefaultsAreInRange) {
   for (const auto& m : catalog()) {
     for (const auto& p : m.params) {
