@@ -791,9 +791,10 @@ def blender_principled_scene(folder):
     (KHR_materials_sheen), Coat Weight and Roughness and a Coat Normal through a Normal Map node
     (KHR_materials_clearcoat with its clearcoatNormalTexture), Emission Color and
     a Strength above 1 (KHR_materials_emissive_strength), images on Sheen Tint and Specular Tint
-    (sheenColorTexture, specularColorTexture), Anisotropic and its Rotation
-    (KHR_materials_anisotropy; the sphere is rotated, so its direction turns from its own UV
-    tangents, which facet reads as the README's TBN, not from any fixed axis)."""
+    (sheenColorTexture, specularColorTexture), an image's alpha on Sheen Roughness
+    (sheenRoughnessTexture, its A), Anisotropic and its Rotation (KHR_materials_anisotropy; the
+    sphere is rotated and mirrored, so its direction turns from its own UV tangents, which facet
+    reads as the README's TBN with the node's mirror in its handedness, not from any fixed axis)."""
     import bpy
     bpy.ops.wm.read_factory_settings(use_empty=True)
     scene = bpy.context.scene
@@ -844,11 +845,27 @@ def blender_principled_scene(folder):
         tex = tree.nodes.new("ShaderNodeTexImage")
         tex.image, tex.interpolation = tints, "Linear"
         tree.links.new(tex.outputs["Color"], tree.nodes["Principled BSDF"].inputs[socket])
+    # An image's alpha on Sheen Roughness (0.15 to 0.85 across it, so the sheen's albedo fit is
+    # summed at the pixel in every piece of r), which Blender's exporter writes into the alpha of
+    # sheenRoughnessTexture.
+    alpha = np.array([[(0.5, 0.5, 0.5, 0.15 + 0.7 * (i + j) / (2 * side - 2)) for i in range(side)]
+                      for j in range(side)], dtype=np.float32)
+    sheen_rough = bpy.data.images.new("sheen_rough", side, side, alpha=True)
+    sheen_rough.pixels.foreach_set(alpha.ravel())
+    sheen_rough.filepath_raw = os.path.join(folder, "sheen_rough.png")
+    sheen_rough.file_format = "PNG"
+    sheen_rough.save()
+    sheen_rough.colorspace_settings.name = "Non-Color"
+    tree = materials[0].node_tree
+    tex = tree.nodes.new("ShaderNodeTexImage")
+    tex.image, tex.interpolation = sheen_rough, "Linear"
+    tree.links.new(tex.outputs["Alpha"], tree.nodes["Principled BSDF"].inputs["Sheen Roughness"])
     floor = blender_material("floor", (0.5, 0.5, 0.5), 0.0, 0.7)
     blender_object("floor", lambda: bpy.ops.mesh.primitive_plane_add(size=10), floor, (0, 0, 0), smooth=False)
     for k, m in enumerate(materials):
         blender_object(m.name, lambda: bpy.ops.mesh.primitive_uv_sphere_add(segments=24, ring_count=12, radius=0.6),
-                       m, (-2.1 + 1.4 * k, 0.0, 0.6), rotation=(0.3 * k, 0.2, 0.5 * k))
+                       m, (-2.1 + 1.4 * k, 0.0, 0.6), rotation=(0.3 * k, 0.2, 0.5 * k),
+                       scale=(-1, 1, 1) if m.name == "brushed" else (1, 1, 1))
     point_sun_camera(scene, (2.0, -3.5, 4.5), 2.0, (0.6, -0.3, 0.2), (0.0, -7.0, 3.2))
 
 
@@ -908,9 +925,10 @@ CORPUS.append(("blender_textured.gltf", "written by Blender's glTF exporter: an 
                                         "objects, a point light and a sun", None))
 CORPUS.append(("blender_principled.glb", "written by Blender's glTF exporter from Principled BSDFs: IOR, Specular IOR "
                                          "Level and Tint (an image), Sheen (its Tint an image), Coat with its own Coat "
-                                         "Normal map, Emission Strength 2, Anisotropic on a rotated sphere: "
-                                         "KHR_materials_ior, _specular (specularColorTexture), _sheen "
-                                         "(sheenColorTexture), _clearcoat (clearcoatNormalTexture), "
+                                         "Normal map, Emission Strength 2, Anisotropic on a rotated, mirrored "
+                                         "sphere: KHR_materials_ior, _specular (specularColorTexture), _sheen "
+                                         "(sheenColorTexture, sheenRoughnessTexture), _clearcoat "
+                                         "(clearcoatNormalTexture), "
                                          "_emissive_strength, _anisotropy", None))
 
 
