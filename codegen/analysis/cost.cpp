@@ -597,6 +597,10 @@ std::vector<CostRow> named_rows(const std::vector<Material>& ms) {
 
 std::vector<CostRow> measure_costs(const std::vector<Material>& materials, const CostOptions& options,
                                    const CostProgress& progress, CostBaselines* baselines) {
+  // The cost frame shades a sphere without texture coordinates.
+  for (const Material& m : materials)
+    require_no_images(m, "which facet cost's frame cannot give (it has no texture coordinates): it measures "
+                         "materials of numbers");
   const std::function<void(const std::string&)> say = [&](const std::string& s) {
     if (progress) progress(s);
   };

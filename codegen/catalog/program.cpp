@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "catalog/texture.h"
+#include "core/diagnostics.h"
 
 namespace facet {
 
@@ -129,6 +130,19 @@ MaterialProgram compile(const Material& m) {
   if (emits && m.specular && m.specular->def->emission_weight)
     p.emission_weight = m.specular->def->emission_weight(*m.specular, "specular");
   return p;
+}
+
+void require_no_images(const Material& m, const std::string& why) {
+  const MaterialProgram p = compile(m);
+  // A frame the lobes' tangent alone reads is given as t (w = +1) where nothing samples images.
+  if (p.textured.empty() && !m.normal_map && !m.coat_normal_map) return;
+  const std::string file = m.source.empty() ? m.name : m.source;
+  std::vector<Diagnostic> d;
+  for (const auto& t : p.textured)
+    if (t.max_of.empty()) d.push_back({file, t.key, "an image texture, " + why});  // a derived max₃ names no key
+  if (m.normal_map) d.push_back({file, "normal_map", "a normal map, " + why});
+  if (m.coat_normal_map) d.push_back({file, "coat_normal_map", "a normal map, " + why});
+  throw InputError(d);
 }
 
 ir::FunctionPtr lobe_reflectance(const MaterialProgram& p, bool specular) {

@@ -66,6 +66,10 @@ struct MaterialProgram {
 };
 
 MaterialProgram compile(const Material& m);
+// Throws InputError naming each image `m` reads (file and key: its textured parameters, its
+// normal maps), "an image texture, " or "a normal map, " then `why`, for what shades without
+// texture coordinates (the sweeps, facet cost's frame). Nothing where it reads none.
+void require_no_images(const Material& m, const std::string& why);
 // One lobe of `p` without its colour, ρ_d or ρ_s, 0 below the horizon, taking n·l,
 // n·v and the inputs the lobe reads (so k_d ⊗ ρ_d + k_s ⊗ ρ_s is k_d ⊗ this(diffuse) +
 // k_s ⊗ this(specular)): for a target that applies k_d and k_s itself, as POV-Ray's

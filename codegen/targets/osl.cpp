@@ -206,7 +206,7 @@ OslTextures osl_textures(const targets::CPrinter& pr, const MaterialProgram& p, 
 }  // namespace
 
 std::string osl_sweep_source(const Material& m) {
-  require_untextured(m, "OSL sweep");
+  require_no_images(m, "which the OSL sweep target does not sample yet (GLSL does; docs/textures.md)");
   GenerateOptions o;
   o.target = Target::Osl;
   o.library = true;

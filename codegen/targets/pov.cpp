@@ -623,7 +623,7 @@ std::string PovScene::native() {
 }  // namespace targets
 
 std::string generate_pov_sweep(const Material& m) {
-  require_untextured(m, "POV-Ray sweep");
+  require_no_images(m, "which the POV-Ray sweep target does not sample yet (GLSL does; docs/textures.md)");
   Scene s = default_scene();
   return targets::PovScene(s, &m, m.source).sweep();
 }

@@ -87,25 +87,6 @@ std::string describe_material(const Material& m, const std::string& marker) {
   return s;
 }
 
-void require_untextured(const Material& m, const std::string& target) {
-  MaterialProgram p = compile(m);
-  // A frame the lobes' tangent alone reads is given as t (w = +1) where nothing samples images.
-  if (p.textured.empty() && !m.normal_map && !m.coat_normal_map) return;
-  std::vector<Diagnostic> d;
-  for (const auto& t : p.textured) {
-    if (!t.max_of.empty()) continue;  // a derived max₃ names no key of its own
-    d.push_back({m.source.empty() ? m.name : m.source, t.key,
-                 "an image texture, which the " + target + " target does not sample yet (GLSL does; docs/textures.md)"});
-  }
-  if (m.normal_map)
-    d.push_back({m.source.empty() ? m.name : m.source, "normal_map",
-                 "a normal map, which the " + target + " target does not sample yet (GLSL does; docs/textures.md)"});
-  if (m.coat_normal_map)
-    d.push_back({m.source.empty() ? m.name : m.source, "coat_normal_map",
-                 "a normal map, which the " + target + " target does not sample yet (GLSL does; docs/textures.md)"});
-  throw InputError(d);
-}
-
 std::string generate(const Material& m, const GenerateOptions& o) {
   switch (o.target) {
     case Target::Glsl:

@@ -20,13 +20,10 @@ namespace facet {
 std::string describe_material(const Material& m, const std::string& marker);
 std::string describe_lobe(const ModelSpec& s);
 
-// Throws InputError naming each textured parameter of `m` (file and key) for a target
-// that does not sample images yet.
 // facet_reflect's `let b = …;` statement where the lobes read b (C-family targets): n × t, or
 // w·(n × t) where they read the texture frame's tangent (MaterialProgram::uv_tangent).
 std::string bitangent(const MaterialProgram& p, const std::string& let);
 
-void require_untextured(const Material& m, const std::string& target);
 
 // The call of MaterialProgram::emission_weight (it must have one) at n·v written `NoV`: its
 // textured parameters are the globals or locals of the same names the shading sampled; `after`

@@ -399,6 +399,20 @@ TEST(Cli, UnknownTargetIsAUsageError) {
   EXPECT_NE(r.output.find("metal"), std::string::npos) << r.output;
 }
 
+// facet cost's frame shades a sphere without texture coordinates: a material that reads images
+// is refused before anything runs, naming the file and each textured key (it once ended in an
+// uncaught exception from the POV-Ray column).
+TEST(Cli, CostRefusesAMaterialThatReadsImages) {
+  ProcessResult r = facet({"cost", (kSource / "examples/textured/textured_specular_sheen.json").string(),
+                           "--no-timings", "--no-callgrind"});
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  for (const char* key : {"specular.specular_color", "specular.sheen_color", "specular.sheen_roughness"})
+    EXPECT_NE(r.output.find(std::string("textured_specular_sheen.json: ") + key + ": an image texture"),
+              std::string::npos)
+        << r.output;
+  EXPECT_EQ(r.output.find("terminate"), std::string::npos) << r.output;
+}
+
 // Every renderer reading the same wrong scene agrees with it perfectly: validate says which
 // scenes show no shading instead of passing them. A cube whose normals point into it (as a
 // transform that turned them the wrong way made them), a wall no light reaches, and a scene
