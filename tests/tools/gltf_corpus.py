@@ -815,51 +815,47 @@ def blender_principled_scene(folder):
         principled("emissive_metal", (0.9, 0.6, 0.3), 1.0, 0.35, **{
             "Emission Color": (1.0, 0.4, 0.1), "Emission Strength": 2.0}),
         principled("brushed", (0.8, 0.8, 0.85), 1.0, 0.4, **{"Anisotropic": 0.5, "Anisotropic Rotation": 0.25}))
+    def image(name, pixels, non_color=False):
+        """A Blender image of `pixels` (RGBA in [0, 1], rows from the bottom), saved in `folder`."""
+        img = bpy.data.images.new(name, pixels.shape[1], pixels.shape[0], alpha=True)
+        img.pixels.foreach_set(pixels.astype(np.float32).ravel())
+        img.filepath_raw = os.path.join(folder, name + ".png")
+        img.file_format = "PNG"
+        img.save()
+        if non_color:
+            img.colorspace_settings.name = "Non-Color"
+        return img
+
+    def image_output(material, img, output="Color"):
+        """An Image Texture node of `img` (Linear) in `material`'s tree: its tree and its `output`."""
+        tree = material.node_tree
+        tex = tree.nodes.new("ShaderNodeTexImage")
+        tex.image, tex.interpolation = img, "Linear"
+        return tree, tex.outputs[output]
+
     # The coat's own normal map (Non-Color image → Normal Map node, strength 0.8 → Coat Normal),
     # which Blender's exporter writes as clearcoatNormalTexture with scale 0.8.
-    bumps = bpy.data.images.new("coat_bumps", 32, 32, alpha=True)
-    bumps.pixels.foreach_set((gb.normal_bumps(32)[::-1].astype(np.float32) / 255.0).ravel())
-    bumps.filepath_raw = os.path.join(folder, "coat_bumps.png")
-    bumps.file_format = "PNG"
-    bumps.save()
-    bumps.colorspace_settings.name = "Non-Color"
-    tree = materials[0].node_tree
-    tex = tree.nodes.new("ShaderNodeTexImage")
-    tex.image, tex.interpolation = bumps, "Linear"
+    bumps = image("coat_bumps", gb.normal_bumps(32)[::-1].astype(np.float32) / 255.0, non_color=True)
+    tree, color = image_output(materials[0], bumps)
     normal_map = tree.nodes.new("ShaderNodeNormalMap")
     normal_map.inputs["Strength"].default_value = 0.8
-    tree.links.new(tex.outputs["Color"], normal_map.inputs["Color"])
+    tree.links.new(color, normal_map.inputs["Color"])
     tree.links.new(normal_map.outputs["Normal"], tree.nodes["Principled BSDF"].inputs["Coat Normal"])
     # Colour images (sRGB) on Sheen Tint and Specular Tint, which Blender's exporter writes as
     # sheenColorTexture and specularColorTexture.
     side = 16
-    ramp = np.array([[(0.3 + 0.7 * i / (side - 1), 0.2 + 0.8 * j / (side - 1), 0.6, 1.0) for i in range(side)]
-                     for j in range(side)], dtype=np.float32)
-    tints = bpy.data.images.new("tints", side, side, alpha=True)
-    tints.pixels.foreach_set(ramp.ravel())
-    tints.filepath_raw = os.path.join(folder, "tints.png")
-    tints.file_format = "PNG"
-    tints.save()
+    tints = image("tints", np.array([[(0.3 + 0.7 * i / (side - 1), 0.2 + 0.8 * j / (side - 1), 0.6, 1.0)
+                                      for i in range(side)] for j in range(side)]))
     for material, socket in ((materials[0], "Sheen Tint"), (materials[1], "Specular Tint")):
-        tree = material.node_tree
-        tex = tree.nodes.new("ShaderNodeTexImage")
-        tex.image, tex.interpolation = tints, "Linear"
-        tree.links.new(tex.outputs["Color"], tree.nodes["Principled BSDF"].inputs[socket])
+        tree, color = image_output(material, tints)
+        tree.links.new(color, tree.nodes["Principled BSDF"].inputs[socket])
     # An image's alpha on Sheen Roughness (0.15 to 0.85 across it, so the sheen's albedo fit is
     # summed at the pixel in every piece of r), which Blender's exporter writes into the alpha of
     # sheenRoughnessTexture.
-    alpha = np.array([[(0.5, 0.5, 0.5, 0.15 + 0.7 * (i + j) / (2 * side - 2)) for i in range(side)]
-                      for j in range(side)], dtype=np.float32)
-    sheen_rough = bpy.data.images.new("sheen_rough", side, side, alpha=True)
-    sheen_rough.pixels.foreach_set(alpha.ravel())
-    sheen_rough.filepath_raw = os.path.join(folder, "sheen_rough.png")
-    sheen_rough.file_format = "PNG"
-    sheen_rough.save()
-    sheen_rough.colorspace_settings.name = "Non-Color"
-    tree = materials[0].node_tree
-    tex = tree.nodes.new("ShaderNodeTexImage")
-    tex.image, tex.interpolation = sheen_rough, "Linear"
-    tree.links.new(tex.outputs["Alpha"], tree.nodes["Principled BSDF"].inputs["Sheen Roughness"])
+    sheen_rough = image("sheen_rough", np.array([[(0.5, 0.5, 0.5, 0.15 + 0.7 * (i + j) / (2 * side - 2))
+                                                  for i in range(side)] for j in range(side)]), non_color=True)
+    tree, alpha = image_output(materials[0], sheen_rough, "Alpha")
+    tree.links.new(alpha, tree.nodes["Principled BSDF"].inputs["Sheen Roughness"])
     floor = blender_material("floor", (0.5, 0.5, 0.5), 0.0, 0.7)
     blender_object("floor", lambda: bpy.ops.mesh.primitive_plane_add(size=10), floor, (0, 0, 0), smooth=False)
     for k, m in enumerate(materials):
