@@ -326,7 +326,8 @@ void anisotropy_extension(const json& aniso, bool normal_mapped, json& lobe, Glt
 // §3.9.2 (pbrMetallicRoughness: the base colour map's RGB in sRGB times baseColorFactor and
 // COLOR_0, the metallic–roughness map's B and G, linear, times their factors), KHR_materials_ior
 // (ior), KHR_materials_specular (specularFactor times specularTexture's A; specularColorFactor),
-// KHR_materials_sheen (its factors) and KHR_materials_clearcoat.
+// KHR_materials_sheen (its factors and textures), KHR_materials_anisotropy and
+// KHR_materials_clearcoat.
 json gltf_pbr_lobe(const tinygltf::Material& g, const Pbr& p, GltfImages& images, const std::string& mpath,
                    std::vector<std::pair<int, std::string>>& sets) {
   json lobe = {{"model", "gltf_pbr"}};
