@@ -16,6 +16,7 @@
 #include "renderers/process.h"
 #include "targets/targets.h"
 #include "targets/texture_code.h"
+#include "test_support.h"
 
 namespace facet {
 namespace {
@@ -29,7 +30,7 @@ struct Compiled {
 };
 
 Compiled compile_hlsl(const std::string& source, const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / "facet-hlsl-test";
+  const fs::path dir = test::scratch("hlsl", "compiled");  // this process's own: tests run two at a time
   fs::create_directories(dir);
   const std::string hlsl = (dir / (name + ".hlsl")).string(), spv = (dir / (name + ".spv")).string();
   write_file_atomic(hlsl, source);
