@@ -2,48 +2,21 @@
 // process and test suite, and `facet ARGS…` run as a user runs it.
 #pragma once
 
-#include <unistd.h>
-
-#include <cerrno>
-#include <cstdlib>
-#include <cstring>
-#include <stdexcept>
-
 #include <filesystem>
 #include <string>
-#include <system_error>
 #include <vector>
 
+#include "core/io.h"
 #include "renderers/process.h"
 
 namespace facet::test {
 
-// This process's own temporary folder, made new on first use (mkdtemp) and removed when the
-// process ends (set FACET_KEEP_TEST_FILES=1 to keep it and look): a folder an earlier process
-// with the same pid left behind (pids are reused; /tmp outlives a CI run) cannot show its files
-// to a test that checks something was not written.
-inline const std::filesystem::path& process_folder() {
-  struct Folder {
-    std::filesystem::path path;
-    Folder() {
-      std::string name = (std::filesystem::temp_directory_path() /
-                          ("facet-test-" + std::to_string(::getpid()) + "-XXXXXX"))
-                             .string();
-      if (::mkdtemp(name.data()) == nullptr) throw std::runtime_error("mkdtemp " + name + ": " + std::strerror(errno));
-      path = name;
-    }
-    ~Folder() {
-      std::error_code ignored;
-      if (std::getenv("FACET_KEEP_TEST_FILES") == nullptr) std::filesystem::remove_all(path, ignored);
-    }
-  };
-  static const Folder folder;
-  return folder.path;
-}
-
-// A file (or folder) name in a folder of this process for one test suite, e.g. scratch("cli", "a.frag").
+// A file (or folder) name in a folder of this process for one test suite, e.g. scratch("cli", "a.frag"):
+// under private_work_folder(), made new by mkdtemp and removed when the process ends, so a folder
+// an earlier process with the same pid left (pids are reused; /tmp outlives a CI run) cannot show
+// its files to a test that checks something was not written.
 inline std::filesystem::path scratch(const std::string& suite, const std::string& name) {
-  const std::filesystem::path dir = process_folder() / suite;
+  const std::filesystem::path dir = std::filesystem::path(private_work_folder()) / ("test-" + suite);
   std::filesystem::create_directories(dir);
   return dir / name;
 }
