@@ -419,7 +419,7 @@ struct SheenAlbedoRPiece {
   double r_end = 1, scale = 2, offset = -1;
   std::vector<std::vector<std::vector<double>>> c;  // [μ piece][k][j]
 };
-std::vector<SheenAlbedoRPiece> sheen_albedo_r_pieces();
+const std::vector<SheenAlbedoRPiece>& sheen_albedo_r_pieces();  // built once
 double sheen_albedo_r_min();
 double sheen_albedo(double mu, double sheen_roughness);
 double sheen_albedo_epsilon();

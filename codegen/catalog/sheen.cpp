@@ -45,28 +45,30 @@ std::pair<double, double> chebyshev_map(double lo, double hi, double q) {
 
 double sheen_albedo_worst_error() { return kSheenAlbedoWorstError; }
 
-std::vector<SheenAlbedoRPiece> sheen_albedo_r_pieces() {
-  std::vector<SheenAlbedoRPiece> out;
-  for (int rp = 0; rp < kRPieces; ++rp) {
-    SheenAlbedoRPiece piece;
-    piece.r_end = kSheenAlbedoRPieces[rp + 1];
-    std::tie(piece.scale, piece.offset) =
-        chebyshev_map(kSheenAlbedoRPieces[rp], piece.r_end, kSheenAlbedoRPower);
-    for (const auto& mu_piece : kSheenAlbedoCoefficients[rp]) {
-      std::vector<std::vector<double>> c;
-      for (const auto& k : mu_piece) c.emplace_back(std::begin(k), std::end(k));
-      piece.c.push_back(std::move(c));
+const std::vector<SheenAlbedoRPiece>& sheen_albedo_r_pieces() {
+  static const std::vector<SheenAlbedoRPiece> pieces = [] {
+    std::vector<SheenAlbedoRPiece> out;
+    for (int rp = 0; rp < kRPieces; ++rp) {
+      SheenAlbedoRPiece piece;
+      piece.r_end = kSheenAlbedoRPieces[rp + 1];
+      std::tie(piece.scale, piece.offset) = chebyshev_map(kSheenAlbedoRPieces[rp], piece.r_end, kSheenAlbedoRPower);
+      for (const auto& mu_piece : kSheenAlbedoCoefficients[rp]) {
+        std::vector<std::vector<double>> c;
+        for (const auto& k : mu_piece) c.emplace_back(std::begin(k), std::end(k));
+        piece.c.push_back(std::move(c));
+      }
+      out.push_back(std::move(piece));
     }
-    out.push_back(std::move(piece));
-  }
-  return out;
+    return out;
+  }();
+  return pieces;
 }
 
 double sheen_albedo_r_min() { return kSheenAlbedoRPieces[0]; }
 
 std::vector<SheenAlbedoPiece> sheen_albedo_pieces(double sheen_roughness) {
   // The r series at r: its piece, y on [−1, 1], T_j(y).
-  const std::vector<SheenAlbedoRPiece> r_pieces = sheen_albedo_r_pieces();
+  const std::vector<SheenAlbedoRPiece>& r_pieces = sheen_albedo_r_pieces();
   const double r = std::clamp(sheen_roughness, sheen_albedo_r_min(), 1.0);
   size_t rp = 0;
   while (rp + 1 < r_pieces.size() && r >= r_pieces[rp].r_end) ++rp;

@@ -227,7 +227,7 @@ SheenConstants sheen_per_pixel(LobeContext& c) {
   for (size_t i = 0; i < pq.size(); ++i)
     k.l.push_back(c.let(std::string("sheen_l_") + l_names[i], pq[i].first + (pq[i].second - pq[i].first) * t));
   k.l.push_back(c.let("sheen_l_half", k.l[0] / (1.0 + k.l[1] * ir::pow(ir::Expr(0.5), k.l[2])) + k.l[3] * 0.5 + k.l[4]));
-  const std::vector<SheenAlbedoRPiece> pieces = sheen_albedo_r_pieces();
+  const std::vector<SheenAlbedoRPiece>& pieces = sheen_albedo_r_pieces();
   auto pick = [&](const std::function<double(const SheenAlbedoRPiece&)>& of) {
     ir::Expr out = of(pieces.back());
     for (size_t p = pieces.size() - 1; p-- > 0;) out = ir::select(r < pieces[p].r_end, ir::Expr(of(pieces[p])), out);
