@@ -55,6 +55,7 @@ struct Case {
       std::string lobes = (m->diffuse ? m->diffuse->def->name : std::string("")) +
                           (m->diffuse && m->specular ? " + " : "") +
                           (m->specular ? m->specular->def->name : std::string(""));
+      for (const auto& layer : m->layers) lobes += " under " + layer.def->name;
       if (s.find(lobes) == std::string::npos) s += (s.empty() ? "" : ", ") + lobes;
     }
     return s;

@@ -156,8 +156,9 @@ const std::vector<std::string>& input_order() {
 
 // ---------------------------------------------------------------- LobeContext
 
-LobeContext::LobeContext(const ModelSpec& spec, std::string lobe, ir::FunctionBuilder& fb, bool coat_normal)
-    : spec_(spec), lobe_(std::move(lobe)), fb_(fb), coat_normal_(coat_normal) {}
+LobeContext::LobeContext(const ModelSpec& spec, std::string lobe, ir::FunctionBuilder& fb, bool coat_normal,
+                         std::string key)
+    : spec_(spec), lobe_(std::move(lobe)), fb_(fb), coat_normal_(coat_normal), key_(key.empty() ? lobe_ : key) {}
 
 ir::Expr LobeContext::input(Input i) { return fb_.param(input_name(i)); }
 
@@ -190,7 +191,7 @@ ir::Expr LobeContext::parameter(const ModelSpec& spec, const std::string& param,
       // The key path: the lobe's own parameter, or a sub-model's (fresnel_f0 → fresnel.f0).
       std::string rest = name.substr(lobe_.size() + 1);
       if (&spec != &spec_) rest[rest.find('_')] = '.';
-      textured_.push_back({name, lobe_ + "." + rest, type, v, def ? def->range : Range{}, ""});
+      textured_.push_back({name, key_ + "." + rest, type, v, def ? def->range : Range{}, ""});
     }
     return fb_.param(name, type);
   }
@@ -286,7 +287,9 @@ void resolve_defaults(std::vector<ModelDef>& all) {
 // colours) may come from an image; the lights', the camera's and the objects' may not.
 void mark_texturable(std::vector<ModelDef>& all) {
   for (auto& m : all) {
-    if (m.section != "diffuse" && m.section != "specular" && m.section != "fresnel" && m.section != "modifier") continue;
+    if (m.section != "diffuse" && m.section != "specular" && m.section != "layer" && m.section != "fresnel" &&
+        m.section != "modifier")
+      continue;
     for (auto& p : m.params) {
       // Toon's width 0 selects the hard step when the code is generated: it stays a number.
       if (m.name == "toon" && p.name == "width") continue;
@@ -304,6 +307,7 @@ std::vector<ModelDef> build_catalog() {
   std::vector<ModelDef> all;
   catalog_detail::add_diffuse(all);
   catalog_detail::add_specular(all);
+  catalog_detail::add_layers(all);
   catalog_detail::add_terms(all);
   catalog_detail::add_lights(all);
   catalog_detail::add_scene_vocabulary(all);

@@ -225,7 +225,7 @@ enum class LightType { Point, Directional, Spot };
 enum class AttenuationLaw { None, InverseSquare, Polynomial, InverseSquareRange };
 
 struct ModelDef {
-  std::string section;   // diffuse, specular, fresnel, geometry, distribution, modifier, light, attenuation, term
+  std::string section;   // diffuse, specular, layer, fresnel, geometry, distribution, modifier, light, attenuation, term
   std::string name;      // the key used in material files
   std::string title;     // human name
   std::string citation;  // printed on the first line of the generated function
@@ -246,6 +246,10 @@ struct ModelDef {
   std::string physics_note;  // where the claim comes from, or why not
   // Lobes: build ρ in `ctx` from the material's values. Others: null.
   std::function<ir::Expr(LobeContext&)> build;
+  // Layers (section "layer", a material's "layers"): ρ of the layer over `base`, the ρ of
+  // everything under it (k_d ⊗ ρ_d + k_s ⊗ ρ_s and the layers below, 0 below the horizon),
+  // built in `ctx` from the layer's values. Others: null.
+  std::function<ir::Expr(LobeContext& ctx, const ir::Expr& base)> layer;
 
   // ---- POV-Ray's native finish: how `pov` is printed where it is exact (targets/pov.cpp)
   PovFinish pov_finish;
@@ -269,15 +273,16 @@ struct ModelDef {
   // metallic, roughness, ior, specular, specular_color, clearcoat, clearcoat_roughness. The
   // import reads them, the export writes its factors, maps and extensions as they are.
   bool gltf_brdf = false;
-  // Specular lobes with layers over the emission (KHR_materials_clearcoat, "Emission": "the
+  // Specular lobes and layers over the emission (KHR_materials_clearcoat, "Emission": "the
   // clearcoat layer is on top of emission in the layering stack"): m_e's weight as a function
-  // of n·v (its first parameter "NoV", a Float), for these values; its other parameters are the
-  // lobe's textured parameters it reads, named as the reflectance's inputs (`name`_param, `name`
-  // the lobe's name in the material: "specular"), each sampled at the shading point.
-  // Null, or returning null: m_e as it is.
-  std::function<ir::FunctionPtr(const ModelSpec& lobe, const std::string& name)> emission_weight;
-  // Specular lobes: whether these values have a layer with a normal of its own (a clear coat),
-  // which a material may map apart from the base (Material::coat_normal_map). Null: none.
+  // of n·v (its first parameter "NoV", a Float), for these values, named `function`; its other
+  // parameters are the lobe's textured parameters it reads, named as the reflectance's inputs
+  // (`name`_param, `name` the lobe's name in the material: "specular", "layer0"), each sampled
+  // at the shading point. Null, or returning null: m_e as it is.
+  std::function<ir::FunctionPtr(const ModelSpec& lobe, const std::string& name, const std::string& function)>
+      emission_weight;
+  // Specular lobes and layers: whether these values have a layer with a normal of its own (a
+  // clear coat), which a material may map apart from the base (Material::coat_normal_map). Null: none.
   std::function<bool(const ModelSpec& lobe)> coated;
   // Specular lobes whose tangent is the surface's texture-coordinate frame (the mesh's tangent:
   // KHR_materials_anisotropy's TBN) rather than the tangent rule on tangent_axis, for these
@@ -340,7 +345,10 @@ class LobeContext {
  public:
   // `coat_normal`: the material gives its layers' own normal c apart from the lobes' n (a
   // normal map under the coat, or the coat's own normal map: Material::coat_normal_differs).
-  LobeContext(const ModelSpec& spec, std::string lobe, ir::FunctionBuilder& fb, bool coat_normal = false);
+  // `key`: the spec's key path in the material, which messages name a textured parameter by
+  // ("layers[0]"; empty: `lobe`, "diffuse" or "specular").
+  LobeContext(const ModelSpec& spec, std::string lobe, ir::FunctionBuilder& fb, bool coat_normal = false,
+              std::string key = "");
 
   ir::Expr input(Input i);
   ir::Expr NoL() { return input(Input::NoL); }
@@ -386,6 +394,7 @@ class LobeContext {
   std::string lobe_;
   ir::FunctionBuilder& fb_;
   bool coat_normal_ = false;
+  std::string key_;
   std::vector<TexturedInput> textured_;
 };
 

@@ -11,6 +11,7 @@ namespace facet::catalog_detail {
 
 void add_diffuse(std::vector<ModelDef>& all);
 void add_specular(std::vector<ModelDef>& all);
+void add_layers(std::vector<ModelDef>& all);  // what a material lays over its lobes (Material::layers)
 void add_terms(std::vector<ModelDef>& all);   // fresnel, geometry, distribution, modifiers, ambient, emission
 void add_lights(std::vector<ModelDef>& all);  // lights and attenuation laws
 void add_scene_vocabulary(std::vector<ModelDef>& all);  // camera and objects

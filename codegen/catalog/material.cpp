@@ -47,8 +47,8 @@ ParamDef tangent_axis_param() {
 }
 
 const std::vector<std::string> kMaterialKeys = {"$schema",      "name",       "ambient",         "emission",
-                                                "diffuse",      "specular",   "tangent_axis",    "normal_map",
-                                                "coat_normal_map", "alpha",  "alpha_cutoff"};
+                                                "diffuse",      "specular",   "layers",          "tangent_axis",
+                                                "normal_map",   "coat_normal_map", "alpha",      "alpha_cutoff"};
 
 ParamDef alpha_cutoff_param() {
   ParamDef p;
@@ -78,7 +78,26 @@ void parse_alpha(const std::string& key, const json& val, Material& m, Checker& 
   }
 }
 
+// "layers": a list of layer objects, the first lowest, each {"model": one of section "layer", …}.
+void parse_layers(const json& val, Material& m, Checker& check, DiagnosticSink& sink) {
+  std::vector<std::string> names;
+  for (const auto* d : section("layer")) names.push_back(d->name);
+  if (!val.is_array()) {
+    sink.error("layers", fmt::format("expected a list of layers, the first lowest, found {}; allowed: [{{\"model\": "
+                                     "…}}, …] with model one of {}",
+                                     json_type_name(val), quoted_list(names)));
+    return;
+  }
+  for (size_t i = 0; i < val.size(); ++i)
+    if (auto spec = check.model(val[i], fmt::format("layers[{}]", i), "layer", nullptr)) m.layers.push_back(*spec);
+}
+
 }  // namespace
+
+bool Material::coated() const {
+  auto coated = [](const ModelSpec& s) { return s.def->coated && s.def->coated(s); };
+  return (specular && coated(*specular)) || std::any_of(layers.begin(), layers.end(), coated);
+}
 
 const ParamDef& alpha_param() {
   static const ParamDef p = [] {
@@ -134,6 +153,8 @@ Material parse_material(const json& doc, const std::string& file, const std::str
     } else if (key == "diffuse" || key == "specular") {
       auto spec = check.model(val, key, key, nullptr);
       if (spec) (key == "diffuse" ? m.diffuse : m.specular) = *spec;
+    } else if (key == "layers") {
+      parse_layers(val, m, check, sink);
     } else {
       std::string hint = suggest(key, kMaterialKeys);
       sink.error(key, fmt::format("unknown key{}; allowed keys: {}",
@@ -146,9 +167,10 @@ Material parse_material(const json& doc, const std::string& file, const std::str
     // The coat's map needs a coat, and shares the lobes' map's tangent frame (KHR_materials_clearcoat:
     // "these textures SHOULD use the same texture coordinates because they operate in the same
     // tangent space").
-    if (!(m.specular && m.specular->def->coated && m.specular->def->coated(*m.specular)))
+    if (!m.coated())
       sink.error("coat_normal_map", "the material has no layer with a normal of its own: a coat normal map needs a "
-                                    "clear coat (specular: gltf_pbr with clearcoat above 0, or from an image)");
+                                    "clear coat (specular: gltf_pbr with clearcoat above 0, or from an image; or a "
+                                    "layer {\"model\": \"clearcoat\"} with its weight above 0)");
     if (m.normal_map && m.normal_map->texture().uv != m.coat_normal_map->texture().uv)
       sink.error("coat_normal_map.uv",
                  fmt::format("{} differs from normal_map.uv ({}): both maps turn on one tangent frame, of one texture "
@@ -257,6 +279,10 @@ json to_json(const Material& m) {
   j["emission"] = value_json(material_term(m, false));
   if (m.diffuse) j["diffuse"] = spec_json(*m.diffuse, true);
   if (m.specular) j["specular"] = spec_json(*m.specular, true);
+  if (!m.layers.empty()) {
+    j["layers"] = json::array();
+    for (const auto& l : m.layers) j["layers"].push_back(spec_json(l, true));
+  }
   j["tangent_axis"] = m.tangent_axis;
   if (m.normal_map) j["normal_map"] = normal_map_json(*m.normal_map);
   if (m.coat_normal_map) j["coat_normal_map"] = normal_map_json(*m.coat_normal_map);
@@ -392,6 +418,8 @@ json material_schema() {
     for (const auto* m : section(sec)) alts.push_back(model_schema(*m, "model"));
     lobes[sec] = {{"oneOf", alts}, {"description", std::string("the ") + sec + " lobe"}};
   }
+  json layers = json::array();
+  for (const auto* m : section("layer")) layers.push_back(model_schema(*m, "model"));
   json ambient = param_schema(material_term_param("ambient")), emission = param_schema(material_term_param("emission"));
   json props = {{"$schema", {{"type", "string"}}},
                 {"name", {{"type", "string"}, {"minLength", 1}, {"description", "the material's name"}}},
@@ -399,6 +427,11 @@ json material_schema() {
                 {"emission", emission},
                 {"diffuse", lobes["diffuse"]},
                 {"specular", lobes["specular"]},
+                {"layers",
+                 {{"type", "array"},
+                  {"items", {{"oneOf", layers}}},
+                  {"description", "layers over the lobes, the first lowest: each weights what lies under it by what "
+                                  "it reflects itself"}}},
                 {"tangent_axis", param_schema(tangent_axis_param())},
                 {"normal_map", normal_map_schema()},
                 {"coat_normal_map", coat_normal_map_schema()},

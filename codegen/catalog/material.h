@@ -27,6 +27,10 @@ struct Material {
   std::shared_ptr<const TextureRef> ambient_texture, emission_texture;
   std::optional<ModelSpec> diffuse;
   std::optional<ModelSpec> specular;
+  // The layers over the lobes (catalog section "layer"), the first lowest: each weights what lies
+  // under it — k_d ⊗ ρ_d + k_s ⊗ ρ_s and the layers before it — by what it reflects itself
+  // (ModelDef::layer), and those with a layer over the emission dim m_e (ModelDef::emission_weight).
+  std::vector<ModelSpec> layers;
   RGB tangent_axis{0, 1, 0};
   // A tangent-space normal map (catalog/texture.h, docs/textures.md): both lobes shade
   // with the mapped normal.
@@ -41,6 +45,8 @@ struct Material {
   // "no normal mapping is applied to the clear coat layer, even if normal mapping is applied to
   // the base material").
   bool coat_normal_differs() const { return normal_map || coat_normal_map; }
+  // Whether the specular lobe or a layer has a layer with a normal of its own (ModelDef::coated).
+  bool coated() const;
   // Whether the lobes' tangent is the texture-coordinate frame's (ModelDef::uv_tangent: glTF's
   // anisotropy turns from the mesh's tangent) rather than the tangent rule on tangent_axis.
   bool lobes_uv_tangent() const { return uv_tangent_set().has_value(); }

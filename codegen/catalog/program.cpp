@@ -56,6 +56,58 @@ std::vector<ir::Expr> args_for(const ir::FunctionPtr& f, const ir::FunctionBuild
   return args;
 }
 
+// The name the i-th layer's values and function take ("layer0"), and its key in the material.
+std::string layer_name(size_t i) { return "layer" + std::to_string(i); }
+
+// layer<i>_<model>(base, inputs…): the layer's ρ over `base`, ρ of everything under it
+// (ModelDef::layer).
+ir::FunctionPtr build_layer(const Material& material, size_t i, std::vector<TexturedInput>& textured) {
+  const ModelSpec& spec = material.layers[i];
+  const std::string name = layer_name(i);
+  ir::FunctionBuilder fb(name + "_" + spec.def->name,
+                         fmt::format("Layer {} of \"{}\" over what lies under it: {} — {}", i, material.name,
+                                     describe(spec), spec.def->citation));
+  ir::Expr base = fb.param("base", ir::Type::Color);
+  LobeContext ctx(spec, name, fb, material.coat_normal_differs(), fmt::format("layers[{}]", i));
+  ir::Expr rho = spec.def->layer(ctx, base);
+  if (rho.type() != ir::Type::Color) rho = rho * ir::color(1, 1, 1);
+  std::vector<std::string> order = {"base"};
+  order.insert(order.end(), input_order().begin(), input_order().end());
+  fb.order_params(order);
+  for (const auto& t : ctx.textured_inputs()) textured.push_back(t);
+  return fb.returns(rho);
+}
+
+// m_e's weight under the layers over it: the specular lobe's, then each layer's (ModelDef::
+// emission_weight), their product where there are several; null where nothing lies over it.
+ir::FunctionPtr emission_weight(const Material& m) {
+  struct Over {
+    const ModelSpec* spec;
+    std::string lobe;
+  };
+  std::vector<Over> over;
+  if (m.specular && m.specular->def->emission_weight) over.push_back({&*m.specular, "specular"});
+  for (size_t i = 0; i < m.layers.size(); ++i)
+    if (m.layers[i].def->emission_weight) over.push_back({&m.layers[i], layer_name(i)});
+  std::vector<ir::FunctionPtr> weights;
+  for (const auto& o : over)
+    if (auto w = o.spec->def->emission_weight(*o.spec, o.lobe, o.lobe + "_emission_weight")) weights.push_back(w);
+  if (weights.empty()) return nullptr;
+  if (weights.size() == 1)  // one layer: its own function, under the name every target calls
+    for (const auto& o : over)
+      if (auto w = o.spec->def->emission_weight(*o.spec, o.lobe, "emission_weight")) return w;
+  ir::FunctionBuilder fb("emission_weight", "the emission under every layer over it: the product of their weights");
+  fb.param("NoV");
+  for (const auto& w : weights)
+    for (const auto& param : w->params) fb.param(param.name, param.type);
+  ir::Expr product = 1.0;
+  for (size_t i = 0; i < weights.size(); ++i) {
+    ir::Expr call = ir::call(weights[i], args_for(weights[i], fb));
+    product = i == 0 ? call : product * call;
+  }
+  return fb.returns(product);
+}
+
 }  // namespace
 
 bool MaterialProgram::is_textured(const std::string& input) const {
@@ -87,15 +139,22 @@ MaterialProgram compile(const Material& m) {
   if (m.diffuse) p.diffuse = build_lobe(*m.diffuse, "diffuse", m, p.textured);
   if (m.specular) p.specular = build_lobe(*m.specular, "specular", m, p.textured);
 
+  for (size_t i = 0; i < m.layers.size(); ++i) p.layers.push_back(build_layer(m, i, p.textured));
+
   ir::FunctionBuilder fb("reflectance",
-                         "MODELS.md: k_d ⊗ ρ_d(l, v) + k_s ⊗ ρ_s(l, v) for a light of unit colour",
+                         m.layers.empty() ? "MODELS.md: k_d ⊗ ρ_d(l, v) + k_s ⊗ ρ_s(l, v) for a light of unit colour"
+                                          : "MODELS.md: k_d ⊗ ρ_d(l, v) + k_s ⊗ ρ_s(l, v) under the material's layers, "
+                                            "for a light of unit colour",
                          "Horizon rule: nothing is reflected where n·l ≤ 0 or n·v ≤ 0, i.e. min(n·l, n·v) ≤ 0.");
-  // n·l and n·v always, for the horizon rule; then whatever the lobes read.
+  // n·l and n·v always, for the horizon rule; then whatever the lobes and layers read.
   fb.param("NoL");
   fb.param("NoV");
-  for (const auto& lobe : {p.diffuse, p.specular})
-    if (lobe)
-      for (const auto& param : lobe->params) fb.param(param.name, param.type);
+  std::vector<ir::FunctionPtr> parts = {p.diffuse, p.specular};
+  parts.insert(parts.end(), p.layers.begin(), p.layers.end());
+  for (const auto& part : parts)
+    if (part)
+      for (const auto& param : part->params)
+        if (param.name != "base") fb.param(param.name, param.type);
 
   ir::Expr sum = 0.0;
   bool first = true;
@@ -113,6 +172,13 @@ MaterialProgram compile(const Material& m) {
   };
   if (p.diffuse) add(p.diffuse, *m.diffuse, "diffuse");
   if (p.specular) add(p.specular, *m.specular, "specular");
+  // Each layer over what lies under it, the first lowest.
+  if (!p.layers.empty() && sum.type() != ir::Type::Color) sum = sum * ir::color(1, 1, 1);
+  for (const auto& layer : p.layers) {
+    std::vector<ir::Expr> args = {sum};
+    for (size_t i = 1; i < layer->params.size(); ++i) args.push_back(fb.arg(layer->params[i].name));
+    sum = ir::call(layer, args);
+  }
   fb.order_params(input_order());
   ir::Expr horizon_zero = ir::color(0, 0, 0);
   // One comparison of the smaller cosine rather than two and an ||: the same test.
@@ -127,8 +193,7 @@ MaterialProgram compile(const Material& m) {
                             v, Range::color(), ""});
   }
   const bool emits = m.emission_texture || m.emission != RGB{0, 0, 0};
-  if (emits && m.specular && m.specular->def->emission_weight)
-    p.emission_weight = m.specular->def->emission_weight(*m.specular, "specular");
+  if (emits) p.emission_weight = emission_weight(m);
   return p;
 }
 

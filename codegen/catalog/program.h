@@ -19,7 +19,9 @@ struct MaterialProgram {
   Material material;
   ir::FunctionPtr diffuse;      // rho_diffuse(inputs…), or null
   ir::FunctionPtr specular;     // rho_specular(inputs…), or null
-  ir::FunctionPtr reflectance;  // k_d ⊗ ρ_d + k_s ⊗ ρ_s, 0 below the horizon
+  // layer<i>_<model>(base, inputs…), Material::layers' ρ over `base`, the ρ under it, in order.
+  std::vector<ir::FunctionPtr> layers;
+  ir::FunctionPtr reflectance;  // k_d ⊗ ρ_d + k_s ⊗ ρ_s under the layers, 0 below the horizon
   std::vector<std::string> inputs;  // reflectance's parameters: input_order()'s, then `textured`'s
   // The parameters that come from images, each an input of reflectance (and of the
   // lobe that reads it) whose value the target samples at the shading point.

@@ -186,6 +186,14 @@ ir::Expr gltf_core(LobeContext& c) {
   return ir::call(terms::mix_by(metal.type()), {dielectric, metal, c.number("metallic")});
 }
 
+// The parameters a sheen reads: gltf_pbr's (sheen_color, sheen_roughness) or the sheen layer's
+// (color, roughness).
+struct SheenParams {
+  std::string color, roughness;
+};
+const SheenParams kGltfSheen{"sheen_color", "sheen_roughness"};
+const SheenParams kLayerSheen{"color", "roughness"};
+
 // What the sheen's terms take of its roughness r: α = max(r², 1e-3), the visibility's l()
 // coefficients a … e and l(0.5), and E's series coefficients [μ piece][k].
 struct SheenConstants {
@@ -195,8 +203,8 @@ struct SheenConstants {
 };
 
 // r a number: every one a constant of the material, folded when the code is generated.
-SheenConstants sheen_folded(LobeContext& c) {
-  const double r = c.spec().at("sheen_roughness").number;
+SheenConstants sheen_folded(LobeContext& c, const SheenParams& names) {
+  const double r = c.spec().at(names.roughness).number;
   const double alpha = std::max(r * r, kRoughnessMin);
   SheenConstants k;
   k.alpha = ir::constant(c.lobe() + "_sheen_alpha", alpha);
@@ -216,9 +224,9 @@ SheenConstants sheen_folded(LobeContext& c) {
 // r from an image (sheenRoughnessTexture): the same quantities at every pixel, the README's mixes
 // of l()'s coefficients and the fit's series in √r (sheen_albedo_r_pieces) summed as
 // sheen_albedo_pieces sums them for a number: E is the same function of r either way.
-SheenConstants sheen_per_pixel(LobeContext& c) {
+SheenConstants sheen_per_pixel(LobeContext& c, const SheenParams& names) {
   SheenConstants k;
-  ir::Expr r = c.let("sheen_r", ir::clamp(c.parameter(c.spec(), "sheen_roughness", c.lobe() + "_sheen_roughness"),
+  ir::Expr r = c.let("sheen_r", ir::clamp(c.parameter(c.spec(), names.roughness, c.lobe() + "_" + names.roughness),
                                           sheen_albedo_r_min(), 1.0));
   k.alpha = c.let("sheen_alpha", ir::max(r * r, kRoughnessMin));
   ir::Expr t = c.let("sheen_t", (1.0 - k.alpha) * (1.0 - k.alpha));
@@ -264,11 +272,12 @@ SheenConstants sheen_per_pixel(LobeContext& c) {
 // summed at every pixel for sheenRoughnessTexture's (sheen_per_pixel). A
 // sheen colour of 0 (every material without the extension) leaves the core as it is: "If
 // sheenColorFactor is zero, the whole sheen layer is disabled."
-ir::Expr gltf_sheen(LobeContext& c, ir::Expr core) {
-  const std::array<double, 3>& color = c.spec().at("sheen_color").rgb;  // the factor, where it is an image
+ir::Expr sheen_over(LobeContext& c, ir::Expr core, const SheenParams& names) {
+  const std::array<double, 3>& color = c.spec().at(names.color).rgb;  // the factor, where it is an image
   const double color_max = std::max({color[0], color[1], color[2]});
   if (color_max == 0) return core;
-  const SheenConstants k = c.textured(c.spec(), "sheen_roughness") ? sheen_per_pixel(c) : sheen_folded(c);
+  const SheenConstants k =
+      c.textured(c.spec(), names.roughness) ? sheen_per_pixel(c, names) : sheen_folded(c, names);
   ir::Expr D = c.let("sheen_D", ir::call(terms::distribution_charlie(), {c.NoH(), k.alpha}));
   std::vector<ir::Expr> v_args{c.NoL(), c.NoV()};
   v_args.insert(v_args.end(), k.l.begin(), k.l.end());
@@ -302,18 +311,29 @@ ir::Expr gltf_sheen(LobeContext& c, ir::Expr core) {
   ir::Expr e_v = albedo(c.NoV(), "sheen_E_v");
   ir::Expr e_l = albedo(c.NoL(), "sheen_E_l");
   // max₃(sheenColor): a constant, or of sheenColorTexture's sampled value (LobeContext::max_of).
-  ir::Expr cmax = c.max_of(c.spec(), "sheen_color", c.lobe() + "_sheen_color");
+  ir::Expr cmax = c.max_of(c.spec(), names.color, c.lobe() + "_" + names.color);
   ir::Expr scaling = c.let("sheen_scaling", ir::min(1.0 - cmax * e_v, 1.0 - cmax * e_l));
-  ir::Expr sheen_color = c.parameter(c.spec(), "sheen_color", c.lobe() + "_sheen_color", true);
+  ir::Expr sheen_color = c.parameter(c.spec(), names.color, c.lobe() + "_" + names.color, true);
   return sheen_color * brdf + core * scaling;
 }
 
-// Whether gltf_pbr has a coat: a clearcoat from an image, or a number other than 0 (every
-// material without the extension has 0). Both the coat's layer and the emission under it ask.
-bool has_clearcoat(const ModelSpec& s) {
-  const Value& coat = s.at("clearcoat");
+ir::Expr gltf_sheen(LobeContext& c, ir::Expr core) { return sheen_over(c, std::move(core), kGltfSheen); }
+
+// The parameters a clear coat reads: gltf_pbr's (clearcoat, clearcoat_roughness) or the clearcoat
+// layer's (weight, roughness).
+struct CoatParams {
+  std::string weight, roughness;
+};
+const CoatParams kGltfCoat{"clearcoat", "clearcoat_roughness"};
+const CoatParams kLayerCoat{"weight", "roughness"};
+
+// Whether `s` has a coat: its weight from an image, or a number other than 0 (every gltf_pbr
+// without the extension has 0). Both the coat's layer and the emission under it ask.
+bool has_coat(const ModelSpec& s, const CoatParams& names) {
+  const Value& coat = s.at(names.weight);
   return coat.texture || coat.number != 0;
 }
+bool has_clearcoat(const ModelSpec& s) { return has_coat(s, kGltfCoat); }
 
 // KHR_materials_clearcoat, "Clearcoat" and "Implementation": the coat is specular_brdf of
 // α = clearcoatRoughness² over the whole material, mixed in by clearcoat · fresnel_coat, whose
@@ -325,20 +345,22 @@ bool has_clearcoat(const ModelSpec& s) {
 // clearcoat normal times BRDF_specularGGX), 0 where c·l or c·v is not above 0 (its clampedDot).
 // A number clearcoat of 0 (every material without the extension) leaves the core as it is, in
 // the code too.
-ir::Expr gltf_clearcoat(LobeContext& c, ir::Expr core) {
-  if (!has_clearcoat(c.spec())) return core;
+ir::Expr coat_over(LobeContext& c, ir::Expr core, const CoatParams& names) {
+  if (!has_coat(c.spec(), names)) return core;
   LayerCosines at = lobe_cosines(c);
   if (c.coat_normal())
     at = {c.input(Input::CoL), c.input(Input::CoV), c.let("CoH_1", ir::min(c.input(Input::CoH), 1.0))};
   // Its values are named coat_…: "clearcoat_alpha" would meet OSL's name for the alpha of the
   // clearcoat parameter's texel (<lobe>_clearcoat_alpha).
-  ir::Expr coat = gltf_specular_layer(c, "clearcoat_roughness", "coat_", at);
+  ir::Expr coat = gltf_specular_layer(c, names.roughness, "coat_", at);
   if (c.coat_normal()) coat = c.let("coat_lit", ir::select(ir::min(at.l, at.v) <= 0.0, ir::Expr(0.0), coat));
   ir::Expr w = c.let("coat_w", ir::call(terms::fresnel_weight(), {at.v}));
   ir::Expr fc = c.let("coat_fresnel", ir::call(terms::fresnel_schlick_f90(ir::Type::Float), {0.04, 1.0, w}));
   if (core.type() != ir::Type::Float) coat = coat * ir::color(1, 1, 1);
-  return ir::call(terms::mix_by(core.type()), {core, coat, c.number("clearcoat") * fc});
+  return ir::call(terms::mix_by(core.type()), {core, coat, c.number(names.weight) * fc});
 }
+
+ir::Expr gltf_clearcoat(LobeContext& c, ir::Expr core) { return coat_over(c, std::move(core), kGltfCoat); }
 
 // KHR_materials_clearcoat, "Emission": coated_emission = emission (1 − clearcoat
 // clearcoat_fresnel), clearcoat_fresnel = 0.04 + 0.96 (1 − n·v)^5 the coat's Fresnel of n·v as the
@@ -347,17 +369,23 @@ ir::Expr gltf_clearcoat(LobeContext& c, ir::Expr core) {
 // clearcoatNormalTexture is not given, no normal mapping is applied to the clear coat layer"); every
 // target passes n·v of that normal. A textured clearcoat is the same input the reflectance reads
 // (`lobe`_clearcoat, its texel times its factor). Null without a coat.
-ir::FunctionPtr gltf_emission_weight(const ModelSpec& s, const std::string& lobe) {
-  if (!has_clearcoat(s)) return nullptr;
-  const Value& coat = s.at("clearcoat");
-  ir::FunctionBuilder fb("emission_weight",
+ir::FunctionPtr coat_emission_weight(const ModelSpec& s, const std::string& lobe, const std::string& function,
+                                     const CoatParams& names) {
+  if (!has_coat(s, names)) return nullptr;
+  const Value& coat = s.at(names.weight);
+  ir::FunctionBuilder fb(function,
                          "KHR_materials_clearcoat, \"Emission\": the emission under the coat, 1 − clearcoat "
                          "clearcoat_fresnel(n·v)");
   ir::Expr NoV = fb.param("NoV");
-  ir::Expr clearcoat = coat.texture ? fb.param(lobe + "_clearcoat") : ir::constant("emission_clearcoat", coat.number);
+  ir::Expr clearcoat = coat.texture ? fb.param(lobe + "_" + names.weight)
+                                    : ir::constant(lobe + "_emission_" + names.weight, coat.number);
   ir::Expr w = fb.let("coat_w", ir::call(terms::fresnel_weight(), {NoV}));
   ir::Expr fc = fb.let("coat_fresnel", ir::call(terms::fresnel_schlick_f90(ir::Type::Float), {0.04, 1.0, w}));
   return fb.returns(1.0 - clearcoat * fc);
+}
+
+ir::FunctionPtr gltf_emission_weight(const ModelSpec& s, const std::string& lobe, const std::string& function) {
+  return coat_emission_weight(s, lobe, function, kGltfCoat);
 }
 
 const char* kMicrofacetPov = "function pigment";
@@ -739,6 +767,73 @@ void add_specular(std::vector<ModelDef>& all) {
       return std::sqrt(s.at("alpha_x").number * s.at("alpha_y").number);
     };
     add_lobe_params(m);
+    all.push_back(m);
+  }
+}
+
+// The layers a material file writes over its lobes (Material::layers, bottom first): the clear
+// coat and the sheen of glTF's BRDF, the same code as gltf_pbr's (coat_over, sheen_over), over
+// whatever lies under them.
+void add_layers(std::vector<ModelDef>& all) {
+  {
+    ModelDef m;
+    m.section = "layer";
+    m.name = "clearcoat";
+    m.title = "Clear coat";
+    m.citation = "KHR_materials_clearcoat, \"Clearcoat\", \"Layering\" and \"Emission\"";
+    m.formula = "ρ' = ρ (1 − w Fc) + w Fc S_c, S_c = π D V (n_c·l) (GGX, height-correlated Smith, α = roughness²), "
+                "Fc = 0.04 + 0.96 (1 − |n_c·v|)^5; the emission under it m_e (1 − w Fc)";
+    m.doc = "A clear coat over everything under it (the lobes, and the layers listed before it): glTF's "
+            "KHR_materials_clearcoat over any lobe. Its Fresnel reads n_c·v, not v·h, as the README writes it; n_c is "
+            "the material's coat_normal_map, else the surface's own normal (unmapped where the lobes have a "
+            "normal_map). The emission is dimmed by the coat as the README's \"Emission\" says.";
+    m.params = {number("weight", "the coat's weight w (KHR_materials_clearcoat clearcoatFactor)", Range::closed(0, 1), 1,
+                       false),
+                number("roughness",
+                       "the coat's roughness (clearcoatRoughnessFactor); α = roughness², at least 1e-3",
+                       Range::closed(0, 1), 0, false)};
+    m.cycles = approximate("principled_bsdf's Coat: Cycles' coat tints and attenuates what lies under it by its own "
+                           "albedo, not by the Fresnel of n·v");
+    m.pov = none(kMicrofacetPov);
+    m.blender_nodes = nodes_none("a layer over a classic lobe has no Blender node: the facet engine renders it "
+                                 "through the generated OSL");
+    m.layer = [](LobeContext& c, const ir::Expr& base) { return coat_over(c, base, kLayerCoat); };
+    m.emission_weight = [](const ModelSpec& s, const std::string& lobe, const std::string& function) {
+      return coat_emission_weight(s, lobe, function, kLayerCoat);
+    };
+    m.coated = [](const ModelSpec& s) { return has_coat(s, kLayerCoat); };
+    m.reciprocal = false;
+    m.energy_conserving = true;
+    m.physics_note = "the weight 1 − w Fc reads n·v alone, which is not symmetric in l and v (the README: \"we "
+                     "compute the microfacet Fresnel term with NdotV instead of VdotH\"); the albedo is (1 − w Fc) "
+                     "times the base's plus w Fc times single-scattering GGX's, each ≤ 1, so ≤ 1 over a base whose "
+                     "albedo is";
+    all.push_back(m);
+  }
+  {
+    ModelDef m;
+    m.section = "layer";
+    m.name = "sheen";
+    m.title = "Sheen";
+    m.citation = "KHR_materials_sheen, \"Sheen\", \"BRDF\" and \"Albedo-scaling technique\"";
+    m.formula = "ρ' = s S_s + ρ min(1 − max(s) E(n·v), 1 − max(s) E(n·l)), S_s = π D V (n·l) (Charlie, the README's "
+                "visibility, α = roughness²), E the sheen's directional albedo";
+    m.doc = "A sheen (velvet, cloth, dust) over everything under it: glTF's KHR_materials_sheen over any lobe. What lies "
+            "under it is scaled by one minus the sheen's directional albedo at n·v and at n·l, the reciprocal form the "
+            "README writes first; E is the fit of docs/gltf.md, its worst error stated there.";
+    m.params = {color("color", "the sheen's colour s (KHR_materials_sheen sheenColorFactor; 0: none)",
+                      Range::closed(0, 1), {1, 1, 1}),
+                number("roughness", "the sheen's roughness (sheenRoughnessFactor); α = roughness², at least 1e-3",
+                       Range::closed(0, 1), 0.5, false)};
+    m.cycles = approximate("principled_bsdf's Sheen: Cycles' microfiber sheen, another distribution and albedo");
+    m.pov = none(kMicrofacetPov);
+    m.blender_nodes = nodes_none("a layer over a classic lobe has no Blender node: the facet engine renders it "
+                                 "through the generated OSL");
+    m.layer = [](LobeContext& c, const ir::Expr& base) { return sheen_over(c, base, kLayerSheen); };
+    m.reciprocal = true;
+    m.physics_note = "over a reciprocal base symmetric: the sheen's D and V are, and so is the scaling min(1 − "
+                     "max(s) E(n·v), 1 − max(s) E(n·l)), the README's reciprocal form; the README's visibility is "
+                     "not derived from a microfacet model and E is a fit, so no bound on the albedo is claimed";
     all.push_back(m);
   }
 }

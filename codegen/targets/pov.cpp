@@ -95,7 +95,11 @@ std::string material_native(const Material& m) {
     return "its cut-out's alpha comes from an image: function pigments cut it out and shade a surface seen from "
            "behind (a sphere's inside, through a hole) by its own normal, which POV-Ray's finish turns towards the eye";
   std::string why = lobe_native(m.diffuse);
-  return why.empty() ? lobe_native(m.specular) : why;
+  if (why.empty()) why = lobe_native(m.specular);
+  // A finish adds its terms; a layer weights what lies under it by what it reflects itself.
+  if (why.empty() && !m.layers.empty())
+    why = "layers[0] (" + m.layers[0].def->name + ") weights the lobes under it, which POV-Ray's finish only adds";
+  return why;
 }
 
 }  // namespace
@@ -242,6 +246,7 @@ PovScene::PovScene(const Scene& s, const Material* fallback, const std::string& 
     std::set<const ir::Function*> own = {sh->program.reflectance.get()};
     if (sh->program.diffuse) own.insert(sh->program.diffuse.get());
     if (sh->program.specular) own.insert(sh->program.specular.get());
+    for (const auto& layer : sh->program.layers) own.insert(layer.get());
     if (sh->program.emission_weight) own.insert(sh->program.emission_weight.get());
     sh->printer = PovPrinter(sh->prefix, own);
     sh->dependent = sh->printer.channel_dependent(sh->program.reflectance);

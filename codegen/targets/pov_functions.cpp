@@ -470,6 +470,7 @@ namespace {
 bool by_lobe(const PovShading& sh) {
   const MaterialProgram& p = sh.program;
   if (!sh.dependent || sh.textured()) return false;  // k_d, k_s from an image are no colour map's
+  if (!p.layers.empty()) return false;               // a layer weights k_d ⊗ ρ_d + k_s ⊗ ρ_s as a whole
   for (const auto& lobe : {p.diffuse, p.specular})
     if (lobe && (lobe->result_type() != ir::Type::Float || sh.printer.channel_dependent(lobe))) return false;
   return true;

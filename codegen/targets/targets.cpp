@@ -84,6 +84,8 @@ std::string describe_material(const Material& m, const std::string& marker) {
     s.append(marker).append(" Diffuse:  ").append(describe_lobe(*m.diffuse)).append(" — ").append(m.diffuse->def->citation).append("\n");
   if (m.specular)
     s.append(marker).append(" Specular: ").append(describe_lobe(*m.specular)).append(" — ").append(m.specular->def->citation).append("\n");
+  for (size_t i = 0; i < m.layers.size(); ++i)
+    s.append(marker).append(fmt::format(" Layer {}:  ", i)).append(describe_lobe(m.layers[i])).append(" — ").append(m.layers[i].def->citation).append("\n");
   return s;
 }
 
