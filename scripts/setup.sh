@@ -61,7 +61,7 @@ rm -f build.log
 # every renderer, compared pixel by pixel with the reference (out/validate/report.html)
 say "Generating every example for every target into out/examples"
 mkdir -p out/examples
-for m in examples/materials/*.json; do
+for m in examples/materials/*.json examples/layered/*.json; do
   name=$(basename "$m" .json)
   for t in glsl glsl450 essl hlsl wgsl osl pov; do
     build/bin/facet generate "$m" --target "$t" -o "out/examples/$name.$t"

@@ -124,7 +124,14 @@ std::vector<Variant> variants(const ModelDef& def) {
   }
   std::vector<Variant> out;
   for (auto& [label, spec] : specs) {
-    out.push_back({label, lobe_material(spec, def.name)});
+    if (def.section != "layer") {
+      out.push_back({label, lobe_material(spec, def.name)});
+      continue;
+    }
+    // A layer over a white Lambert (ρ_d = n·l, albedo 1): what the layer keeps of it and adds.
+    Material m = lobe_material(default_spec(cost_baseline_model()), def.name);
+    m.layers.push_back(spec);
+    out.push_back({label, m});
   }
   return out;
 }
@@ -288,7 +295,7 @@ struct Task {
 std::vector<PhysicsRow> measure_physics(const PhysicsOptions& o) {
   std::vector<const ModelDef*> models;
   for (const auto& def : catalog())
-    if (def.section == "diffuse" || def.section == "specular") models.push_back(&def);
+    if (def.section == "diffuse" || def.section == "specular" || def.section == "layer") models.push_back(&def);
   std::vector<PhysicsRow> rows(models.size());
   std::vector<std::vector<Variant>> vs(models.size());
   std::vector<Task> tasks;
@@ -372,7 +379,8 @@ std::string physics_markdown(const std::vector<PhysicsRow>& rows, const PhysicsO
       "exceeds albedo 1 by more than {:g} standard errors. Do not edit it by hand.\n\n",
       o.seed, o.albedo_samples, o.reciprocity_pairs, kSigmas);
   s += "**How.** Every lobe is measured white (k = 1) and, where it has a Fresnel term, with F = 1 (the white "
-       "furnace). Its BRDF is f(l, v) = ρ(l, v) / (π n·l), MODELS.md's convention.\n\n";
+       "furnace); every layer over a white Lambert lobe (albedo 1). Its BRDF is f(l, v) = ρ(l, v) / (π n·l), "
+       "MODELS.md's convention.\n\n";
   s += fmt::format(
       "- *Reciprocity*: f(l, v) and f(v, l) at random pairs above the horizon (n·l, n·v ≥ 1e-3), for every "
       "parameter set; the table gives the worst relative difference |f(l,v) − f(v,l)| / max. A lobe counts as "

@@ -803,11 +803,10 @@ void add_layers(std::vector<ModelDef>& all) {
     };
     m.coated = [](const ModelSpec& s) { return has_coat(s, kLayerCoat); };
     m.reciprocal = false;
-    m.energy_conserving = true;
-    m.physics_note = "the weight 1 − w Fc reads n·v alone, which is not symmetric in l and v (the README: \"we "
-                     "compute the microfacet Fresnel term with NdotV instead of VdotH\"); the albedo is (1 − w Fc) "
-                     "times the base's plus w Fc times single-scattering GGX's, each ≤ 1, so ≤ 1 over a base whose "
-                     "albedo is";
+    m.physics_note = "the weight w Fc reads n·v alone, which is not symmetric in l and v (the README: \"we "
+                     "compute the microfacet Fresnel term with NdotV instead of VdotH\"); for the same reason the "
+                     "albedo at a light's incidence integrates Fc over the views, small where the base reflects and "
+                     "near 1 at the grazing views a grazing light's coat highlight goes to, so no bound is claimed";
     all.push_back(m);
   }
   {

@@ -72,6 +72,8 @@ Command plot_command(CLI::App& app) {
       "The value plotted is the luminance Y (Rec. 709) of k_d ⊗ ρ_d + k_s ⊗ ρ_s for one white light at θ_l, as the\n"
       "C++ reference computes it, over view directions: blue the diffuse part, orange the specular part stacked on\n"
       "it, purple the light. Materials that read the tangent (Ward, Heidrich–Seidel) get two planes: n–t and n–b.\n"
+      "A material with layers (\"layers\": a clear coat, a sheen) is drawn whole, in teal, under its layers, and its\n"
+      "lobes alone dashed beside it: a layer weights the lobes' sum as a whole, so their parts are not drawn apart.\n"
       "Examples:\n"
       "  facet plot examples/materials/phong.json --light-angle 45 -o phong.svg\n"
       "  facet plot examples/materials/ward.json --light-angle 30 --view lobe3d -o ward.png\n"

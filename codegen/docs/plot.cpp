@@ -88,14 +88,27 @@ RadialScale scale_for(const PlotOptions& o, double peak) {
   return {o.scale, o.max > 0 ? o.max : plot_scale_max(peak), std::max(1, o.decades)};
 }
 
+const Color kLayered = Color::hex(0x2a9d8f);
+
 // What the value is, for the captions.
-const char* kQuantity =
-    "radius: luminance Y (Rec. 709) of k_d⊗ρ_d + k_s⊗ρ_s for one white light (the C++ reference), views to 89° from n";
+std::string quantity(const Material& m) {
+  return fmt::format("radius: luminance Y (Rec. 709) of k_d⊗ρ_d + k_s⊗ρ_s{} for one white light (the C++ reference), "
+                     "views to 89° from n",
+                     m.layers.empty() ? "" : " under its layers");
+}
 
 std::string lobes_line(const Material& m) {
   std::string s;
   if (m.diffuse) s += "diffuse: " + describe(*m.diffuse);
   if (m.specular) s += (s.empty() ? "" : "  ·  ") + std::string("specular: ") + describe(*m.specular);
+  if (!m.layers.empty()) s += fmt::format("  ·  under {} (the legend)", m.layers.size() == 1 ? "a layer" : "layers");
+  return s;
+}
+
+// The layers, lowest first: "Sheen (roughness = 0.7), then Clear coat (weight = 0.7, …)".
+std::string layer_names(const Material& m) {
+  std::string s;
+  for (const auto& l : m.layers) s += (s.empty() ? "" : ", then ") + describe(l);
   return s;
 }
 
@@ -174,6 +187,11 @@ void legend(Canvas& c, double y, const std::vector<std::vector<LegendItem>>& row
 
 std::vector<LegendItem> part_items(const Material& m) {
   std::vector<LegendItem> items;
+  if (!m.layers.empty()) {  // a layer weights the lobes' sum as a whole: no parts apart
+    items.push_back({LegendItem::Mark::Swatch, kLayered, "under its layers: " + layer_names(m)});
+    items.push_back({LegendItem::Mark::Dashed, kLayered, "its lobes alone"});
+    return items;
+  }
   if (m.diffuse) items.push_back({LegendItem::Mark::Swatch, kDiffuse, "diffuse k_d⊗ρ_d"});
   if (m.specular)
     items.push_back({LegendItem::Mark::Swatch, kSpecular,
@@ -203,10 +221,10 @@ Point polar_point(Point centre, double theta, double r) {
   return {centre.x + r * std::sin(radians(theta)), centre.y - r * std::cos(radians(theta))};
 }
 
-std::vector<Point> curve_points(const PolarCurve& c, Point centre, double R, const RadialScale& scale, bool diffuse) {
+std::vector<Point> curve_points(const PolarCurve& c, Point centre, double R, const RadialScale& scale,
+                                double LobeValue::*which) {
   std::vector<Point> pts;
-  for (size_t i = 0; i < c.angles.size(); ++i)
-    pts.push_back(polar_point(centre, c.angles[i], R * scale(diffuse ? c.values[i].diffuse : c.values[i].total)));
+  for (size_t i = 0; i < c.angles.size(); ++i) pts.push_back(polar_point(centre, c.angles[i], R * scale(c.values[i].*which)));
   return pts;
 }
 
@@ -265,23 +283,30 @@ void polar_directions(Canvas& c, Point centre, double R, double theta_l) {
 void polar_panel(Canvas& c, Point centre, double R, const PolarCurve& curve, const RadialScale& scale,
                  double theta_l, const Material& m, const std::string& heading) {
   polar_grid(c, centre, R, scale);
-  std::vector<Point> total = curve_points(curve, centre, R, scale, false);
-  std::vector<Point> diffuse = curve_points(curve, centre, R, scale, true);
+  std::vector<Point> total = curve_points(curve, centre, R, scale, &LobeValue::total);
+  std::vector<Point> diffuse = curve_points(curve, centre, R, scale, &LobeValue::diffuse);
+  if (!m.layers.empty()) {  // the whole under its layers, and the lobes alone dashed over it
+    std::vector<Point> area = total;
+    area.push_back(centre);
+    c.polygon(area, Style::filled(kLayered, 0.35));
+    c.polyline(total, Style::stroked(kLayered, 2));
+    c.polyline(curve_points(curve, centre, R, scale, &LobeValue::lobes), Style::stroked(kLayered, 1.5, {5, 3}));
+  }
   // The specular part as the band between the diffuse curve and the whole.
-  if (m.specular) {
+  if (m.layers.empty() && m.specular) {
     std::vector<Point> band = total;
     if (m.diffuse) band.insert(band.end(), diffuse.rbegin(), diffuse.rend());
     else band.push_back(centre);
     c.polygon(band, Style::filled(kSpecular, 0.35));
   }
-  if (m.diffuse) {
+  if (m.layers.empty() && m.diffuse) {
     std::vector<Point> area = diffuse;
     area.push_back(centre);
     c.polygon(area, Style::filled(kDiffuse, 0.35));
   }
   // The whole's outline under the diffuse one: where the specular part is nil, the line is blue.
-  if (m.specular) c.polyline(total, Style::stroked(kSpecular, 2));
-  if (m.diffuse) c.polyline(diffuse, Style::stroked(kDiffuse, 2));
+  if (m.layers.empty() && m.specular) c.polyline(total, Style::stroked(kSpecular, 2));
+  if (m.layers.empty() && m.diffuse) c.polyline(diffuse, Style::stroked(kDiffuse, 2));
   surface(c, centre, R);
   polar_directions(c, centre, R, theta_l);
   // The peak, marked and labelled; a lobe the same in every direction (Lambert) has none.
@@ -335,7 +360,9 @@ void add_line(std::vector<Piece3>& pieces, const View3& view, Vec3 a, Vec3 b, Co
 }
 
 // The lobe surface: r(ω) · ω, one quad per grid cell, lit by a key light over the eye's shoulder.
-void add_lobe(std::vector<Piece3>& pieces, const View3& view, const LobeMesh& mesh, const RadialScale& scale) {
+// `layered`: one colour (a layer weights the lobes' sum as a whole, so no part has a share).
+void add_lobe(std::vector<Piece3>& pieces, const View3& view, const LobeMesh& mesh, const RadialScale& scale,
+              bool layered) {
   Vec3 key = normalize(view.toward * 0.8 + view.up * 0.6 - view.right * 0.35);
   auto at = [&](int i, int j) {
     size_t k = size_t(i) * size_t(mesh.segments) + size_t(j);
@@ -362,7 +389,7 @@ void add_lobe(std::vector<Piece3>& pieces, const View3& view, const LobeMesh& me
       if (dot(normal, view.toward) < 0) continue;
       double light = 0.32 + 0.68 * std::max(0.0, dot(normal, key));
       double s = (share(i, j) + share(i, j + 1) + share(i + 1, j + 1) + share(i + 1, j)) / 4;
-      Piece3 q{view.depth(centroid), {p00, p01, p11, p10}, shade(share_color(s, true), light), 0, {}};
+      Piece3 q{view.depth(centroid), {p00, p01, p11, p10}, shade(layered ? kLayered : share_color(s, true), light), 0, {}};
       if (i % ring_step == 0) q.wires.push_back({0, 1});
       if ((i + 1) % ring_step == 0) q.wires.push_back({3, 2});
       if (j % segment_step == 0) q.wires.push_back({0, 3});
@@ -410,7 +437,7 @@ void draw_pieces(Canvas& c, const View3& view, std::vector<Piece3>& pieces) {
 double header(Canvas& c, const Material& m, const PlotOptions& o, const std::string& scale_text) {
   c.text({20, 28}, title_of(m, o), {17, kInk, Anchor::Start, true});
   c.text({20, 48}, literal(lobes_line(m)), {12, kMuted});
-  c.text({20, 66}, kQuantity, {12, kMuted});
+  c.text({20, 66}, quantity(m), {12, kMuted});
   c.text({20, 84}, scale_text, {12, kMuted});
   return 96;
 }
@@ -423,6 +450,12 @@ double luminance(const RGB& c) { return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 *
 
 LobeSampler::LobeSampler(const Material& m) : ref_(m) {
   if (m.diffuse) k_d_ = m.diffuse->at("color").rgb;
+  if (!m.layers.empty()) {
+    Material lobes = m;
+    lobes.layers.clear();
+    lobes.coat_normal_map.reset();  // what only a layer reads
+    lobes_ = std::make_shared<const Reference>(lobes);
+  }
 }
 
 Vec3 LobeSampler::light(double theta_l, const Vec3& axis) {
@@ -433,6 +466,10 @@ LobeValue LobeSampler::value(const Vec3& l, const Vec3& v) const {
   ShadingInputs in = shading_inputs(kN, l, v, kT);
   LobeValue out;
   out.total = luminance(ref_.reflectance(in));
+  if (lobes_) {
+    out.lobes = luminance(lobes_->reflectance(in));
+    return out;
+  }
   // The diffuse part as reflectance() forms it: k_d ⊗ ρ_d, zero below the horizon.
   if (in.NoL > 0 && in.NoV > 0) {
     RGB rho = ref_.rho_diffuse(in);
@@ -527,9 +564,11 @@ Canvas lobe3d_plot(const Material& m, const PlotOptions& o) {
   // Half-degree rings and one-degree segments: fine enough that flat-shaded quads read as a smooth surface.
   LobeMesh mesh = lobe_mesh(m, o.light_angle, 179, 361);
   RadialScale scale = scale_for(o, mesh.peak());
-  std::vector<LegendItem> items = {{LegendItem::Mark::Ramp, kDiffuse, "colour: the specular part's share of the value, 0 → 1"},
-                                   {LegendItem::Mark::Line, kLight, "light l"},
-                                   {LegendItem::Mark::Line, kMuted, "normal n"}};
+  std::vector<LegendItem> items = {{LegendItem::Mark::Line, kLight, "light l"}, {LegendItem::Mark::Line, kMuted, "normal n"}};
+  items.insert(items.begin(), m.layers.empty() ? LegendItem{LegendItem::Mark::Ramp, kDiffuse,
+                                                            "colour: the specular part's share of the value, 0 → 1"}
+                                               : LegendItem{LegendItem::Mark::Swatch, kLayered,
+                                                            "under its layers: " + layer_names(m)});
   const double width = 800;
   auto rows = legend_rows(items, width - 40);
   Canvas c(int(width), int(640 + kLegendRow * double(rows.size())), kPaper);
@@ -537,7 +576,7 @@ Canvas lobe3d_plot(const Material& m, const PlotOptions& o) {
   View3 view = oblique_view({width / 2, 440}, 255);
   lobe_floor(c, view);
   std::vector<Piece3> pieces;
-  add_lobe(pieces, view, mesh, scale);
+  add_lobe(pieces, view, mesh, scale, !m.layers.empty());
   Vec3 l = LobeSampler::light(o.light_angle, kT);
   add_line(pieces, view, {0, 0, 0}, kN * 1.2, kMuted, 1.4);
   add_line(pieces, view, {0, 0, 0}, l * 1.3, kLight, 2.5);

@@ -16,6 +16,7 @@
 //           oblique camera, coloured by the specular part's share.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -45,7 +46,9 @@ double luminance(const RGB& c);
 // One view direction's value: the luminance of k_d ⊗ ρ_d and of the whole
 // (the specular part is their difference).
 struct LobeValue {
-  double diffuse = 0, total = 0;
+  // A material with layers: diffuse 0 (a layer weights the lobes' sum as a whole, so the parts
+  // are not drawn apart), `lobes` the lobes' k_d⊗ρ_d + k_s⊗ρ_s without the layers.
+  double diffuse = 0, total = 0, lobes = 0;
   double specular() const { return total - diffuse; }
 };
 
@@ -61,6 +64,7 @@ class LobeSampler {
 
  private:
   Reference ref_;
+  std::shared_ptr<const Reference> lobes_;  // the material without its layers, where it has some
   RGB k_d_{0, 0, 0};
 };
 

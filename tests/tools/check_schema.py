@@ -32,9 +32,10 @@ def main():
     jsonschema.Draft202012Validator.check_schema(scene)
     mv = jsonschema.Draft202012Validator(material)
     failures = 0
-    examples = sorted(os.listdir(os.path.join(root, "examples/materials")))
+    examples = [os.path.join(folder, name) for folder in ("examples/materials", "examples/layered")
+                for name in sorted(os.listdir(os.path.join(root, folder)))]
     for name in examples:
-        doc = json.load(open(os.path.join(root, "examples/materials", name)))
+        doc = json.load(open(os.path.join(root, name)))
         errors = list(mv.iter_errors(doc))
         if errors:
             failures += 1

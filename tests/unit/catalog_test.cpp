@@ -123,23 +123,32 @@ TEST(Catalog, EverySpecularLobeHasAGltfRoughness) {
   EXPECT_DOUBLE_EQ(find_model("specular", "ggx")->ggx_alpha(default_spec(*find_model("specular", "ggx"))), 0.2);
 }
 
+// The examples of classic lobes, and of lobes under layers (examples/layered).
+std::vector<fs::path> example_files() {
+  std::vector<fs::path> out;
+  for (const char* dir : {"examples/materials", "examples/layered"})
+    for (const auto& e : fs::directory_iterator(kSource / dir)) out.push_back(e.path());
+  return out;
+}
+
 TEST(Examples, OnePerModelAtLeast) {
   std::set<std::string> seen;
-  for (const auto& e : fs::directory_iterator(kSource / "examples/materials")) {
-    Material m = load_material(e.path().string());
+  for (const auto& path : example_files()) {
+    Material m = load_material(path.string());
     if (m.diffuse) seen.insert("diffuse/" + m.diffuse->def->name);
     if (m.specular) seen.insert("specular/" + m.specular->def->name);
+    for (const auto& layer : m.layers) seen.insert("layer/" + layer.def->name);
   }
   for (const auto& m : catalog()) {
-    if (m.section == "diffuse" || m.section == "specular") {
+    if (m.section == "diffuse" || m.section == "specular" || m.section == "layer") {
       EXPECT_TRUE(seen.count(m.section + "/" + m.name)) << "no example uses " << m.name;
     }
   }
 }
 
 TEST(Examples, GenerateForEveryTargetAndScene) {
-  for (const auto& e : fs::directory_iterator(kSource / "examples/materials")) {
-    Material m = load_material(e.path().string());
+  for (const auto& path : example_files()) {
+    Material m = load_material(path.string());
     for (Target t : all_targets()) {
       for (const char* scene : {"single", "shadows"}) {
         for (bool library : {false, true}) {
@@ -148,7 +157,7 @@ TEST(Examples, GenerateForEveryTargetAndScene) {
           o.library = library;
           o.scene = load_scene(scene);
           std::string code;
-          EXPECT_NO_THROW(code = generate(m, o)) << e.path() << " " << target_name(t);
+          EXPECT_NO_THROW(code = generate(m, o)) << path << " " << target_name(t);
           EXPECT_GT(code.size(), 200u);
         }
       }

@@ -53,7 +53,7 @@ std::map<std::string, std::pair<int, int>> bindings(const std::string& dis) {
 
 std::vector<fs::path> examples() {
   std::vector<fs::path> out;
-  for (const char* dir : {"examples/materials", "examples/textured"})
+  for (const char* dir : {"examples/materials", "examples/layered", "examples/textured"})
     for (const auto& e : fs::directory_iterator(kSource / dir))
       if (e.path().extension() == ".json") out.push_back(e.path());  // not examples/textured/textures/
   std::sort(out.begin(), out.end());

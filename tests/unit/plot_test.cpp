@@ -83,6 +83,30 @@ TEST(Plot, TheDiffusePartIsKdRhoAndTheSpecularTheRest) {
   }
 }
 
+// A layered material's diagram: the whole under its layers, and its lobes alone beside it. A
+// clear coat over Lambert keeps the lobes' value dimmed by 1 − Fc(n·v) and adds its highlight at
+// the mirror direction; a sheen over Lambert rises towards the grazing views.
+TEST(Plot, ALayeredMaterialIsDrawnUnderItsLayersBesideItsLobesAlone) {
+  Material coated = lobe("diffuse", "lambert");
+  coated.layers.push_back(default_spec(*find_model("layer", "clearcoat")));
+  coated.layers.back().values["roughness"].number = 0.2;
+  PolarCurve c = polar_curves(coated, 40)[0];
+  for (size_t i = 0; i < c.angles.size(); ++i) {
+    EXPECT_EQ(c.values[i].diffuse, 0) << "a layer weights the lobes as a whole: no parts apart";
+    EXPECT_NEAR(c.values[i].lobes, std::cos(40 * kPi / 180), 1e-12);  // white Lambert alone
+    if (std::fabs(c.angles[i] - 40) > 30) {
+      EXPECT_LT(c.values[i].total, c.values[i].lobes) << c.angles[i];
+    }
+  }
+  EXPECT_NEAR(c.peak_angle(), 40, 1.0) << "the coat's highlight at the mirror direction";
+  Material velvet = lobe("diffuse", "lambert");
+  velvet.layers.push_back(default_spec(*find_model("layer", "sheen")));
+  PolarCurve v = polar_curves(velvet, 60)[0];
+  EXPECT_GT(std::fabs(v.peak_angle()), 80) << "a sheen peaks at grazing views";
+  EXPECT_GT(polar_plot(velvet, PlotOptions{}).width(), 0);
+  EXPECT_GT(lobe3d_plot(velvet, PlotOptions{}).width(), 0);
+}
+
 TEST(Plot, MinnaertWithKAboveOneDarkensTheLimbs) {
   PolarCurve dark = polar_curves(lobe("diffuse", "minnaert", {{"k", 1.5}}), 30)[0];
   // From the normal towards either horizon the value only falls, to a small fraction at 89°.
