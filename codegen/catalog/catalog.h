@@ -281,6 +281,13 @@ struct ModelDef {
   // at the shading point. Null, or returning null: m_e as it is.
   std::function<ir::FunctionPtr(const ModelSpec& lobe, const std::string& name, const std::string& function)>
       emission_weight;
+  // Layers that are a part of glTF's own BRDF (gltf_pbr, `gltf_brdf`): the gltf_pbr parameter
+  // each of the layer's parameters is ({"color", "sheen_color"}, …; the first is the one whose 0
+  // turns the part off), and the layer's place in glTF's stack, bottom up (KHR_materials_clearcoat:
+  // "the clearcoat layer is on top of … sheen"): 1 the sheen, 2 the coat. gltf_brdf_lobe()
+  // (material.h) folds such layers into the lobe, which the glTF export then writes as extensions.
+  std::vector<std::pair<std::string, std::string>> gltf_brdf_params;
+  int gltf_brdf_stack = 0;
   // Specular lobes and layers: whether these values have a layer with a normal of its own (a
   // clear coat), which a material may map apart from the base (Material::coat_normal_map). Null: none.
   std::function<bool(const ModelSpec& lobe)> coated;

@@ -94,6 +94,37 @@ void parse_layers(const json& val, Material& m, Checker& check, DiagnosticSink& 
 
 }  // namespace
 
+std::optional<ModelSpec> gltf_brdf_lobe(const Material& m, std::string* why) {
+  auto refuse = [&](std::string text) -> std::optional<ModelSpec> {
+    if (why) *why = std::move(text);
+    return std::nullopt;
+  };
+  if (m.diffuse || !m.specular || !m.specular->def->gltf_brdf) return refuse("");
+  ModelSpec lobe = *m.specular;
+  if (m.layers.empty()) return lobe;
+  // A layer lies over k_s ⊗ ρ_s and its toon; glTF's parts lie inside them.
+  const Value& k_s = lobe.at("color");
+  if (k_s.texture || k_s.rgb != RGB{1, 1, 1}) return refuse("the specular colour k_s under its layers (not white)");
+  if (auto toon = lobe.values.find("toon"); toon != lobe.values.end() && toon->second.model)
+    return refuse("the toon modifier under its layers");
+  auto on = [](const Value& v) { return v.texture || (v.kind == ParamKind::Color ? v.rgb != RGB{0, 0, 0} : v.number != 0); };
+  int top = 0;  // the highest part of glTF's stack the lobe holds so far
+  for (const ModelDef* part : section("layer"))  // its switch: the first parameter's counterpart
+    if (!part->gltf_brdf_params.empty() && on(lobe.at(part->gltf_brdf_params[0].second)))
+      top = std::max(top, part->gltf_brdf_stack);
+  for (size_t i = 0; i < m.layers.size(); ++i) {
+    const ModelSpec& layer = m.layers[i];
+    const ModelDef& def = *layer.def;
+    if (def.gltf_brdf_params.empty())
+      return refuse(fmt::format("layers[{}] ({}), which is no part of glTF's BRDF", i, def.name));
+    if (def.gltf_brdf_stack <= top)
+      return refuse(fmt::format("layers[{}] ({}) over a part glTF's BRDF puts above it, or twice", i, def.name));
+    top = def.gltf_brdf_stack;
+    for (const auto& [from, to] : def.gltf_brdf_params) lobe.values[to] = layer.at(from);
+  }
+  return lobe;
+}
+
 bool Material::coated() const {
   auto coated = [](const ModelSpec& s) { return s.def->coated && s.def->coated(s); };
   return (specular && coated(*specular)) || std::any_of(layers.begin(), layers.end(), coated);

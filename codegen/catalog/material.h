@@ -104,6 +104,13 @@ Material lobe_material(const ModelSpec& spec, const std::string& name);
 // `facet cost` measures and `facet docs` shows when given no material.
 std::vector<Material> model_materials();
 
+// `m` as glTF's own BRDF alone: its gltf_pbr specular lobe (ModelDef::gltf_brdf; no diffuse lobe,
+// k_s white, no toon) with its layers folded in where each is a part of that BRDF
+// (ModelDef::gltf_brdf_params) lying where glTF's stack puts it — above the lobe's own parts, each
+// part once — so that the result is the same reflectance. nullopt otherwise, `why` saying what
+// glTF's BRDF cannot hold (empty where `m` has no gltf_pbr lobe at all).
+std::optional<ModelSpec> gltf_brdf_lobe(const Material& m, std::string* why = nullptr);
+
 // The canonical JSON form (every default written out), which parses back to an
 // equal material.
 nlohmann::json to_json(const Material& m);

@@ -802,6 +802,8 @@ void add_layers(std::vector<ModelDef>& all) {
       return coat_emission_weight(s, lobe, function, kLayerCoat);
     };
     m.coated = [](const ModelSpec& s) { return has_coat(s, kLayerCoat); };
+    m.gltf_brdf_params = {{kLayerCoat.weight, kGltfCoat.weight}, {kLayerCoat.roughness, kGltfCoat.roughness}};
+    m.gltf_brdf_stack = 2;
     m.reciprocal = false;
     m.physics_note = "the weight w Fc reads n·v alone, which is not symmetric in l and v (the README: \"we "
                      "compute the microfacet Fresnel term with NdotV instead of VdotH\"); for the same reason the "
@@ -829,6 +831,8 @@ void add_layers(std::vector<ModelDef>& all) {
     m.blender_nodes = nodes_none("a layer over a classic lobe has no Blender node: the facet engine renders it "
                                  "through the generated OSL");
     m.layer = [](LobeContext& c, const ir::Expr& base) { return sheen_over(c, base, kLayerSheen); };
+    m.gltf_brdf_params = {{kLayerSheen.color, kGltfSheen.color}, {kLayerSheen.roughness, kGltfSheen.roughness}};
+    m.gltf_brdf_stack = 1;
     m.reciprocal = true;
     m.physics_note = "over a reciprocal base symmetric: the sheen's D and V are, and so is the scaling min(1 − "
                      "max(s) E(n·v), 1 − max(s) E(n·l)), the README's reciprocal form; the README's visibility is "

@@ -852,8 +852,20 @@ class Exporter {
   // False, with a note and nothing written, where the lobe holds what glTF cannot say: the
   // fallback then.
   bool gltf_brdf(const std::string& key, const Material& m, tinygltf::Material& g) {
-    if (m.diffuse || !m.specular || !m.specular->def->gltf_brdf) return false;
-    const ModelSpec& s = *m.specular;
+    std::string layers_why;
+    const std::optional<ModelSpec> folded = gltf_brdf_lobe(m, &layers_why);  // its layers as its extensions
+    if (!folded) {
+      if (!layers_why.empty())
+        notes_.push_back(fmt::format("materials.{}: glTF's BRDF cannot hold {}; the metallic–roughness core is "
+                                     "approximate (FACET_material carries the material)",
+                                     key, layers_why));
+      else if (!m.layers.empty())
+        notes_.push_back(fmt::format("materials.{}: its layers are left out of the metallic–roughness core, which "
+                                     "is approximate (FACET_material carries the material)",
+                                     key));
+      return false;
+    }
+    const ModelSpec& s = *folded;
     if (const std::string why = gltf_brdf_unsaid(s); !why.empty()) {
       notes_.push_back(fmt::format("materials.{}: glTF cannot say {} of its gltf_pbr lobe; the metallic–roughness "
                                    "core is approximate (FACET_material carries the material)",

@@ -12,6 +12,7 @@
 #include "catalog/texture.h"
 #include "core/image.h"
 #include "core/io.h"
+#include "reference/interpreter.h"
 #include "reference/raycaster.h"
 #include "renderers/process.h"
 #include "scene/gltf.h"
@@ -340,6 +341,59 @@ TEST(Gltf, GltfBrdfExportsAsItsFactorsMapsAndExtensions) {
   EXPECT_EQ(plain_material.coat_normal_map->strength, 0.7);
   EXPECT_EQ(plain_material.coat_normal_map->texture().rotation, 0.5);
   EXPECT_EQ(plain_material.coat_normal_map->texture().texels->rgba, m.coat_normal_map->texture().texels->rgba);
+}
+
+// Layers a material file writes over a gltf_pbr lobe are glTF's own parts where they lie where
+// glTF's stack puts them (KHR_materials_sheen under KHR_materials_clearcoat): the export writes
+// them as those extensions, and a reader without FACET_material gets the same reflectance. A
+// layer over classic lobes, or the coat under the sheen, is no glTF: a note says so, and
+// FACET_material carries it.
+TEST(Gltf, LayersOverGltfPbrExportAsItsExtensions) {
+  const json lobe = {{"model", "gltf_pbr"}, {"base_color", {0.4, 0.2, 0.6}}, {"roughness", 0.5}};
+  const json layers = {{{"model", "sheen"}, {"color", {0.7, 0.8, 0.5}}, {"roughness", 0.4}},
+                       {{"model", "clearcoat"},
+                        {"weight", {{"texture", "textures/leaf.png"}, {"channel", "r"}, {"factor", 0.9}}},
+                        {"roughness", 0.2}}};
+  const Material m = leaf_lobe_material("gltf_layers_export", "layered", lobe, {{"layers", layers}});
+  const fs::path folder = scratch("gltf_layers_export");
+  const std::string out = (folder / "out.gltf").string();
+  std::vector<std::string> notes;
+  export_gltf(load_scene("single"), &m, out, notes);
+  for (const auto& n : notes) EXPECT_EQ(n.find("approximate"), std::string::npos) << n;
+  json doc = json::parse(read_file(out));
+  json& ext = doc["materials"][0]["extensions"];
+  EXPECT_EQ(ext["KHR_materials_sheen"]["sheenColorFactor"], json::array({0.7, 0.8, 0.5}));
+  EXPECT_EQ(ext["KHR_materials_sheen"]["sheenRoughnessFactor"], 0.4);
+  EXPECT_EQ(ext["KHR_materials_clearcoat"]["clearcoatFactor"], 0.9);
+  EXPECT_TRUE(ext["KHR_materials_clearcoat"].contains("clearcoatTexture"));
+  EXPECT_EQ(ext["FACET_material"]["material"]["layers"].size(), 2u) << "FACET_material keeps the file's own form";
+  ext.erase("FACET_material");
+  write_file_atomic((folder / "plain.gltf").string(), doc.dump());
+  GltfImportOptions o;
+  o.output = (folder / "back/scene.json").string();
+  std::vector<GltfImportFile> files;
+  const Scene plain = import_gltf((folder / "plain.gltf").string(), o, notes, &files);
+  const Reference a(m), b(plain.materials.begin()->second);
+  for (double c : {1.0, 0.6, 0.2, 0.01}) {
+    const Vec3 n(0, 0, 1), l = normalize(Vec3(0.3, 0.2, c)), v = normalize(Vec3(-0.5, 0.1, c * 0.7));
+    ShadingInputs in = shading_inputs(n, l, v, Vec3(1, 0, 0));
+    in.textured[0] = {0.55, 0.55, 0.55};  // the coat's weight at some texel, read the same by both
+    const RGB x = a.reflectance(in), y = b.reflectance(in);
+    for (int k = 0; k < 3; ++k) EXPECT_NEAR(x[k], y[k], 1e-12 * std::max(1.0, x[k])) << c;
+  }
+  // The coat under the sheen, and a coat over Lambert: not glTF's BRDF, said.
+  for (const json& other : {json{{"layers", {layers[1], layers[0]}}}, json{{"layers", {layers[1]}}}}) {
+    Material o2 = leaf_lobe_material("gltf_layers_export", "other", lobe, other);
+    if (other["layers"].size() == 1) {
+      o2.specular.reset();
+      o2.diffuse = default_spec(*find_model("diffuse", "lambert"));
+    }
+    notes.clear();
+    export_gltf(load_scene("single"), &o2, out, notes);
+    bool said = false;
+    for (const auto& n : notes) said = said || n.find("approximate (FACET_material carries the material)") != std::string::npos;
+    EXPECT_TRUE(said) << other.dump();
+  }
 }
 
 // What glTF cannot say (here a metallic map without its roughness half) is decided before
