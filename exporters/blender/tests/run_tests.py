@@ -723,6 +723,9 @@ def normalized_example(data, cat, schema):
         if section in data:
             model = next(m for m in cat[section] if m["name"] == data[section]["model"])
             result[section] = full(model, data[section])
+    if data.get("layers"):
+        result["layers"] = [full(next(m for m in cat["layer"] if m["name"] == layer["model"]), layer)
+                            for layer in data["layers"]]
     for key in ("ambient", "emission"):
         result[key] = rgb(data.get(key, schema[key]["default"]))
     result["tangent_axis"] = [float(x) for x in data.get("tangent_axis", schema["tangent_axis"]["default"])]
@@ -734,19 +737,26 @@ def test_import_export_round_trip():
     """Every example material: import -> export gives the file with defaults written out;
     importing the export again changes nothing."""
     cat, schema = catalog_json()["sections"], schema_json()["properties"]
-    folder = os.path.join(os.path.dirname(os.path.dirname(ADDON_ROOT)), "examples", "materials")
+    examples = os.path.join(os.path.dirname(os.path.dirname(ADDON_ROOT)), "examples")
+    folder = os.path.join(examples, "materials")
     names = sorted(f for f in os.listdir(folder) if f.endswith(".json"))
     check(len(names) >= 10, f"too few example materials in {folder}")
+    # examples/layered: lobes under the layers the panel's two layer slots hold.
+    layered = sorted(os.path.join("..", "layered", f) for f in os.listdir(os.path.join(examples, "layered"))
+                     if f.endswith(".json"))
+    check(layered, "no layered example materials")
+    names += layered
     for file in names:
         original = read_json(os.path.join(folder, file))
         mat = bpy.data.materials.new(original["name"])
         expect_ok("import_material", mat, filepath=os.path.join(folder, file))
         check(mat.facet.use_facet, f"{file}: import did not enable facet")
-        exported = export_material(mat, f"rt_{file}")
+        base = os.path.basename(file)
+        exported = export_material(mat, f"rt_{base}")
         check_equal(exported, normalized_example(original, cat, schema), f"{file}: export after import")
         again = bpy.data.materials.new(original["name"] + "_again")
-        expect_ok("import_material", again, filepath=work(f"rt_{file}"))
-        second = export_material(again, f"rt2_{file}")
+        expect_ok("import_material", again, filepath=work(f"rt_{base}"))
+        second = export_material(again, f"rt2_{base}")
         check_equal(dict(second, name=exported["name"]), exported, f"{file}: second round trip")
     # No active material: the import creates one, named after the file's material.
     before = set(bpy.data.materials.keys())

@@ -41,7 +41,7 @@ def from_json(material, data, folder=None):
     values = plan_mod.material_from_json(catalog, plan, numbers)   # everything computed first,
     bindings, notes = [], []
     for path, tex in found:
-        where = f"material '{data.get('name', material.name)}': {'.'.join(path)}"
+        where = f"material '{data.get('name', material.name)}': {textures.key_path(path)}"
         if folder is None:
             notes.append(f"{where}: its texture '{tex['texture']}' is not imported (no file folder); the "
                          f"parameter keeps its factor or default")
@@ -53,7 +53,7 @@ def from_json(material, data, folder=None):
             image = bpy.data.images.load(file, check_existing=True)
         except RuntimeError as e:
             raise UserError(f"{where}: Blender cannot read image '{file}': {e}")
-        model = numbers.get(path[0], {}).get("model") if len(path) > 1 else None
+        model = textures.model_at(numbers, path).get("model") if len(path) > 1 else None
         bindings.append(textures.binding_of_json(path, tex, model, image.name))
     properties.write(material.facet, plan, values)              # then written in one go
     material.facet_textures = textures.dumps(bindings) if bindings else ""

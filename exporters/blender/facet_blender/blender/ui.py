@@ -14,7 +14,8 @@ import textwrap
 
 import bpy
 
-from ..core import cli, native as core_native, props as plan_mod
+from ..core import cli, native as core_native, props as plan_mod, textures
+from ..core.catalog import LAYER_SECTION
 from . import material as material_mod, osl, osl_lights, state
 from .operators import context_material
 
@@ -159,7 +160,7 @@ class FACET_PT_material(bpy.types.Panel):
             wrapped_label(box, context, "Textures (exported with the material; the values below stand in for them):",
                           icon="TEXTURE")
             for b in bindings:
-                where = ".".join(b["path"]) + (f" ({b['model']})" if b.get("model") else "")
+                where = textures.key_path(b["path"]) + (f" ({b['model']})" if b.get("model") else "")
                 baked = f", {b['derive']['op']} baked" if b.get("derive") else ""
                 wrapped_label(box, context, f"{where} <- image '{b['spec']['image']}'{baked}")
 
@@ -169,19 +170,22 @@ class _LobePanel:
     bl_region_type = "WINDOW"
     bl_context = "material"
     bl_parent_id = "FACET_PT_material"
-    section = ""
+    section = ""   # the catalog section its drop-down chooses from
+    slot = ""      # the drop-down (properties "<slot>_model", "<slot>_<model>"); the section's name for lobes
 
     @classmethod
     def poll(cls, context):
-        return _ready(context)
+        # A layer slot only where this facet's catalog has layers (the plan has its drop-down).
+        return _ready(context) and any(f.id == f"{cls.slot or cls.section}_model" for f in state.STATE.plan.fields)
 
     def draw(self, context):
         layout = self.layout
         layout.use_property_split = True
         catalog, plan = state.STATE.catalog, state.STATE.plan
         settings = context_material(context).facet
-        chosen = getattr(settings, f"{self.section}_model")
-        layout.prop(settings, f"{self.section}_model", text="Model")
+        slot = getattr(self, "slot", "") or self.section  # the tests draw with a stand-in self
+        chosen = getattr(settings, f"{slot}_model")
+        layout.prop(settings, f"{slot}_model", text="Model")
         if chosen == plan_mod.NONE:
             return
         model = catalog.model(self.section, chosen)
@@ -190,10 +194,9 @@ class _LobePanel:
         wrapped_label(info, context, model.formula)
         if model.citation:
             wrapped_label(info, context, model.citation)
-        wrapped_label(info, context, _nodes_line(catalog, model, getattr(settings, f"{self.section}_{chosen}"),
-                                                 plan.field(f"{self.section}_{chosen}").group))
-        draw_fields(layout, getattr(settings, f"{self.section}_{chosen}"),
-                    plan.field(f"{self.section}_{chosen}").group)
+        wrapped_label(info, context, _nodes_line(catalog, model, getattr(settings, f"{slot}_{chosen}"),
+                                                 plan.field(f"{slot}_{chosen}").group))
+        draw_fields(layout, getattr(settings, f"{slot}_{chosen}"), plan.field(f"{slot}_{chosen}").group)
 
 
 class FACET_PT_diffuse(_LobePanel, bpy.types.Panel):
@@ -206,6 +209,22 @@ class FACET_PT_specular(_LobePanel, bpy.types.Panel):
     bl_label = "Specular"
     bl_idname = "FACET_PT_specular"
     section = "specular"
+
+
+class FACET_PT_layer0(_LobePanel, bpy.types.Panel):
+    bl_label = "Layer over the Lobes"
+    bl_idname = "FACET_PT_layer0"
+    bl_options = {"DEFAULT_CLOSED"}
+    section = LAYER_SECTION
+    slot = "layer0"
+
+
+class FACET_PT_layer1(_LobePanel, bpy.types.Panel):
+    bl_label = "Layer over Layer 0"
+    bl_idname = "FACET_PT_layer1"
+    bl_options = {"DEFAULT_CLOSED"}
+    section = LAYER_SECTION
+    slot = "layer1"
 
 
 class FACET_PT_surface(bpy.types.Panel):
@@ -263,7 +282,8 @@ def menu_export(self, context):
     self.layout.operator("facet.export_scene", text="facet: Scene (.json)")
 
 
-classes = (FACET_PT_material, FACET_PT_diffuse, FACET_PT_specular, FACET_PT_surface, FACET_PT_generate)
+classes = (FACET_PT_material, FACET_PT_diffuse, FACET_PT_specular, FACET_PT_layer0, FACET_PT_layer1, FACET_PT_surface,
+           FACET_PT_generate)
 
 
 def register_menus():

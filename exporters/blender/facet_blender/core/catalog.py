@@ -22,6 +22,12 @@ BUNDLED_PATH = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__fi
 
 # The sections whose models are a material's lobes (the panel's two drop-downs).
 LOBE_SECTIONS = ("diffuse", "specular")
+# The layers a material lays over its lobes (facet's "layers", a list, the first lowest): the
+# panel holds LAYER_SLOTS of them, "layer0" under "layer1", each a drop-down of the catalog's
+# layer models. SLOTS: every drop-down of the panel, with the catalog section it chooses from.
+LAYER_SECTION = "layer"
+LAYER_SLOTS = 2
+SLOTS = tuple((s, s) for s in LOBE_SECTIONS) + tuple((f"layer{i}", LAYER_SECTION) for i in range(LAYER_SLOTS))
 
 
 @dataclass(frozen=True)
@@ -161,7 +167,7 @@ def _material_keys(schema):
     """ambient/emission/tangent_axis (and whatever facet adds later) from `facet schema`."""
     keys = []
     for name, prop in schema.get("properties", {}).items():
-        if name in ("$schema", "name") or name in LOBE_SECTIONS:
+        if name in ("$schema", "name", "layers") or name in LOBE_SECTIONS:
             continue
         if not _allows_type(prop, "array"):
             continue  # a number (alpha, alpha_cutoff): not a colour or vector the panel edits

@@ -253,6 +253,11 @@ def lobe_node(section, lobe, principled=True):
 def node_plan(material, principled=True):
     """The nodes for a facet material JSON (a dict), in the order they are summed by Add
     Shader nodes: [node, ...]. Ambient is left out (Cycles' World lights the material)."""
+    if material.get("layers"):   # a layer weights the lobes' sum by what it reflects: no Add Shader does
+        names = ", ".join(layer.get("model", "?") for layer in material["layers"])
+        raise UserError(f"material '{material.get('name', '')}' has layers over its lobes ({names}), which no "
+                        f"Blender node makes (the catalog says so: facet models --json, blender_nodes); the facet "
+                        f"engine renders them through the generated OSL")
     plan = [lobe_node(s, material[s], principled) for s in ("diffuse", "specular") if material.get(s)]
     emission = material.get("emission")
     if emission is not None and any(c != 0.0 for c in _rgb(emission)):

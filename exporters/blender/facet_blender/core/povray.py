@@ -89,6 +89,7 @@ class _Run:
         self.out = os.path.join(folder, out_rel)
         self.log_path = os.path.splitext(self.out)[0] + ".log"
         self.what, self.started = what, time.monotonic()
+        self.reported = 0.0   # the most this run has said it rendered (fraction never goes back)
         # POV-Ray's I/O restrictions allow the working folder: run it there with plain names.
         command = [povray, "+I" + pov_name, "+O" + out_rel, f"+W{width}", f"+H{height}", "+FP16",
                    "File_Gamma=1.0", "-D", "-P", "+V"] + options
@@ -105,11 +106,15 @@ class _Run:
             return f.read().decode("utf-8", "replace")
 
     def fraction(self):
-        """How much of the image POV-Ray says it has rendered (its +V progress lines)."""
+        """How much of the image POV-Ray says it has rendered (its +V progress lines), never less
+        than it said before: once the render ends, its statistics push the last progress line out
+        of the log's tail before the process exits."""
         if self.proc.poll() is not None:
             return 1.0
         found = PROGRESS.findall(self._tail(512))
-        return int(found[-1][0]) / max(1, int(found[-1][1])) if found else 0.0
+        if found:
+            self.reported = max(self.reported, int(found[-1][0]) / max(1, int(found[-1][1])))
+        return self.reported
 
     def done(self):
         """True once POV-Ray has written the image; a UserError with its last lines when

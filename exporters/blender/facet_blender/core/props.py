@@ -14,6 +14,10 @@ Layout of the plan (one group per lobe model, built at register time):
         specular_model   enum             "none" or a specular model
         diffuse_<model>  -> FACET_PG_diffuse_<model>     one per diffuse model
         specular_<model> -> FACET_PG_specular_<model>    one per specular model
+        layer0_model, layer1_model  enum  "none" or a layer model (catalog: layer), the
+                                          material's "layers" list, layer0 the lower
+        layer<i>_<model> -> FACET_PG_layer_<model>       one per layer model (both slots
+                                                         share the group class)
         ambient, emission, tangent_axis   the material keys of `facet schema`
 
     FACET_PG_<section>_<model>            the model's parameters, with the catalog's
@@ -31,7 +35,7 @@ facet's (+Y up), so "up" means the same thing on both sides.
 from dataclasses import dataclass, field
 
 from . import UserError
-from .catalog import LOBE_SECTIONS
+from .catalog import LAYER_SECTION, LAYER_SLOTS, LOBE_SECTIONS, SLOTS
 from .coords import clean_float, clean_vector, to_blender, to_facet
 
 MATERIAL_GROUP = "FACET_PG_material"
@@ -191,17 +195,20 @@ def material_group(catalog):
     group.fields.append(Field(USE_FACET, "bool", "facet",
                               "Give this material facet settings: export it as a facet material, "
                               "generate GLSL/OSL/POV-Ray from it", False))
-    for section in LOBE_SECTIONS:
+    slots = [(slot, section) for slot, section in SLOTS if catalog.models(section)]  # an older facet: no layers
+    for slot, section in slots:
         models = catalog.models(section)
-        items = ((NONE, "None", f"No {section} lobe"),) + tuple(
+        what = f"{section} lobe" if section != LAYER_SECTION else f"layer {slot[len('layer'):]} (0 the lower)"
+        items = ((NONE, "None", f"No {what}"),) + tuple(
             (m.name, m.title, f"{m.doc} {m.formula} ({m.citation})".strip()) for m in models)
         default = models[0].name if section == "diffuse" else NONE
-        group.fields.append(Field(f"{section}_model", "enum", f"{section.capitalize()} Model",
-                                  f"The {section} lobe's model (facet catalog)", default, items=items))
-    for section in LOBE_SECTIONS:
+        group.fields.append(Field(f"{slot}_model", "enum", f"{slot.capitalize()} Model",
+                                  f"The {what}'s model (facet catalog)", default, items=items))
+    lobes = {}
+    for slot, section in slots:
         for m in catalog.models(section):
-            lobe = lobe_group(catalog, m)
-            group.fields.append(Field(f"{section}_{m.name}", "group", m.title, m.doc, group=lobe))
+            lobe = lobes.setdefault(m.name + "/" + section, lobe_group(catalog, m))
+            group.fields.append(Field(f"{slot}_{m.name}", "group", m.title, m.doc, group=lobe))
     for k in catalog.material_keys:
         default = to_blender(k.default) if k.kind == "vector" else list(k.default)
         doc = tooltip(k.doc) + (" Edited in Blender's axes (Z up); written in facet's (Y up)."
@@ -211,13 +218,17 @@ def material_group(catalog):
     return group
 
 
-def groups_in_registration_order(group):
-    """Every group of the tree, nested ones before the groups that point to them."""
+def groups_in_registration_order(group, seen=None):
+    """Every group of the tree, nested ones before the groups that point to them, each once (the
+    layer slots share their models' groups)."""
+    seen = set() if seen is None else seen
     order = []
     for f in group.fields:
-        if f.kind == "group":
-            order.extend(groups_in_registration_order(f.group))
-    order.append(group)
+        if f.kind == "group" and f.group.name not in seen:
+            order.extend(groups_in_registration_order(f.group, seen))
+    if group.name not in seen:
+        seen.add(group.name)
+        order.append(group)
     return order
 
 
@@ -310,6 +321,14 @@ def material_to_json(catalog, plan, values, name):
     if not any(section in data for section in LOBE_SECTIONS):
         raise UserError(f"material '{name}' has neither a diffuse nor a specular model: "
                         f"choose at least one in its facet panel")
+    layers = []
+    for i in range(LAYER_SLOTS):
+        chosen = values.get(f"layer{i}_model", NONE)
+        if chosen != NONE:
+            layers.append(lobe_to_json(catalog.model(LAYER_SECTION, chosen),
+                                       plan.field(f"layer{i}_{chosen}").group, values[f"layer{i}_{chosen}"]))
+    if layers:
+        data["layers"] = layers
     for k in catalog.material_keys:
         v = values[k.name]
         data[k.name] = clean_vector(to_facet(v) if k.kind == "vector" else v)
@@ -322,14 +341,20 @@ def material_from_json(catalog, plan, data):
     Only the chosen lobes' groups are included: the other models keep whatever the
     user set in them. The JSON is assumed valid (facet checked it)."""
     values = {USE_FACET: True}
-    for section in LOBE_SECTIONS:
-        lobe = data.get(section)
+    layers = data.get("layers") or []
+    slots = [slot for slot, section in SLOTS if section == LAYER_SECTION and catalog.models(section)]
+    if len(layers) > len(slots):
+        raise UserError(f"material '{data.get('name', '')}' has {len(layers)} layers; the facet panel holds "
+                        f"{len(slots)}: the material is not imported (facet itself renders it)")
+    chosen = {section: data.get(section) for section in LOBE_SECTIONS}
+    chosen.update({slot: layers[i] if i < len(layers) else None for i, slot in enumerate(slots)})
+    for slot, lobe in chosen.items():
+        section = slot if slot in LOBE_SECTIONS else LAYER_SECTION
         if isinstance(lobe, dict) and catalog.has_model(section, lobe.get("model")):
-            values[f"{section}_model"] = lobe["model"]
-            values[f"{section}_{lobe['model']}"] = lobe_from_json(
-                plan.field(f"{section}_{lobe['model']}").group, lobe)
+            values[f"{slot}_model"] = lobe["model"]
+            values[f"{slot}_{lobe['model']}"] = lobe_from_json(plan.field(f"{slot}_{lobe['model']}").group, lobe)
         else:
-            values[f"{section}_model"] = NONE
+            values[f"{slot}_model"] = NONE
     for k in catalog.material_keys:
         v = data.get(k.name)
         v = list(k.default) if v is None else _as_rgb(v) if k.kind == "color" else [float(x) for x in v]
@@ -350,6 +375,9 @@ def conversion_values(catalog, plan, result):
         values[f"{section}_model"] = lobe["model"]
         group = plan.field(f"{section}_{lobe['model']}").group
         values[f"{section}_{lobe['model']}"] = lobe_from_json(group, lobe)
+    for slot, section in SLOTS:       # Blender's BSDFs map to lobes (gltf_pbr holds its own sheen and coat)
+        if section == LAYER_SECTION and catalog.models(section):
+            values[f"{slot}_model"] = NONE
     if any(k.name == "emission" for k in catalog.material_keys):
         values["emission"] = list(result.emission) if result.emission else [0.0, 0.0, 0.0]
     return values

@@ -435,14 +435,36 @@ def unmapped_values(material_json):
     found = []
 
     def walk(node, path):
-        for key, value in node.items():
+        for key, value in _items(node):
             if isinstance(value, dict) and (value.get("vertex_color") or "offset" in value) and \
                     ("texture" in value or "vertex_color" in value):
-                found.append(".".join(path + [key]))
-            elif isinstance(value, dict):
+                found.append(key_path(path + [key]))
+            elif isinstance(value, (dict, list)):
                 walk(value, path + [key])
     walk(material_json, [])
     return found
+
+
+def _items(node):
+    """(key, value) of an object, (index, value) of a list (a material's "layers")."""
+    return node.items() if isinstance(node, dict) else enumerate(node) if isinstance(node, list) else ()
+
+
+def key_path(path):
+    """A path of keys and list indices as facet's messages write it: "layers[1].weight"."""
+    text = ""
+    for key in path:
+        text += f"[{key}]" if isinstance(key, int) else ("." if text else "") + key
+    return text
+
+
+def model_at(material_json, path):
+    """The lobe or layer object a parameter's path lies in (["specular", "fresnel", "f0"]: the
+    specular lobe; ["layers", 1, "weight"]: the second layer), or {}."""
+    node = material_json.get(path[0]) if isinstance(material_json, dict) else None
+    if path[0] == "layers" and len(path) > 2:
+        node = node[path[1]] if isinstance(node, list) and path[1] < len(node) else None
+    return node if isinstance(node, dict) else {}
 
 
 def split(material_json):
@@ -452,13 +474,13 @@ def split(material_json):
     found = []
 
     def walk(node, path):
-        out = {}
-        for key, value in node.items():
+        out = {} if isinstance(node, dict) else [None] * len(node)
+        for key, value in _items(node):
             if isinstance(value, dict) and "texture" in value:
                 found.append((path + [key], value))
                 if "factor" in value and key not in NORMAL_KEYS:
                     out[key] = value["factor"]
-            elif isinstance(value, dict):
+            elif isinstance(value, (dict, list)):
                 out[key] = walk(value, path + [key])
             else:
                 out[key] = value
@@ -557,10 +579,11 @@ def apply(material_json, bindings, files, material_keys=None):
                          f"'{b['spec']['image']}'): its schemas lack {needs}; it is not exported"
                          + ("" if section in NORMAL_KEYS else ", the unlinked value is"))
             continue
-        if len(path) > 1 and (section not in data or data[section].get("model") != b.get("model")):
-            notes.append(f"material '{data.get('name')}': the texture of {'.'.join(path)} was made for the "
-                         f"{section} model {b.get('model')}; the model is now "
-                         f"{data.get(section, {}).get('model', 'none')}, so it is left out")
+        if len(path) > 1 and model_at(data, path).get("model") != b.get("model"):
+            where = key_path(path[:2] if section == "layers" else path[:1])
+            notes.append(f"material '{data.get('name')}': the texture of {key_path(path)} was made for the "
+                         f"{where} model {b.get('model')}; the model is now "
+                         f"{model_at(data, path).get('model', 'none')}, so it is left out")
             continue
         spec = b["spec"]
         if not has_image(b):
@@ -602,7 +625,7 @@ def apply(material_json, bindings, files, material_keys=None):
 def _put(data, path, value):
     target = data
     for key in path[:-1]:
-        target = target.setdefault(key, {})
+        target = target[key] if isinstance(key, int) else target.setdefault(key, {})
     target[path[-1]] = value
 
 
@@ -624,6 +647,8 @@ def absolute(material_json, folder):
         if isinstance(node, dict):
             return {k: (os.path.join(folder, v) if k == "texture" and isinstance(v, str) else walk(v))
                     for k, v in node.items()}
+        if isinstance(node, list):
+            return [walk(v) for v in node]
         return node
     return walk(material_json)
 

@@ -65,6 +65,12 @@ def test_gltf_pbr_is_the_principled_bsdf_blenders_gltf_importer_builds():
     assert old["inputs"]["Specular"] == pytest.approx((1 / 3) ** 2 * 0.5 / 0.08)     # Blender 3.x: f0 = 0.08·Specular
 
 
+def test_layers_have_no_blender_nodes():
+    with pytest.raises(UserError, match=r"has layers over its lobes \(sheen, clearcoat\), which no Blender node makes"):
+        native.node_plan({"name": "V", "diffuse": {"model": "lambert"},
+                          "layers": [{"model": "sheen"}, {"model": "clearcoat"}]})
+
+
 def test_refusals_name_the_model():
     with pytest.raises(UserError, match="'phong' has no Blender-node equivalent"):
         native.node_plan({"diffuse": {"model": "lambert"}, "specular": {"model": "phong", "n": 10}})

@@ -137,6 +137,36 @@ def test_a_job_is_polled_and_closing_it_kills_every_run_and_its_children(tmp_pat
     assert sorted(os.listdir(tmp_path)) == ["bin", "scene.pov"]          # the temporary folder is gone
 
 
+# A stand-in POV-Ray that reports half its pixels, then prints more than the 512 bytes progress
+# reads of the log's tail (POV-Ray's statistics at the end of a render) and waits before it exits.
+TALKATIVE_POVRAY = r"""
+echo "Rendered 6 of 12 pixels (50%)"
+sleep 0.3
+python3 -c "print('Render Statistics: ' + 'x' * 2000)"
+sleep 30
+"""
+
+
+def test_a_runs_progress_never_goes_back(tmp_path):
+    """Once POV-Ray's statistics push its last progress line out of the log's tail, the run still
+    counts as far as it said (Blender's progress bar went 0.17 → 0 before: the engine test failed)."""
+    folder = tmp_path / "bin"
+    folder.mkdir()
+    talkative = script(folder / "povray", TALKATIVE_POVRAY)
+    job = povray.Job(talkative, scene_file(tmp_path), pov.Plan(1, False), 4, 3)
+    try:
+        job.poll()
+        seen = []
+        for _ in range(60):
+            seen.append(job.progress())
+            if len(seen) > 5 and seen[-1] == 0.5 and "Rendered" not in job.running[0]._tail(512):
+                break
+            time.sleep(0.05)
+        assert seen == sorted(seen) and seen[-1] == 0.5, seen
+    finally:
+        job.close()
+
+
 def test_a_failing_pass_is_named_and_leaves_the_old_png(tmp_path, fake):
     png = tmp_path / "out.png"
     png.write_text("old image")

@@ -10,13 +10,14 @@ from facet_blender.core import UserError, convert, generate, props
 from support import example
 
 EXAMPLES = sorted(n for n in os.listdir(example("materials")) if n.endswith(".json"))
+LAYERED = sorted(n for n in os.listdir(example("layered")) if n.endswith(".json"))
 DIRECTIONS = [{"n": [0, 0, 1], "l": [0.3, 0.2, 0.9], "v": [-0.4, 0.1, 0.8], "t": [1, 0, 0]},
               {"n": [0, 0, 1], "l": [0.0, 0.7, 0.7], "v": [0.0, -0.6, 0.8], "t": [0, 1, 0]},
               {"n": [0, 0, 1], "l": [0.9, 0.0, 0.1], "v": [0.1, 0.1, 1.0], "t": [1, 0, 0]}]
 
 
-def load(name):
-    with open(example("materials", name), encoding="utf-8") as f:
+def load(name, folder="materials"):
+    with open(example(folder, name), encoding="utf-8") as f:
         return json.load(f)
 
 
@@ -103,6 +104,43 @@ def test_examples_round_trip_to_the_same_reflectance(tmp_path, facet, catalog, p
     path = tmp_path / name
     path.write_text(json.dumps(once))
     assert evaluate(facet, str(path)) == evaluate(facet, example("materials", name))
+
+
+@pytest.mark.parametrize("name", LAYERED)
+def test_layered_examples_round_trip_through_the_layer_slots(tmp_path, facet, catalog, plan, name):
+    """examples/layered: the layers go into the panel's slots, lowest first, and come back as the
+    same list: facet evaluates the same reflectance."""
+    data = load(name, "layered")
+    values = props.material_from_json(catalog, plan, data)
+    for i, layer in enumerate(data["layers"]):
+        assert values[f"layer{i}_model"] == layer["model"]
+    once = props.normalize_material(catalog, plan, data)
+    assert [layer["model"] for layer in once["layers"]] == [layer["model"] for layer in data["layers"]]
+    assert props.normalize_material(catalog, plan, once) == once
+    path = tmp_path / name
+    path.write_text(json.dumps(once))
+    assert evaluate(facet, str(path)) == evaluate(facet, example("layered", name))
+
+
+def test_layer_slots_share_their_models_groups_and_hold_two(catalog, plan):
+    layer_models = [m.name for m in catalog.models("layer")]
+    assert layer_models, "facet's catalog has layer models"
+    for slot in ("layer0", "layer1"):
+        assert [i[0] for i in plan.field(f"{slot}_model").items] == [props.NONE] + layer_models
+        assert plan.field(f"{slot}_model").default == props.NONE
+    for m in layer_models:
+        assert plan.field(f"layer0_{m}").group is plan.field(f"layer1_{m}").group
+    names = [g.name for g in props.groups_in_registration_order(plan)]
+    assert len(names) == len(set(names)), "a shared group is registered once"
+    three = {"name": "Three", "diffuse": {"model": "lambert"},
+             "layers": [{"model": "sheen"}, {"model": "clearcoat"}, {"model": "clearcoat"}]}
+    with pytest.raises(UserError, match="has 3 layers; the facet panel holds 2"):
+        props.material_from_json(catalog, plan, three)
+    # A slot left empty under a chosen one: the list has no gap.
+    values = props.default_values(plan)
+    values["layer1_model"] = "clearcoat"
+    assert props.material_to_json(catalog, plan, values, "Gap")["layers"] == [
+        {"model": "clearcoat", "weight": 1.0, "roughness": 0.0}]
 
 
 def test_tangent_axis_is_edited_in_blenders_axes(catalog, plan):

@@ -551,6 +551,30 @@ def test_a_material_files_textures_round_trip():
     assert textures.uv_maps(bindings) == ["", "#1"]
 
 
+def test_a_layers_textures_round_trip_by_their_list_index():
+    """A texture inside the material's "layers" list: its path holds the index, messages write
+    it as facet does (layers[1].weight), and apply puts it back into the same layer."""
+    tex = {"texture": "textures/metal_roughness.png", "channel": "b", "factor": 0.9}
+    data = {"name": "L", "diffuse": {"model": "lambert"},
+            "layers": [{"model": "sheen", "color": [1, 1, 1]}, {"model": "clearcoat", "weight": tex}]}
+    numbers, found = textures.split(data)
+    assert numbers["layers"] == [{"model": "sheen", "color": [1, 1, 1]}, {"model": "clearcoat", "weight": 0.9}]
+    assert found == [(["layers", 1, "weight"], tex)]
+    assert textures.key_path(found[0][0]) == "layers[1].weight"
+    assert textures.model_at(numbers, found[0][0]) == {"model": "clearcoat", "weight": 0.9}
+    bindings = [textures.binding_of_json(path, t, textures.model_at(numbers, path)["model"], "mr.png")
+                for path, t in found]
+    files = {textures.file_key(b): ("mr.png", None) for b in bindings}
+    again, notes = textures.apply(numbers, bindings, files)
+    assert not notes
+    assert again["layers"][1]["weight"] == {"texture": "mr.png", "channel": "b", "factor": 0.9, "uv": 0}
+    # The layer's model changed since: left out, and said with the layer's path.
+    other = dict(numbers, layers=[numbers["layers"][0], {"model": "sheen"}])
+    again, notes = textures.apply(other, bindings, files)
+    assert "made for the layers[1] model clearcoat" in notes[0]
+    assert textures.absolute(data, "/m")["layers"][1]["weight"]["texture"] == "/m/textures/metal_roughness.png"
+
+
 def test_mesh_tangents_go_to_world_space_and_mirroring_flips_w():
     positions = [(0, 0, 0), (1, 0, 0), (1, 1, 0)]
     n = ((0.0, 0.0, 1.0),) * 3
