@@ -223,6 +223,15 @@ TEST(Cli, PovRoutesAreChosenAndSaid) {
       << r.output;
   EXPECT_FALSE(fs::exists(out));
   EXPECT_FALSE(fs::exists(scratch("routes_mesh0.ppm")));
+  // Lobes that are finishes (Lambert, Phong) under a layer are not: a finish adds its terms, a
+  // layer weights what lies under it.
+  r = facet({"generate", (kSource / "examples/layered/velvet_phong.json").string(), "--target", "pov", "--pov-route",
+             "native", "-o", out.string()});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.output.find("layers[0] (sheen) weights the lobes under it, which POV-Ray's finish only adds"),
+            std::string::npos)
+      << r.output;
+  EXPECT_FALSE(fs::exists(out));
 
   r = facet({"generate", "--target", "pov", "--scene", scene, "--pov-route", "fast", "--json", "-o", out.string()});
   ASSERT_EQ(r.exit_code, 0) << r.output;

@@ -816,6 +816,25 @@ TEST(Detection, EmissionUnderTheCoatFailsUndimmedOrWithoutItsTexel) {
                 all});
 }
 
+// Layers a material file writes over classic lobes (examples/textured/textured_layers.json: a
+// sheen with its colour and roughness from images, then a clear coat whose weight is an image's
+// blue, over Oren–Nayar and Phong, on the coat's own normal map): the sheen without its albedo
+// scaling of what lies under it (KHR_materials_sheen, "Albedo-scaling technique"), and the coat's
+// weight taken as its factor (its texel not read), each fail on the GLSL, OSL and POV-Ray routes,
+// while the generated code passes.
+TEST(Detection, LayersFailWithoutTheSheensScalingOrTheCoatsTexel) {
+  const char *unscaled = "what lies under the sheen unscaled", *factor = "the coat's weight its factor alone";
+  check_routes("textured_layers", "single",
+               {{{unscaled, "+ base * sheen_scaling;", "+ base;"},
+                 {factor, "layer1_weight * coat_fresnel);", "1.0 * coat_fresnel);"}},
+                once},
+               {{{unscaled, "+ base * sheen_scaling;", "+ base;"},
+                 {factor, "layer1_weight * coat_fresnel);", "1.0 * coat_fresnel);"}},
+                once},
+               {{{unscaled, "+ Base*Sheen_scaling", "+ Base"}, {factor, "Layer1_weight*Coat_fresnel)", "1*Coat_fresnel)"}},
+                all});
+}
+
 // The clear coat over a normal-mapped base (KHR_materials_clearcoat: "no normal mapping is
 // applied to the clear coat layer, even if normal mapping is applied to the base material"): the
 // coat shaded on the base's mapped normal (facet before the coat's own normal) fails on the
