@@ -589,6 +589,7 @@ std::vector<CostRow> named_rows(const std::vector<Material>& ms) {
     rows[i].material = ms[i].source.empty() ? ms[i].name : ms[i].source;
     if (ms[i].diffuse) rows[i].diffuse = ms[i].diffuse->def->name;
     if (ms[i].specular) rows[i].specular = ms[i].specular->def->name;
+    for (const auto& layer : ms[i].layers) rows[i].layers.push_back(layer.def->name);
   }
   return rows;
 }
@@ -638,8 +639,10 @@ std::string signed_number(const std::optional<double>& x, int decimals) {
 }
 
 std::string lobes(const CostRow& r) {
-  if (!r.diffuse.empty() && !r.specular.empty()) return r.diffuse + " + " + r.specular;
-  return r.diffuse.empty() ? r.specular : r.diffuse;
+  std::string s = !r.diffuse.empty() && !r.specular.empty() ? r.diffuse + " + " + r.specular
+                                                            : r.diffuse.empty() ? r.specular : r.diffuse;
+  for (const auto& layer : r.layers) s += " / " + layer;  // each layer over what is left of it
+  return s;
 }
 
 std::string number(double x, int decimals) { return x > 0 ? fmt::format("{:.{}f}", x, decimals) : "–"; }

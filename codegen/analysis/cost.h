@@ -53,6 +53,7 @@ struct CostRow {
   std::string name;      // the material's name
   std::string material;  // its file, or the model's name for model_materials()
   std::string diffuse, specular;  // model names, "" for none
+  std::vector<std::string> layers;  // the layer models over them, the lowest first
   std::map<std::string, CostCell> cells;  // by target: a renderer's name ("glsl"), see cost_format()
   CostCell& cell(const std::string& target) { return cells[target]; }
   const CostCell& cell(const std::string& target) const;  // an empty cell when the row has none

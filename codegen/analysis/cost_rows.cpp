@@ -88,6 +88,7 @@ json row_json(const CostRow& r) {
               {"material", r.material},
               {"diffuse", r.diffuse.empty() ? json(nullptr) : json(r.diffuse)},
               {"specular", r.specular.empty() ? json(nullptr) : json(r.specular)}};
+  if (!r.layers.empty()) row["layers"] = r.layers;
   for (const auto& format : cost_format()) {
     const CostCell& c = r.cell(format.target);
     row[format.target] = c.error.empty() ? c.figures : json{{"error", c.error}};
@@ -203,7 +204,7 @@ std::string string_or_null(const json& row, const char* key, const std::string& 
 }
 
 CostRow parse_row(const json& row, const std::string& path, DiagnosticSink& sink) {
-  std::vector<std::string> keys = {"name", "material", "diffuse", "specular"};
+  std::vector<std::string> keys = {"name", "material", "diffuse", "specular", "layers"};
   for (const auto& format : cost_format()) keys.push_back(format.target);
   CostRow r;
   if (!row.is_object()) {
@@ -220,6 +221,14 @@ CostRow parse_row(const json& row, const std::string& path, DiagnosticSink& sink
   r.material = string_or_null(row, "material", path, sink, false);
   r.diffuse = string_or_null(row, "diffuse", path, sink, true);
   r.specular = string_or_null(row, "specular", path, sink, true);
+  if (row.contains("layers")) {  // optional: a row of a material without layers has none
+    const json& layers = row["layers"];
+    for (size_t i = 0; layers.is_array() && i < layers.size(); ++i)
+      if (layers[i].is_string() && !layers[i].get<std::string>().empty()) r.layers.push_back(layers[i].get<std::string>());
+      else sink.error(join_path(path, fmt::format("layers[{}]", i)), "expected a layer model's name");
+    if (!layers.is_array())
+      sink.error(join_path(path, "layers"), fmt::format("expected a list of layer model names, found {}", json_type_name(layers)));
+  }
   for (const auto& format : cost_format()) {
     const std::string& t = format.target;
     if (!row.contains(t)) {

@@ -118,7 +118,9 @@ std::optional<ModelSpec> gltf_brdf_lobe(const Material& m, std::string* why) {
     if (def.gltf_brdf_params.empty())
       return refuse(fmt::format("layers[{}] ({}), which is no part of glTF's BRDF", i, def.name));
     if (def.gltf_brdf_stack <= top)
-      return refuse(fmt::format("layers[{}] ({}) over a part glTF's BRDF puts above it, or twice", i, def.name));
+      return refuse(fmt::format("layers[{}] ({}), which lies above a part that glTF's BRDF puts over it, or repeats "
+                                "one",
+                                i, def.name));
     top = def.gltf_brdf_stack;
     for (const auto& [from, to] : def.gltf_brdf_params) lobe.values[to] = layer.at(from);
   }

@@ -805,10 +805,12 @@ void add_layers(std::vector<ModelDef>& all) {
     m.gltf_brdf_params = {{kLayerCoat.weight, kGltfCoat.weight}, {kLayerCoat.roughness, kGltfCoat.roughness}};
     m.gltf_brdf_stack = 2;
     m.reciprocal = false;
-    m.physics_note = "the weight w Fc reads n·v alone, which is not symmetric in l and v (the README: \"we "
-                     "compute the microfacet Fresnel term with NdotV instead of VdotH\"); for the same reason the "
-                     "albedo at a light's incidence integrates Fc over the views, small where the base reflects and "
-                     "near 1 at the grazing views a grazing light's coat highlight goes to, so no bound is claimed";
+    m.physics_note = "the weight w Fc reads n·v alone, which is not symmetric in l and v (the README's "
+                     "\"Discussion\": \"we compute the microfacet Fresnel term with NdotV instead of VdotH\"); for "
+                     "the same reason the albedo at a light's incidence integrates Fc over the views, small where the "
+                     "base reflects and near 1 at the grazing views a grazing light's coat highlight goes to: over a "
+                     "white Lambert it exceeds 1 towards grazing light (the rows of weight 1 below), although the "
+                     "Discussion calls the layering energy conserving, so no bound is claimed";
     all.push_back(m);
   }
   {
@@ -816,7 +818,8 @@ void add_layers(std::vector<ModelDef>& all) {
     m.section = "layer";
     m.name = "sheen";
     m.title = "Sheen";
-    m.citation = "KHR_materials_sheen, \"Sheen\", \"BRDF\" and \"Albedo-scaling technique\"";
+    m.citation = "KHR_materials_sheen, \"Sheen\", \"Sheen distribution\", \"Sheen visibility\" and "
+                 "\"Albedo-scaling technique\"";
     m.formula = "ρ' = s S_s + ρ min(1 − max(s) E(n·v), 1 − max(s) E(n·l)), S_s = π D V (n·l) (Charlie, the README's "
                 "visibility, α = roughness²), E the sheen's directional albedo";
     m.doc = "A sheen (velvet, cloth, dust) over everything under it: glTF's KHR_materials_sheen over any lobe. What lies "

@@ -367,6 +367,9 @@ TEST(Gltf, LayersOverGltfPbrExportAsItsExtensions) {
   EXPECT_EQ(ext["KHR_materials_clearcoat"]["clearcoatFactor"], 0.9);
   EXPECT_TRUE(ext["KHR_materials_clearcoat"].contains("clearcoatTexture"));
   EXPECT_EQ(ext["FACET_material"]["material"]["layers"].size(), 2u) << "FACET_material keeps the file's own form";
+  const Scene back = import_gltf(out, {}, notes);  // facet's import reads FACET_material: the layers as written
+  ASSERT_EQ(back.materials.begin()->second.layers.size(), 2u);
+  EXPECT_EQ(back.materials.begin()->second.layers[1].def->name, "clearcoat");
   ext.erase("FACET_material");
   write_file_atomic((folder / "plain.gltf").string(), doc.dump());
   GltfImportOptions o;
@@ -393,6 +396,11 @@ TEST(Gltf, LayersOverGltfPbrExportAsItsExtensions) {
     bool said = false;
     for (const auto& n : notes) said = said || n.find("approximate (FACET_material carries the material)") != std::string::npos;
     EXPECT_TRUE(said) << other.dump();
+    if (other["layers"].size() == 2) {
+      bool why = false;
+      for (const auto& n : notes) why = why || n.find("layers[1] (sheen), which lies above a part") != std::string::npos;
+      EXPECT_TRUE(why) << "the coat under the sheen is named";
+    }
   }
 }
 
