@@ -851,20 +851,25 @@ class Exporter {
   // (glTF 2.0 §3.9.2; the extensions' READMEs).
   // False, with a note and nothing written, where the lobe holds what glTF cannot say: the
   // fallback then.
+  // `m` as one gltf_pbr lobe, its layers folded in (gltf_brdf_lobe); nullopt, with a note where
+  // it has layers, where glTF's BRDF cannot hold it.
+  std::optional<ModelSpec> gltf_brdf_of(const std::string& key, const Material& m) {
+    std::string why;
+    std::optional<ModelSpec> folded = gltf_brdf_lobe(m, &why);
+    if (!folded && !why.empty())
+      notes_.push_back(fmt::format("materials.{}: glTF's BRDF cannot hold {}; the metallic–roughness core is "
+                                   "approximate (FACET_material carries the material)",
+                                   key, why));
+    else if (!folded && !m.layers.empty())
+      notes_.push_back(fmt::format("materials.{}: its layers are left out of the metallic–roughness core, which is "
+                                   "approximate (FACET_material carries the material)",
+                                   key));
+    return folded;
+  }
+
   bool gltf_brdf(const std::string& key, const Material& m, tinygltf::Material& g) {
-    std::string layers_why;
-    const std::optional<ModelSpec> folded = gltf_brdf_lobe(m, &layers_why);  // its layers as its extensions
-    if (!folded) {
-      if (!layers_why.empty())
-        notes_.push_back(fmt::format("materials.{}: glTF's BRDF cannot hold {}; the metallic–roughness core is "
-                                     "approximate (FACET_material carries the material)",
-                                     key, layers_why));
-      else if (!m.layers.empty())
-        notes_.push_back(fmt::format("materials.{}: its layers are left out of the metallic–roughness core, which "
-                                     "is approximate (FACET_material carries the material)",
-                                     key));
-      return false;
-    }
+    const std::optional<ModelSpec> folded = gltf_brdf_of(key, m);  // its layers as its extensions
+    if (!folded) return false;
     const ModelSpec& s = *folded;
     if (const std::string why = gltf_brdf_unsaid(s); !why.empty()) {
       notes_.push_back(fmt::format("materials.{}: glTF cannot say {} of its gltf_pbr lobe; the metallic–roughness "

@@ -464,7 +464,11 @@ void check_texture_sets(const Scene& s, const Material* fallback) {
     if (o.type != Object::Type::Mesh) continue;
     if (o.material.empty() && !fallback) continue;  // reported where the material is needed
     const Material& m = s.material_of(i, fallback);
-    if (const auto frame = m.frame_uv(); frame && o.mesh->texcoords[size_t(*frame)].empty()) {
+    // A frame the lobes alone read (glTF's anisotropy) is the mesh's own tangents where it brings
+    // them (KHR_materials_anisotropy: the TBN's T is TANGENT; only where there is none are tangents
+    // computed, from texture coordinates); a normal map samples its image there as well.
+    const bool own_frame = !o.mesh->tangents.empty() && !m.normal_map && !m.coat_normal_map;
+    if (const auto frame = m.frame_uv(); frame && o.mesh->texcoords[size_t(*frame)].empty() && !own_frame) {
       const size_t set = size_t(*frame);
       problems.push_back({s.source, index_path("objects", i),
                           fmt::format("mesh \"{}\" has no texture coordinates set {} ({}), whose tangent frame "

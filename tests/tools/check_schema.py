@@ -33,7 +33,7 @@ def main():
     mv = jsonschema.Draft202012Validator(material)
     failures = 0
     examples = [os.path.join(folder, name) for folder in ("examples/materials", "examples/layered")
-                for name in sorted(os.listdir(os.path.join(root, folder)))]
+                for name in sorted(os.listdir(os.path.join(root, folder))) if name.endswith(".json")]
     for name in examples:
         doc = json.load(open(os.path.join(root, name)))
         errors = list(mv.iter_errors(doc))

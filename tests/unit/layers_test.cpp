@@ -9,8 +9,11 @@
 //    E(L·N)), E facet's fit (its error against the integral: GltfPbr.TheSheenAlbedoFit…).
 // "material" is here whatever lies under the layer: facet's reference ρ of the same material
 // without its layers (MODELS.md's k_d ⊗ ρ_d + k_s ⊗ ρ_s). facet's ρ is π f (n·l).
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <map>
+#include <random>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -167,6 +170,55 @@ TEST(Layers, GltfPbrsOwnSheenAndCoatAreTheseLayers) {
   for (const auto& d : direction_sets(5, 2000)) {
     const RGB x = a.reflectance(d.n, d.l, d.v), y = b.reflectance(d.n, d.l, d.v);
     for (int c = 0; c < 3; ++c) worst = std::max(worst, std::fabs(x[c] - y[c]) / std::max(std::fabs(x[c]), 1e-300));
+  }
+  EXPECT_LE(worst, 1e-12);
+}
+
+// The same with images: gltf_pbr's sheen colour and roughness and clearcoat from images equal the
+// layers' (the layer's inputs named layer0_color, layer0_roughness, layer1_weight), sampled alike.
+TEST(Layers, TexturedLayersAreGltfPbrsTexturedParts) {
+  const json color = {{"texture", "textures/metal_roughness.png"}, {"colorspace", "srgb"}, {"factor", {0.6, 0.9, 0.7}}};
+  const json roughness = {{"texture", "textures/leaf.png"}, {"channel", "a"}, {"factor", 0.8}};
+  const json weight = {{"texture", "textures/metal_roughness.png"}, {"channel", "b"}};
+  const json own = {{"specular",
+                     {{"model", "gltf_pbr"}, {"base_color", {0.3, 0.5, 0.7}}, {"roughness", 0.45}, {"sheen_color", color},
+                      {"sheen_roughness", roughness}, {"clearcoat", weight}, {"clearcoat_roughness", 0.3}}}};
+  const json layered = {{"specular", {{"model", "gltf_pbr"}, {"base_color", {0.3, 0.5, 0.7}}, {"roughness", 0.45}}},
+                        {"layers",
+                         {{{"model", "sheen"}, {"color", color}, {"roughness", roughness}},
+                          {{"model", "clearcoat"}, {"weight", weight}, {"roughness", 0.3}}}}};
+  const std::string file = FACET_SOURCE_DIR "/examples/textured/test.json";  // its images in textures/
+  const Reference a(parse_material(own, file)), b(parse_material(layered, file));
+  // The textured inputs in each one's order, by what they are.
+  auto order = [](const Reference& r) {
+    std::vector<std::string> keys;
+    for (const auto& t : r.program().textured) keys.push_back(t.key + (t.max_of.empty() ? "" : " max"));
+    return keys;
+  };
+  const std::vector<std::string> ka = order(a), kb = order(b);
+  const std::map<std::string, std::string> same = {{"specular.sheen_color", "layers[0].color"},
+                                                    {"specular.sheen_color max", "layers[0].color max"},
+                                                    {"specular.sheen_roughness", "layers[0].roughness"},
+                                                    {"specular.clearcoat", "layers[1].weight"}};
+  ASSERT_EQ(ka.size(), same.size());
+  ASSERT_EQ(kb.size(), same.size());
+  std::mt19937_64 rng(17);
+  std::uniform_real_distribution<double> u(0.05, 1.0);
+  double worst = 0;
+  for (const auto& d : direction_sets(23, 1000)) {
+    ShadingInputs in = shading_inputs(d.n, d.l, d.v, normalize(cross(d.n, Vec3(0.3, 0.5, 0.8))));
+    std::map<std::string, RGB> texel;  // one sample per meaning, given to both
+    for (const auto& [k, v] : same) texel[k] = {u(rng), u(rng), u(rng)};
+    const RGB& c = texel["specular.sheen_color"];
+    texel["specular.sheen_color max"] = {std::max({c[0], c[1], c[2]}), 0, 0};
+    ShadingInputs ia = in, ib = in;
+    for (size_t i = 0; i < ka.size(); ++i) ia.textured[i] = texel.at(ka[i]);
+    for (size_t i = 0; i < kb.size(); ++i) {
+      const auto it = std::find_if(same.begin(), same.end(), [&](const auto& p) { return p.second == kb[i]; });
+      ib.textured[i] = texel.at(it->first);
+    }
+    const RGB x = a.reflectance(ia), y = b.reflectance(ib);
+    for (int k = 0; k < 3; ++k) worst = std::max(worst, std::fabs(x[k] - y[k]) / std::max(std::fabs(x[k]), 1e-300));
   }
   EXPECT_LE(worst, 1e-12);
 }
