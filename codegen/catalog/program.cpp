@@ -79,8 +79,9 @@ ir::FunctionPtr build_layer(const Material& material, size_t i, std::vector<Text
 }
 
 // m_e's weight under the layers over it: the specular lobe's, then each layer's (ModelDef::
-// emission_weight), their product where there are several; null where nothing lies over it.
-ir::FunctionPtr emission_weight(const Material& m) {
+// emission_weight), their product where there are several (each then in `each`); null where
+// nothing lies over it.
+ir::FunctionPtr emission_weight(const Material& m, std::vector<ir::FunctionPtr>& each) {
   struct Over {
     const ModelSpec* spec;
     std::string lobe;
@@ -91,11 +92,12 @@ ir::FunctionPtr emission_weight(const Material& m) {
     if (m.layers[i].def->emission_weight) over.push_back({&m.layers[i], layer_name(i)});
   std::vector<ir::FunctionPtr> weights;
   for (const auto& o : over)
-    if (auto w = o.spec->def->emission_weight(*o.spec, o.lobe, o.lobe + "_emission_weight")) weights.push_back(w);
+    if (auto w = o.spec->def->emission_weight(*o.spec, o.lobe, "emission_weight_" + o.lobe)) weights.push_back(w);
   if (weights.empty()) return nullptr;
   if (weights.size() == 1)  // one layer: its own function, under the name every target calls
     for (const auto& o : over)
       if (auto w = o.spec->def->emission_weight(*o.spec, o.lobe, "emission_weight")) return w;
+  each = weights;
   ir::FunctionBuilder fb("emission_weight", "the emission under every layer over it: the product of their weights");
   fb.param("NoV");
   for (const auto& w : weights)
@@ -193,7 +195,7 @@ MaterialProgram compile(const Material& m) {
                             v, Range::color(), ""});
   }
   const bool emits = m.emission_texture || m.emission != RGB{0, 0, 0};
-  if (emits) p.emission_weight = emission_weight(m);
+  if (emits) p.emission_weight = emission_weight(m, p.emission_weights);
   return p;
 }
 

@@ -32,6 +32,9 @@ struct MaterialProgram {
   // the emission (ModelDef::emission_weight; set only where the material emits). Every target
   // multiplies m_e by it.
   ir::FunctionPtr emission_weight;
+  // Where more than one layer lies over the emission: each one's weight, which emission_weight
+  // multiplies (functions of this material's values, as the lobes are).
+  std::vector<ir::FunctionPtr> emission_weights;
 
   bool uses(const std::string& input) const;
   // Whether the material samples images: textured parameters or a normal map.

@@ -247,6 +247,7 @@ PovScene::PovScene(const Scene& s, const Material* fallback, const std::string& 
     if (sh->program.diffuse) own.insert(sh->program.diffuse.get());
     if (sh->program.specular) own.insert(sh->program.specular.get());
     for (const auto& layer : sh->program.layers) own.insert(layer.get());
+    for (const auto& w : sh->program.emission_weights) own.insert(w.get());
     if (sh->program.emission_weight) own.insert(sh->program.emission_weight.get());
     sh->printer = PovPrinter(sh->prefix, own);
     sh->dependent = sh->printer.channel_dependent(sh->program.reflectance);
