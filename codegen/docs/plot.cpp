@@ -453,7 +453,7 @@ LobeSampler::LobeSampler(const Material& m) : ref_(m) {
   if (!m.layers.empty()) {
     Material lobes = m;
     lobes.layers.clear();
-    lobes.coat_normal_map.reset();  // what only a layer reads
+    if (!lobes.coated()) lobes.coat_normal_map.reset();  // what only a layer read
     lobes_ = std::make_shared<const Reference>(lobes);
   }
 }

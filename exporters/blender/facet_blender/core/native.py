@@ -256,8 +256,8 @@ def node_plan(material, principled=True):
     if material.get("layers"):   # a layer weights the lobes' sum by what it reflects: no Add Shader does
         names = ", ".join(layer.get("model", "?") for layer in material["layers"])
         raise UserError(f"material '{material.get('name', '')}' has layers over its lobes ({names}), which no "
-                        f"Blender node makes (the catalog says so: facet models --json, blender_nodes); the facet "
-                        f"engine renders them through the generated OSL")
+                        f"Blender node makes (the catalog says so: facet models --json, blender_nodes); Generate OSL "
+                        f"(Cycles) and the facet POV-Ray engine render them")
     plan = [lobe_node(s, material[s], principled) for s in ("diffuse", "specular") if material.get(s)]
     emission = material.get("emission")
     if emission is not None and any(c != 0.0 for c in _rgb(emission)):
