@@ -160,6 +160,10 @@ LobeContext::LobeContext(const ModelSpec& spec, std::string lobe, ir::FunctionBu
                          std::string key)
     : spec_(spec), lobe_(std::move(lobe)), fb_(fb), coat_normal_(coat_normal), key_(key.empty() ? lobe_ : key) {}
 
+LobeContext::LobeContext(const ModelSpec& spec, std::string lobe, LobeContext& parent, std::string key)
+    : spec_(spec), lobe_(std::move(lobe)), fb_(parent.fb_), coat_normal_(parent.coat_normal_), key_(std::move(key)),
+      textured_(parent.textured_) {}
+
 ir::Expr LobeContext::input(Input i) { return fb_.param(input_name(i)); }
 
 ir::Expr LobeContext::NoH() {
@@ -186,12 +190,12 @@ ir::Expr LobeContext::parameter(const ModelSpec& spec, const std::string& param,
   if (v.texture) {
     const ParamDef* def = spec.def->param(param);
     ir::Type type = v.kind == ParamKind::Color ? ir::Type::Color : ir::Type::Float;
-    auto known = std::find_if(textured_.begin(), textured_.end(), [&](const TexturedInput& t) { return t.name == name; });
-    if (known == textured_.end()) {
+    auto known = std::find_if(textured_->begin(), textured_->end(), [&](const TexturedInput& t) { return t.name == name; });
+    if (known == textured_->end()) {
       // The key path: the lobe's own parameter, or a sub-model's (fresnel_f0 → fresnel.f0).
       std::string rest = name.substr(lobe_.size() + 1);
       if (&spec != &spec_) rest[rest.find('_')] = '.';
-      textured_.push_back({name, key_ + "." + rest, type, v, def ? def->range : Range{}, ""});
+      textured_->push_back({name, key_ + "." + rest, type, v, def ? def->range : Range{}, ""});
     }
     return fb_.param(name, type);
   }
@@ -205,15 +209,15 @@ ir::Expr LobeContext::max_of(const ModelSpec& spec, const std::string& param, co
   if (!v.texture) return ir::constant(name + "_max", std::max({v.rgb[0], v.rgb[1], v.rgb[2]}));
   parameter(spec, param, name);  // the colour, sampled first
   const std::string derived = name + "_max";
-  auto known = std::find_if(textured_.begin(), textured_.end(), [&](const TexturedInput& t) { return t.name == derived; });
-  if (known == textured_.end()) {
+  auto known = std::find_if(textured_->begin(), textured_->end(), [&](const TexturedInput& t) { return t.name == derived; });
+  if (known == textured_->end()) {
     const TexturedInput& colour =
-        *std::find_if(textured_.begin(), textured_.end(), [&](const TexturedInput& t) { return t.name == name; });
+        *std::find_if(textured_->begin(), textured_->end(), [&](const TexturedInput& t) { return t.name == name; });
     TexturedInput d = colour;
     d.name = derived;
     d.type = ir::Type::Float;
     d.max_of = name;
-    textured_.push_back(d);
+    textured_->push_back(d);
   }
   return fb_.param(derived, ir::Type::Float);
 }
@@ -244,6 +248,24 @@ ir::Expr LobeContext::fresnel() {
                     {parameter(f, "ior", lobe_ + "_fresnel_ior"), VoH()});
   }
   throw std::logic_error("facet: unknown Fresnel model " + name);
+}
+
+ir::Expr lobe_rho(LobeContext& ctx) {
+  const ModelSpec& spec = ctx.spec();
+  ir::Expr rho = spec.def->build(ctx);
+  auto toon = spec.values.find("toon");
+  if (toon != spec.values.end() && toon->second.model) {
+    const ModelSpec& t = *toon->second.model;
+    const std::string& lobe = ctx.lobe();
+    ir::Expr cutoff = ctx.parameter(t, "cutoff", lobe + "_toon_cutoff");
+    double width = t.at("width").number;
+    if (width > 0) {
+      rho = ir::call(terms::toon(rho.type()), {rho, cutoff, ir::constant(lobe + "_toon_width", width)});
+    } else {
+      rho = ir::call(terms::toon_hard(rho.type()), {rho, cutoff});
+    }
+  }
+  return rho;
 }
 
 ir::Expr LobeContext::geometry() {

@@ -356,6 +356,11 @@ class LobeContext {
   // ("layers[0]"; empty: `lobe`, "diffuse" or "specular").
   LobeContext(const ModelSpec& spec, std::string lobe, ir::FunctionBuilder& fb, bool coat_normal = false,
               std::string key = "");
+  // A lobe inside `parent`'s function (a mix layer's lobe): its values named `lobe`_…, its key
+  // path `key`, its textured inputs `parent`'s.
+  LobeContext(const ModelSpec& spec, std::string lobe, LobeContext& parent, std::string key);
+  LobeContext(const LobeContext&) = delete;  // its textured inputs may live in another context
+  LobeContext& operator=(const LobeContext&) = delete;
 
   ir::Expr input(Input i);
   ir::Expr NoL() { return input(Input::NoL); }
@@ -378,7 +383,7 @@ class LobeContext {
   // it is a colour, the constant `name`_max. Closed forms such as max₃(F) of a tinted Fresnel
   // read it (KHR_materials_specular, KHR_materials_sheen).
   ir::Expr max_of(const ModelSpec& spec, const std::string& param, const std::string& name);
-  const std::vector<TexturedInput>& textured_inputs() const { return textured_; }
+  const std::vector<TexturedInput>& textured_inputs() const { return *textured_; }
   bool flag(const std::string& param) const;
   const std::string& choice(const std::string& param) const;
   const ModelSpec& model(const std::string& param) const;  // a Model/Object-kind parameter
@@ -390,6 +395,7 @@ class LobeContext {
   // microfacet lobes as a visibility term instead (terms::visibility_smith_ggx).
   ir::Expr geometry();
   const std::string& lobe() const { return lobe_; }
+  const std::string& key() const { return key_; }  // the spec's key path in the material
   // The material's values, for constants derived from them in closed form.
   const ModelSpec& spec() const { return spec_; }
   // Whether a layer with its own normal (a clear coat) reads c·l, c·v, c·h (Input::CoL …)
@@ -402,8 +408,12 @@ class LobeContext {
   ir::FunctionBuilder& fb_;
   bool coat_normal_ = false;
   std::string key_;
-  std::vector<TexturedInput> textured_;
+  std::vector<TexturedInput> own_textured_;
+  std::vector<TexturedInput>* textured_ = &own_textured_;  // a child's: its parent's list
 };
+
+// ρ of the lobe `ctx` holds (its model's build), then its toon modifier where it has one.
+ir::Expr lobe_rho(LobeContext& ctx);
 
 // The whole catalog, in documentation order. Besides the shading vocabulary
 // (diffuse, specular, fresnel, geometry, distribution, modifier, term, light,

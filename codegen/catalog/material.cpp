@@ -88,8 +88,22 @@ void parse_layers(const json& val, Material& m, Checker& check, DiagnosticSink& 
                                      json_type_name(val), quoted_list(names)));
     return;
   }
-  for (size_t i = 0; i < val.size(); ++i)
-    if (auto spec = check.model(val[i], fmt::format("layers[{}]", i), "layer", nullptr)) m.layers.push_back(*spec);
+  for (size_t i = 0; i < val.size(); ++i) {
+    auto spec = check.model(val[i], fmt::format("layers[{}]", i), "layer", nullptr);
+    if (!spec) continue;
+    // A lobe inside a layer (mix) lives in the layer's function: what a lobe asks of the material
+    // itself — a coat's normal and emission weight, a texture-coordinate frame — it cannot.
+    for (const auto& [key, v] : spec->values) {
+      const ModelDef* lobe = v.model ? v.model->def : nullptr;
+      if (lobe && (lobe->section == "diffuse" || lobe->section == "specular") &&
+          (lobe->coated || lobe->emission_weight || lobe->uv_tangent))
+        sink.error(fmt::format("layers[{}].{}.model", i, key),
+                   fmt::format("{} cannot be a layer's lobe: its coat, emission weight or tangent frame are the "
+                               "material's (write it as the specular lobe instead)",
+                               lobe->name));
+    }
+    m.layers.push_back(*spec);
+  }
 }
 
 }  // namespace

@@ -33,18 +33,7 @@ ir::FunctionPtr build_lobe(const ModelSpec& spec, const std::string& lobe, const
                            std::vector<TexturedInput>& textured) {
   ir::FunctionBuilder fb("rho_" + lobe, fmt::format("The {} lobe of \"{}\": {}", lobe, material.name, describe(spec)));
   LobeContext ctx(spec, lobe, fb, material.coat_normal_differs());
-  ir::Expr rho = spec.def->build(ctx);
-  auto toon = spec.values.find("toon");
-  if (toon != spec.values.end() && toon->second.model) {
-    const ModelSpec& t = *toon->second.model;
-    ir::Expr cutoff = ctx.parameter(t, "cutoff", lobe + "_toon_cutoff");
-    double width = t.at("width").number;
-    if (width > 0) {
-      rho = ir::call(terms::toon(rho.type()), {rho, cutoff, ir::constant(lobe + "_toon_width", width)});
-    } else {
-      rho = ir::call(terms::toon_hard(rho.type()), {rho, cutoff});
-    }
-  }
+  ir::Expr rho = lobe_rho(ctx);
   fb.order_params(input_order());
   for (const auto& t : ctx.textured_inputs()) textured.push_back(t);
   return fb.returns(rho);

@@ -842,6 +842,37 @@ void add_layers(std::vector<ModelDef>& all) {
                      "not derived from a microfacet model and E is a fit, so no bound on the albedo is claimed";
     all.push_back(m);
   }
+  {
+    ModelDef m;
+    m.section = "layer";
+    m.name = "mix";
+    m.title = "Mix with a lobe";
+    m.citation = "glTF 2.0 Appendix B, \"General\": mix(a, b, t) = (1 − t) a + t b (MaterialX's mix node, OSL's "
+                 "weighted closures)";
+    m.formula = "ρ' = (1 − w) ρ + w k ⊗ ρ_lobe";
+    m.doc = "Another specular lobe mixed with everything under it by a weight: (1 − w) of what lies under it and w of "
+            "the lobe, its own colour k and toon included — two highlights of different shapes, a blend of two "
+            "finishes. The lobe may be any specular model whose values read nothing the material holds apart (a "
+            "coat, an emission weight, a texture-coordinate frame): gltf_pbr is the material's specular lobe instead.";
+    m.params = {number("weight", "w, the lobe's share: 0 none of it, 1 the lobe alone", Range::closed(0, 1), 0.5, false),
+                model("lobe", "the specular lobe mixed in: {\"model\": …, its parameters}", "specular", "ggx")};
+    m.cycles = approximate("Mix Shader, Fac = weight: the mix exactly, each lobe as close as its own closure");
+    m.pov = none(kMicrofacetPov);
+    m.blender_nodes = nodes_none("not built: the add-on's panel holds no lobe inside a layer; Generate OSL (Cycles) and "
+                                 "the facet POV-Ray engine draw it");
+    m.layer = [](LobeContext& c, const ir::Expr& base) {
+      const ModelSpec& spec = c.model("lobe");
+      LobeContext lobe(spec, c.lobe() + "_lobe", c, c.key() + ".lobe");
+      ir::Expr k = lobe.parameter(spec, "color", lobe.lobe() + "_color");
+      ir::Expr mixed = c.let("mixed_lobe", k * lobe_rho(lobe));
+      return ir::call(terms::mix_by(ir::Type::Color), {base, mixed, c.number("weight")});
+    };
+    m.reciprocal = true;
+    m.energy_conserving = true;
+    m.physics_note = "a weighted mean: symmetric where both sides are (here the default GGX lobe over Lambert), and its "
+                     "albedo (1 − w) a + w k a_lobe is at most 1 where both albedos are and k ≤ 1";
+    all.push_back(m);
+  }
 }
 
 }  // namespace facet::catalog_detail

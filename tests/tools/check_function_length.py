@@ -21,6 +21,7 @@ LIMIT = 80
 EXEMPT = {
     "facet::catalog_detail::add_specular": "the specular models' catalog entries (data: one ModelDef each)",
     "facet::catalog_detail::add_diffuse": "the diffuse models' catalog entries (data: one ModelDef each)",
+    "facet::catalog_detail::add_layers": "the layer models' catalog entries (data: one ModelDef each)",
 }
 
 

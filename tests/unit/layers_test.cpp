@@ -84,6 +84,16 @@ RGB sheened(const RGB& under, const Directions& d, const RGB& color, double roug
   return out;
 }
 
+// The messages a material file's layers get name the key and what is allowed.
+std::vector<Diagnostic> errors_of(const json& doc) {
+  try {
+    parse_material(doc, FACET_SOURCE_DIR "/examples/textured/test.json");  // its images in textures/
+  } catch (const InputError& e) {
+    return e.diagnostics();
+  }
+  return {};
+}
+
 TEST(Layers, AClearCoatOverAnyLobeIsTheReadmesCoatedMaterial) {
   double worst = 0;
   for (const json& base : kBases)
@@ -137,6 +147,43 @@ TEST(Layers, ASheenOverAnyLobeIsTheReadmesSheenMaterial) {
                           return out;
                         }),
             1e-2);
+}
+
+// A mix layer is glTF 2.0 Appendix B's mix(under, k ⊗ ρ_lobe, w) = (1 − w) under + w k ⊗ ρ_lobe, the
+// lobe with its own colour, Fresnel and toon as it would be the material's specular lobe alone.
+TEST(Layers, AMixIsTheWeightedMeanOfWhatLiesUnderAndItsLobe) {
+  const std::vector<json> lobes = {
+      {{"model", "ward"}, {"color", {0.9, 0.6, 0.3}}, {"alpha_x", 0.08}, {"alpha_y", 0.3}},
+      {{"model", "cook_torrance"}, {"m", 0.25}, {"fresnel", {{"model", "exact"}, {"ior", 2.2}}}},
+      {{"model", "phong"}, {"color", 0.7}, {"n", 30}, {"toon", {{"cutoff", 0.3}, {"width", 0.1}}}}};
+  double worst = 0;
+  for (size_t b = 0; b < 4; ++b)
+    for (const json& lobe : lobes)
+      for (double w : {0.25, 0.8}) {
+        const json layered = with_layers(kBases[b], {{{"model", "mix"}, {"weight", w}, {"lobe", lobe}}});
+        const Reference alone(parse_material({{"specular", lobe}}, "test:lobe"));
+        const double e = worst_error(layered, kBases[b], [&](const RGB& u, const Directions& d) {
+          const RGB l = alone.reflectance(d.n, d.l, d.v, normalize(cross(d.n, Vec3(0.3, 0.5, 0.8))));
+          RGB out;
+          for (int c = 0; c < 3; ++c) out[c] = (1 - w) * u[c] + w * l[c];
+          return out;
+        });
+        EXPECT_LE(e, 1e-12) << layered.dump();
+        worst = std::max(worst, e);
+      }
+  std::printf("a mix with a lobe over 4 bases: worst relative error %.3g\n", worst);
+  // A lobe that asks the material for its coat, emission weight or frame cannot be mixed in.
+  const auto d = errors_of(with_layers(kBases[0], {{{"model", "mix"}, {"lobe", {{"model", "gltf_pbr"}}}}}));
+  ASSERT_FALSE(d.empty());
+  EXPECT_EQ(d[0].path, "layers[0].lobe.model");
+  EXPECT_NE(d[0].message.find("gltf_pbr cannot be a layer's lobe"), std::string::npos) << d[0].message;
+  // A textured parameter of the lobe is named by its key path.
+  json textured = with_layers(kBases[0], {{{"model", "mix"},
+                                           {"lobe", {{"model", "ward"},
+                                                     {"alpha_x", {{"texture", "textures/checker.png"}, {"channel", "r"}}}, {"alpha_y", 0.3}}}}});
+  const MaterialProgram p = compile(parse_material(textured, FACET_SOURCE_DIR "/examples/textured/test.json"));
+  ASSERT_EQ(p.textured.size(), 1u);
+  EXPECT_EQ(p.textured[0].key, "layers[0].lobe.alpha_x");
 }
 
 // The list is bottom first: [sheen, clearcoat] is the coat over the sheen (glTF's own order,
@@ -242,16 +289,6 @@ TEST(Layers, EveryCoatOverTheEmissionDimsIt) {
   json sheen_only = with_layers(kBases[0], {{{"model", "sheen"}}});
   sheen_only["emission"] = {1, 1, 1};
   EXPECT_FALSE(compile(parse_material(sheen_only, "test:sheen")).emission_weight) << "a sheen does not dim m_e";
-}
-
-// The messages a material file's layers get name the key and what is allowed.
-std::vector<Diagnostic> errors_of(const json& doc) {
-  try {
-    parse_material(doc, FACET_SOURCE_DIR "/examples/textured/test.json");  // its images in textures/
-  } catch (const InputError& e) {
-    return e.diagnostics();
-  }
-  return {};
 }
 
 TEST(Layers, MaterialFilesSayWhatIsWrongWithALayer) {

@@ -30,6 +30,16 @@ LAYER_SLOTS = 2
 SLOTS = tuple((s, s) for s in LOBE_SECTIONS) + tuple((f"layer{i}", LAYER_SECTION) for i in range(LAYER_SLOTS))
 
 
+def slot_models(catalog, section):
+    """The models a drop-down of `section` offers: a lobe section's all; of the layers, those the
+    panel can hold whole — no lobe inside the layer (a mix's), whose own Fresnel and toon the
+    property plan has no place for."""
+    models = catalog.models(section)
+    if section != LAYER_SECTION:
+        return models
+    return [m for m in models if all(p.type not in ("model", "object") for p in m.params)]
+
+
 @dataclass(frozen=True)
 class Range:
     """A numeric range; None is unbounded. Blender's own limits are inclusive, so an

@@ -35,7 +35,7 @@ facet's (+Y up), so "up" means the same thing on both sides.
 from dataclasses import dataclass, field
 
 from . import UserError
-from .catalog import LAYER_SECTION, LAYER_SLOTS, LOBE_SECTIONS, SLOTS
+from .catalog import LAYER_SECTION, LAYER_SLOTS, LOBE_SECTIONS, SLOTS, slot_models
 from .coords import clean_float, clean_vector, to_blender, to_facet
 
 MATERIAL_GROUP = "FACET_PG_material"
@@ -195,9 +195,9 @@ def material_group(catalog):
     group.fields.append(Field(USE_FACET, "bool", "facet",
                               "Give this material facet settings: export it as a facet material, "
                               "generate GLSL/OSL/POV-Ray from it", False))
-    slots = [(slot, section) for slot, section in SLOTS if catalog.models(section)]  # an older facet: no layers
+    slots = [(slot, section) for slot, section in SLOTS if slot_models(catalog, section)]  # an older facet: no layers
     for slot, section in slots:
-        models = catalog.models(section)
+        models = slot_models(catalog, section)
         what = f"{section} lobe" if section != LAYER_SECTION else f"layer {slot[len('layer'):]} (0 the lower)"
         items = ((NONE, "None", f"No {what}"),) + tuple(
             (m.name, m.title, f"{m.doc} {m.formula} ({m.citation})".strip()) for m in models)
@@ -206,7 +206,7 @@ def material_group(catalog):
                                   f"The {what}'s model (facet catalog)", default, items=items))
     lobes = {}
     for slot, section in slots:
-        for m in catalog.models(section):
+        for m in slot_models(catalog, section):
             lobe = lobes.setdefault(m.name + "/" + section, lobe_group(catalog, m))
             group.fields.append(Field(f"{slot}_{m.name}", "group", m.title, m.doc, group=lobe))
     for k in catalog.material_keys:
@@ -342,10 +342,16 @@ def material_from_json(catalog, plan, data):
     user set in them. The JSON is assumed valid (facet checked it)."""
     values = {USE_FACET: True}
     layers = data.get("layers") or []
-    slots = [slot for slot, section in SLOTS if section == LAYER_SECTION and catalog.models(section)]
+    slots = [slot for slot, section in SLOTS if section == LAYER_SECTION and slot_models(catalog, section)]
     if len(layers) > len(slots):
         raise UserError(f"material '{data.get('name', '')}' has {len(layers)} layers; the facet panel holds "
                         f"{len(slots)}: the material is not imported (facet itself renders it)")
+    held = {m.name for m in slot_models(catalog, LAYER_SECTION)}
+    for i, layer in enumerate(layers):
+        if isinstance(layer, dict) and layer.get("model") not in held:
+            raise UserError(f"material '{data.get('name', '')}': layers[{i}] is a {layer.get('model')} layer, which "
+                            f"the facet panel does not hold (it holds {', '.join(sorted(held)) or 'none'}): the "
+                            f"material is not imported (facet itself renders it)")
     chosen = {section: data.get(section) for section in LOBE_SECTIONS}
     chosen.update({slot: layers[i] if i < len(layers) else None for i, slot in enumerate(slots)})
     for slot, lobe in chosen.items():
@@ -376,7 +382,7 @@ def conversion_values(catalog, plan, result):
         group = plan.field(f"{section}_{lobe['model']}").group
         values[f"{section}_{lobe['model']}"] = lobe_from_json(group, lobe)
     for slot, section in SLOTS:       # Blender's BSDFs map to lobes (gltf_pbr holds its own sheen and coat)
-        if section == LAYER_SECTION and catalog.models(section):
+        if section == LAYER_SECTION and slot_models(catalog, section):
             values[f"{slot}_model"] = NONE
     if any(k.name == "emission" for k in catalog.material_keys):
         values["emission"] = list(result.emission) if result.emission else [0.0, 0.0, 0.0]

@@ -7,6 +7,7 @@ import subprocess
 import pytest
 
 from facet_blender.core import UserError, convert, generate, props
+from facet_blender.core.catalog import slot_models
 from support import example
 
 EXAMPLES = sorted(n for n in os.listdir(example("materials")) if n.endswith(".json"))
@@ -109,8 +110,14 @@ def test_examples_round_trip_to_the_same_reflectance(tmp_path, facet, catalog, p
 @pytest.mark.parametrize("name", LAYERED)
 def test_layered_examples_round_trip_through_the_layer_slots(tmp_path, facet, catalog, plan, name):
     """examples/layered: the layers go into the panel's slots, lowest first, and come back as the
-    same list: facet evaluates the same reflectance."""
+    same list: facet evaluates the same reflectance. A layer with a lobe inside (mix), which the
+    panel has no place for, is refused by name rather than imported without it."""
     data = load(name, "layered")
+    held = {m.name for m in slot_models(catalog, "layer")}
+    if any(layer["model"] not in held for layer in data["layers"]):
+        with pytest.raises(UserError, match=r"layers\[\d\] is a mix layer, which the facet panel does not hold"):
+            props.material_from_json(catalog, plan, data)
+        return
     values = props.material_from_json(catalog, plan, data)
     for i, layer in enumerate(data["layers"]):
         assert values[f"layer{i}_model"] == layer["model"]
@@ -123,8 +130,10 @@ def test_layered_examples_round_trip_through_the_layer_slots(tmp_path, facet, ca
 
 
 def test_layer_slots_share_their_models_groups_and_hold_two(catalog, plan):
-    layer_models = [m.name for m in catalog.models("layer")]
+    layer_models = [m.name for m in slot_models(catalog, "layer")]
     assert layer_models, "facet's catalog has layer models"
+    assert "mix" in [m.name for m in catalog.models("layer")] and "mix" not in layer_models, \
+        "a layer with a lobe inside is not offered"
     for slot in ("layer0", "layer1"):
         assert [i[0] for i in plan.field(f"{slot}_model").items] == [props.NONE] + layer_models
         assert plan.field(f"{slot}_model").default == props.NONE
