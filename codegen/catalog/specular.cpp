@@ -775,6 +775,8 @@ void add_specular(std::vector<ModelDef>& all) {
 // coat and the sheen of glTF's BRDF, the same code as gltf_pbr's (coat_over, sheen_over), over
 // whatever lies under them.
 void add_layers(std::vector<ModelDef>& all) {
+  const char* kLayerNodes = "a layer has no Blender node (no Add Shader weights one closure by what another reflects): "
+                            "the add-on's Generate OSL (Cycles) and its facet POV-Ray engine draw it";
   {
     ModelDef m;
     m.section = "layer";
@@ -795,8 +797,7 @@ void add_layers(std::vector<ModelDef>& all) {
     m.cycles = approximate("principled_bsdf's Coat: Cycles layers its coat by the coat's albedo (and tints what lies "
                            "under it), not by w·Fc(n·v)");
     m.pov = none(kMicrofacetPov);
-    m.blender_nodes = nodes_none("a layer has no Blender node (no Add Shader weights one closure by what another "
-                                 "reflects): the add-on's Generate OSL (Cycles) and its facet POV-Ray engine draw it");
+    m.blender_nodes = nodes_none(kLayerNodes);
     m.layer = [](LobeContext& c, const ir::Expr& base) { return coat_over(c, base, kLayerCoat); };
     m.emission_weight = [](const ModelSpec& s, const std::string& lobe, const std::string& function) {
       return coat_emission_weight(s, lobe, function, kLayerCoat);
@@ -831,8 +832,7 @@ void add_layers(std::vector<ModelDef>& all) {
                        Range::closed(0, 1), 0.5, false)};
     m.cycles = approximate("principled_bsdf's Sheen: Cycles' microfiber sheen, another distribution and albedo");
     m.pov = none(kMicrofacetPov);
-    m.blender_nodes = nodes_none("a layer has no Blender node (no Add Shader weights one closure by what another "
-                                 "reflects): the add-on's Generate OSL (Cycles) and its facet POV-Ray engine draw it");
+    m.blender_nodes = nodes_none(kLayerNodes);
     m.layer = [](LobeContext& c, const ir::Expr& base) { return sheen_over(c, base, kLayerSheen); };
     m.gltf_brdf_params = {{kLayerSheen.color, kGltfSheen.color}, {kLayerSheen.roughness, kGltfSheen.roughness}};
     m.gltf_brdf_stack = 1;
