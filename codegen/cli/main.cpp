@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
   CLI::App app{"facet " FACET_VERSION
                " — one material description, equivalent GLSL, OSL and POV-Ray code, and a C++ reference.\n"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", "facet " FACET_VERSION, "Print facet's version (the CMake project's) and exit");
   app.footer(
       "Examples:\n"
       "  facet generate examples/materials/ggx.json --target glsl -o ggx.frag\n"
